@@ -1,0 +1,48 @@
+/* penumbra/check_config.h - rejects inconsistent configuration at compile time.
+ * Included by config.h after all defaults are set; never include it on its own. */
+#ifndef PN_CHECK_CONFIG_H
+#define PN_CHECK_CONFIG_H
+
+#if PN_ENABLE_REFERENCE != 0 && PN_ENABLE_REFERENCE != 1
+#error "PN_ENABLE_REFERENCE must be 0 or 1"
+#endif
+
+#if PN_MASK_K_MAX != 4 && PN_MASK_K_MAX != 8 && PN_MASK_K_MAX != 16 && PN_MASK_K_MAX != 32
+#error "PN_MASK_K_MAX must be 4, 8, 16 or 32 (the light mask is k x k bits in 32-bit words)"
+#endif
+
+#if PN_MAX_TRIANGLES < 1 || PN_MAX_TRIANGLES > (1u << 26)
+#error "PN_MAX_TRIANGLES must be in 1 .. 2^26 (BVH node indices and sizes must fit 32 bits)"
+#endif
+
+#if PN_MAX_VERTICES < 3 || PN_MAX_VERTICES > (1u << 31)
+#error "PN_MAX_VERTICES must be in 3 .. 2^31"
+#endif
+
+#if PN_MAX_WIDTH < 1 || PN_MAX_WIDTH > 16384 || PN_MAX_HEIGHT < 1 || PN_MAX_HEIGHT > 16384
+#error "PN_MAX_WIDTH and PN_MAX_HEIGHT must be in 1 .. 16384"
+#endif
+
+#if PN_BVH_BINS < 4 || PN_BVH_BINS > 64
+#error "PN_BVH_BINS must be in 4 .. 64"
+#endif
+
+#if PN_BVH_LEAF_MAX < 1 || PN_BVH_LEAF_MAX > 16
+#error "PN_BVH_LEAF_MAX must be in 1 .. 16"
+#endif
+
+#if PN_BVH_STACK < 8 || PN_BVH_STACK > 256
+#error "PN_BVH_STACK must be in 8 .. 256"
+#endif
+
+/* Tree depth bound: SAH levels, then median splits halve the count (2^26 triangles at most
+ * -> 26 more levels), plus the leaf level. The traversal stack holds at most depth entries. */
+#if PN_BVH_SAH_DEPTH + 27 > PN_BVH_STACK
+#error "PN_BVH_SAH_DEPTH + 27 must not exceed PN_BVH_STACK: raise PN_BVH_STACK or lower PN_BVH_SAH_DEPTH"
+#endif
+
+#if PN_DEBUG_ARENA != 0 && PN_DEBUG_ARENA != 1
+#error "PN_DEBUG_ARENA must be 0 or 1"
+#endif
+
+#endif

@@ -1,0 +1,93 @@
+/* penumbra/config.h - compile-time configuration, documented defaults.
+ *
+ * Put overrides in your own header and build with -DPN_CONFIG_FILE='"my_config.h"'; it is
+ * included first, and every option below only takes its default when still undefined.
+ * Options are numbers or 0/1, never "defined or not": build with -Wundef so that a
+ * misspelt option fails the build instead of silently taking a default.
+ * check_config.h (included at the end) rejects inconsistent settings with #error. */
+#ifndef PN_CONFIG_H
+#define PN_CONFIG_H
+
+#ifdef PN_CONFIG_FILE
+#include PN_CONFIG_FILE
+#endif
+
+/* ---- Algorithms compiled in (0 or 1). ------------------------------------------------
+ * A disabled algorithm costs no code; asking for it at run time gives PN_E_UNSUPPORTED. */
+
+/* Exact k x k visibility through a BVH: the ground truth. Required by the tests. */
+#ifndef PN_ENABLE_REFERENCE
+#define PN_ENABLE_REFERENCE 1
+#endif
+
+/* ---- Limits (they size the arena; see pn_arena_size()). ------------------------------ */
+
+/* Largest triangle count a scene may have, including any ground plane the caller adds.
+ * Costs about 108 bytes per triangle of persistent arena (triangle copy 36, BVH nodes up
+ * to 2 x 32, index 4, raster record 8). Range 1 .. 2^26. */
+#ifndef PN_MAX_TRIANGLES
+#define PN_MAX_TRIANGLES (1u << 20)
+#endif
+
+/* Largest vertex count accepted by pn_scene_set(). Vertices are validated and read while
+ * copying triangles, never stored, so this costs no arena. Range 3 .. 2^31. */
+#ifndef PN_MAX_VERTICES
+#define PN_MAX_VERTICES (1u << 24)
+#endif
+
+/* Largest output image. Costs 40 bytes of frame arena per pixel (G-buffer 32,
+ * visibility 4, RGBA8 4). Range 1 .. 16384 each. */
+#ifndef PN_MAX_WIDTH
+#define PN_MAX_WIDTH 2048u
+#endif
+#ifndef PN_MAX_HEIGHT
+#define PN_MAX_HEIGHT 2048u
+#endif
+
+/* Largest light-mask resolution k (k x k light samples per pixel). Run-time k may be any
+ * of 4, 8, 16, 32 up to this value. Must be 4, 8, 16 or 32. The mask lives on the stack
+ * of a work item: k*k/8 bytes (128 bytes for 32). */
+#ifndef PN_MASK_K_MAX
+#define PN_MASK_K_MAX 32u
+#endif
+
+/* ---- BVH ------------------------------------------------------------------------------ */
+
+/* Binned SAH: number of bins per axis (4 .. 64). More bins, better trees, slower builds. */
+#ifndef PN_BVH_BINS
+#define PN_BVH_BINS 16u
+#endif
+
+/* A node with at most this many triangles may become a leaf (1 .. 16). Nodes with more
+ * are always split. */
+#ifndef PN_BVH_LEAF_MAX
+#define PN_BVH_LEAF_MAX 4u
+#endif
+
+/* Depth after which the builder switches from SAH to median splits, which halve the
+ * triangle count at each level; with it the tree depth is at most
+ * PN_BVH_SAH_DEPTH + log2(PN_MAX_TRIANGLES) + 1, and that must fit the traversal stack
+ * PN_BVH_STACK (8 .. 256 entries of 4 bytes, on the stack of each work item). */
+#ifndef PN_BVH_SAH_DEPTH
+#define PN_BVH_SAH_DEPTH 32u
+#endif
+#ifndef PN_BVH_STACK
+#define PN_BVH_STACK 64u
+#endif
+
+/* ---- Debugging ------------------------------------------------------------------------ */
+
+/* 1: memory rewound to an arena mark is filled with 0xA5 and mark order is checked, as
+ * LVGL's LV_MEM_ADD_JUNK does. Costs a memset per rewind. */
+#ifndef PN_DEBUG_ARENA
+#define PN_DEBUG_ARENA 0
+#endif
+
+/* ---- Derived values (do not override). ----------------------------------------------- */
+
+#define PN_ARENA_ALIGN 64u
+#define PN_MASK_WORDS_MAX ((PN_MASK_K_MAX * PN_MASK_K_MAX + 31u) / 32u)
+
+#include "penumbra/check_config.h"
+
+#endif

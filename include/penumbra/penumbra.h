@@ -1,0 +1,239 @@
+/* penumbra.h - soft shadows from rectangular area lights in a fixed amount of memory.
+ *
+ * WHAT IT IS
+ *   A C99 library that renders, for a triangle scene seen from a pinhole camera, the
+ *   fraction of a rectangular area light visible from the surface point behind every
+ *   pixel (1 = lit, 0 = umbra), and a shaded RGBA8 image. Several published algorithms
+ *   sit behind one API; PN_ALGO_REFERENCE is the exact ground truth (k x k light samples,
+ *   watertight segment/triangle predicate, BVH).
+ *
+ * MEMORY MODEL
+ *   The library never allocates. The caller asks how many bytes a set of limits needs
+ *   (pn_arena_size), hands one block of at least that size to pn_init, and every pool
+ *   (context, scene copy, BVH, G-buffer, outputs, scratch) is carved from it, aligned to
+ *   64 bytes. PN_ARENA_BYTES_MAX(...) gives the same bound as a constant expression, so
+ *   the block may be a static array. The library keeps pointers into the block until the
+ *   caller stops using the context; there is no "destroy".
+ *
+ * TRUST MODEL
+ *   Everything the caller passes is validated: NULL pointers, NaN/Inf, indices out of
+ *   range, degenerate lights and cameras, sizes beyond the limits. Bad input returns a
+ *   specific pn_status, stores a message (pn_last_error), writes no out-parameter and
+ *   modifies no caller memory. Scene data is *copied* into the arena by pn_scene_set, so
+ *   the caller may free or change its arrays afterwards. Degenerate (zero-area) triangles
+ *   are not errors: they are counted (pn_stats) and never rasterized or blocking.
+ *
+ * THREADS
+ *   The library starts no threads. Passes are split into work items; by default they run
+ *   in a loop on the calling thread. pn_set_parallel_for installs the caller's job system.
+ *   Results never depend on how work items are scheduled. A context is not re-entrant:
+ *   one call at a time per context.
+ *
+ * USAGE
+ *   pn_limits lim = { 100000, 512, 512 };     // max triangles, max width, max height
+ *   size_t bytes; pn_arena_size(&lim, &bytes);
+ *   void *mem = my_alloc(bytes);             // or static uint8_t mem[PN_ARENA_BYTES_MAX(...)]
+ *   pn_context *ctx; pn_init(&ctx, mem, bytes, &lim);
+ *   pn_scene_set(ctx, positions, vertex_count, indices, triangle_count);
+ *   pn_camera cam = { {0,1,3}, {0,0,0}, {0,1,0}, 45.0f };
+ *   pn_light light = { {0,3,0}, {0.5f,0,0}, {0,0,0.5f} };
+ *   pn_frame_options opt; pn_frame_options_default(&opt);   // 512x512, k = 16, reference
+ *   pn_frame out; if (pn_render(ctx, &cam, &light, &opt, &out) != PN_OK) puts(pn_last_error(ctx));
+ *   use(out.visibility, out.rgba);           // valid until the next pn_render/pn_scene_set
+ *
+ * CONVENTIONS (shared with the CLI and every test; see docs/conventions.md)
+ *   Right-handed, Y up. Camera: f = normalize(target - eye), r = normalize(f x up),
+ *   u = r x f. Pixel (x, y), y = 0 the top row, looks along
+ *   normalize(f + sx*tan(fov/2)*(W/H)*r + sy*tan(fov/2)*u), sx = 2(x+0.5)/W - 1,
+ *   sy = 1 - 2(y+0.5)/H; fov is vertical, in degrees.
+ *   Light: centre c, half-edges U and V (corners c +- U +- V), N = normalize(U x V); it
+ *   emits toward +N only: a surface point P with (P - c).N <= 0 gets visibility 0.
+ *   U = V = 0 is a point light at c, shining in every direction: one sample.
+ *   Light sample (i, j) of k x k is c + ((2i+1)/k - 1) U + ((2j+1)/k - 1) V, mask bit j*k + i.
+ *   A sample is blocked when the open segment from O = P + eps*n (n the geometric normal
+ *   turned toward c) to the sample meets a closed triangle other than P's own.
+ *   Visibility = unblocked samples / k^2. Background pixels: visibility 1, id PN_NO_TRIANGLE.
+ */
+#ifndef PENUMBRA_H
+#define PENUMBRA_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "penumbra/config.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- Status ------------------------------------------------------------------------- */
+
+typedef enum pn_status {
+    PN_OK = 0,
+    PN_E_INVALID_ARG = 1,      /* NULL pointer or an option out of its documented range */
+    PN_E_ARENA_TOO_SMALL = 2,  /* the block given to pn_init is smaller than pn_arena_size */
+    PN_E_LIMIT = 3,            /* a count or size exceeds pn_limits or a PN_MAX_* */
+    PN_E_NONFINITE = 4,        /* NaN or infinite coordinate */
+    PN_E_INDEX_RANGE = 5,      /* a triangle index >= vertex_count */
+    PN_E_LIGHT_DEGENERATE = 6, /* exactly one light half-edge is zero */
+    PN_E_LIGHT_NOT_ORTHO = 7,  /* light half-edges are not orthogonal */
+    PN_E_CAMERA = 8,           /* eye == target, up parallel to view, or fov outside (0,180) */
+    PN_E_IMAGE_SIZE = 9,       /* zero width or height */
+    PN_E_NO_SCENE = 10,        /* pn_render before a successful pn_scene_set */
+    PN_E_UNSUPPORTED = 11,     /* algorithm or port not compiled in */
+    PN_E_POOL_EXHAUSTED = 12,  /* a pool is too small for this frame; message names it */
+    PN_E_DEVICE = 13,          /* a port's device failed (OpenCL port) */
+    PN_E_INTERNAL = 14         /* a broken invariant; please report */
+} pn_status;
+
+/* Static text for any status ("PN_E_LIMIT: count or size exceeds a limit"). Never NULL. */
+const char *pn_status_str(pn_status status);
+
+/* ---- Arena and context -------------------------------------------------------------- */
+
+typedef struct pn_context pn_context;
+
+/* The run-time limits a context is sized for. Each must be >= 1 and <= its PN_MAX_*. */
+typedef struct pn_limits {
+    uint32_t max_triangles;
+    uint32_t max_width;
+    uint32_t max_height;
+} pn_limits;
+
+/* Limits equal to the compile-time maxima. */
+void pn_limits_max(pn_limits *limits);
+
+/* Bytes of arena that pn_init needs for `limits` (the same carve routine pn_init runs,
+ * against a NULL base; plus PN_ARENA_ALIGN - 1 bytes so that any base address works).
+ * Returns PN_OK, PN_E_INVALID_ARG (NULL) or PN_E_LIMIT (a limit out of range, or the
+ * total does not fit size_t). *out_bytes is written only on PN_OK. */
+pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
+
+/* Upper bound of pn_arena_size() for limits (t, w, h) as a constant expression, for
+ * static declaration: static uint8_t arena[PN_ARENA_BYTES_MAX(PN_MAX_TRIANGLES,
+ * PN_MAX_WIDTH, PN_MAX_HEIGHT)]. A test checks it never falls below pn_arena_size. */
+#define PN_ARENA_BYTES_MAX(t, w, h)                                                         \
+    ((size_t)(16u * 1024u) + (size_t)(t) * 112u + (size_t)(w) * (size_t)(h) * 40u +          \
+     (size_t)(h) * 8u + 32u * (size_t)PN_ARENA_ALIGN)
+
+/* Wraps `memory` (bytes long, any alignment, caller-owned, must outlive the context) and
+ * carves every pool. On PN_OK *out_ctx points into `memory`. On failure nothing in
+ * `memory` is written and *out_ctx is untouched. Statuses: PN_E_INVALID_ARG,
+ * PN_E_LIMIT, PN_E_ARENA_TOO_SMALL. There is no global state: contexts are independent. */
+pn_status pn_init(pn_context **out_ctx, void *memory, size_t bytes, const pn_limits *limits);
+
+/* The message of the first error since the last successful call that cleared it ("" if
+ * none). Messages say what was wrong and the value or size involved. Never NULL. */
+const char *pn_last_error(const pn_context *ctx);
+
+/* Work distribution. The library calls `parallel_for(user, count, fn, task)` and expects
+ * fn(task, begin, end) to be called for disjoint ranges covering [0, count) exactly once,
+ * from any threads, in any order, returning after all have finished. NULL restores the
+ * serial loop. Work items write disjoint memory; results do not depend on the schedule. */
+typedef void (*pn_task_fn)(void *task, uint32_t begin, uint32_t end);
+typedef void (*pn_parallel_for_fn)(void *user, uint32_t count, pn_task_fn fn, void *task);
+pn_status pn_set_parallel_for(pn_context *ctx, pn_parallel_for_fn parallel_for, void *user);
+
+/* Optional clock for per-pass timings in pn_stats (nanoseconds, any epoch). NULL: none. */
+typedef uint64_t (*pn_clock_fn)(void *user);
+pn_status pn_set_clock(pn_context *ctx, pn_clock_fn clock, void *user);
+
+/* ---- Scene -------------------------------------------------------------------------- */
+
+/* Copies a triangle soup into the arena and builds its BVH. `positions` holds
+ * vertex_count xyz float triples, `indices` triangle_count index triples; both are read,
+ * never written, and may be freed after the call. Replaces the previous scene.
+ * Statuses: PN_E_INVALID_ARG (NULL, zero triangles), PN_E_LIMIT (counts over the
+ * limits), PN_E_NONFINITE (any vertex not finite), PN_E_INDEX_RANGE. Zero-area triangles
+ * are kept (their ids stay valid) but never drawn nor blocking; pn_stats counts them.
+ * On failure the previous scene is gone (pn_render returns PN_E_NO_SCENE). */
+pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_count,
+                       const uint32_t *indices, uint32_t triangle_count);
+
+/* ---- Frame -------------------------------------------------------------------------- */
+
+typedef struct pn_camera {
+    float eye[3];
+    float target[3];
+    float up[3];
+    float fov_deg; /* vertical, in (0, 180) */
+} pn_camera;
+
+typedef struct pn_light {
+    float center[3];
+    float u[3]; /* half-edge; u = v = 0 makes a point light */
+    float v[3]; /* half-edge, orthogonal to u */
+} pn_light;
+
+typedef enum pn_algo {
+    PN_ALGO_REFERENCE = 0
+} pn_algo;
+
+typedef struct pn_frame_options {
+    uint32_t width, height; /* >= 1, <= the context's limits */
+    uint32_t k;             /* 4, 8, 16 or 32, <= PN_MASK_K_MAX; ignored for a point light */
+    pn_algo algo;
+    float eps;      /* shadow-ray offset in scene units (the CLI uses 1e-4 * scene diagonal);
+                       finite, >= 0 */
+    float albedo;   /* shading: rgb = albedo * (ambient + visibility * cos) ; [0, 1] */
+    float ambient;  /* [0, 1] */
+    uint8_t background[4]; /* RGBA8 of pixels that see no triangle */
+} pn_frame_options;
+
+/* 512x512, k = 16, reference, eps = 1e-4, albedo 0.8, ambient 0.1, dark blue background. */
+void pn_frame_options_default(pn_frame_options *opt);
+
+#define PN_NO_TRIANGLE 0xFFFFFFFFu
+
+/* Results of one pn_render. All pointers point into the arena and stay valid until the
+ * next pn_render or pn_scene_set on the context. Arrays are width*height, row-major, top
+ * row first. */
+typedef struct pn_frame {
+    uint32_t width, height;
+    const float *visibility;  /* [0, 1] */
+    const uint8_t *rgba;      /* 4 bytes per pixel */
+    const uint32_t *tri_id;   /* triangle index (scene order) or PN_NO_TRIANGLE */
+    const float *depth;       /* distance along the pixel's primary ray; +inf background */
+    const float *position;    /* 3 floats per pixel: world position on the triangle */
+    const float *normal;      /* 3 floats per pixel: unit geometric normal (winding order) */
+} pn_frame;
+
+/* Renders one frame: G-buffer, shadow pass of opt->algo, shading.
+ * Statuses: PN_E_INVALID_ARG, PN_E_NO_SCENE, PN_E_NONFINITE (camera or light),
+ * PN_E_CAMERA, PN_E_LIGHT_DEGENERATE, PN_E_LIGHT_NOT_ORTHO, PN_E_IMAGE_SIZE, PN_E_LIMIT,
+ * PN_E_UNSUPPORTED. *out is written only on PN_OK. */
+pn_status pn_render(pn_context *ctx, const pn_camera *camera, const pn_light *light,
+                    const pn_frame_options *opt, pn_frame *out);
+
+/* ---- Introspection ------------------------------------------------------------------ */
+
+enum { PN_PASS_SCENE_COPY, PN_PASS_BVH_BUILD, PN_PASS_GBUFFER, PN_PASS_SHADOW, PN_PASS_SHADE,
+       PN_PASS_COUNT };
+
+typedef struct pn_stats {
+    size_t arena_bytes;          /* size of the block given to pn_init */
+    size_t arena_carved;         /* bytes the carve routine laid out (persistent + frame) */
+    size_t arena_persistent;     /* context, scene copy, BVH */
+    size_t arena_high_water;     /* most bytes ever in use, from the aligned base */
+    uint32_t triangles;          /* in the current scene */
+    uint32_t degenerate_triangles;
+    uint32_t bvh_nodes;
+    uint32_t bvh_depth;
+    uint32_t bvh_max_leaf;
+    uint64_t pass_ns[PN_PASS_COUNT]; /* 0 without a clock; last scene set / last frame */
+    uint64_t shadow_candidates;  /* triangles handed to the predicate in the last frame */
+    uint64_t shadow_blocking;    /* ...of which blocked at least one sample */
+    uint32_t lit_pixels;         /* pixels that see a triangle facing the light */
+} pn_stats;
+
+pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);
+
+/* Which algorithms and ports this build holds, as flags. */
+#define PN_BUILD_REFERENCE 0x1u
+#define PN_BUILD_PORT_SCALAR 0x100u
+uint32_t pn_build_info(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

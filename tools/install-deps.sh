@@ -1,0 +1,19 @@
+#!/bin/sh
+# Installs the Debian 12 packages the build and tests need, if any are missing.
+# As root: apt-get installs them. Otherwise: prints the exact command and fails.
+set -eu
+PKGS="cmake make gcc g++ libtinygltf-dev libstb-dev gcc-arm-none-eabi libnewlib-arm-none-eabi"
+missing=""
+for p in $PKGS; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+[ -z "$missing" ] && exit 0
+if [ "$(id -u)" -ne 0 ]; then
+  echo "penumbra: missing Debian packages:$missing" >&2
+  echo "run:  sudo apt-get update && sudo apt-get install -y$missing" >&2
+  exit 1
+fi
+echo "penumbra: installing$missing" >&2
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends $missing >/dev/null

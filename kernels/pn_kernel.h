@@ -1,0 +1,38 @@
+/* pn_kernel.h - the qualifier vocabulary that lets kernels/ compile both as C99 (scalar
+ * port, host) and as OpenCL C 1.2 (OpenCL port). Every kernels/ header includes it first.
+ *
+ *   PN_KFN      a kernel helper function (static inline in C, plain inline-able in CL)
+ *   PN_GLOBAL   pointer into the arena (device global memory in OpenCL)
+ *   PN_CONST    read-only pointer into the arena
+ *
+ * Kernel code uses only + - * / and pn_ksqrt on float, 32-bit integers, fixed-size
+ * arrays, loops and no recursion, no function pointers, no double, no libc: both
+ * compilers then produce correctly rounded IEEE results in the same order, which is what
+ * makes the two ports bit-identical (with contraction off on both sides). */
+#ifndef PN_KERNEL_H
+#define PN_KERNEL_H
+
+#ifdef __OPENCL_VERSION__
+#pragma OPENCL FP_CONTRACT OFF
+#define PN_KFN static inline
+#define PN_GLOBAL __global
+#define PN_CONST __global const
+typedef uint uint32_t;
+typedef int int32_t;
+typedef ushort uint16_t;
+typedef uchar uint8_t;
+#define pn_ksqrt(x) sqrt(x)
+#define PN_KINF INFINITY
+#else
+#include <stdint.h>
+#include "penumbra/config.h"
+#define PN_KFN static inline
+#define PN_GLOBAL
+#define PN_CONST const
+/* __builtin_sqrtf is correctly rounded and needs no libm symbol on bare metal when built
+ * with -fno-math-errno (it becomes vsqrt.f32 on Cortex-M7, sqrtss on x86). */
+#define pn_ksqrt(x) __builtin_sqrtf(x)
+#define PN_KINF (__builtin_inff())
+#endif
+
+#endif

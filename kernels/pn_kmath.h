@@ -1,0 +1,79 @@
+/* pn_kmath.h - 3-vectors as float[3]-compatible structs and the few scalar helpers the
+ * kernels need. Operations are written out component by component in a fixed order so
+ * that C and OpenCL evaluate identical expressions. */
+#ifndef PN_KMATH_H
+#define PN_KMATH_H
+
+#include "pn_kernel.h"
+
+typedef struct pn_v3 {
+    float x, y, z;
+} pn_v3;
+
+PN_KFN pn_v3 pn_v3_make(float x, float y, float z)
+{
+    pn_v3 r;
+    r.x = x;
+    r.y = y;
+    r.z = z;
+    return r;
+}
+PN_KFN pn_v3 pn_v3_load(PN_CONST float *p) { return pn_v3_make(p[0], p[1], p[2]); }
+PN_KFN pn_v3 pn_v3_add(pn_v3 a, pn_v3 b) { return pn_v3_make(a.x + b.x, a.y + b.y, a.z + b.z); }
+PN_KFN pn_v3 pn_v3_sub(pn_v3 a, pn_v3 b) { return pn_v3_make(a.x - b.x, a.y - b.y, a.z - b.z); }
+PN_KFN pn_v3 pn_v3_scale(pn_v3 a, float s) { return pn_v3_make(a.x * s, a.y * s, a.z * s); }
+PN_KFN float pn_v3_dot(pn_v3 a, pn_v3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+PN_KFN pn_v3 pn_v3_cross(pn_v3 a, pn_v3 b)
+{
+    return pn_v3_make(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+PN_KFN pn_v3 pn_v3_normalize(pn_v3 a)
+{
+    float len2 = pn_v3_dot(a, a);
+    float inv = len2 > 0.0f ? 1.0f / pn_ksqrt(len2) : 0.0f;
+    return pn_v3_scale(a, inv);
+}
+PN_KFN float pn_kminf(float a, float b) { return a < b ? a : b; }
+PN_KFN float pn_kmaxf(float a, float b) { return a > b ? a : b; }
+PN_KFN int32_t pn_kmini(int32_t a, int32_t b) { return a < b ? a : b; }
+PN_KFN int32_t pn_kmaxi(int32_t a, int32_t b) { return a > b ? a : b; }
+
+/* Float to integer, clamped to [lo, hi] *before* the conversion (an out-of-range
+ * conversion is undefined in C and implementation-defined in OpenCL); NaN gives lo. */
+PN_KFN int32_t pn_kfloor_clamp(float v, int32_t lo, int32_t hi)
+{
+    int32_t i;
+    if (!(v > (float)lo)) return lo;
+    if (v >= (float)hi) return hi;
+    i = (int32_t)v; /* truncation; v > lo >= -2^24 here */
+    if ((float)i > v) i -= 1;
+    return i;
+}
+PN_KFN int32_t pn_kceil_clamp(float v, int32_t lo, int32_t hi)
+{
+    int32_t i;
+    if (!(v > (float)lo)) return lo;
+    if (v >= (float)hi) return hi;
+    i = (int32_t)v;
+    if ((float)i < v) i += 1;
+    return i;
+}
+
+PN_KFN uint32_t pn_kpopcount(uint32_t v)
+{
+    v = v - ((v >> 1) & 0x55555555u);
+    v = (v & 0x33333333u) + ((v >> 2) & 0x33333333u);
+    v = (v + (v >> 4)) & 0x0F0F0F0Fu;
+    return (v * 0x01010101u) >> 24;
+}
+
+/* Lexicographic "a < b" on (x, y, z): the canonical vertex order that makes a shared
+ * edge evaluate identically in both triangles that use it. */
+PN_KFN int pn_v3_less(pn_v3 a, pn_v3 b)
+{
+    if (a.x != b.x) return a.x < b.x;
+    if (a.y != b.y) return a.y < b.y;
+    return a.z < b.z;
+}
+
+#endif

@@ -1,0 +1,54 @@
+/* pn_ktypes.h - structs shared between the host core and the kernels. Fixed-width
+ * integers and floats only (no enums, pointers or bool), laid out identically by C and
+ * OpenCL C, so the OpenCL port can copy them into constant arguments verbatim. */
+#ifndef PN_KTYPES_H
+#define PN_KTYPES_H
+
+#include "pn_kernel.h"
+
+/* Primary camera, derived on the host from pn_camera (see src/pn_frame_setup.c). */
+typedef struct pn_kview {
+    float eye[3];
+    float f[3], r[3], u[3]; /* orthonormal: forward, right, up */
+    float tan_half;         /* tan(fov/2) */
+    float aspect;           /* width / height */
+    float znear;            /* near clipping distance along f, > 0 */
+    uint32_t width, height;
+} pn_kview;
+
+/* Area or point light plus the shadow-ray parameters of a frame. */
+typedef struct pn_klight {
+    float c[3];     /* centre */
+    float U[3];     /* half-edges (zero for a point light) */
+    float V[3];
+    float N[3];     /* unit normal, U x V normalized; zero for a point light */
+    float eps;      /* shadow-ray origin offset along the normal, scene units */
+    float cull_tol; /* slack of conservative frustum culling, scene units */
+    uint32_t k;     /* samples per light edge (1 for a point light) */
+    uint32_t is_point;
+} pn_klight;
+
+/* BVH node, 32 bytes. Interior (count == 0): children at first and first + 1.
+ * Leaf: triangles tri_index[first .. first + count). The root is node 0, so no child
+ * index is ever 0: a root with count 0 and first 0 is the empty tree. */
+typedef struct pn_kbvh_node {
+    float bmin[3];
+    uint32_t first;
+    float bmax[3];
+    uint32_t count;
+} pn_kbvh_node;
+
+/* Shading constants. */
+typedef struct pn_kshade {
+    float albedo, ambient;
+    uint32_t background; /* RGBA8 packed little-endian: r | g << 8 | b << 16 | a << 24 */
+    uint32_t pad;
+} pn_kshade;
+
+/* Triangle flags (one byte each). */
+#define PN_TRI_DEGENERATE 1u
+
+/* Rows of pixels per rasterizer work item. */
+#define PN_RASTER_BAND 8u
+
+#endif

@@ -1,0 +1,231 @@
+/* pn_predicate.h - the one definition of "light sample blocked" (DESIGN.md invariant 6).
+ *
+ * Sample (i, j) of k x k sits at S = c + a_i U + b_j V with a_i = (2i+1)/k - 1 (exact in
+ * float for k a power of two). It is blocked from the shadow-ray origin O by triangle
+ * ABC when the open segment (O, S) meets the closed triangle:
+ *
+ *   plane:  O and S lie strictly on opposite sides of the triangle's plane, i.e. the
+ *           segment crosses it at some t in (0, 1). This is the "clip to the slab between
+ *           O's plane and the light plane" of the issue, done per sample: a triangle part
+ *           behind O or behind the sample can never be crossed by (O, S);
+ *   edges:  the three triple products (S - O) . ((P1 - O) x (P2 - O)) over the edges
+ *           P1P2 all have the same sign (zero counts as either). This is the edge-function
+ *           test of the triangle projected from O onto the light plane, written without
+ *           the division so that no vertex needs to be projected to infinity.
+ *
+ * Every test is a linear form in (a_i, b_j): h(i, j) = (h0 + b_j*hv) + a_i*hu, always
+ * evaluated in exactly that order. Consequences, relied on below and by GEARS:
+ *   - watertight: an edge's form is computed from its endpoints in canonical
+ *     (lexicographic) order, so the two triangles sharing it get the very same float h and
+ *     see it with opposite signs; with zero counted as inside by both, a sample can never
+ *     slip between them;
+ *   - monotone: IEEE multiply and add are monotone, so for a fixed row h is monotone in i,
+ *     and for fixed i monotone in j. Each form passes on a prefix or suffix of a row, a
+ *     row's blocked samples are one interval per orientation, and the extreme value over
+ *     the grid is at a corner. Interval ends are found by evaluating h itself (an estimate
+ *     from a division only picks the starting point), so the result is the per-sample
+ *     answer exactly, at a fraction of the cost.
+ * A point light is the case k = 1, U = V = 0. */
+#ifndef PN_PREDICATE_H
+#define PN_PREDICATE_H
+
+#include "pn_kmath.h"
+#include "pn_ktypes.h"
+
+/* ---- Linear forms over the sample grid ------------------------------------------------ */
+
+typedef struct pn_lin {
+    float h0, hu, hv;
+} pn_lin;
+
+PN_KFN float pn_sample_coord(int32_t i, uint32_t k)
+{
+    return (float)(2 * i + 1) / (float)k - 1.0f;
+}
+
+PN_KFN pn_lin pn_lin_neg(pn_lin a)
+{
+    /* Round-to-nearest is symmetric, so evaluating the negated form gives exactly the
+     * negated value: orientation flips never change which samples are on an edge. */
+    pn_lin r;
+    r.h0 = -a.h0;
+    r.hu = -a.hu;
+    r.hv = -a.hv;
+    return r;
+}
+
+/* Edge form of edge P1P2 seen from O; positive on the left of P1 -> P2 as the caller
+ * wound it. cO = light centre - O. */
+PN_KFN pn_lin pn_edge_form(pn_v3 P1, pn_v3 P2, pn_v3 O, pn_v3 cO, pn_v3 U, pn_v3 V)
+{
+    pn_lin r;
+    int flip = pn_v3_less(P2, P1);
+    pn_v3 a = flip ? P2 : P1;
+    pn_v3 b = flip ? P1 : P2;
+    pn_v3 m = pn_v3_cross(pn_v3_sub(a, O), pn_v3_sub(b, O));
+    r.h0 = pn_v3_dot(cO, m);
+    r.hu = pn_v3_dot(U, m);
+    r.hv = pn_v3_dot(V, m);
+    return flip ? pn_lin_neg(r) : r;
+}
+
+/* Largest value of the form over the k x k grid (at the corner its slopes point to). */
+PN_KFN float pn_lin_max(pn_lin f, uint32_t k)
+{
+    float lo = pn_sample_coord(0, k), hi = pn_sample_coord((int32_t)k - 1, k);
+    float b = f.hv > 0.0f ? hi : lo;
+    float a = f.hu > 0.0f ? hi : lo;
+    return (f.h0 + b * f.hv) + a * f.hu;
+}
+
+/* Samples i of one row (row base rb = h0 + b_j*hv) where rb + a_i*hu >= 0 (> 0 if
+ * strict), as [*lo, *hi] narrowed in place. */
+PN_KFN int pn_row_pass(float rb, float hu, int32_t i, uint32_t k, int strict)
+{
+    float v = rb + pn_sample_coord(i, k) * hu;
+    return strict ? v > 0.0f : v >= 0.0f;
+}
+
+PN_KFN void pn_row_narrow(float rb, float hu, uint32_t k, int strict, int32_t *lo, int32_t *hi)
+{
+    int32_t kk = (int32_t)k;
+    if (*lo > *hi) return;
+    if (hu == 0.0f) {
+        if (!pn_row_pass(rb, hu, 0, k, strict)) *hi = *lo - 1;
+        return;
+    }
+    {
+        /* Real root a* = -rb/hu as a sample index; only a starting point for the walk. */
+        float est = ((-rb / hu + 1.0f) * (float)k - 1.0f) * 0.5f;
+        if (hu > 0.0f) { /* increasing: passes on [first, k-1] */
+            int32_t i = pn_kceil_clamp(est, 0, kk);
+            while (i > 0 && pn_row_pass(rb, hu, i - 1, k, strict)) i--;
+            while (i < kk && !pn_row_pass(rb, hu, i, k, strict)) i++;
+            if (i > *lo) *lo = i;
+        } else { /* decreasing: passes on [0, last] */
+            int32_t i = pn_kfloor_clamp(est, -1, kk - 1);
+            while (i < kk - 1 && pn_row_pass(rb, hu, i + 1, k, strict)) i++;
+            while (i >= 0 && !pn_row_pass(rb, hu, i, k, strict)) i--;
+            if (i < *hi) *hi = i;
+        }
+    }
+}
+
+PN_KFN void pn_mask_set_run(uint32_t *m, uint32_t k, int32_t j, int32_t lo, int32_t hi)
+{
+    uint32_t bit = (uint32_t)j * k + (uint32_t)lo;
+    uint32_t n = (uint32_t)(hi - lo + 1);
+    uint32_t run = n >= 32u ? 0xFFFFFFFFu : ((1u << n) - 1u);
+    /* k divides 32 or equals it, so a row never straddles two words. */
+    m[bit >> 5] |= run << (bit & 31u);
+}
+
+/* ---- The predicate -------------------------------------------------------------------- */
+
+/* ORs into m (PN_MASK_WORDS_MAX words, bit j*k + i) the samples of light L that triangle
+ * ABC blocks from O. Returns 1 if it blocks at least one sample, else 0. */
+PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, uint32_t *m)
+{
+    uint32_t k = L->k;
+    pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]);
+    pn_v3 V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
+    pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]);
+    pn_v3 cO = pn_v3_sub(c, O);
+    pn_v3 n = pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
+    float d0 = pn_v3_dot(pn_v3_sub(O, A), n);
+    pn_lin plane, e[3], ne[3];
+    int pos_ok, neg_ok;
+    uint32_t any = 0;
+    int32_t j;
+
+    if (d0 == 0.0f) return 0; /* O in the plane: the segment starts on it (t = 0) */
+    {
+        pn_v3 cA = pn_v3_sub(c, A);
+        plane.h0 = pn_v3_dot(cA, n);
+        plane.hu = pn_v3_dot(U, n);
+        plane.hv = pn_v3_dot(V, n);
+        if (d0 > 0.0f) plane = pn_lin_neg(plane); /* S must be on the other side: > 0 */
+    }
+    if (!(pn_lin_max(plane, k) > 0.0f)) return 0;
+
+    e[0] = pn_edge_form(A, B, O, cO, U, V);
+    e[1] = pn_edge_form(B, C, O, cO, U, V);
+    e[2] = pn_edge_form(C, A, O, cO, U, V);
+    ne[0] = pn_lin_neg(e[0]);
+    ne[1] = pn_lin_neg(e[1]);
+    ne[2] = pn_lin_neg(e[2]);
+    pos_ok = pn_lin_max(e[0], k) >= 0.0f && pn_lin_max(e[1], k) >= 0.0f &&
+             pn_lin_max(e[2], k) >= 0.0f;
+    neg_ok = pn_lin_max(ne[0], k) >= 0.0f && pn_lin_max(ne[1], k) >= 0.0f &&
+             pn_lin_max(ne[2], k) >= 0.0f;
+    if (!pos_ok && !neg_ok) return 0;
+
+    for (j = 0; j < (int32_t)k; j++) {
+        float b = pn_sample_coord(j, k);
+        int32_t plo = 0, phi = (int32_t)k - 1;
+        int s;
+        pn_row_narrow(plane.h0 + b * plane.hv, plane.hu, k, 1, &plo, &phi);
+        if (plo > phi) continue;
+        for (s = 0; s < 2; s++) {
+            int32_t lo = plo, hi = phi, q;
+            if (!(s == 0 ? pos_ok : neg_ok)) continue;
+            for (q = 0; q < 3; q++) {
+                pn_lin f = s == 0 ? e[q] : ne[q];
+                pn_row_narrow(f.h0 + b * f.hv, f.hu, k, 0, &lo, &hi);
+            }
+            if (lo <= hi) {
+                pn_mask_set_run(m, k, j, lo, hi);
+                any = 1;
+            }
+        }
+    }
+    return any;
+}
+
+/* ---- Per-pixel set-up shared by every exact algorithm --------------------------------- */
+
+/* From the G-buffer point P and unit geometric normal nrm, the shadow-ray origin
+ * O = P + eps*n with n turned toward the light centre. Returns 0 when P cannot see the
+ * light at all (behind a one-sided area light: (P - c).N <= 0), else 1. */
+PN_KFN int pn_shadow_origin(pn_v3 P, pn_v3 nrm, const pn_klight *L, pn_v3 *O)
+{
+    pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]);
+    pn_v3 toc = pn_v3_sub(c, P);
+    if (!L->is_point) {
+        pn_v3 N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
+        if (!(pn_v3_dot(pn_v3_sub(P, c), N) > 0.0f)) return 0;
+    }
+    if (pn_v3_dot(nrm, toc) < 0.0f) nrm = pn_v3_scale(nrm, -1.0f);
+    *O = pn_v3_add(P, pn_v3_scale(nrm, L->eps));
+    return 1;
+}
+
+PN_KFN uint32_t pn_mask_words(uint32_t k) { return (k * k + 31u) >> 5; }
+
+PN_KFN void pn_mask_clear(uint32_t *m)
+{
+    uint32_t w;
+    for (w = 0; w < PN_MASK_WORDS_MAX; w++) m[w] = 0u;
+}
+
+PN_KFN uint32_t pn_mask_count(const uint32_t *m, uint32_t k)
+{
+    uint32_t w, n = 0, words = pn_mask_words(k);
+    for (w = 0; w < words; w++) n += pn_kpopcount(m[w]);
+    return n;
+}
+
+PN_KFN int pn_mask_full(const uint32_t *m, uint32_t k)
+{
+    return pn_mask_count(m, k) == k * k;
+}
+
+/* Unblocked fraction; both operands are small integers, so the quotient is exact or
+ * correctly rounded identically everywhere. */
+PN_KFN float pn_mask_visibility(const uint32_t *m, uint32_t k)
+{
+    uint32_t total = k * k;
+    return (float)(total - pn_mask_count(m, k)) / (float)total;
+}
+
+#endif

@@ -1,0 +1,264 @@
+/* pn_raster.h - primary visibility: a software rasterizer into the G-buffer.
+ *
+ * Geometry. Vertices go to camera space (x along r, y along u, z along f), are clipped
+ * against z >= znear (Sutherland-Hodgman, one plane, at most 4 vertices out), then
+ * projected to continuous pixel coordinates px = (x/(z*tan*aspect) + 1) W/2,
+ * py = (1 - y/(z*tan)) H/2, in which pixel (x, y) has its centre at (x + 0.5, y + 0.5).
+ * That is exactly where the primary ray of pixel (x, y) (pn_ray_dir) pierces the image.
+ *
+ * Fill rule (watertight). A pixel centre is covered when every edge function is positive
+ * on the polygon's inside, or zero on an edge that owns its centres: an edge owns them
+ * when its inside-facing direction d (the edge direction with the polygon interior on its
+ * left in pixel coordinates, y down) has d.y > 0, or d.y == 0 and d.x < 0. Two polygons
+ * sharing an edge see it with opposite d, so exactly one owns a centre lying on it. Edge
+ * functions and clip points are computed from their endpoints in canonical (lexicographic)
+ * order, so shared edges give identical floats in both polygons: no gaps, no double hits.
+ *
+ * Depth. For a covered pixel, t = n.(A - eye) / n.d along the unit primary ray d, with n
+ * the triangle's plane normal: the same value a ray caster gets. Ties in t go to the
+ * smaller triangle id, so the result does not depend on drawing order. */
+#ifndef PN_RASTER_H
+#define PN_RASTER_H
+
+#include "pn_kmath.h"
+#include "pn_ktypes.h"
+
+#define PN_RASTER_EMPTY 0xFFFFFFFFu
+
+/* Unit primary ray direction of pixel (x, y) (CLI conventions). */
+PN_KFN pn_v3 pn_ray_dir(const pn_kview *v, uint32_t x, uint32_t y)
+{
+    float sx = 2.0f * ((float)x + 0.5f) / (float)v->width - 1.0f;
+    float sy = 1.0f - 2.0f * ((float)y + 0.5f) / (float)v->height;
+    float a = sx * v->tan_half * v->aspect;
+    float b = sy * v->tan_half;
+    pn_v3 d = pn_v3_make(v->f[0] + a * v->r[0] + b * v->u[0],
+                         v->f[1] + a * v->r[1] + b * v->u[1],
+                         v->f[2] + a * v->r[2] + b * v->u[2]);
+    return pn_v3_normalize(d);
+}
+
+PN_KFN pn_v3 pn_view_eye(const pn_kview *v) { return pn_v3_make(v->eye[0], v->eye[1], v->eye[2]); }
+
+PN_KFN pn_v3 pn_to_camera(const pn_kview *v, pn_v3 X)
+{
+    pn_v3 rel = pn_v3_sub(X, pn_view_eye(v));
+    return pn_v3_make(rel.x * v->r[0] + rel.y * v->r[1] + rel.z * v->r[2],
+                      rel.x * v->u[0] + rel.y * v->u[1] + rel.z * v->u[2],
+                      rel.x * v->f[0] + rel.y * v->f[1] + rel.z * v->f[2]);
+}
+
+typedef struct pn_poly {
+    float x[4], y[4];
+    uint32_t n;
+} pn_poly;
+
+/* Clips the camera-space triangle to z >= znear and projects it. n = 0 when nothing is
+ * left or the projection has zero area. */
+PN_KFN void pn_poly_make(const pn_kview *v, pn_v3 A, pn_v3 B, pn_v3 C, pn_poly *poly)
+{
+    pn_v3 in[3], out[4];
+    uint32_t i, n = 0;
+    float zn = v->znear;
+    float sxs = v->tan_half * v->aspect, sys = v->tan_half;
+    float hw = 0.5f * (float)v->width, hh = 0.5f * (float)v->height;
+    in[0] = pn_to_camera(v, A);
+    in[1] = pn_to_camera(v, B);
+    in[2] = pn_to_camera(v, C);
+    for (i = 0; i < 3; i++) {
+        pn_v3 p = in[i], q = in[(i + 1u) % 3u];
+        int pin = p.z >= zn, qin = q.z >= zn;
+        if (pin) out[n++] = p;
+        if (pin != qin) {
+            /* Canonical order: both triangles sharing PQ compute the same point. */
+            pn_v3 a = pn_v3_less(p, q) ? p : q, b = pn_v3_less(p, q) ? q : p;
+            float t = (zn - a.z) / (b.z - a.z);
+            pn_v3 x = pn_v3_add(a, pn_v3_scale(pn_v3_sub(b, a), t));
+            x.z = zn;
+            out[n++] = x;
+        }
+    }
+    poly->n = 0;
+    if (n < 3) return;
+    for (i = 0; i < n; i++) {
+        poly->x[i] = (out[i].x / (out[i].z * sxs) + 1.0f) * hw;
+        poly->y[i] = (1.0f - out[i].y / (out[i].z * sys)) * hh;
+    }
+    {
+        float area = 0.0f;
+        for (i = 0; i < n; i++) {
+            uint32_t j = (i + 1u) % n;
+            area += poly->x[i] * poly->y[j] - poly->x[j] * poly->y[i];
+        }
+        if (area == 0.0f || !(area == area)) return;
+        poly->n = n;
+        if (area < 0.0f) { /* make the interior lie left of each edge (y down) */
+            for (i = 0; i < n / 2u; i++) {
+                float tx = poly->x[i], ty = poly->y[i];
+                poly->x[i] = poly->x[n - 1u - i];
+                poly->y[i] = poly->y[n - 1u - i];
+                poly->x[n - 1u - i] = tx;
+                poly->y[n - 1u - i] = ty;
+            }
+        }
+    }
+}
+
+/* Edge function of polygon edge i at (px, py): > 0 inside; with ownership of zeros. */
+typedef struct pn_edge2 {
+    float ax, ay, bx, by; /* canonical endpoints */
+    float sign;           /* +1 if the polygon traverses a -> b, else -1 */
+    uint32_t owns;        /* centres exactly on the edge are inside */
+    uint32_t skip;        /* zero-length edge (a clip point on a vertex) */
+} pn_edge2;
+
+PN_KFN void pn_edges_make(const pn_poly *p, pn_edge2 *e)
+{
+    uint32_t i;
+    for (i = 0; i < p->n; i++) {
+        uint32_t j = (i + 1u) % p->n;
+        float x0 = p->x[i], y0 = p->y[i], x1 = p->x[j], y1 = p->y[j];
+        int flip = (x1 < x0) || (x1 == x0 && y1 < y0);
+        float dx = x1 - x0, dy = y1 - y0;
+        e[i].ax = flip ? x1 : x0;
+        e[i].ay = flip ? y1 : y0;
+        e[i].bx = flip ? x0 : x1;
+        e[i].by = flip ? y0 : y1;
+        e[i].sign = flip ? -1.0f : 1.0f;
+        /* Interior on the left in y-down coordinates is where the cross product
+         * (b - a) x (p - a) is positive for the traversal direction; the inside-facing
+         * direction is the traversal direction itself. */
+        e[i].owns = (dy > 0.0f) || (dy == 0.0f && dx < 0.0f);
+        e[i].skip = (dx == 0.0f && dy == 0.0f);
+    }
+}
+
+PN_KFN int pn_edges_inside(const pn_edge2 *e, uint32_t n, float px, float py)
+{
+    uint32_t i;
+    for (i = 0; i < n; i++) {
+        float w;
+        if (e[i].skip) continue;
+        w = e[i].sign * ((e[i].bx - e[i].ax) * (py - e[i].ay) - (e[i].by - e[i].ay) * (px - e[i].ax));
+        if (w < 0.0f || (w == 0.0f && !e[i].owns)) return 0;
+    }
+    return 1;
+}
+
+/* Triangle set-up: the range of pixel rows whose centres the triangle may cover, packed
+ * y0 | y1 << 16, or PN_RASTER_EMPTY. */
+PN_KFN uint32_t pn_raster_rows(const pn_kview *v, PN_CONST float *tris, PN_CONST uint8_t *flags,
+                               uint32_t t)
+{
+    PN_CONST float *p = tris + (size_t)t * 9u;
+    pn_poly poly;
+    float lo, hi;
+    uint32_t i;
+    int32_t y0, y1;
+    if (flags[t] & PN_TRI_DEGENERATE) return PN_RASTER_EMPTY;
+    pn_poly_make(v, pn_v3_make(p[0], p[1], p[2]), pn_v3_make(p[3], p[4], p[5]),
+                 pn_v3_make(p[6], p[7], p[8]), &poly);
+    if (poly.n == 0u) return PN_RASTER_EMPTY;
+    lo = poly.y[0];
+    hi = poly.y[0];
+    for (i = 1; i < poly.n; i++) {
+        lo = pn_kminf(lo, poly.y[i]);
+        hi = pn_kmaxf(hi, poly.y[i]);
+    }
+    /* Centre y + 0.5 in [lo, hi]. */
+    y0 = pn_kceil_clamp(lo - 0.5f, 0, (int32_t)v->height);
+    y1 = pn_kfloor_clamp(hi - 0.5f, -1, (int32_t)v->height - 1);
+    if (y0 > y1) return PN_RASTER_EMPTY;
+    return (uint32_t)y0 | ((uint32_t)y1 << 16);
+}
+
+/* Rasterizes every triangle into rows [row0, row1] of the G-buffer. depth and tri_id of
+ * those rows must hold +inf / PN_NO_TRIANGLE on entry. */
+PN_KFN void pn_raster_band(const pn_kview *v, PN_CONST float *tris, PN_CONST uint32_t *rows, uint32_t tri_count, uint32_t row0,
+                           uint32_t row1, PN_GLOBAL float *depth, PN_GLOBAL uint32_t *tri_id)
+{
+    uint32_t t;
+    pn_v3 eye = pn_view_eye(v);
+    for (t = 0; t < tri_count; t++) {
+        uint32_t r = rows[t], y, y0, y1;
+        PN_CONST float *p;
+        pn_v3 A, B, C, n;
+        pn_poly poly;
+        pn_edge2 e[4];
+        float xlo, xhi, nA;
+        int32_t x0, x1;
+        uint32_t i;
+        if (r == PN_RASTER_EMPTY) continue;
+        y0 = r & 0xFFFFu;
+        y1 = r >> 16;
+        if (y1 < row0 || y0 > row1) continue;
+        if (y0 < row0) y0 = row0;
+        if (y1 > row1) y1 = row1;
+        p = tris + (size_t)t * 9u;
+        A = pn_v3_make(p[0], p[1], p[2]);
+        B = pn_v3_make(p[3], p[4], p[5]);
+        C = pn_v3_make(p[6], p[7], p[8]);
+        pn_poly_make(v, A, B, C, &poly);
+        if (poly.n == 0u) continue;
+        pn_edges_make(&poly, e);
+        xlo = poly.x[0];
+        xhi = poly.x[0];
+        for (i = 1; i < poly.n; i++) {
+            xlo = pn_kminf(xlo, poly.x[i]);
+            xhi = pn_kmaxf(xhi, poly.x[i]);
+        }
+        x0 = pn_kceil_clamp(xlo - 0.5f, 0, (int32_t)v->width);
+        x1 = pn_kfloor_clamp(xhi - 0.5f, -1, (int32_t)v->width - 1);
+        n = pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
+        nA = pn_v3_dot(n, pn_v3_sub(A, eye));
+        for (y = y0; y <= y1; y++) {
+            float py = (float)y + 0.5f;
+            int32_t x;
+            for (x = x0; x <= x1; x++) {
+                size_t pix = (size_t)y * v->width + (size_t)x;
+                float den, tt;
+                if (!pn_edges_inside(e, poly.n, (float)x + 0.5f, py)) continue;
+                den = pn_v3_dot(n, pn_ray_dir(v, (uint32_t)x, y));
+                if (den == 0.0f) continue;
+                tt = nA / den;
+                if (!(tt > 0.0f)) continue;
+                if (tt < depth[pix] || (tt == depth[pix] && t < tri_id[pix])) {
+                    depth[pix] = tt;
+                    tri_id[pix] = t;
+                }
+            }
+        }
+    }
+}
+
+/* Fills position and normal of one pixel from its depth and triangle. */
+PN_KFN void pn_gbuffer_resolve(const pn_kview *v, PN_CONST float *tris, uint32_t x, uint32_t y,
+                               PN_GLOBAL const float *depth, PN_GLOBAL const uint32_t *tri_id,
+                               PN_GLOBAL float *pos, PN_GLOBAL float *nrm)
+{
+    size_t pix = (size_t)y * v->width + (size_t)x;
+    uint32_t t = tri_id[pix];
+    if (t == 0xFFFFFFFFu) {
+        pos[pix * 3u + 0u] = 0.0f;
+        pos[pix * 3u + 1u] = 0.0f;
+        pos[pix * 3u + 2u] = 0.0f;
+        nrm[pix * 3u + 0u] = 0.0f;
+        nrm[pix * 3u + 1u] = 0.0f;
+        nrm[pix * 3u + 2u] = 0.0f;
+    } else {
+        PN_CONST float *p = tris + (size_t)t * 9u;
+        pn_v3 A = pn_v3_make(p[0], p[1], p[2]);
+        pn_v3 B = pn_v3_make(p[3], p[4], p[5]);
+        pn_v3 C = pn_v3_make(p[6], p[7], p[8]);
+        pn_v3 n = pn_v3_normalize(pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A)));
+        pn_v3 P = pn_v3_add(pn_view_eye(v), pn_v3_scale(pn_ray_dir(v, x, y), depth[pix]));
+        pos[pix * 3u + 0u] = P.x;
+        pos[pix * 3u + 1u] = P.y;
+        pos[pix * 3u + 2u] = P.z;
+        nrm[pix * 3u + 0u] = n.x;
+        nrm[pix * 3u + 1u] = n.y;
+        nrm[pix * 3u + 2u] = n.z;
+    }
+}
+
+#endif

@@ -1,0 +1,160 @@
+/* pn_reference.h - PN_ALGO_REFERENCE: exact k x k visibility of one pixel, by ORing the
+ * masks of every triangle the BVH cannot rule out.
+ *
+ * Culling is conservative with slack L->cull_tol: a node is skipped only when its box is
+ * farther than cull_tol outside the light frustum (the pyramid from O over the light
+ * rectangle, or the segment O-c for a point light). Every sample segment lies inside that
+ * frustum, and a triangle the predicate reports as blocking lies within float rounding of
+ * such a segment, so with cull_tol far above that rounding (the host sets 1e-5 of the
+ * scene diagonal) culling never changes the mask. tests/test_reference.c checks this bit
+ * for bit against all-triangles brute force. */
+#ifndef PN_REFERENCE_H
+#define PN_REFERENCE_H
+
+#include "pn_predicate.h"
+
+/* The light frustum of one shadow-ray origin: planes n.X <= d (already moved out by the
+ * slack), or for a point light the segment O + t (c - O), t in [0, 1]. */
+typedef struct pn_frustum {
+    pn_v3 n[6];
+    float d[6];
+    pn_v3 seg_o, seg_d;
+    uint32_t is_point;
+    float tol;
+} pn_frustum;
+
+PN_KFN void pn_frustum_make(pn_v3 O, const pn_klight *L, pn_frustum *fr)
+{
+    pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]);
+    fr->tol = L->cull_tol;
+    fr->is_point = L->is_point;
+    fr->seg_o = O;
+    fr->seg_d = pn_v3_sub(c, O);
+    if (L->is_point) {
+        uint32_t q;
+        for (q = 0; q < 6; q++) { /* unused by a point light; defined all the same */
+            fr->n[q] = pn_v3_make(0.0f, 0.0f, 0.0f);
+            fr->d[q] = 0.0f;
+        }
+    } else {
+        pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]);
+        pn_v3 V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
+        pn_v3 N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
+        pn_v3 corner[4];
+        uint32_t q;
+        corner[0] = pn_v3_sub(pn_v3_sub(c, U), V);
+        corner[1] = pn_v3_sub(pn_v3_add(c, U), V);
+        corner[2] = pn_v3_add(pn_v3_add(c, U), V);
+        corner[3] = pn_v3_add(pn_v3_sub(c, U), V);
+        for (q = 0; q < 4; q++) {
+            pn_v3 a = pn_v3_sub(corner[q], O), b = pn_v3_sub(corner[(q + 1u) & 3u], O);
+            pn_v3 n = pn_v3_normalize(pn_v3_cross(a, b));
+            /* Outward: the light centre is inside, n.(c - O) <= 0. */
+            if (pn_v3_dot(n, fr->seg_d) > 0.0f) n = pn_v3_scale(n, -1.0f);
+            fr->n[q] = n;
+            fr->d[q] = pn_v3_dot(n, O) + fr->tol;
+        }
+        /* Light plane: the segments end on it; nothing behind it is crossed. */
+        fr->n[4] = pn_v3_scale(N, -1.0f);
+        fr->d[4] = -pn_v3_dot(N, c) + fr->tol;
+        /* O's plane parallel to the light: nothing beyond O is crossed. */
+        fr->n[5] = N;
+        fr->d[5] = pn_v3_dot(N, O) + fr->tol;
+    }
+}
+
+PN_KFN int pn_slab(float o, float d, float lo, float hi, float *t0, float *t1)
+{
+    if (d == 0.0f) return o >= lo && o <= hi;
+    {
+        float a = (lo - o) / d, b = (hi - o) / d;
+        float tn = pn_kminf(a, b), tf = pn_kmaxf(a, b);
+        if (tn > *t0) *t0 = tn;
+        if (tf < *t1) *t1 = tf;
+    }
+    return *t0 <= *t1;
+}
+
+/* 0 when the box certainly holds nothing the frustum's segments can cross. */
+PN_KFN int pn_frustum_box(const pn_frustum *fr, PN_CONST pn_kbvh_node *nd)
+{
+    if (fr->is_point) {
+        float t0 = 0.0f, t1 = 1.0f, tol = fr->tol;
+        return pn_slab(fr->seg_o.x, fr->seg_d.x, nd->bmin[0] - tol, nd->bmax[0] + tol, &t0, &t1) &&
+               pn_slab(fr->seg_o.y, fr->seg_d.y, nd->bmin[1] - tol, nd->bmax[1] + tol, &t0, &t1) &&
+               pn_slab(fr->seg_o.z, fr->seg_d.z, nd->bmin[2] - tol, nd->bmax[2] + tol, &t0, &t1);
+    } else {
+        uint32_t q;
+        for (q = 0; q < 6; q++) {
+            pn_v3 n = fr->n[q];
+            pn_v3 v = pn_v3_make(n.x >= 0.0f ? nd->bmin[0] : nd->bmax[0],
+                                 n.y >= 0.0f ? nd->bmin[1] : nd->bmax[1],
+                                 n.z >= 0.0f ? nd->bmin[2] : nd->bmax[2]);
+            if (pn_v3_dot(n, v) > fr->d[q]) return 0;
+        }
+        return 1;
+    }
+}
+
+PN_KFN void pn_tri_load(PN_CONST float *tris, uint32_t t, pn_v3 *A, pn_v3 *B, pn_v3 *C)
+{
+    PN_CONST float *p = tris + (size_t)t * 9u;
+    *A = pn_v3_make(p[0], p[1], p[2]);
+    *B = pn_v3_make(p[3], p[4], p[5]);
+    *C = pn_v3_make(p[6], p[7], p[8]);
+}
+
+/* Per-work-item counters, summed by the host (integer adds: order-independent). */
+typedef struct pn_shadow_counters {
+    uint32_t candidates; /* triangles handed to the predicate */
+    uint32_t blocking;   /* ...that blocked at least one sample */
+    uint32_t lit;        /* pixels in front of the light */
+    uint32_t overflow;   /* traversal stack overflows (must stay 0) */
+} pn_shadow_counters;
+
+/* Visibility of one G-buffer pixel (P, unit geometric normal nrm, own triangle id). */
+PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris,
+                                PN_CONST pn_kbvh_node *nodes, PN_CONST uint32_t *tri_index,
+                                const pn_klight *L, pn_shadow_counters *cnt)
+{
+    uint32_t m[PN_MASK_WORDS_MAX];
+    uint32_t stack[PN_BVH_STACK];
+    uint32_t sp = 0, node = 0, k = L->k;
+    pn_frustum fr;
+    pn_v3 O;
+
+    if (!pn_shadow_origin(P, nrm, L, &O)) return 0.0f;
+    cnt->lit++;
+    pn_mask_clear(m);
+    pn_frustum_make(O, L, &fr);
+    for (;;) {
+        PN_CONST pn_kbvh_node *nd = nodes + node;
+        if (pn_frustum_box(&fr, nd)) {
+            if (nd->count == 0u && nd->first != 0u) { /* interior (an empty root has first 0) */
+                if (sp < PN_BVH_STACK) {
+                    stack[sp++] = nd->first + 1u;
+                } else {
+                    cnt->overflow++;
+                }
+                node = nd->first;
+                continue;
+            } else {
+                uint32_t e;
+                for (e = 0; e < nd->count; e++) {
+                    uint32_t t = tri_index[nd->first + e];
+                    pn_v3 A, B, C;
+                    if (t == own) continue;
+                    pn_tri_load(tris, t, &A, &B, &C);
+                    cnt->candidates++;
+                    cnt->blocking += pn_tri_mask(O, A, B, C, L, m);
+                }
+                if (pn_mask_full(m, k)) break;
+            }
+        }
+        if (sp == 0u) break;
+        node = stack[--sp];
+    }
+    return pn_mask_visibility(m, k);
+}
+
+#endif

@@ -1,0 +1,146 @@
+/* pn_arena.c - the carve routine, shared by the size query and init (clay's
+ * Clay_MinMemorySize idea: the query cannot drift from what init does), and the frame
+ * allocator. */
+#include <string.h>
+
+#include "pn_internal.h"
+#include "pn_reference.h" /* pn_shadow_counters */
+
+/* Appends a pool of count * elem bytes at the next 64-byte boundary. Sizes are checked in
+ * 64-bit arithmetic, then against SIZE_MAX (a 32-bit target must not wrap). */
+static int pn_bump(uint64_t *off, uint64_t count, uint64_t elem, size_t *out)
+{
+    uint64_t start = (*off + (PN_ARENA_ALIGN - 1u)) & ~(uint64_t)(PN_ARENA_ALIGN - 1u);
+    uint64_t bytes;
+    if (elem != 0u && count > UINT64_MAX / elem) return 0;
+    bytes = count * elem;
+    if (start > (uint64_t)SIZE_MAX || bytes > (uint64_t)SIZE_MAX - start) return 0;
+    *out = (size_t)start;
+    *off = start + bytes;
+    return 1;
+}
+
+/* The frame pools, in allocation order; pn_frame.c allocates exactly these (any frame
+ * within the limits fits, because each is at most its size here). */
+static int pn_frame_pools(const pn_limits *l, uint64_t *off)
+{
+    uint64_t px = (uint64_t)l->max_width * l->max_height;
+    size_t dummy;
+    return pn_bump(off, px, sizeof(float), &dummy) &&          /* depth */
+           pn_bump(off, px, sizeof(uint32_t), &dummy) &&       /* tri_id */
+           pn_bump(off, px * 3u, sizeof(float), &dummy) &&     /* position */
+           pn_bump(off, px * 3u, sizeof(float), &dummy) &&     /* normal */
+           pn_bump(off, px, sizeof(float), &dummy) &&          /* visibility */
+           pn_bump(off, px, sizeof(uint32_t), &dummy) &&       /* rgba */
+           pn_bump(off, l->max_triangles, sizeof(uint32_t), &dummy) && /* raster rows */
+           pn_bump(off, l->max_height, sizeof(pn_shadow_counters), &dummy);
+}
+
+pn_status pn_carve(const pn_limits *l, pn_layout *out)
+{
+    uint64_t off = 0, frame_start;
+    pn_layout lay;
+    if (l->max_triangles < 1u || l->max_triangles > PN_MAX_TRIANGLES || l->max_width < 1u ||
+        l->max_width > PN_MAX_WIDTH || l->max_height < 1u || l->max_height > PN_MAX_HEIGHT)
+        return PN_E_LIMIT;
+    if (!pn_bump(&off, 1u, sizeof(pn_context), &lay.ctx) ||
+        !pn_bump(&off, l->max_triangles, 9u * sizeof(float), &lay.tris) ||
+        !pn_bump(&off, l->max_triangles, 1u, &lay.flags) ||
+        !pn_bump(&off, 2u * (uint64_t)l->max_triangles, sizeof(pn_kbvh_node), &lay.nodes) ||
+        !pn_bump(&off, l->max_triangles, sizeof(uint32_t), &lay.index) ||
+        !pn_bump(&off, 0u, 1u, &lay.frame))
+        return PN_E_LIMIT;
+    frame_start = off;
+    if (!pn_frame_pools(l, &off)) return PN_E_LIMIT;
+    /* Round the end so the last pool's alignment padding is inside the region. */
+    if (!pn_bump(&off, 0u, 1u, &lay.end)) return PN_E_LIMIT;
+    lay.frame_cap = (size_t)(off - frame_start);
+    if ((uint64_t)lay.end > (uint64_t)SIZE_MAX - (PN_ARENA_ALIGN - 1u)) return PN_E_LIMIT;
+    *out = lay;
+    return PN_OK;
+}
+
+void pn_frame_reset(pn_context *ctx) { ctx->frame_top = 0; }
+
+void *pn_frame_alloc(pn_context *ctx, size_t count, size_t elem, const char *pool)
+{
+    uint64_t off = ctx->frame_top;
+    size_t start = 0;
+    if (!pn_bump(&off, count, elem, &start) || off > ctx->layout.frame_cap) {
+        pn_fail(ctx, PN_E_POOL_EXHAUSTED,
+                "frame pool '%s' needs %z bytes at offset %z; the frame region holds %z", pool,
+                (unsigned long long)((uint64_t)count * elem), (unsigned long long)start,
+                (unsigned long long)ctx->layout.frame_cap);
+        return NULL;
+    }
+    ctx->frame_top = (size_t)off;
+    if (ctx->frame_top > ctx->frame_high) ctx->frame_high = ctx->frame_top;
+    return ctx->frame + start;
+}
+
+size_t pn_frame_mark(const pn_context *ctx) { return ctx->frame_top; }
+
+void pn_frame_rewind(pn_context *ctx, size_t mark)
+{
+#if PN_DEBUG_ARENA
+    /* LIFO order: a mark above the top means marks were rewound out of order. */
+    if (mark > ctx->frame_top) {
+        pn_fail(ctx, PN_E_INTERNAL, "arena mark %z rewound after a lower one (top %z)",
+                (unsigned long long)mark, (unsigned long long)ctx->frame_top);
+        return;
+    }
+    memset(ctx->frame + mark, 0xA5, ctx->frame_top - mark);
+#endif
+    ctx->frame_top = mark;
+}
+
+void pn_limits_max(pn_limits *limits)
+{
+    if (!limits) return;
+    limits->max_triangles = PN_MAX_TRIANGLES;
+    limits->max_width = PN_MAX_WIDTH;
+    limits->max_height = PN_MAX_HEIGHT;
+}
+
+pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes)
+{
+    pn_layout lay;
+    pn_status st;
+    if (!limits || !out_bytes) return PN_E_INVALID_ARG;
+    st = pn_carve(limits, &lay);
+    if (st != PN_OK) return st;
+    *out_bytes = lay.end + (PN_ARENA_ALIGN - 1u);
+    return PN_OK;
+}
+
+pn_status pn_init(pn_context **out_ctx, void *memory, size_t bytes, const pn_limits *limits)
+{
+    pn_layout lay;
+    pn_status st;
+    size_t need, pad;
+    uint8_t *base;
+    pn_context *ctx;
+    if (!out_ctx || !memory || !limits) return PN_E_INVALID_ARG;
+    st = pn_carve(limits, &lay);
+    if (st != PN_OK) return st;
+    need = lay.end + (PN_ARENA_ALIGN - 1u);
+    /* The requirement does not depend on the block's alignment, so a size that works
+     * once works for any block. */
+    if (bytes < need) return PN_E_ARENA_TOO_SMALL;
+    pad = (size_t)((PN_ARENA_ALIGN - ((uintptr_t)memory & (PN_ARENA_ALIGN - 1u))) &
+                   (PN_ARENA_ALIGN - 1u));
+    base = (uint8_t *)memory + pad;
+    ctx = (pn_context *)(void *)(base + lay.ctx);
+    memset(ctx, 0, sizeof(*ctx));
+    ctx->limits = *limits;
+    ctx->layout = lay;
+    ctx->base = base;
+    ctx->bytes = bytes;
+    ctx->tris = (float *)(void *)(base + lay.tris);
+    ctx->flags = base + lay.flags;
+    ctx->nodes = (pn_kbvh_node *)(void *)(base + lay.nodes);
+    ctx->tri_index = (uint32_t *)(void *)(base + lay.index);
+    ctx->frame = base + lay.frame;
+    *out_ctx = ctx;
+    return PN_OK;
+}

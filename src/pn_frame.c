@@ -1,0 +1,208 @@
+/* pn_frame.c - per-frame validation, derivation of the kernel parameters, pass
+ * sequencing. Ports supply the passes; this file decides what runs and with what. */
+#include <string.h>
+
+#include "pn_internal.h"
+#include "pn_kmath.h"
+#include "pn_reference.h"
+
+void pn_frame_options_default(pn_frame_options *opt)
+{
+    if (!opt) return;
+    memset(opt, 0, sizeof(*opt));
+    opt->width = 512;
+    opt->height = 512;
+    opt->k = 16;
+    opt->algo = PN_ALGO_REFERENCE;
+    opt->eps = 1e-4f;
+    opt->albedo = 0.8f;
+    opt->ambient = 0.1f;
+    opt->background[0] = 20;
+    opt->background[1] = 24;
+    opt->background[2] = 40;
+    opt->background[3] = 255;
+}
+
+static pn_status pn_check_vec(pn_context *ctx, const float *v, const char *what)
+{
+    int c;
+    for (c = 0; c < 3; c++) {
+        if (!pn_finite(v[c]))
+            return pn_fail(ctx, PN_E_NONFINITE, "%s component %u is NaN or infinite", what, (uint32_t)c);
+        if (v[c] > PN_MAX_COORD || v[c] < -PN_MAX_COORD)
+            return pn_fail(ctx, PN_E_LIMIT, "%s component %u exceeds 2^40 in magnitude", what,
+                           (uint32_t)c);
+    }
+    return PN_OK;
+}
+
+static pn_v3 pn_v3_arr(const float *v) { return pn_v3_make(v[0], v[1], v[2]); }
+
+static pn_status pn_setup_view(pn_context *ctx, const pn_camera *cam, uint32_t w, uint32_t h,
+                               pn_kview *kv)
+{
+    pn_status st;
+    pn_v3 eye, f, r, u;
+    float len;
+    if ((st = pn_check_vec(ctx, cam->eye, "camera eye")) != PN_OK) return st;
+    if ((st = pn_check_vec(ctx, cam->target, "camera target")) != PN_OK) return st;
+    if ((st = pn_check_vec(ctx, cam->up, "camera up")) != PN_OK) return st;
+    if (!pn_finite(cam->fov_deg)) return pn_fail(ctx, PN_E_NONFINITE, "camera fov is NaN or infinite");
+    if (!(cam->fov_deg > 0.0f && cam->fov_deg < 180.0f))
+        return pn_fail(ctx, PN_E_CAMERA, "camera fov must be in (0, 180) degrees");
+    eye = pn_v3_arr(cam->eye);
+    f = pn_v3_sub(pn_v3_arr(cam->target), eye);
+    len = pn_ksqrt(pn_v3_dot(f, f));
+    if (!(len > 0.0f) || !pn_finite(len))
+        return pn_fail(ctx, PN_E_CAMERA, "camera eye and target coincide");
+    f = pn_v3_scale(f, 1.0f / len);
+    r = pn_v3_cross(f, pn_v3_arr(cam->up));
+    len = pn_ksqrt(pn_v3_dot(r, r));
+    /* |f x up| relative to |up|: below ~1e-6 the right vector is noise. */
+    if (!(len > 1e-6f * pn_ksqrt(pn_v3_dot(pn_v3_arr(cam->up), pn_v3_arr(cam->up)))) || !(len > 0.0f))
+        return pn_fail(ctx, PN_E_CAMERA, "camera up is zero or parallel to the view direction");
+    r = pn_v3_scale(r, 1.0f / len);
+    u = pn_v3_cross(r, f);
+    memcpy(kv->eye, cam->eye, sizeof(kv->eye));
+    kv->f[0] = f.x; kv->f[1] = f.y; kv->f[2] = f.z;
+    kv->r[0] = r.x; kv->r[1] = r.y; kv->r[2] = r.z;
+    kv->u[0] = u.x; kv->u[1] = u.y; kv->u[2] = u.z;
+    kv->tan_half = pn_tan_half_deg(cam->fov_deg);
+    kv->aspect = (float)w / (float)h;
+    /* Geometry nearer than this along f is clipped: far below any pixel footprint for a
+     * camera outside the scene, and far above float noise. */
+    kv->znear = 1e-5f * ctx->scene_diag;
+    if (!(kv->znear > 0.0f)) kv->znear = 1e-30f;
+    kv->width = w;
+    kv->height = h;
+    return PN_OK;
+}
+
+static pn_status pn_setup_light(pn_context *ctx, const pn_light *l, uint32_t k, float eps, pn_klight *kl)
+{
+    pn_status st;
+    pn_v3 U, V, N;
+    float lu, lv, dot;
+    if ((st = pn_check_vec(ctx, l->center, "light center")) != PN_OK) return st;
+    if ((st = pn_check_vec(ctx, l->u, "light u")) != PN_OK) return st;
+    if ((st = pn_check_vec(ctx, l->v, "light v")) != PN_OK) return st;
+    U = pn_v3_arr(l->u);
+    V = pn_v3_arr(l->v);
+    lu = pn_ksqrt(pn_v3_dot(U, U));
+    lv = pn_ksqrt(pn_v3_dot(V, V));
+    memset(kl, 0, sizeof(*kl));
+    memcpy(kl->c, l->center, sizeof(kl->c));
+    kl->eps = eps;
+    kl->cull_tol = 1e-5f * ctx->scene_diag;
+    if (lu == 0.0f && lv == 0.0f) {
+        kl->k = 1;
+        kl->is_point = 1;
+        return PN_OK;
+    }
+    if (lu == 0.0f || lv == 0.0f)
+        return pn_fail(ctx, PN_E_LIGHT_DEGENERATE,
+                       "light half-edge %s is zero while the other is not (both zero: point light)",
+                       lu == 0.0f ? "u" : "v");
+    dot = pn_v3_dot(U, V);
+    if (dot < 0.0f) dot = -dot;
+    if (dot > 1e-4f * lu * lv)
+        return pn_fail(ctx, PN_E_LIGHT_NOT_ORTHO,
+                       "light half-edges u and v must be orthogonal (|u.v| <= 1e-4 |u||v|)");
+    N = pn_v3_normalize(pn_v3_cross(U, V));
+    memcpy(kl->U, l->u, sizeof(kl->U));
+    memcpy(kl->V, l->v, sizeof(kl->V));
+    kl->N[0] = N.x;
+    kl->N[1] = N.y;
+    kl->N[2] = N.z;
+    kl->k = k;
+    return PN_OK;
+}
+
+static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
+{
+    if (o->width == 0u || o->height == 0u)
+        return pn_fail(ctx, PN_E_IMAGE_SIZE, "image size %ux%u has a zero side", o->width, o->height);
+    if (o->width > ctx->limits.max_width || o->height > ctx->limits.max_height)
+        return pn_fail(ctx, PN_E_LIMIT, "image %ux%u exceeds the context's limits %ux%u", o->width,
+                       o->height, ctx->limits.max_width, ctx->limits.max_height);
+    if (!(o->k == 4u || o->k == 8u || o->k == 16u || o->k == 32u) || o->k > PN_MASK_K_MAX)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "k = %u; k must be 4, 8, 16 or 32 and <= PN_MASK_K_MAX (%u)",
+                       o->k, (uint32_t)PN_MASK_K_MAX);
+    if (!pn_finite(o->eps) || !pn_finite(o->albedo) || !pn_finite(o->ambient))
+        return pn_fail(ctx, PN_E_NONFINITE, "eps, albedo or ambient is NaN or infinite");
+    if (!(o->eps >= 0.0f) || o->eps > PN_MAX_COORD)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "eps must be >= 0 and <= 2^40");
+    if (!(o->albedo >= 0.0f && o->albedo <= 1.0f && o->ambient >= 0.0f && o->ambient <= 1.0f))
+        return pn_fail(ctx, PN_E_INVALID_ARG, "albedo and ambient must be in [0, 1]");
+    switch (o->algo) {
+    case PN_ALGO_REFERENCE:
+#if PN_ENABLE_REFERENCE
+        return PN_OK;
+#else
+        return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_REFERENCE is not compiled in (PN_ENABLE_REFERENCE 0)");
+#endif
+    }
+    return pn_fail(ctx, PN_E_INVALID_ARG, "unknown algorithm %u", (uint32_t)o->algo);
+}
+
+pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *camera,
+                         const pn_light *light, const pn_frame_options *opt, pn_frame *out)
+{
+    pn_frame_state fs;
+    pn_status st;
+    size_t px;
+    uint64_t t0;
+    if (!ctx) return PN_E_INVALID_ARG;
+    if (!camera || !light || !opt || !out)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "pn_render: camera, light, options and output must not be NULL");
+    if (!ctx->has_scene) return pn_fail(ctx, PN_E_NO_SCENE, "pn_render: no scene (call pn_scene_set first)");
+    if ((st = pn_check_options(ctx, opt)) != PN_OK) return st;
+    memset(&fs, 0, sizeof(fs));
+    if ((st = pn_setup_view(ctx, camera, opt->width, opt->height, &fs.view)) != PN_OK) return st;
+    if ((st = pn_setup_light(ctx, light, opt->k, opt->eps, &fs.light)) != PN_OK) return st;
+    fs.shade.albedo = opt->albedo;
+    fs.shade.ambient = opt->ambient;
+    fs.shade.background = (uint32_t)opt->background[0] | ((uint32_t)opt->background[1] << 8) |
+                          ((uint32_t)opt->background[2] << 16) | ((uint32_t)opt->background[3] << 24);
+    fs.algo = (uint32_t)opt->algo;
+    fs.width = opt->width;
+    fs.height = opt->height;
+
+    px = (size_t)opt->width * opt->height;
+    pn_frame_reset(ctx);
+    /* Same pools, same order as pn_frame_pools() in pn_arena.c. */
+    if (!(fs.depth = (float *)pn_frame_alloc(ctx, px, sizeof(float), "depth")) ||
+        !(fs.tri_id = (uint32_t *)pn_frame_alloc(ctx, px, sizeof(uint32_t), "tri_id")) ||
+        !(fs.pos = (float *)pn_frame_alloc(ctx, px * 3u, sizeof(float), "position")) ||
+        !(fs.nrm = (float *)pn_frame_alloc(ctx, px * 3u, sizeof(float), "normal")) ||
+        !(fs.vis = (float *)pn_frame_alloc(ctx, px, sizeof(float), "visibility")) ||
+        !(fs.rgba = (uint8_t *)pn_frame_alloc(ctx, px, 4u, "rgba")) ||
+        !(fs.rows = (uint32_t *)pn_frame_alloc(ctx, ctx->tri_count, sizeof(uint32_t), "raster rows")) ||
+        !(fs.counters = pn_frame_alloc(ctx, opt->height, sizeof(pn_shadow_counters), "shadow counters")))
+        return PN_E_POOL_EXHAUSTED;
+
+    t0 = pn_now(ctx);
+    if ((st = port->gbuffer(ctx, &fs)) != PN_OK) return st;
+    ctx->pass_ns[PN_PASS_GBUFFER] = pn_now(ctx) - t0;
+    t0 = pn_now(ctx);
+    if ((st = port->shadow(ctx, &fs)) != PN_OK) return st;
+    ctx->pass_ns[PN_PASS_SHADOW] = pn_now(ctx) - t0;
+    if (fs.overflow)
+        return pn_fail(ctx, PN_E_INTERNAL, "BVH traversal stack overflowed %u times", fs.overflow);
+    t0 = pn_now(ctx);
+    if ((st = port->shade(ctx, &fs)) != PN_OK) return st;
+    ctx->pass_ns[PN_PASS_SHADE] = pn_now(ctx) - t0;
+    ctx->shadow_candidates = fs.candidates;
+    ctx->shadow_blocking = fs.blocking;
+    ctx->lit_pixels = fs.lit;
+
+    out->width = opt->width;
+    out->height = opt->height;
+    out->visibility = fs.vis;
+    out->rgba = fs.rgba;
+    out->tri_id = fs.tri_id;
+    out->depth = fs.depth;
+    out->position = fs.pos;
+    out->normal = fs.nrm;
+    return PN_OK;
+}

@@ -1,0 +1,111 @@
+/* pn_internal.h - the context, the arena layout and the port interface. Not installed. */
+#ifndef PN_INTERNAL_H
+#define PN_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "penumbra/penumbra.h"
+#include "pn_ktypes.h"
+
+/* Coordinates must satisfy |x| <= PN_MAX_COORD: the predicate's triple products are cubic
+ * in coordinate differences and must stay far from float overflow ((2*2^40)^3 ~ 1e37). */
+#define PN_MAX_COORD 1099511627776.0f /* 2^40 */
+
+/* Byte offsets of every pool from the 64-byte aligned base. Computed by pn_carve() alone,
+ * for the size query and for init alike. */
+typedef struct pn_layout {
+    size_t ctx;
+    size_t tris;      /* max_triangles * 9 floats: the scene copy */
+    size_t flags;     /* max_triangles bytes */
+    size_t nodes;     /* 2 * max_triangles BVH nodes */
+    size_t index;     /* max_triangles uint32: BVH leaf order */
+    size_t frame;     /* start of the per-frame region */
+    size_t frame_cap; /* its size: the sum of the largest frame pools */
+    size_t end;       /* frame + frame_cap */
+} pn_layout;
+
+/* Everything one pn_render hands to the port's passes. */
+typedef struct pn_frame_state {
+    pn_kview view;
+    pn_klight light;
+    pn_kshade shade;
+    uint32_t algo;
+    uint32_t width, height;
+    float *depth;
+    uint32_t *tri_id;
+    float *pos;
+    float *nrm;
+    float *vis;
+    uint8_t *rgba;      /* 4 bytes per pixel, r g b a */
+    uint32_t *rows;     /* rasterizer set-up: pixel-row range per triangle */
+    void *counters;     /* per-work-item shadow counters (pn_shadow_counters[height]) */
+    uint64_t candidates, blocking;
+    uint32_t lit, overflow;
+} pn_frame_state;
+
+typedef struct pn_port {
+    const char *name;
+    pn_status (*gbuffer)(pn_context *ctx, pn_frame_state *fs);
+    pn_status (*shadow)(pn_context *ctx, pn_frame_state *fs);
+    pn_status (*shade)(pn_context *ctx, pn_frame_state *fs);
+} pn_port;
+
+struct pn_context {
+    pn_limits limits;
+    pn_layout layout;
+    uint8_t *base;       /* aligned base: the context itself sits here */
+    size_t bytes;        /* as given to pn_init */
+    /* persistent pools */
+    float *tris;
+    uint8_t *flags;
+    pn_kbvh_node *nodes;
+    uint32_t *tri_index;
+    /* frame region: a bump allocator rewound at every frame */
+    uint8_t *frame;
+    size_t frame_top;
+    size_t frame_high;
+    /* scene */
+    uint32_t has_scene;
+    uint32_t tri_count;
+    uint32_t degenerate;
+    uint32_t bvh_nodes, bvh_depth, bvh_max_leaf, bvh_tris;
+    float scene_min[3], scene_max[3], scene_diag;
+    /* execution */
+    pn_parallel_for_fn parallel_for;
+    void *parallel_user;
+    pn_clock_fn clock;
+    void *clock_user;
+    /* diagnostics */
+    uint64_t pass_ns[PN_PASS_COUNT];
+    uint64_t shadow_candidates, shadow_blocking;
+    uint32_t lit_pixels;
+    char message[256];
+};
+
+/* pn_arena.c */
+pn_status pn_carve(const pn_limits *limits, pn_layout *out);
+void pn_frame_reset(pn_context *ctx);
+void *pn_frame_alloc(pn_context *ctx, size_t count, size_t elem, const char *pool);
+size_t pn_frame_mark(const pn_context *ctx);
+void pn_frame_rewind(pn_context *ctx, size_t mark);
+
+/* pn_context.c: records a message ("%s" string, "%u" uint32, "%z" size_t/uint64 as
+ * unsigned long long) and returns status. No stdio: the core is freestanding. */
+pn_status pn_fail(pn_context *ctx, pn_status status, const char *fmt, ...);
+uint64_t pn_now(const pn_context *ctx);
+void pn_run(pn_context *ctx, uint32_t count, pn_task_fn fn, void *task);
+
+/* pn_bvh_build.c */
+pn_status pn_bvh_build(pn_context *ctx);
+
+/* pn_frame.c: validates and derives the per-frame kernel parameters, then runs the
+ * port's passes. */
+pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *camera,
+                         const pn_light *light, const pn_frame_options *opt, pn_frame *out);
+
+/* pn_math.c */
+int pn_finite(float v);
+float pn_tan_half_deg(float fov_deg);
+
+#endif

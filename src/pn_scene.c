@@ -1,0 +1,96 @@
+/* pn_scene.c - scene input: validate everything first (read-only), then copy into the
+ * arena and build the BVH. Validation before any write keeps the previous scene intact
+ * when the new one is rejected. */
+#include <string.h>
+
+#include "pn_internal.h"
+#include "pn_kmath.h"
+
+static int pn_coord_ok(float v) { return pn_finite(v) && v <= PN_MAX_COORD && v >= -PN_MAX_COORD; }
+
+pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_count,
+                       const uint32_t *indices, uint32_t triangle_count)
+{
+    uint64_t t0;
+    uint32_t v, t, degenerate = 0;
+    float lo[3], hi[3];
+    pn_status st;
+    if (!ctx) return PN_E_INVALID_ARG;
+    if (!positions || !indices)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "pn_scene_set: positions and indices must not be NULL");
+    if (triangle_count == 0u)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "pn_scene_set: the scene has no triangles");
+    if (triangle_count > ctx->limits.max_triangles)
+        return pn_fail(ctx, PN_E_LIMIT, "scene has %u triangles; this context holds at most %u",
+                       triangle_count, ctx->limits.max_triangles);
+    if (vertex_count > PN_MAX_VERTICES)
+        return pn_fail(ctx, PN_E_LIMIT, "scene has %u vertices; PN_MAX_VERTICES is %u",
+                       vertex_count, (uint32_t)PN_MAX_VERTICES);
+    for (v = 0; v < vertex_count; v++) {
+        const float *p = positions + (size_t)v * 3u;
+        int c;
+        for (c = 0; c < 3; c++) {
+            if (!pn_finite(p[c]))
+                return pn_fail(ctx, PN_E_NONFINITE, "vertex %u coordinate %u is NaN or infinite", v,
+                               (uint32_t)c);
+            if (!pn_coord_ok(p[c]))
+                return pn_fail(ctx, PN_E_LIMIT,
+                               "vertex %u coordinate %u exceeds 2^40 in magnitude (PN_MAX_COORD)", v,
+                               (uint32_t)c);
+        }
+    }
+    for (t = 0; t < triangle_count; t++) {
+        int c;
+        for (c = 0; c < 3; c++) {
+            uint32_t i = indices[(size_t)t * 3u + (size_t)c];
+            if (i >= vertex_count)
+                return pn_fail(ctx, PN_E_INDEX_RANGE,
+                               "triangle %u index %u is %u; the scene has %u vertices", t,
+                               (uint32_t)c, i, vertex_count);
+        }
+    }
+
+    /* Valid: from here on the previous scene is replaced. */
+    t0 = pn_now(ctx);
+    ctx->has_scene = 0;
+    lo[0] = lo[1] = lo[2] = PN_MAX_COORD;
+    hi[0] = hi[1] = hi[2] = -PN_MAX_COORD;
+    for (t = 0; t < triangle_count; t++) {
+        float *dst = ctx->tris + (size_t)t * 9u;
+        const uint32_t *ix = indices + (size_t)t * 3u;
+        pn_v3 A, B, C, n;
+        int c;
+        for (c = 0; c < 3; c++) {
+            const float *p = positions + (size_t)ix[c] * 3u;
+            int a;
+            for (a = 0; a < 3; a++) {
+                dst[c * 3 + a] = p[a];
+                if (p[a] < lo[a]) lo[a] = p[a];
+                if (p[a] > hi[a]) hi[a] = p[a];
+            }
+        }
+        A = pn_v3_make(dst[0], dst[1], dst[2]);
+        B = pn_v3_make(dst[3], dst[4], dst[5]);
+        C = pn_v3_make(dst[6], dst[7], dst[8]);
+        n = pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
+        /* Zero area in float: no plane, no edges; it can neither be seen nor block. */
+        ctx->flags[t] = (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) ? (uint8_t)PN_TRI_DEGENERATE : 0u;
+        degenerate += ctx->flags[t] & PN_TRI_DEGENERATE;
+    }
+    ctx->tri_count = triangle_count;
+    ctx->degenerate = degenerate;
+    memcpy(ctx->scene_min, lo, sizeof(lo));
+    memcpy(ctx->scene_max, hi, sizeof(hi));
+    {
+        pn_v3 d = pn_v3_make(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+        ctx->scene_diag = pn_ksqrt(pn_v3_dot(d, d));
+    }
+    ctx->pass_ns[PN_PASS_SCENE_COPY] = pn_now(ctx) - t0;
+
+    t0 = pn_now(ctx);
+    st = pn_bvh_build(ctx);
+    ctx->pass_ns[PN_PASS_BVH_BUILD] = pn_now(ctx) - t0;
+    if (st != PN_OK) return st;
+    ctx->has_scene = 1;
+    return PN_OK;
+}

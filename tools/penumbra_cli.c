@@ -1,0 +1,430 @@
+/* penumbra - command-line front end: render a glTF or built-in scene with any compiled-in
+ * algorithm, and the demo. Host tool; see README.md for usage. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "penumbra/penumbra.h"
+#include "pn_image.h"
+#include "pn_scenes.h"
+#include "pn_setup.h"
+
+typedef struct pn_algo_name {
+    const char *name;
+    pn_algo algo;
+    uint32_t build_flag;
+} pn_algo_name;
+
+static const pn_algo_name pn_algos[] = {
+    {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE},
+};
+#define PN_ALGO_COUNT (sizeof(pn_algos) / sizeof(pn_algos[0]))
+
+static void usage(FILE *f)
+{
+    const char *const *names = pn_builtin_scene_names();
+    size_t i;
+    fprintf(f,
+            "usage:\n"
+            "  penumbra render [SCENE.glb | --builtin NAME] [--algo A] [--port P] [--size WxH] [--k K]\n"
+            "                  [--eye x,y,z --target x,y,z --up x,y,z --fov DEG]\n"
+            "                  [--light-center x,y,z --light-u x,y,z --light-v x,y,z]\n"
+            "                  [--ground on|off] [--eps E] [--threads N] --out image.png\n"
+            "                  [--vis vis.pfm] [--ids ids.bin] [--stats stats.json]\n"
+            "  penumbra demo [--out DIR] [--size WxH] [--k K] [--threads N]\n"
+            "  penumbra info\n"
+            "algorithms:");
+    for (i = 0; i < PN_ALGO_COUNT; i++)
+        if (pn_build_info() & pn_algos[i].build_flag) fprintf(f, " %s", pn_algos[i].name);
+    fprintf(f, "\nports: scalar\nbuilt-in scenes:");
+    for (; *names; names++) fprintf(f, " %s", *names);
+    fprintf(f, "\n");
+}
+
+static int find_algo(const char *name, pn_algo *out)
+{
+    size_t i;
+    for (i = 0; i < PN_ALGO_COUNT; i++)
+        if (strcmp(name, pn_algos[i].name) == 0) {
+            if (!(pn_build_info() & pn_algos[i].build_flag)) return 2;
+            *out = pn_algos[i].algo;
+            return 0;
+        }
+    return 1;
+}
+
+static const char *algo_name(pn_algo a)
+{
+    size_t i;
+    for (i = 0; i < PN_ALGO_COUNT; i++)
+        if (pn_algos[i].algo == a) return pn_algos[i].name;
+    return "?";
+}
+
+static void json_vec(FILE *f, const char *key, const float v[3], int comma)
+{
+    fprintf(f, "  \"%s\": [%.9g, %.9g, %.9g]%s\n", key, v[0], v[1], v[2], comma ? "," : "");
+}
+
+static int write_stats(const char *path, const pn_setup *s, const pn_frame_options *opt, const char *port,
+                       int threads, const pn_stats *st, double ms_total, const pn_frame *fr)
+{
+    FILE *f = fopen(path, "w");
+    double mean = 0.0;
+    size_t i, n = (size_t)fr->width * fr->height;
+    if (!f) return 1;
+    for (i = 0; i < n; i++) mean += fr->visibility[i];
+    mean /= (double)n;
+    fprintf(f, "{\n");
+    fprintf(f, "  \"scene\": \"%s\",\n  \"triangles\": %u,\n  \"ground\": %s,\n", s->name, st->triangles,
+            s->ground ? "true" : "false");
+    fprintf(f, "  \"view_source\": \"%s\",\n  \"light_source\": \"%s\",\n", s->view_source, s->light_source);
+    json_vec(f, "eye", s->camera.eye, 1);
+    json_vec(f, "target", s->camera.target, 1);
+    json_vec(f, "up", s->camera.up, 1);
+    fprintf(f, "  \"fov_deg\": %.9g,\n", s->camera.fov_deg);
+    json_vec(f, "light_center", s->light.center, 1);
+    json_vec(f, "light_u", s->light.u, 1);
+    json_vec(f, "light_v", s->light.v, 1);
+    fprintf(f, "  \"scene_diag\": %.9g,\n  \"eps_rel\": %.9g,\n  \"eps\": %.9g,\n", s->diag, s->eps_rel, opt->eps);
+    fprintf(f, "  \"width\": %u,\n  \"height\": %u,\n  \"k\": %u,\n", opt->width, opt->height, opt->k);
+    fprintf(f, "  \"algo\": \"%s\",\n  \"port\": \"%s\",\n  \"threads\": %d,\n", algo_name(opt->algo), port, threads);
+    fprintf(f, "  \"arena_bytes\": %zu,\n  \"arena_carved\": %zu,\n  \"arena_persistent\": %zu,\n"
+               "  \"arena_high_water\": %zu,\n",
+            st->arena_bytes, st->arena_carved, st->arena_persistent, st->arena_high_water);
+    fprintf(f, "  \"degenerate_triangles\": %u,\n  \"bvh_nodes\": %u,\n  \"bvh_depth\": %u,\n"
+               "  \"bvh_max_leaf\": %u,\n",
+            st->degenerate_triangles, st->bvh_nodes, st->bvh_depth, st->bvh_max_leaf);
+    fprintf(f, "  \"ms_scene_copy\": %.3f,\n  \"ms_bvh_build\": %.3f,\n  \"ms_gbuffer\": %.3f,\n"
+               "  \"ms_shadow\": %.3f,\n  \"ms_shade\": %.3f,\n  \"ms_render_total\": %.3f,\n",
+            st->pass_ns[PN_PASS_SCENE_COPY] / 1e6, st->pass_ns[PN_PASS_BVH_BUILD] / 1e6,
+            st->pass_ns[PN_PASS_GBUFFER] / 1e6, st->pass_ns[PN_PASS_SHADOW] / 1e6, st->pass_ns[PN_PASS_SHADE] / 1e6,
+            ms_total);
+    fprintf(f, "  \"shadow_candidates\": %llu,\n  \"shadow_blocking\": %llu,\n  \"lit_pixels\": %u,\n",
+            (unsigned long long)st->shadow_candidates, (unsigned long long)st->shadow_blocking, st->lit_pixels);
+    fprintf(f, "  \"mean_visibility\": %.9g\n}\n", mean);
+    return fclose(f) != 0;
+}
+
+static int cmd_render(int argc, char **argv)
+{
+    const char *scene = NULL, *builtin = NULL, *out = NULL, *vis = NULL, *ids = NULL, *stats = NULL;
+    const char *port = "scalar";
+    pn_frame_options opt;
+    pn_setup s;
+    pn_host h;
+    pn_frame fr;
+    pn_stats st;
+    pn_status rs;
+    char err[512];
+    int ground = -1, threads = 0, i, user_view = 0, user_light = 0;
+    float eps_rel = -1.0f;
+    pn_camera cam;
+    pn_light light;
+    int have[7] = {0};
+    uint64_t t0;
+    double ms;
+
+    pn_frame_options_default(&opt);
+    memset(&cam, 0, sizeof(cam));
+    memset(&light, 0, sizeof(light));
+    for (i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+#define NEED_ARG                                                  \
+    do {                                                          \
+        if (!v) {                                                 \
+            fprintf(stderr, "penumbra: %s needs a value\n", a);   \
+            return 2;                                             \
+        }                                                         \
+        i++;                                                      \
+    } while (0)
+#define BAD(what)                                                           \
+    do {                                                                    \
+        fprintf(stderr, "penumbra: bad value for %s: '%s'\n", what, v);     \
+        return 2;                                                           \
+    } while (0)
+        if (strcmp(a, "--builtin") == 0) { NEED_ARG; builtin = v; }
+        else if (strcmp(a, "--algo") == 0) {
+            int r;
+            NEED_ARG;
+            r = find_algo(v, &opt.algo);
+            if (r == 2) { fprintf(stderr, "penumbra: algorithm '%s' is not compiled in\n", v); return 2; }
+            if (r) BAD("--algo");
+        } else if (strcmp(a, "--port") == 0) {
+            NEED_ARG;
+            if (strcmp(v, "scalar") != 0) {
+                fprintf(stderr, "penumbra: port '%s' is not available in this build (ports: scalar)\n", v);
+                return 2;
+            }
+            port = v;
+        } else if (strcmp(a, "--size") == 0) { NEED_ARG; if (pn_parse_size(v, &opt.width, &opt.height)) BAD("--size"); }
+        else if (strcmp(a, "--k") == 0) { NEED_ARG; opt.k = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--eye") == 0) { NEED_ARG; if (pn_parse_vec3(v, cam.eye)) BAD(a); have[0] = 1; }
+        else if (strcmp(a, "--target") == 0) { NEED_ARG; if (pn_parse_vec3(v, cam.target)) BAD(a); have[1] = 1; }
+        else if (strcmp(a, "--up") == 0) { NEED_ARG; if (pn_parse_vec3(v, cam.up)) BAD(a); have[2] = 1; }
+        else if (strcmp(a, "--fov") == 0) { NEED_ARG; cam.fov_deg = strtof(v, NULL); have[3] = 1; }
+        else if (strcmp(a, "--light-center") == 0) { NEED_ARG; if (pn_parse_vec3(v, light.center)) BAD(a); have[4] = 1; }
+        else if (strcmp(a, "--light-u") == 0) { NEED_ARG; if (pn_parse_vec3(v, light.u)) BAD(a); have[5] = 1; }
+        else if (strcmp(a, "--light-v") == 0) { NEED_ARG; if (pn_parse_vec3(v, light.v)) BAD(a); have[6] = 1; }
+        else if (strcmp(a, "--ground") == 0) {
+            NEED_ARG;
+            if (strcmp(v, "on") == 0) ground = 1;
+            else if (strcmp(v, "off") == 0) ground = 0;
+            else BAD("--ground");
+        } else if (strcmp(a, "--eps") == 0) { NEED_ARG; eps_rel = strtof(v, NULL); }
+        else if (strcmp(a, "--threads") == 0) { NEED_ARG; threads = atoi(v); if (threads < 1) BAD(a); }
+        else if (strcmp(a, "--out") == 0) { NEED_ARG; out = v; }
+        else if (strcmp(a, "--vis") == 0) { NEED_ARG; vis = v; }
+        else if (strcmp(a, "--ids") == 0) { NEED_ARG; ids = v; }
+        else if (strcmp(a, "--stats") == 0) { NEED_ARG; stats = v; }
+        else if (a[0] == '-') { fprintf(stderr, "penumbra: unknown option %s\n", a); usage(stderr); return 2; }
+        else if (!scene) scene = a;
+        else { fprintf(stderr, "penumbra: more than one scene given\n"); return 2; }
+#undef NEED_ARG
+#undef BAD
+    }
+    if ((scene != NULL) == (builtin != NULL)) {
+        fprintf(stderr, "penumbra: give exactly one of SCENE.glb or --builtin NAME\n");
+        usage(stderr);
+        return 2;
+    }
+    if (!out) { fprintf(stderr, "penumbra: --out image.png is required\n"); return 2; }
+
+    if (pn_setup_load(&s, builtin ? builtin : scene, builtin != NULL, ground, err, sizeof(err)) != 0) {
+        fprintf(stderr, "penumbra: %s\n", err);
+        return 1;
+    }
+    /* Flags override the defaults one by one; the stats file records the result. */
+    for (i = 0; i < 4; i++) user_view |= have[i];
+    for (i = 4; i < 7; i++) user_light |= have[i];
+    if (have[0]) memcpy(s.camera.eye, cam.eye, sizeof(cam.eye));
+    if (have[1]) memcpy(s.camera.target, cam.target, sizeof(cam.target));
+    if (have[2]) memcpy(s.camera.up, cam.up, sizeof(cam.up));
+    if (have[3]) s.camera.fov_deg = cam.fov_deg;
+    if (have[4]) memcpy(s.light.center, light.center, sizeof(light.center));
+    if (have[5]) memcpy(s.light.u, light.u, sizeof(light.u));
+    if (have[6]) memcpy(s.light.v, light.v, sizeof(light.v));
+    if (user_view) snprintf(s.view_source, sizeof(s.view_source), "user");
+    if (user_light) snprintf(s.light_source, sizeof(s.light_source), "user");
+    if (eps_rel >= 0.0f) s.eps_rel = eps_rel;
+    s.eps = s.eps_rel * s.diag;
+    opt.eps = s.eps;
+
+    if (pn_host_open(&h, s.mesh.triangle_count, opt.width > 0 ? opt.width : 1, opt.height > 0 ? opt.height : 1,
+                     threads, err, sizeof(err)) != 0) {
+        fprintf(stderr, "penumbra: %s\n", err);
+        pn_setup_free(&s);
+        return 1;
+    }
+    h.threads.progress = 1;
+    h.threads.label = "render";
+    if ((rs = pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count)) != PN_OK) {
+        fprintf(stderr, "penumbra: scene rejected: %s (%s)\n", pn_last_error(h.ctx), pn_status_str(rs));
+        goto fail;
+    }
+    t0 = pn_threads_now_ns(NULL);
+    rs = pn_render(h.ctx, &s.camera, &s.light, &opt, &fr);
+    ms = (pn_threads_now_ns(NULL) - t0) / 1e6;
+    if (rs != PN_OK) {
+        fprintf(stderr, "penumbra: render failed: %s (%s)\n", pn_last_error(h.ctx), pn_status_str(rs));
+        goto fail;
+    }
+    pn_get_stats(h.ctx, &st);
+    if (pn_write_png(out, fr.rgba, fr.width, fr.height, err, sizeof(err)) ||
+        (vis && pn_write_pfm(vis, fr.visibility, fr.width, fr.height, err, sizeof(err))) ||
+        (ids && pn_write_ids(ids, fr.tri_id, fr.width, fr.height, err, sizeof(err)))) {
+        fprintf(stderr, "penumbra: %s\n", err);
+        goto fail;
+    }
+    if (stats && write_stats(stats, &s, &opt, port, h.threads.count, &st, ms, &fr)) {
+        fprintf(stderr, "penumbra: cannot write %s: %s\n", stats, strerror(errno));
+        goto fail;
+    }
+    fprintf(stderr, "%s: %ux%u k=%u %s/%s %.1f ms (bvh %.1f ms)\n", s.name, fr.width, fr.height, opt.k,
+            algo_name(opt.algo), port, ms, st.pass_ns[PN_PASS_BVH_BUILD] / 1e6);
+    pn_host_close(&h);
+    pn_setup_free(&s);
+    return 0;
+fail:
+    pn_host_close(&h);
+    pn_setup_free(&s);
+    return 1;
+}
+
+/* ---- demo --------------------------------------------------------------------------- */
+
+static int mkdir_p(const char *path)
+{
+    char buf[1024];
+    size_t i, n = strlen(path);
+    if (n >= sizeof(buf)) return 1;
+    memcpy(buf, path, n + 1);
+    for (i = 1; i <= n; i++)
+        if (buf[i] == '/' || buf[i] == '\0') {
+            char c = buf[i];
+            buf[i] = '\0';
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST) return 1;
+            buf[i] = c;
+        }
+    return 0;
+}
+
+/* Visibility as gray, and |error| as a heat map (black 0, red..yellow up to 1). */
+static void vis_to_rgba(const float *v, size_t n, uint8_t *out)
+{
+    size_t i;
+    for (i = 0; i < n; i++) {
+        uint8_t g = (uint8_t)lrintf(fminf(fmaxf(v[i], 0.0f), 1.0f) * 255.0f);
+        out[i * 4] = out[i * 4 + 1] = out[i * 4 + 2] = g;
+        out[i * 4 + 3] = 255;
+    }
+}
+
+static void err_to_rgba(const float *v, const float *ref, size_t n, uint8_t *out)
+{
+    size_t i;
+    for (i = 0; i < n; i++) {
+        float e = fminf(fabsf(v[i] - ref[i]) * 4.0f, 1.0f); /* x4: 0.25 error is full scale */
+        out[i * 4] = (uint8_t)lrintf(e > 0.0f ? 64.0f + 191.0f * fminf(e * 2.0f, 1.0f) : 0.0f);
+        out[i * 4 + 1] = (uint8_t)lrintf(e > 0.5f ? 255.0f * (e - 0.5f) * 2.0f : 0.0f);
+        out[i * 4 + 2] = 0;
+        out[i * 4 + 3] = 255;
+    }
+}
+
+static void blit(uint8_t *sheet, uint32_t sw, const uint8_t *img, uint32_t w, uint32_t h, uint32_t ox, uint32_t oy)
+{
+    uint32_t y;
+    for (y = 0; y < h; y++) memcpy(sheet + ((size_t)(oy + y) * sw + ox) * 4, img + (size_t)y * w * 4, (size_t)w * 4);
+}
+
+static int cmd_demo(int argc, char **argv)
+{
+    const char *outdir = "out/demo";
+    const char *const *names = pn_builtin_scene_names();
+    uint32_t w = 384, hgt = 384, k = 16, nscenes = 0, si;
+    int threads = 0, i, rc = 0;
+    char err[512], path[1200];
+    uint8_t *sheet;
+    uint32_t cols = 2 + 2 * ((uint32_t)PN_ALGO_COUNT - 1u), sw, sh, gap = 4;
+    for (i = 0; i < argc; i++) {
+        if (strcmp(argv[i], "--out") == 0 && i + 1 < argc) outdir = argv[++i];
+        else if (strcmp(argv[i], "--size") == 0 && i + 1 < argc) {
+            if (pn_parse_size(argv[++i], &w, &hgt)) { fprintf(stderr, "penumbra: bad --size\n"); return 2; }
+        } else if (strcmp(argv[i], "--k") == 0 && i + 1 < argc) k = (uint32_t)strtoul(argv[++i], NULL, 10);
+        else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc) threads = atoi(argv[++i]);
+        else { fprintf(stderr, "penumbra demo: unknown option %s\n", argv[i]); return 2; }
+    }
+    if (mkdir_p(outdir)) { fprintf(stderr, "penumbra: cannot create %s\n", outdir); return 1; }
+    while (names[nscenes]) nscenes++;
+    /* Sheet: one row per scene: shaded reference, reference visibility, then per algorithm
+     * its shaded image and its error heat map against the reference. */
+    sw = cols * w + (cols + 1) * gap;
+    sh = nscenes * hgt + (nscenes + 1) * gap;
+    sheet = (uint8_t *)calloc((size_t)sw * sh, 4);
+    if (!sheet) return 1;
+    for (i = 0; i < (int)((size_t)sw * sh); i++) sheet[(size_t)i * 4 + 3] = 255;
+    printf("%-16s %-10s %-7s %10s %10s %10s\n", "scene", "algorithm", "port", "ms", "rmse", "max_err");
+    for (si = 0; si < nscenes; si++) {
+        pn_setup s;
+        pn_host h;
+        pn_frame_options opt;
+        float *ref = NULL;
+        uint8_t *tmp;
+        size_t a, n = (size_t)w * hgt;
+        if (pn_setup_load(&s, names[si], 1, -1, err, sizeof(err)) ||
+            pn_host_open(&h, s.mesh.triangle_count, w, hgt, threads, err, sizeof(err))) {
+            fprintf(stderr, "penumbra: %s\n", err);
+            rc = 1;
+            break;
+        }
+        pn_frame_options_default(&opt);
+        opt.width = w;
+        opt.height = hgt;
+        opt.k = k;
+        opt.eps = s.eps;
+        ref = (float *)malloc(n * sizeof(float));
+        tmp = (uint8_t *)malloc(n * 4);
+        if (!ref || !tmp || pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices,
+                                         s.mesh.triangle_count) != PN_OK) {
+            fprintf(stderr, "penumbra: %s: %s\n", names[si], h.ctx ? pn_last_error(h.ctx) : "out of memory");
+            rc = 1;
+        }
+        for (a = 0; rc == 0 && a < PN_ALGO_COUNT; a++) {
+            pn_frame fr;
+            uint64_t t0;
+            double ms, se = 0.0, mx = 0.0;
+            size_t p;
+            uint32_t col = a == 0 ? 0 : 2 + 2 * (uint32_t)(a - 1);
+            if (!(pn_build_info() & pn_algos[a].build_flag)) continue;
+            opt.algo = pn_algos[a].algo;
+            t0 = pn_threads_now_ns(NULL);
+            if (pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) != PN_OK) {
+                fprintf(stderr, "penumbra: %s/%s: %s\n", names[si], pn_algos[a].name, pn_last_error(h.ctx));
+                rc = 1;
+                break;
+            }
+            ms = (pn_threads_now_ns(NULL) - t0) / 1e6;
+            if (a == 0) memcpy(ref, fr.visibility, n * sizeof(float));
+            for (p = 0; p < n; p++) {
+                double e = fabs((double)fr.visibility[p] - ref[p]);
+                se += e * e;
+                if (e > mx) mx = e;
+            }
+            printf("%-16s %-10s %-7s %10.1f %10.6f %10.6f\n", names[si], pn_algos[a].name, "scalar", ms,
+                   sqrt(se / (double)n), mx);
+            snprintf(path, sizeof(path), "%s/%s_%s.png", outdir, names[si], pn_algos[a].name);
+            if (pn_write_png(path, fr.rgba, w, hgt, err, sizeof(err))) { fprintf(stderr, "%s\n", err); rc = 1; }
+            blit(sheet, sw, fr.rgba, w, hgt, gap + col * (w + gap), gap + si * (hgt + gap));
+            if (a == 0) {
+                vis_to_rgba(fr.visibility, n, tmp);
+                blit(sheet, sw, tmp, w, hgt, gap + 1 * (w + gap), gap + si * (hgt + gap));
+            } else {
+                err_to_rgba(fr.visibility, ref, n, tmp);
+                blit(sheet, sw, tmp, w, hgt, gap + (col + 1) * (w + gap), gap + si * (hgt + gap));
+            }
+        }
+        free(ref);
+        free(tmp);
+        pn_host_close(&h);
+        pn_setup_free(&s);
+        if (rc) break;
+    }
+    if (rc == 0) {
+        snprintf(path, sizeof(path), "%s/sheet.png", outdir);
+        if (pn_write_png(path, sheet, sw, sh, err, sizeof(err))) { fprintf(stderr, "%s\n", err); rc = 1; }
+        else printf("wrote %s/*.png and %s (rows: scenes; columns: shaded reference, reference visibility, "
+                    "then each algorithm's image and its error x4 heat map)\n", outdir, path);
+    }
+    free(sheet);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    if (strcmp(argv[1], "render") == 0) return cmd_render(argc - 2, argv + 2);
+    if (strcmp(argv[1], "demo") == 0) return cmd_demo(argc - 2, argv + 2);
+    if (strcmp(argv[1], "info") == 0) {
+        printf("penumbra build: flags 0x%x, PN_MASK_K_MAX %u, PN_MAX_TRIANGLES %u, max image %ux%u\n",
+               pn_build_info(), (unsigned)PN_MASK_K_MAX, (unsigned)PN_MAX_TRIANGLES, (unsigned)PN_MAX_WIDTH,
+               (unsigned)PN_MAX_HEIGHT);
+        usage(stdout);
+        return 0;
+    }
+    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
+        usage(stdout);
+        return 0;
+    }
+    fprintf(stderr, "penumbra: unknown command '%s'\n", argv[1]);
+    usage(stderr);
+    return 2;
+}

@@ -1,0 +1,45 @@
+/* pn_mesh.h - host-side triangle mesh shared by the CLI, the glTF loader, the built-in
+ * scenes, tests and benchmarks. Not part of the library: firmware never sees it.
+ *
+ * Memory: positions and indices are heap-allocated by whoever fills the mesh; release
+ * them with pn_mesh_free(). All functions here return 0 on success and a non-zero code
+ * with a message in err (if err != NULL) on failure; on failure *mesh is left empty. */
+#ifndef PN_TOOLS_MESH_H
+#define PN_TOOLS_MESH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pn_mesh {
+    float *positions;        /* vertex_count * 3 floats, xyz, world space */
+    uint32_t vertex_count;
+    uint32_t *indices;       /* triangle_count * 3, each < vertex_count */
+    uint32_t triangle_count;
+    float bbox_min[3];       /* over referenced vertices; all zero for an empty mesh */
+    float bbox_max[3];
+} pn_mesh;
+
+/* Frees the arrays and zeroes the struct. NULL and an empty mesh are fine. */
+void pn_mesh_free(pn_mesh *mesh);
+
+/* Recomputes bbox_min/bbox_max from the vertices referenced by indices. */
+void pn_mesh_update_bbox(pn_mesh *mesh);
+
+/* Appends the ground plane of the CLI conventions: two triangles at
+ * y = bbox_min.y - 1e-3*diag spanning centre +- 2*diag in x and z, where diag is the
+ * bounding-box diagonal of the mesh *before* the call. Their normals face +y (CCW seen
+ * from above). bbox is not updated (the ground is not part of the scene bounds).
+ * Returns 0, or non-zero on allocation failure / empty mesh. */
+int pn_mesh_add_ground(pn_mesh *mesh, char *err, size_t err_size);
+
+/* Bounding-box diagonal length. */
+float pn_mesh_diag(const pn_mesh *mesh);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,87 @@
+/* pn_scenes.h - built-in procedural scenes for the CLI, tests and benchmarks. Host code:
+ * not part of the library, firmware never sees it.
+ *
+ * Every scene carries its own receiver (ground) geometry; the CLI's --ground flag is for
+ * glTF scenes only. Conventions are those of penumbra.h: right-handed, Y up, light
+ * centre c with half-edges u, v emitting toward N = normalize(u x v). Every built-in scene
+ * puts the light above the geometry with N = -y, and every vertex strictly on the
+ * emitting side of the light plane.
+ *
+ * Scenes:
+ *   square          axis-aligned square light over a parallel square occluder over a
+ *                   receiver plane; the visibility on the receiver has a closed form
+ *                   (pn_square_closed_form).
+ *   spheres         9 x 9 spheres of 762 triangles each floating over a plane, the scene
+ *                   of Forest et al. 2006 (penumbra-wedges blending), with a light wide
+ *                   enough that neighbouring penumbrae overlap.
+ *   elongated-cube  the hard case of Curtis 2009 (Monte Carlo shadow maps, Fig. 4.2): a
+ *                   closed box long along the light's axis, floating over a plane.
+ *   thin            2000 slivers (length 2, width 0.002) over a plane: where shadow maps
+ *                   lose.
+ *
+ * Meshes: indexed, shared vertices wherever a surface is closed (spheres, box), CCW
+ * winding with outward normals (open sheets face +y), bbox filled over all vertices
+ * (ground included). Deterministic: the same name gives the same mesh on every run. */
+#ifndef PN_TOOLS_SCENES_H
+#define PN_TOOLS_SCENES_H
+
+#include <stddef.h>
+
+#include "pn_mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Default view and light for a built-in scene. Camera fields follow pn_camera (fov is
+ * vertical, degrees); light fields follow pn_light. The view frames every vertex of the
+ * scene at aspect ratio 1 (and therefore at any wider aspect). */
+typedef struct pn_scene_view {
+    float eye[3], target[3], up[3], fov_deg;
+    float light_center[3], light_u[3], light_v[3]; /* half-edges; N = normalize(u x v)
+                                                      points toward the scene (the light
+                                                      emits toward +N) */
+} pn_scene_view;
+
+/* Builds built-in scene `name` into *out (malloc'd arrays, free with pn_mesh_free);
+ * fills *view if view != NULL. out and name must not be NULL; err may be NULL.
+ * Returns 0, or non-zero with a message in err for an unknown name or an allocation
+ * failure; on failure *out is left empty (zeroed) and *view is not written. */
+int pn_builtin_scene(const char *name, pn_mesh *out, pn_scene_view *view, char *err,
+                     size_t err_size);
+
+/* NULL-terminated list of the scene names, for --help and tests. Static storage. */
+const char *const *pn_builtin_scene_names(void);
+
+/* ---- The analytic `square` scene ------------------------------------------------------ */
+
+/* Light: centre (0, light_y, 0), half-edges (light_half, 0, 0) and (0, 0, light_half)
+ * (u x v = -y: emits downward). Occluder: the closed square |x|, |z| <= occluder_half at
+ * y = occluder_y (two triangles). Receiver: |x|, |z| <= ground_half at y = ground_y (two
+ * triangles). All values are exactly representable in float. */
+typedef struct pn_square_params {
+    float light_y, light_half, occluder_y, occluder_half, ground_y, ground_half;
+} pn_square_params;
+
+/* Fills *p with the parameters the `square` scene is built from. */
+void pn_square_scene_params(pn_square_params *p);
+
+/* Fraction of the light NOT hidden by the occluder, seen from receiver point
+ * (x, p->ground_y, z), computed in double. k >= 1: fraction of the k x k samples
+ * c + ((2i+1)/k - 1) u + ((2j+1)/k - 1) v that are not hidden, a sample being hidden iff
+ * the segment from the point to it crosses the closed occluder square (boundary counts as
+ * hidden). k == 0: continuous area fraction. Requires ground_y < occluder_y < light_y.
+ * p->ground_y is only used as the receiver height: to model a shadow-ray origin lifted by
+ * eps along the ground normal, pass a copy with ground_y + eps. */
+double pn_square_closed_form(const pn_square_params *p, double x, double z, int k);
+
+/* Smallest distance, in light-plane units, between any of the k x k samples and the
+ * boundary of the occluder square projected from (x, p->ground_y, z) onto the light
+ * plane. Tests skip receiver points where this is tiny (the sample is on a shadow edge
+ * and float rounding decides). k <= 0 returns HUGE_VAL. */
+double pn_square_min_edge_distance(const pn_square_params *p, double x, double z, int k);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

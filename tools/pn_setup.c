@@ -1,0 +1,158 @@
+#include "pn_setup.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "pn_gltf.h"
+#include "pn_scenes.h"
+
+static void pn_basename(const char *path, char *out, size_t n)
+{
+    const char *b = strrchr(path, '/');
+    snprintf(out, n, "%s", b ? b + 1 : path);
+    {
+        char *dot = strrchr(out, '.');
+        if (dot) *dot = '\0';
+    }
+}
+
+void pn_setup_auto_view(const float bmin[3], const float bmax[3], pn_camera *cam, pn_light *light)
+{
+    float c[3], d[3], diag;
+    int a;
+    for (a = 0; a < 3; a++) {
+        c[a] = 0.5f * (bmin[a] + bmax[a]);
+        d[a] = bmax[a] - bmin[a];
+    }
+    diag = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(diag > 0.0f)) diag = 1.0f;
+    {
+        /* Direction (0.6, 0.55, 1.0), normalized, at 1.5 diagonals: the box fits a 40 degree fov. */
+        float dir[3] = {0.6f, 0.55f, 1.0f};
+        float len = sqrtf(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+        for (a = 0; a < 3; a++) {
+            cam->eye[a] = c[a] + dir[a] / len * 1.5f * diag;
+            cam->target[a] = c[a];
+        }
+        cam->up[0] = 0.0f;
+        cam->up[1] = 1.0f;
+        cam->up[2] = 0.0f;
+        cam->fov_deg = 40.0f;
+    }
+    light->center[0] = c[0] + 0.25f * diag;
+    light->center[1] = c[1] + 1.0f * diag;
+    light->center[2] = c[2] + 0.15f * diag;
+    /* u x v = (0, -s^2, 0): emits downward. */
+    light->u[0] = 0.1f * diag;
+    light->u[1] = 0.0f;
+    light->u[2] = 0.0f;
+    light->v[0] = 0.0f;
+    light->v[1] = 0.0f;
+    light->v[2] = 0.1f * diag;
+}
+
+int pn_setup_load(pn_setup *s, const char *source, int builtin, int ground, char *err, size_t err_size)
+{
+    memset(s, 0, sizeof(*s));
+    s->eps_rel = 1e-4f;
+    if (builtin) {
+        pn_scene_view view;
+        if (pn_builtin_scene(source, &s->mesh, &view, err, err_size) != 0) return 1;
+        memcpy(s->camera.eye, view.eye, sizeof(view.eye));
+        memcpy(s->camera.target, view.target, sizeof(view.target));
+        memcpy(s->camera.up, view.up, sizeof(view.up));
+        s->camera.fov_deg = view.fov_deg;
+        memcpy(s->light.center, view.light_center, sizeof(view.light_center));
+        memcpy(s->light.u, view.light_u, sizeof(view.light_u));
+        memcpy(s->light.v, view.light_v, sizeof(view.light_v));
+        snprintf(s->name, sizeof(s->name), "%s", source);
+        snprintf(s->view_source, sizeof(s->view_source), "builtin");
+        snprintf(s->light_source, sizeof(s->light_source), "builtin");
+        s->builtin = 1;
+        if (ground < 0) ground = 0;
+    } else {
+        if (pn_gltf_load(source, &s->mesh, err, err_size) != 0) return 1;
+        pn_setup_auto_view(s->mesh.bbox_min, s->mesh.bbox_max, &s->camera, &s->light);
+        pn_basename(source, s->name, sizeof(s->name));
+        snprintf(s->view_source, sizeof(s->view_source), "auto");
+        snprintf(s->light_source, sizeof(s->light_source), "auto");
+        if (ground < 0) ground = 1;
+    }
+    s->diag = pn_mesh_diag(&s->mesh);
+    s->eps = s->eps_rel * s->diag;
+    if (ground) {
+        if (pn_mesh_add_ground(&s->mesh, err, err_size) != 0) {
+            pn_mesh_free(&s->mesh);
+            return 1;
+        }
+        s->ground = 1;
+    }
+    return 0;
+}
+
+void pn_setup_free(pn_setup *s)
+{
+    pn_mesh_free(&s->mesh);
+    memset(s, 0, sizeof(*s));
+}
+
+int pn_host_open(pn_host *h, uint32_t max_triangles, uint32_t max_w, uint32_t max_h, int threads,
+                 char *err, size_t err_size)
+{
+    pn_limits lim;
+    pn_status st;
+    memset(h, 0, sizeof(*h));
+    lim.max_triangles = max_triangles;
+    lim.max_width = max_w;
+    lim.max_height = max_h;
+    st = pn_arena_size(&lim, &h->bytes);
+    if (st != PN_OK) {
+        snprintf(err, err_size, "pn_arena_size: %s", pn_status_str(st));
+        return 1;
+    }
+    h->memory = malloc(h->bytes);
+    if (!h->memory) {
+        snprintf(err, err_size, "cannot allocate %zu bytes of arena", h->bytes);
+        return 1;
+    }
+    st = pn_init(&h->ctx, h->memory, h->bytes, &lim);
+    if (st != PN_OK) {
+        snprintf(err, err_size, "pn_init: %s", pn_status_str(st));
+        free(h->memory);
+        h->memory = NULL;
+        return 1;
+    }
+    h->threads.count = threads > 0 ? threads : pn_threads_cores();
+    h->threads.progress = 0;
+    h->threads.label = NULL;
+    pn_set_parallel_for(h->ctx, pn_threads_parallel_for, &h->threads);
+    pn_set_clock(h->ctx, pn_threads_now_ns, NULL);
+    return 0;
+}
+
+void pn_host_close(pn_host *h)
+{
+    free(h->memory);
+    memset(h, 0, sizeof(*h));
+}
+
+int pn_parse_vec3(const char *s, float out[3])
+{
+    char tail;
+    float v[3];
+    if (!s || sscanf(s, "%f,%f,%f%c", &v[0], &v[1], &v[2], &tail) != 3) return 1;
+    memcpy(out, v, sizeof(v));
+    return 0;
+}
+
+int pn_parse_size(const char *s, uint32_t *w, uint32_t *h)
+{
+    unsigned a, b;
+    char tail;
+    if (!s || sscanf(s, "%ux%u%c", &a, &b, &tail) != 2) return 1;
+    *w = a;
+    *h = b;
+    return 0;
+}

@@ -1,0 +1,65 @@
+/* pn_setup.h - what the CLI, the demo, the tests and the benchmarks share: loading a
+ * scene (glTF file or built-in), the automatic view and light, the eps convention, and a
+ * heap-backed library context. Host code only. */
+#ifndef PN_TOOLS_SETUP_H
+#define PN_TOOLS_SETUP_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "penumbra/penumbra.h"
+#include "pn_mesh.h"
+#include "pn_threads.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pn_setup {
+    pn_mesh mesh;      /* scene triangles, ground plane appended when on */
+    pn_camera camera;
+    pn_light light;
+    float diag;        /* bbox diagonal without the ground plane */
+    float eps_rel;     /* E: eps = E * diag (default 1e-4) */
+    float eps;
+    int ground;        /* 1 if the ground plane was appended */
+    int builtin;       /* 1 for a built-in scene */
+    char name[128];    /* file base name or built-in name */
+    char view_source[16];  /* "auto", "builtin" or "user" (set by callers for stats) */
+    char light_source[16];
+} pn_setup;
+
+/* Loads `source`: a built-in scene name when builtin is non-zero, else a .glb/.gltf path.
+ * ground: 1 on, 0 off, -1 the default (on for glTF, off for built-ins, which carry their
+ * own receiver). Fills the default view and light (the built-in's own, or framed from the
+ * bounding box) and eps = 1e-4 * diag. Returns 0 or non-zero with a message. */
+int pn_setup_load(pn_setup *s, const char *source, int builtin, int ground, char *err, size_t err_size);
+
+/* Automatic framing of a bounding box: camera from the front-right-above looking at the
+ * centre, fov 40; light above the centre (0.25, 1.0, 0.15) * diag away, a square of half
+ * size 0.1 * diag emitting straight down. */
+void pn_setup_auto_view(const float bmin[3], const float bmax[3], pn_camera *cam, pn_light *light);
+
+void pn_setup_free(pn_setup *s);
+
+/* A library context on the heap, sized for the given limits, with the pthread
+ * parallel-for (threads <= 0: all cores) and the monotonic clock installed. */
+typedef struct pn_host {
+    void *memory;
+    size_t bytes;
+    pn_context *ctx;
+    pn_threads threads;
+} pn_host;
+
+int pn_host_open(pn_host *h, uint32_t max_triangles, uint32_t max_w, uint32_t max_h, int threads,
+                 char *err, size_t err_size);
+void pn_host_close(pn_host *h);
+
+/* Parses "x,y,z" / "WxH". Return 0 on success. */
+int pn_parse_vec3(const char *s, float out[3]);
+int pn_parse_size(const char *s, uint32_t *w, uint32_t *h);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

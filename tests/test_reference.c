@@ -1,0 +1,383 @@
+/* PN_ALGO_REFERENCE: the closed form of the square scene, culling against brute force,
+ * watertightness of the shared predicate, point and one-sided lights, determinism. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "penumbra/penumbra.h"
+#include "pn_predicate.h" /* the kernel predicate itself, for brute force and mask checks */
+#include "pn_scenes.h"
+#include "pn_setup.h"
+#include "pn_test.h"
+#include "pn_test_geom.h"
+
+static int render(pn_host *h, const pn_setup *s, const pn_camera *cam, const pn_light *light, uint32_t w,
+                  uint32_t hh, uint32_t k, pn_frame *fr)
+{
+    pn_frame_options opt;
+    pn_frame_options_default(&opt);
+    opt.width = w;
+    opt.height = hh;
+    opt.k = k;
+    opt.eps = s->eps;
+    if (pn_render(h->ctx, cam, light, &opt, fr) != PN_OK) {
+        fprintf(stderr, "render: %s\n", pn_last_error(h->ctx));
+        return 1;
+    }
+    return 0;
+}
+
+/* ---- square: closed form --------------------------------------------------------------- */
+
+static void test_square_closed_form(void)
+{
+    pn_setup s;
+    pn_host h;
+    pn_square_params sp;
+    char err[256];
+    static const uint32_t ks[4] = {4, 8, 16, 32};
+    int q;
+    REQUIRE(pn_setup_load(&s, "square", 1, -1, err, sizeof(err)) == 0);
+    REQUIRE(pn_host_open(&h, s.mesh.triangle_count, 160, 160, 2, err, sizeof(err)) == 0);
+    REQUIRE(pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
+    pn_square_scene_params(&sp);
+    for (q = 0; q < 4; q++) {
+        pn_frame fr;
+        uint32_t k = ks[q], px, compared = 0, skipped = 0, mismatched = 0, penumbra = 0;
+        double worst_area = 0.0;
+        REQUIRE(render(&h, &s, &s.camera, &s.light, 160, 160, k, &fr) == 0);
+        for (px = 0; px < 160u * 160u; px++) {
+            pn_square_params at = sp;
+            float ox, oy, oz;
+            double closed, area, dist, got;
+            /* Triangles 0, 1: occluder; 2, 3: receiver (pn_scenes.c puts the ground last). */
+            if (fr.tri_id[px] != 2u && fr.tri_id[px] != 3u) continue;
+            /* The library's shadow-ray origin: P + eps * (0, 1, 0), in float. */
+            ox = fr.position[px * 3];
+            oy = fr.position[px * 3 + 1] + s.eps;
+            oz = fr.position[px * 3 + 2];
+            at.ground_y = oy;
+            dist = pn_square_min_edge_distance(&at, ox, oz, (int)k);
+            if (dist < 1e-4) {
+                skipped++;
+                continue;
+            }
+            compared++;
+            closed = pn_square_closed_form(&at, ox, oz, (int)k);
+            area = pn_square_closed_form(&at, ox, oz, 0);
+            got = fr.visibility[px];
+            if (got > 0.0 && got < 1.0) penumbra++;
+            if (lround(got * k * k) != lround(closed * k * k) || got * k * k != (double)lround(got * k * k)) {
+                if (mismatched < 5)
+                    fprintf(stderr, "k=%u pixel %u: visibility %.9g, closed form %.9g\n", k, px, got, closed);
+                mismatched++;
+            }
+            if (fabs(got - area) > worst_area) worst_area = fabs(got - area);
+        }
+        fprintf(stderr,
+                "square k=%u: %u receiver pixels compared (%u in penumbra), %u skipped near a projected edge, "
+                "%u mismatches; max |vis - area fraction| = %.5f (1/k = %.5f)\n",
+                k, compared, penumbra, skipped, mismatched, worst_area, 1.0 / k);
+        CHECK(compared > 5000u);
+        CHECK(penumbra > 500u);
+        CHECK(mismatched == 0u);
+        CHECK(worst_area <= 1.0 / k);
+    }
+    pn_host_close(&h);
+    pn_setup_free(&s);
+}
+
+/* ---- culling is conservative: BVH reference == all-triangles brute force ---------------- */
+
+static pn_klight klight_of(const pn_light *l, uint32_t k, float eps, float diag)
+{
+    pn_klight kl;
+    float lu = sqrtf(l->u[0] * l->u[0] + l->u[1] * l->u[1] + l->u[2] * l->u[2]);
+    memset(&kl, 0, sizeof(kl));
+    memcpy(kl.c, l->center, sizeof(kl.c));
+    memcpy(kl.U, l->u, sizeof(kl.U));
+    memcpy(kl.V, l->v, sizeof(kl.V));
+    kl.eps = eps;
+    kl.cull_tol = 1e-5f * diag;
+    if (lu == 0.0f) {
+        kl.k = 1;
+        kl.is_point = 1;
+    } else {
+        pn_v3 n = pn_v3_normalize(pn_v3_cross(pn_v3_make(l->u[0], l->u[1], l->u[2]), pn_v3_make(l->v[0], l->v[1], l->v[2])));
+        kl.N[0] = n.x;
+        kl.N[1] = n.y;
+        kl.N[2] = n.z;
+        kl.k = k;
+    }
+    return kl;
+}
+
+static pn_v3 tri_v(const pn_mesh *m, uint32_t t, int c)
+{
+    const float *p = m->positions + 3u * m->indices[3u * t + (uint32_t)c];
+    return pn_v3_make(p[0], p[1], p[2]);
+}
+
+/* Brute-force visibility of pixel px with every triangle tried. */
+static float brute_pixel(const pn_mesh *m, const pn_frame *fr, size_t px, const pn_klight *kl)
+{
+    uint32_t mask[PN_MASK_WORDS_MAX], t;
+    pn_v3 P = pn_v3_make(fr->position[px * 3], fr->position[px * 3 + 1], fr->position[px * 3 + 2]);
+    pn_v3 n = pn_v3_make(fr->normal[px * 3], fr->normal[px * 3 + 1], fr->normal[px * 3 + 2]);
+    pn_v3 O;
+    if (fr->tri_id[px] == PN_NO_TRIANGLE) return 1.0f;
+    if (!pn_shadow_origin(P, n, kl, &O)) return 0.0f;
+    pn_mask_clear(mask);
+    for (t = 0; t < m->triangle_count; t++) {
+        pn_v3 A = tri_v(m, t, 0), B = tri_v(m, t, 1), C = tri_v(m, t, 2);
+        pn_v3 cr = pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
+        if (t == fr->tri_id[px] || (cr.x == 0.0f && cr.y == 0.0f && cr.z == 0.0f)) continue;
+        pn_tri_mask(O, A, B, C, kl, mask);
+    }
+    return pn_mask_visibility(mask, kl->k);
+}
+
+static void brute_compare(const char *name, pn_setup *s, const pn_light *light, uint32_t w, uint32_t hh, uint32_t k)
+{
+    pn_host h;
+    pn_frame fr;
+    char err[256];
+    pn_klight kl = klight_of(light, k, s->eps, 0.0f);
+    size_t px;
+    uint32_t diff = 0, partial = 0, lit = 0;
+    REQUIRE(pn_host_open(&h, s->mesh.triangle_count, w, hh, 2, err, sizeof(err)) == 0);
+    REQUIRE(pn_scene_set(h.ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices, s->mesh.triangle_count) == PN_OK);
+    REQUIRE(render(&h, s, &s->camera, light, w, hh, k, &fr) == 0);
+    for (px = 0; px < (size_t)w * hh; px++) {
+        float b = brute_pixel(&s->mesh, &fr, px, &kl);
+        if (memcmp(&b, &fr.visibility[px], sizeof(float)) != 0) {
+            if (diff < 5) fprintf(stderr, "%s: pixel %zu: reference %.9g, brute force %.9g\n", name, px, fr.visibility[px], b);
+            diff++;
+        }
+        partial += b > 0.0f && b < 1.0f;
+        lit += b > 0.0f;
+    }
+    fprintf(stderr, "%s k=%u: %ux%u, %u partially lit, %u lit, %u differ from brute force\n", name, kl.k, w, hh,
+            partial, lit, diff);
+    CHECK(diff == 0u);
+    CHECK(lit > 0u);
+    if (!kl.is_point) CHECK(partial > 0u);
+    pn_host_close(&h);
+}
+
+static void test_culling_vs_brute_force(void)
+{
+    static const char *builtins[3] = {"thin", "elongated-cube", "square"};
+    pn_setup s;
+    char err[256];
+    int i;
+    REQUIRE(pn_setup_load(&s, PN_SCENES_DIR "/spot.glb", 0, 1, err, sizeof(err)) == 0);
+    brute_compare("spot.glb", &s, &s.light, 40, 32, 8);
+    {
+        pn_light pt = s.light; /* point light: hard shadows */
+        memset(pt.u, 0, sizeof(pt.u));
+        memset(pt.v, 0, sizeof(pt.v));
+        brute_compare("spot.glb point", &s, &pt, 40, 32, 8);
+        pt = s.light; /* a large, low light: wide penumbrae, long frusta */
+        pt.u[0] *= 6.0f;
+        pt.v[2] *= 3.0f;
+        pt.center[1] -= 0.4f * s.diag;
+        brute_compare("spot.glb big light", &s, &pt, 40, 32, 16);
+    }
+    pn_setup_free(&s);
+    for (i = 0; i < 3; i++) {
+        REQUIRE(pn_setup_load(&s, builtins[i], 1, -1, err, sizeof(err)) == 0);
+        brute_compare(builtins[i], &s, &s.light, 48, 48, i == 0 ? 4u : 32u);
+        pn_setup_free(&s);
+    }
+}
+
+/* ---- watertightness -------------------------------------------------------------------- */
+
+/* Does the segment P -> S cross some triangle of m (double precision)? */
+static int seg_hits(const pn_mesh *m, const double P[3], const double S[3])
+{
+    double d[3] = {S[0] - P[0], S[1] - P[1], S[2] - P[2]};
+    uint32_t t;
+    for (t = 0; t < m->triangle_count; t++) {
+        const uint32_t *x = m->indices + 3u * t;
+        double mg, tt = pn_test_ray_tri(P, d, m->positions + 3u * x[0], m->positions + 3u * x[1], m->positions + 3u * x[2], &mg);
+        if (tt > 0.0 && tt < 1.0) return 1;
+    }
+    return 0;
+}
+
+/* For shadow-ray origins O under the mesh, every sample whose segment robustly crosses the
+ * mesh (the segments to four neighbours of the sample, 1e-4 light half-edges away, all
+ * hit: the sample is not on the silhouette) must be blocked by the predicate. Samples
+ * whose segments run exactly through shared edges and vertices are the point. */
+static uint32_t leaks(const pn_mesh *m, const pn_klight *kl, const pn_v3 *origins, int n_origins, uint32_t *covered_out)
+{
+    uint32_t leaked = 0, covered = 0, k = kl->k;
+    int o;
+    for (o = 0; o < n_origins; o++) {
+        uint32_t mask[PN_MASK_WORDS_MAX], t, i, j;
+        pn_v3 O = origins[o];
+        double P[3] = {O.x, O.y, O.z};
+        pn_mask_clear(mask);
+        for (t = 0; t < m->triangle_count; t++) pn_tri_mask(O, tri_v(m, t, 0), tri_v(m, t, 1), tri_v(m, t, 2), kl, mask);
+        for (j = 0; j < k; j++)
+            for (i = 0; i < k; i++) {
+                double a = (double)(2 * i + 1) / k - 1.0, b = (double)(2 * j + 1) / k - 1.0;
+                static const double off[4][2] = {{1e-4, 0}, {-1e-4, 0}, {0, 1e-4}, {0, -1e-4}};
+                int q, robust = 1;
+                for (q = 0; q < 4 && robust; q++) {
+                    double S[3];
+                    int c;
+                    for (c = 0; c < 3; c++)
+                        S[c] = kl->c[c] + (a + off[q][0]) * kl->U[c] + (b + off[q][1]) * kl->V[c];
+                    robust = seg_hits(m, P, S);
+                }
+                if (!robust) continue;
+                covered++;
+                if (!(mask[(j * k + i) >> 5] >> ((j * k + i) & 31u) & 1u)) leaked++;
+            }
+    }
+    *covered_out = covered;
+    return leaked;
+}
+
+static void test_watertight(void)
+{
+    pn_mesh sphere;
+    pn_setup s;
+    char err[256];
+    pn_v3 origins[64];
+    pn_light l;
+    pn_klight kl;
+    uint32_t covered, leaked;
+    int n = 0, i, j;
+    /* Sphere on the y axis; 32 slices put meridians in the planes x = 0 and z = 0. */
+    REQUIRE(pn_test_uv_sphere(&sphere, 0, 2, 0, 0.75, 32, 16) == 0);
+    for (i = 0; i < (int)sphere.vertex_count * 3; i++)
+        if (fabsf(sphere.positions[i]) < 1e-6f) sphere.positions[i] = 0.0f;
+    /* k = 8, half-edge 0.5: samples at x = c.x + (2i+1)/16 - 0.5; c.x = 1/16 puts column 3
+     * exactly on x = 0, and likewise row 3 on z = 0, and sample (3, 3) on the pole axis. */
+    l.center[0] = 0.0625f;
+    l.center[1] = 4.0f;
+    l.center[2] = 0.0625f;
+    l.u[0] = 0.5f; l.u[1] = 0.0f; l.u[2] = 0.0f;
+    l.v[0] = 0.0f; l.v[1] = 0.0f; l.v[2] = -0.5f;
+    kl = klight_of(&l, 8, 0.0f, 4.0f);
+    CHECK(kl.N[1] == 1.0f || kl.N[1] == -1.0f);
+    for (i = -3; i <= 3; i++)
+        for (j = -3; j <= 3; j++) origins[n++] = pn_v3_make(0.125f * (float)i, 0.0f, 0.125f * (float)j);
+    leaked = leaks(&sphere, &kl, origins, n, &covered);
+    fprintf(stderr, "uv-sphere: %u robustly covered samples, %u leaked\n", covered, leaked);
+    CHECK(covered > 1000u);
+    CHECK(leaked == 0u);
+    kl = klight_of(&l, 32, 0.0f, 4.0f);
+    leaked = leaks(&sphere, &kl, origins, 9, &covered);
+    fprintf(stderr, "uv-sphere k=32: %u robustly covered samples, %u leaked\n", covered, leaked);
+    CHECK(covered > 1000u);
+    CHECK(leaked == 0u);
+    pn_mesh_free(&sphere);
+
+    /* spot.glb: origins on its ground plane inside its shadow. */
+    REQUIRE(pn_setup_load(&s, PN_SCENES_DIR "/spot.glb", 0, 0, err, sizeof(err)) == 0);
+    {
+        float cx = 0.5f * (s.mesh.bbox_min[0] + s.mesh.bbox_max[0]), cz = 0.5f * (s.mesh.bbox_min[2] + s.mesh.bbox_max[2]);
+        float y = s.mesh.bbox_min[1] - 0.01f * s.diag;
+        pn_light sl;
+        n = 0;
+        for (i = -3; i <= 3; i++)
+            for (j = -3; j <= 3; j++) origins[n++] = pn_v3_make(cx + 0.06f * (float)i * s.diag, y, cz + 0.06f * (float)j * s.diag);
+        sl.center[0] = cx;
+        sl.center[1] = s.mesh.bbox_max[1] + 0.5f * s.diag;
+        sl.center[2] = cz;
+        sl.u[0] = 0.15f * s.diag; sl.u[1] = 0.0f; sl.u[2] = 0.0f;
+        sl.v[0] = 0.0f; sl.v[1] = 0.0f; sl.v[2] = 0.15f * s.diag;
+        kl = klight_of(&sl, 16, 0.0f, s.diag);
+        leaked = leaks(&s.mesh, &kl, origins, n, &covered);
+        fprintf(stderr, "spot.glb: %u robustly covered samples, %u leaked\n", covered, leaked);
+        CHECK(covered > 1000u);
+        CHECK(leaked == 0u);
+    }
+    pn_setup_free(&s);
+}
+
+/* ---- point light, one-sided light, determinism ------------------------------------------- */
+
+static void test_point_and_one_sided(void)
+{
+    pn_setup s;
+    pn_host h;
+    pn_frame fr;
+    pn_light l;
+    char err[256];
+    size_t px;
+    uint32_t zeros = 0, ones = 0, other = 0, ground_lit = 0;
+    REQUIRE(pn_setup_load(&s, "square", 1, -1, err, sizeof(err)) == 0);
+    REQUIRE(pn_host_open(&h, s.mesh.triangle_count, 64, 64, 1, err, sizeof(err)) == 0);
+    REQUIRE(pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
+    l = s.light;
+    memset(l.u, 0, sizeof(l.u));
+    memset(l.v, 0, sizeof(l.v));
+    REQUIRE(render(&h, &s, &s.camera, &l, 64, 64, 16, &fr) == 0);
+    for (px = 0; px < 64u * 64u; px++) {
+        if (fr.tri_id[px] == PN_NO_TRIANGLE) continue;
+        zeros += fr.visibility[px] == 0.0f;
+        ones += fr.visibility[px] == 1.0f;
+        other += fr.visibility[px] != 0.0f && fr.visibility[px] != 1.0f;
+    }
+    fprintf(stderr, "point light: %u lit, %u shadowed, %u other\n", ones, zeros, other);
+    CHECK(other == 0u && zeros > 20u && ones > 200u);
+    /* Flip the light to emit upward: everything below it is behind it and gets 0. */
+    l = s.light;
+    l.v[2] = -l.v[2];
+    REQUIRE(render(&h, &s, &s.camera, &l, 64, 64, 8, &fr) == 0);
+    for (px = 0; px < 64u * 64u; px++)
+        if (fr.tri_id[px] != PN_NO_TRIANGLE) ground_lit += fr.visibility[px] != 0.0f;
+    CHECK(ground_lit == 0u);
+    pn_host_close(&h);
+    pn_setup_free(&s);
+}
+
+static void test_thread_determinism(void)
+{
+    pn_setup s;
+    char err[256];
+    float *vis[3];
+    uint8_t *rgba[3];
+    int r;
+    const size_t n = 96u * 72u;
+    REQUIRE(pn_setup_load(&s, "spheres", 1, -1, err, sizeof(err)) == 0);
+    for (r = 0; r < 3; r++) {
+        pn_host h;
+        pn_frame fr;
+        REQUIRE(pn_host_open(&h, s.mesh.triangle_count, 96, 72, r == 0 ? 1 : r == 1 ? 2 : 7, err, sizeof(err)) == 0);
+        if (r == 0) pn_set_parallel_for(h.ctx, NULL, NULL); /* the library's own serial loop */
+        REQUIRE(pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
+        REQUIRE(render(&h, &s, &s.camera, &s.light, 96, 72, 8, &fr) == 0);
+        vis[r] = (float *)malloc(n * sizeof(float));
+        rgba[r] = (uint8_t *)malloc(n * 4u);
+        REQUIRE(vis[r] && rgba[r]);
+        memcpy(vis[r], fr.visibility, n * sizeof(float));
+        memcpy(rgba[r], fr.rgba, n * 4u);
+        pn_host_close(&h);
+    }
+    CHECK(memcmp(vis[0], vis[1], n * sizeof(float)) == 0);
+    CHECK(memcmp(vis[0], vis[2], n * sizeof(float)) == 0);
+    CHECK(memcmp(rgba[0], rgba[1], n * 4u) == 0);
+    CHECK(memcmp(rgba[0], rgba[2], n * 4u) == 0);
+    for (r = 0; r < 3; r++) {
+        free(vis[r]);
+        free(rgba[r]);
+    }
+    pn_setup_free(&s);
+}
+
+int main(void)
+{
+    RUN(test_square_closed_form);
+    RUN(test_culling_vs_brute_force);
+    RUN(test_watertight);
+    RUN(test_point_and_one_sided);
+    RUN(test_thread_determinism);
+    return pn_test_summary();
+}

@@ -1,0 +1,778 @@
+/* test_scenes.c - built-in procedural scenes: mesh invariants, default views, and the
+ * closed form of the `square` scene against its own limits and a brute-force
+ * segment/triangle loop over the built mesh. */
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "pn_mesh.h"
+#include "pn_scenes.h"
+#include "pn_test.h"
+
+/* ---- small double vector helpers ---- */
+
+static void sub3(double r[3], const double a[3], const double b[3])
+{
+    r[0] = a[0] - b[0];
+    r[1] = a[1] - b[1];
+    r[2] = a[2] - b[2];
+}
+
+static void cross3(double r[3], const double a[3], const double b[3])
+{
+    double x = a[1] * b[2] - a[2] * b[1];
+    double y = a[2] * b[0] - a[0] * b[2];
+    double z = a[0] * b[1] - a[1] * b[0];
+    r[0] = x;
+    r[1] = y;
+    r[2] = z;
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void normalize3(double a[3])
+{
+    double l = sqrt(dot3(a, a));
+    a[0] /= l;
+    a[1] /= l;
+    a[2] /= l;
+}
+
+static void f2d(double d[3], const float f[3])
+{
+    d[0] = f[0];
+    d[1] = f[1];
+    d[2] = f[2];
+}
+
+static void vert(double d[3], const pn_mesh *m, uint32_t v)
+{
+    f2d(d, m->positions + (size_t)v * 3u);
+}
+
+/* Open segment (o, o + dir*[0,1]) against a closed triangle, double precision
+ * Moller-Trumbore. Only used away from edges (callers skip ambiguous cases). */
+static int seg_hits_tri(const double o[3], const double dir[3], const double a[3],
+                        const double b[3], const double c[3])
+{
+    double e1[3], e2[3], p[3], s[3], q[3], det, u, v, t;
+    sub3(e1, b, a);
+    sub3(e2, c, a);
+    cross3(p, dir, e2);
+    det = dot3(e1, p);
+    if (fabs(det) < 1e-300) {
+        return 0;
+    }
+    sub3(s, o, a);
+    u = dot3(s, p) / det;
+    if (u < 0.0 || u > 1.0) {
+        return 0;
+    }
+    cross3(q, s, e1);
+    v = dot3(dir, q) / det;
+    if (v < 0.0 || u + v > 1.0) {
+        return 0;
+    }
+    t = dot3(e2, q) / det;
+    return t > 1e-9 && t < 1.0 - 1e-9;
+}
+
+/* Does the segment from a to b hit any triangle in [t0, t1) other than `skip`? */
+static int seg_blocked(const pn_mesh *m, const double a[3], const double b[3], uint32_t t0,
+                       uint32_t t1)
+{
+    double dir[3], lo[3], hi[3];
+    uint32_t t;
+    int k;
+    sub3(dir, b, a);
+    for (k = 0; k < 3; k++) {
+        lo[k] = a[k] < b[k] ? a[k] : b[k];
+        hi[k] = a[k] < b[k] ? b[k] : a[k];
+    }
+    for (t = t0; t < t1; t++) {
+        double p0[3], p1[3], p2[3];
+        const uint32_t *ix = m->indices + (size_t)t * 3u;
+        vert(p0, m, ix[0]);
+        vert(p1, m, ix[1]);
+        vert(p2, m, ix[2]);
+        for (k = 0; k < 3; k++) {
+            double tmin = p0[k] < p1[k] ? p0[k] : p1[k];
+            double tmax = p0[k] < p1[k] ? p1[k] : p0[k];
+            if (p2[k] < tmin) tmin = p2[k];
+            if (p2[k] > tmax) tmax = p2[k];
+            if (tmax < lo[k] || tmin > hi[k]) break;
+        }
+        if (k < 3) {
+            continue;
+        }
+        if (seg_hits_tri(a, dir, p0, p1, p2)) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+static int cmp_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return x < y ? -1 : (x > y ? 1 : 0);
+}
+
+/* Triangles [t0, t1) form a closed, consistently wound 2-manifold: every directed edge
+ * occurs exactly once and its reverse exactly once. Returns 1 if so. */
+static int closed_manifold(const pn_mesh *m, uint32_t t0, uint32_t t1)
+{
+    size_t n = (size_t)(t1 - t0) * 3u, i;
+    uint64_t *e = (uint64_t *)malloc(n * sizeof(uint64_t));
+    int ok = 1;
+    uint32_t t;
+    if (e == NULL) {
+        return 0;
+    }
+    for (t = t0; t < t1; t++) {
+        const uint32_t *ix = m->indices + (size_t)t * 3u;
+        int c;
+        for (c = 0; c < 3; c++) {
+            e[(size_t)(t - t0) * 3u + (size_t)c] =
+                ((uint64_t)ix[c] << 32) | (uint64_t)ix[(c + 1) % 3];
+        }
+    }
+    qsort(e, n, sizeof(uint64_t), cmp_u64);
+    for (i = 0; i < n && ok; i++) {
+        uint64_t rev = (e[i] << 32) | (e[i] >> 32);
+        if (i + 1 < n && e[i + 1] == e[i]) {
+            ok = 0; /* directed edge used twice: inconsistent winding or non-manifold */
+        } else if ((uint32_t)e[i] == (uint32_t)(e[i] >> 32)) {
+            ok = 0; /* degenerate edge */
+        } else if (bsearch(&rev, e, n, sizeof(uint64_t), cmp_u64) == NULL) {
+            ok = 0; /* open boundary */
+        }
+    }
+    free(e);
+    return ok;
+}
+
+static double signed_volume(const pn_mesh *m, uint32_t t0, uint32_t t1)
+{
+    double vol = 0.0;
+    uint32_t t;
+    for (t = t0; t < t1; t++) {
+        double a[3], b[3], c[3], bc[3];
+        const uint32_t *ix = m->indices + (size_t)t * 3u;
+        vert(a, m, ix[0]);
+        vert(b, m, ix[1]);
+        vert(c, m, ix[2]);
+        cross3(bc, b, c);
+        vol += dot3(a, bc) / 6.0;
+    }
+    return vol;
+}
+
+static uint32_t distinct_vertices(const pn_mesh *m, uint32_t t0, uint32_t t1)
+{
+    uint8_t *seen = (uint8_t *)calloc(m->vertex_count, 1);
+    uint32_t n = 0, t;
+    if (seen == NULL) {
+        return 0;
+    }
+    for (t = t0; t < t1; t++) {
+        int c;
+        for (c = 0; c < 3; c++) {
+            uint32_t v = m->indices[(size_t)t * 3u + (size_t)c];
+            if (!seen[v]) {
+                seen[v] = 1;
+                n++;
+            }
+        }
+    }
+    free(seen);
+    return n;
+}
+
+/* ---- per-scene generic checks ---- */
+
+static uint32_t expected_triangles(const char *name)
+{
+    if (strcmp(name, "square") == 0) return 4u;
+    if (strcmp(name, "spheres") == 0) return 81u * 762u + 2u;
+    if (strcmp(name, "elongated-cube") == 0) return 12u + 2u;
+    if (strcmp(name, "thin") == 0) return 2000u + 2u;
+    return 0u;
+}
+
+static void check_scene(const char *name)
+{
+    pn_mesh m;
+    pn_scene_view v;
+    char err[256] = "";
+    double lc[3], lu[3], lv[3], n[3], f[3], r[3], up[3], eye[3], target[3], centre[3];
+    double tan_half, min_side = HUGE_VAL, lo[3], hi[3];
+    uint32_t i, ground_t0;
+    int finite = 1, in_range = 1, framed = 1, ground_flat = 1, k;
+    int shadow_seen = 0, lit_seen = 0;
+
+    REQUIRE(pn_builtin_scene(name, &m, &v, err, sizeof(err)) == 0);
+    CHECK_MSG(m.triangle_count == expected_triangles(name), "%s: %u triangles", name,
+              (unsigned)m.triangle_count);
+    REQUIRE(m.triangle_count >= 3u && m.positions != NULL && m.indices != NULL);
+
+    for (i = 0; i < m.triangle_count * 3u; i++) {
+        if (m.indices[i] >= m.vertex_count) in_range = 0;
+    }
+    CHECK_MSG(in_range, "%s: index out of range", name);
+    for (i = 0; i < m.vertex_count * 3u; i++) {
+        if (!isfinite(m.positions[i])) finite = 0;
+    }
+    CHECK_MSG(finite, "%s: non-finite position", name);
+    if (!in_range || !finite) {
+        pn_mesh_free(&m);
+        return;
+    }
+    /* Every vertex is referenced (no strays), so the bbox is simply over all of them. */
+    CHECK(distinct_vertices(&m, 0, m.triangle_count) == m.vertex_count);
+    for (k = 0; k < 3; k++) {
+        lo[k] = HUGE_VAL;
+        hi[k] = -HUGE_VAL;
+    }
+    for (i = 0; i < m.vertex_count; i++) {
+        for (k = 0; k < 3; k++) {
+            double c = m.positions[(size_t)i * 3u + (size_t)k];
+            if (c < lo[k]) lo[k] = c;
+            if (c > hi[k]) hi[k] = c;
+        }
+    }
+    for (k = 0; k < 3; k++) {
+        CHECK(m.bbox_min[k] == (float)lo[k] && m.bbox_max[k] == (float)hi[k]);
+        centre[k] = 0.5 * (lo[k] + hi[k]);
+    }
+
+    /* Ground: last two triangles, flat at the lowest y, facing +y. */
+    ground_t0 = m.triangle_count - 2u;
+    for (i = ground_t0 * 3u; i < m.triangle_count * 3u; i++) {
+        if (m.positions[(size_t)m.indices[i] * 3u + 1u] != m.bbox_min[1]) ground_flat = 0;
+    }
+    CHECK_MSG(ground_flat, "%s: last two triangles are not the ground", name);
+    for (i = ground_t0; i < m.triangle_count; i++) {
+        double a[3], b[3], c[3], e1[3], e2[3], nn[3];
+        vert(a, &m, m.indices[i * 3u]);
+        vert(b, &m, m.indices[i * 3u + 1u]);
+        vert(c, &m, m.indices[i * 3u + 2u]);
+        sub3(e1, b, a);
+        sub3(e2, c, a);
+        cross3(nn, e1, e2);
+        CHECK(nn[1] > 0.0);
+    }
+
+    /* Light: orthogonal non-degenerate half-edges, N = u x v points down and toward the
+     * scene, every vertex strictly on the emitting side. */
+    f2d(lc, v.light_center);
+    f2d(lu, v.light_u);
+    f2d(lv, v.light_v);
+    CHECK(dot3(lu, lu) > 0.0 && dot3(lv, lv) > 0.0);
+    CHECK(fabs(dot3(lu, lv)) <= 1e-12 * sqrt(dot3(lu, lu) * dot3(lv, lv)));
+    cross3(n, lu, lv);
+    normalize3(n);
+    CHECK(n[1] < -0.99);
+    {
+        double d[3];
+        sub3(d, centre, lc);
+        CHECK_MSG(dot3(d, n) > 0.0, "%s: light faces away from the scene centre", name);
+    }
+    for (i = 0; i < m.vertex_count; i++) {
+        double p[3], d[3];
+        vert(p, &m, i);
+        sub3(d, p, lc);
+        if (!(dot3(d, n) > 0.0)) {
+            CHECK_MSG(0, "%s: vertex %u behind the light plane", name, (unsigned)i);
+            break;
+        }
+    }
+    CHECK(lc[1] > hi[1]);
+
+    /* Camera: every vertex inside the frustum at aspect 1 (so at any wider aspect too). */
+    f2d(eye, v.eye);
+    f2d(target, v.target);
+    f2d(up, v.up);
+    CHECK(v.fov_deg > 0.0f && v.fov_deg < 180.0f);
+    sub3(f, target, eye);
+    normalize3(f);
+    cross3(r, f, up);
+    normalize3(r);
+    cross3(up, r, f);
+    tan_half = tan(0.5 * (double)v.fov_deg * 3.14159265358979323846 / 180.0);
+    for (i = 0; i < m.vertex_count; i++) {
+        double p[3], d[3], z, sx, sy;
+        vert(p, &m, i);
+        sub3(d, p, eye);
+        z = dot3(d, f);
+        sx = dot3(d, r) / (z * tan_half);
+        sy = dot3(d, up) / (z * tan_half);
+        if (!(z > 0.0) || fabs(sx) > 1.0 || fabs(sy) > 1.0) {
+            framed = 0;
+        } else {
+            double side = 1.0 - (fabs(sx) > fabs(sy) ? fabs(sx) : fabs(sy));
+            if (side < min_side) min_side = side;
+        }
+    }
+    CHECK_MSG(framed, "%s: a vertex is outside the default view", name);
+
+    /* Shadows visible: project the centroid of sampled occluder triangles from the light
+     * centre onto the ground; that ground point is blocked (the segment passes through
+     * the centroid) and at least some of them must be seen from the eye. Also some
+     * ground point that the light centre reaches must be seen. */
+    {
+        uint32_t step = ground_t0 / 64u + 1u, t;
+        double gy = lo[1];
+        for (t = 0; t < ground_t0; t += step) {
+            double a[3], b[3], c[3], cen[3], g[3], s;
+            vert(a, &m, m.indices[t * 3u]);
+            vert(b, &m, m.indices[t * 3u + 1u]);
+            vert(c, &m, m.indices[t * 3u + 2u]);
+            for (k = 0; k < 3; k++) cen[k] = (a[k] + b[k] + c[k]) / 3.0;
+            s = (lc[1] - gy) / (lc[1] - cen[1]);
+            for (k = 0; k < 3; k++) g[k] = lc[k] + s * (cen[k] - lc[k]);
+            g[1] = gy + 1e-6;
+            if (fabs(g[0]) > hi[0] || fabs(g[2]) > hi[2]) continue;
+            if (seg_blocked(&m, g, lc, 0, ground_t0) && !seg_blocked(&m, g, eye, 0, ground_t0)) {
+                shadow_seen++;
+            }
+        }
+        for (t = 0; t < 16u && !lit_seen; t++) {
+            double g[3];
+            g[0] = lo[0] + (hi[0] - lo[0]) * (0.05 + 0.9 * (double)(t % 4u) / 3.0);
+            g[1] = gy + 1e-6;
+            g[2] = lo[2] + (hi[2] - lo[2]) * (0.05 + 0.9 * (double)(t / 4u) / 3.0);
+            if (!seg_blocked(&m, g, lc, 0, ground_t0) && !seg_blocked(&m, g, eye, 0, ground_t0)) {
+                lit_seen = 1;
+            }
+        }
+    }
+    CHECK_MSG(shadow_seen > 0, "%s: no shadowed ground point visible from the eye", name);
+    CHECK_MSG(lit_seen, "%s: no lit ground point visible from the eye", name);
+    fprintf(stderr, "  %-15s %6u vertices %6u triangles, frame margin %.3f, %d shadow probes seen\n",
+            name, (unsigned)m.vertex_count, (unsigned)m.triangle_count, min_side, shadow_seen);
+    pn_mesh_free(&m);
+}
+
+static void test_all_scenes(void)
+{
+    const char *const *names = pn_builtin_scene_names();
+    int count = 0;
+    REQUIRE(names != NULL);
+    for (; *names != NULL; names++) {
+        check_scene(*names);
+        count++;
+    }
+    CHECK(count == 4);
+}
+
+static void test_unknown_name(void)
+{
+    pn_mesh m;
+    pn_scene_view v;
+    char err[128] = "";
+    memset(&v, 0x5a, sizeof(v));
+    m.positions = (float *)&m; /* garbage that must be overwritten */
+    m.triangle_count = 7u;
+    CHECK(pn_builtin_scene("no-such-scene", &m, &v, err, sizeof(err)) != 0);
+    CHECK(err[0] != '\0');
+    CHECK(strstr(err, "no-such-scene") != NULL);
+    CHECK(m.positions == NULL && m.indices == NULL && m.triangle_count == 0u &&
+          m.vertex_count == 0u);
+    CHECK(((unsigned char *)&v)[0] == 0x5a); /* view not written on failure */
+    CHECK(pn_builtin_scene("no-such-scene", &m, NULL, NULL, 0) != 0);
+    CHECK(pn_builtin_scene(NULL, &m, NULL, err, sizeof(err)) != 0);
+    /* view may be NULL on success */
+    CHECK(pn_builtin_scene("square", &m, NULL, NULL, 0) == 0);
+    pn_mesh_free(&m);
+}
+
+static void test_deterministic(void)
+{
+    const char *const *names = pn_builtin_scene_names();
+    for (; *names != NULL; names++) {
+        pn_mesh a, b;
+        pn_scene_view va, vb;
+        REQUIRE(pn_builtin_scene(*names, &a, &va, NULL, 0) == 0);
+        REQUIRE(pn_builtin_scene(*names, &b, &vb, NULL, 0) == 0);
+        CHECK(a.vertex_count == b.vertex_count && a.triangle_count == b.triangle_count);
+        CHECK(memcmp(a.positions, b.positions, (size_t)a.vertex_count * 3u * sizeof(float)) == 0);
+        CHECK(memcmp(a.indices, b.indices, (size_t)a.triangle_count * 3u * sizeof(uint32_t)) == 0);
+        CHECK(memcmp(&va, &vb, sizeof(va)) == 0);
+        pn_mesh_free(&a);
+        pn_mesh_free(&b);
+    }
+}
+
+/* Each sphere: closed, consistently wound, genus 0, outward, on its sphere, no
+ * degenerate triangle; 383 vertices of its own. */
+static void test_spheres_closed(void)
+{
+    pn_mesh m;
+    uint32_t s;
+    int manifold = 1, outward = 1, euler = 1, on_sphere = 1, nondegenerate = 1;
+    double min_angle = 180.0;
+    REQUIRE(pn_builtin_scene("spheres", &m, NULL, NULL, 0) == 0);
+    REQUIRE(m.triangle_count == 81u * 762u + 2u);
+    CHECK(m.vertex_count == 81u * 383u + 4u);
+    for (s = 0; s < 81u; s++) {
+        uint32_t t0 = s * 762u, t1 = t0 + 762u, t, nv;
+        double c[3] = {0.0, 0.0, 0.0}, vol, r = 0.4;
+        if (!closed_manifold(&m, t0, t1)) manifold = 0;
+        nv = distinct_vertices(&m, t0, t1);
+        /* V - E + F with E = 3F/2 for a closed manifold. */
+        if ((int)nv - (int)(3u * 762u / 2u) + 762 != 2) euler = 0;
+        /* Sphere s uses vertices [383 s, 383 (s + 1)): centre = mean of the poles. */
+        {
+            double np[3], sp[3];
+            vert(np, &m, s * 383u);
+            vert(sp, &m, s * 383u + 382u);
+            for (int k = 0; k < 3; k++) c[k] = 0.5 * (np[k] + sp[k]);
+        }
+        for (t = t0; t < t1; t++) {
+            double a[3], b[3], cc[3], e1[3], e2[3], e3[3], nn[3], area2;
+            const uint32_t *ix = m.indices + (size_t)t * 3u;
+            vert(a, &m, ix[0]);
+            vert(b, &m, ix[1]);
+            vert(cc, &m, ix[2]);
+            sub3(e1, b, a);
+            sub3(e2, cc, a);
+            sub3(e3, cc, b);
+            cross3(nn, e1, e2);
+            area2 = sqrt(dot3(nn, nn));
+            if (!(area2 > 1e-6)) nondegenerate = 0;
+            /* smallest angle, at a */
+            {
+                double l1 = sqrt(dot3(e1, e1)), l2 = sqrt(dot3(e2, e2)), l3 = sqrt(dot3(e3, e3));
+                double lmin = l1 < l2 ? (l1 < l3 ? l1 : l3) : (l2 < l3 ? l2 : l3);
+                double lmax = l1 > l2 ? (l1 > l3 ? l1 : l3) : (l2 > l3 ? l2 : l3);
+                /* angle opposite the shortest edge: sin = area2 / (product of the others) */
+                double ang = asin(area2 / ((l1 + l2 + l3 - lmin - lmax) * lmax)) * 180.0 /
+                             3.14159265358979323846;
+                if (ang < min_angle) min_angle = ang;
+            }
+        }
+        for (t = s * 383u; t < (s + 1u) * 383u; t++) {
+            double p[3], d[3];
+            vert(p, &m, t);
+            sub3(d, p, c);
+            if (fabs(sqrt(dot3(d, d)) - r) > 1e-5) on_sphere = 0;
+        }
+        /* Volume relative to the sphere's centre; a translation would add nothing for a
+         * closed mesh, but this keeps the check well conditioned. */
+        {
+            pn_mesh local = m;
+            float *moved = (float *)malloc((size_t)m.vertex_count * 3u * sizeof(float));
+            REQUIRE(moved != NULL);
+            for (t = 0; t < m.vertex_count; t++) {
+                for (int k = 0; k < 3; k++)
+                    moved[(size_t)t * 3u + (size_t)k] =
+                        (float)((double)m.positions[(size_t)t * 3u + (size_t)k] - c[k]);
+            }
+            local.positions = moved;
+            vol = signed_volume(&local, t0, t1);
+            free(moved);
+            /* A unit-sphere polyhedron of this resolution holds > 97% of the ball. */
+            if (!(vol > 0.97 * 4.0 / 3.0 * 3.14159265358979323846 * r * r * r)) outward = 0;
+            if (s == 0) {
+                fprintf(stderr, "  sphere volume ratio %.4f, smallest angle %.1f deg\n",
+                        vol / (4.0 / 3.0 * 3.14159265358979323846 * r * r * r), min_angle);
+            }
+        }
+    }
+    CHECK(manifold);
+    CHECK(euler);
+    CHECK(outward);
+    CHECK(on_sphere);
+    CHECK(nondegenerate);
+    CHECK(min_angle > 25.0);
+    pn_mesh_free(&m);
+}
+
+static void test_box_closed(void)
+{
+    pn_mesh m;
+    REQUIRE(pn_builtin_scene("elongated-cube", &m, NULL, NULL, 0) == 0);
+    REQUIRE(m.triangle_count == 14u);
+    CHECK(closed_manifold(&m, 0, 12));
+    CHECK(distinct_vertices(&m, 0, 12) == 8u);
+    CHECK(fabs(signed_volume(&m, 0, 12) - 0.6 * 0.6 * 3.0) < 1e-5);
+    /* Elongated along the light axis: height 5 x each horizontal side (float 0.3 rounds up). */
+    {
+        double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+        uint32_t v;
+        for (v = 0; v < 8u; v++) {
+            for (int k = 0; k < 3; k++) {
+                double c = m.positions[(size_t)v * 3u + (size_t)k];
+                if (c < lo[k]) lo[k] = c;
+                if (c > hi[k]) hi[k] = c;
+            }
+        }
+        CHECK(hi[1] - lo[1] >= 4.99 * (hi[0] - lo[0]));
+        CHECK(hi[1] - lo[1] >= 4.99 * (hi[2] - lo[2]));
+        CHECK(lo[1] > m.bbox_min[1]); /* floats above the ground */
+    }
+    /* The hard case itself: from the ground point beneath the box, every light sample is
+     * blocked, while the top face alone (all a single near depth map sees) blocks less
+     * than half of them - the umbra comes from the long side walls. */
+    {
+        pn_scene_view v;
+        pn_mesh top;
+        uint32_t top_idx[6], t, n_top = 0;
+        int i, j, k = 16, all = 0, by_top = 0;
+        double P[3] = {0.0, 0.0, 0.0};
+        pn_mesh_free(&m);
+        REQUIRE(pn_builtin_scene("elongated-cube", &m, &v, NULL, 0) == 0);
+        P[1] = m.bbox_min[1];
+        /* the +y face: the two box triangles with every vertex at the box top, y = 4 */
+        for (t = 0; t < 12u; t++) {
+            const uint32_t *ix = m.indices + (size_t)t * 3u;
+            int c, on_top = 1;
+            for (c = 0; c < 3; c++) {
+                if (m.positions[(size_t)ix[c] * 3u + 1u] != 4.0f) on_top = 0;
+            }
+            if (on_top && n_top < 2u) {
+                memcpy(top_idx + n_top * 3u, ix, 3u * sizeof(uint32_t));
+                n_top++;
+            }
+        }
+        REQUIRE(n_top == 2u);
+        top = m;
+        top.indices = top_idx;
+        top.triangle_count = 2u;
+        for (j = 0; j < k; j++) {
+            for (i = 0; i < k; i++) {
+                double S[3];
+                S[0] = v.light_center[0] + ((double)(2 * i + 1) / k - 1.0) * v.light_u[0];
+                S[1] = v.light_center[1];
+                S[2] = v.light_center[2] + ((double)(2 * j + 1) / k - 1.0) * v.light_v[2];
+                all += seg_blocked(&m, P, S, 0, 12);
+                by_top += seg_blocked(&top, P, S, 0, 2);
+            }
+        }
+        CHECK(all == k * k);
+        CHECK(by_top > 0 && by_top < k * k / 2);
+        fprintf(stderr, "  beneath the box: %d/%d samples blocked, top face alone %d\n", all,
+                k * k, by_top);
+    }
+    pn_mesh_free(&m);
+}
+
+static void test_thin_slivers(void)
+{
+    pn_mesh m;
+    uint32_t t;
+    int ok = 1, up = 1;
+    REQUIRE(pn_builtin_scene("thin", &m, NULL, NULL, 0) == 0);
+    REQUIRE(m.triangle_count == 2002u);
+    for (t = 0; t < 2000u; t++) {
+        double a[3], b[3], c[3], e1[3], e2[3], nn[3], l, area, h;
+        vert(a, &m, m.indices[t * 3u]);
+        vert(b, &m, m.indices[t * 3u + 1u]);
+        vert(c, &m, m.indices[t * 3u + 2u]);
+        sub3(e1, b, a);
+        sub3(e2, c, a);
+        cross3(nn, e1, e2);
+        area = 0.5 * sqrt(dot3(nn, nn));
+        l = sqrt(dot3(e2, e2));
+        h = 2.0 * area / l; /* width of the base seen across the long edge */
+        if (!(l > 1.9 && l < 2.1 && h > 0.0015 && h < 0.0025)) ok = 0;
+        if (!(nn[1] > 0.0)) up = 0;
+    }
+    CHECK(ok);
+    CHECK(up);
+    pn_mesh_free(&m);
+}
+
+/* ---- the square scene and its closed form ---- */
+
+static uint32_t rng_state = 12345u;
+static double rnd(void)
+{
+    /* xorshift32: test-local, deterministic */
+    rng_state ^= rng_state << 13;
+    rng_state ^= rng_state >> 17;
+    rng_state ^= rng_state << 5;
+    return (double)(rng_state >> 8) / 16777216.0;
+}
+
+static void test_square_mesh_matches_params(void)
+{
+    pn_square_params p;
+    pn_mesh m;
+    pn_scene_view v;
+    uint32_t i;
+    int occ = 0, gnd = 0;
+    pn_square_scene_params(&p);
+    /* ground_y < occluder_y < light_y and the shadow fits on the ground. */
+    CHECK(p.ground_y < p.occluder_y && p.occluder_y < p.light_y);
+    REQUIRE(pn_builtin_scene("square", &m, &v, NULL, 0) == 0);
+    CHECK(v.light_center[0] == 0.0f && v.light_center[1] == p.light_y && v.light_center[2] == 0.0f);
+    CHECK(v.light_u[0] == p.light_half && v.light_u[1] == 0.0f && v.light_u[2] == 0.0f);
+    CHECK(v.light_v[0] == 0.0f && v.light_v[1] == 0.0f && v.light_v[2] == p.light_half);
+    for (i = 0; i < m.vertex_count; i++) {
+        const float *q = m.positions + (size_t)i * 3u;
+        if (q[1] == p.occluder_y && fabsf(q[0]) == p.occluder_half &&
+            fabsf(q[2]) == p.occluder_half)
+            occ++;
+        if (q[1] == p.ground_y && fabsf(q[0]) == p.ground_half && fabsf(q[2]) == p.ground_half)
+            gnd++;
+    }
+    CHECK(occ == 4 && gnd == 4 && m.vertex_count == 8u);
+    /* Penumbra edge (|x| = 2h + L for this geometry) lies on the ground. */
+    CHECK(p.ground_half > 2.0f * p.occluder_half + p.light_half);
+    pn_mesh_free(&m);
+}
+
+static void test_square_closed_form_values(void)
+{
+    pn_square_params p;
+    int k, ks[] = {0, 1, 2, 4, 8, 16, 32};
+    double x, prev;
+    pn_square_scene_params(&p);
+    for (k = 0; k < (int)(sizeof(ks) / sizeof(ks[0])); k++) {
+        /* Far outside the shadow: fully lit. */
+        CHECK(pn_square_closed_form(&p, 3.0, 3.0, ks[k]) == 1.0);
+        CHECK(pn_square_closed_form(&p, -1.6, 0.0, ks[k]) == 1.0);
+        CHECK(pn_square_closed_form(&p, 0.0, 1.51, ks[k]) == 1.0);
+        /* Umbra: |x|, |z| <= 2h - L = 0.5 with these numbers. */
+        CHECK(pn_square_closed_form(&p, 0.0, 0.0, ks[k]) == 0.0);
+        CHECK(pn_square_closed_form(&p, 0.49, -0.49, ks[k]) == 0.0);
+    }
+    /* Half way across the penumbra along x: the projected occluder covers [-2, 0] of the
+     * light's [-0.5, 0.5]: half the light hidden. */
+    CHECK(fabs(pn_square_closed_form(&p, 1.0, 0.0, 0) - 0.5) < 1e-15);
+    CHECK(fabs(pn_square_closed_form(&p, 1.0, 1.0, 0) - 0.75) < 1e-15);
+    CHECK(pn_square_closed_form(&p, 1.0, 0.0, 4) == 0.5);
+    /* Monotone along +x from the centre; strictly increasing inside the penumbra. */
+    prev = -1.0;
+    for (x = 0.0; x <= 2.0; x += 1.0 / 64.0) {
+        double vis = pn_square_closed_form(&p, x, 0.0, 0);
+        CHECK(vis >= prev);
+        if (x > 0.5 && x < 1.5) CHECK(vis > prev);
+        prev = vis;
+        for (k = 1; k <= 16; k *= 2) {
+            static double prevk[17];
+            double vk = pn_square_closed_form(&p, x, 0.1, k);
+            if (x > 0.0) CHECK(vk >= prevk[k]);
+            prevk[k] = vk;
+        }
+    }
+    /* Symmetry in x, z and swapping the axes. */
+    for (k = 0; k < 200; k++) {
+        double a = 4.0 * rnd() - 2.0, b = 4.0 * rnd() - 2.0;
+        double v0 = pn_square_closed_form(&p, a, b, 0);
+        CHECK(fabs(v0 - pn_square_closed_form(&p, -a, b, 0)) < 1e-12);
+        CHECK(fabs(v0 - pn_square_closed_form(&p, b, a, 0)) < 1e-12);
+        CHECK(v0 >= 0.0 && v0 <= 1.0);
+    }
+}
+
+/* Sample counts converge to the area. Per axis the k samples are the midpoints of k
+ * equal cells of the light; the number of midpoints inside any interval of length l
+ * is floor(l/w) or floor(l/w) + 1 (w = cell width), so the per-axis hidden fraction g
+ * differs from the area fraction a by at most 1/k. For the products of two such
+ * fractions in [0, 1]: |gx gz - ax az| <= |gx - ax| gz + ax |gz - az| <= 2/k. */
+static void test_square_convergence(void)
+{
+    pn_square_params p;
+    int i, k;
+    double worst[10] = {0};
+    pn_square_scene_params(&p);
+    for (i = 0; i < 2000; i++) {
+        double x = 3.2 * rnd() - 1.6, z = 3.2 * rnd() - 1.6;
+        double a = pn_square_closed_form(&p, x, z, 0);
+        int e = 0;
+        for (k = 1; k <= 512; k *= 2, e++) {
+            double d = fabs(pn_square_closed_form(&p, x, z, k) - a);
+            CHECK_MSG(d <= 2.0 / k + 1e-12, "x=%g z=%g k=%d diff=%g", x, z, k, d);
+            if (d > worst[e]) worst[e] = d;
+        }
+    }
+    /* ...and the bound is not vacuous: the error actually shrinks. */
+    CHECK(worst[9] < worst[2]);
+    CHECK(worst[9] <= 2.0 / 512.0);
+}
+
+/* Brute force against the built mesh: for random receiver points, each of the k x k
+ * samples is tested with a double segment/triangle intersection against the occluder's
+ * two triangles; points with a sample near a projected edge are skipped. */
+static void test_square_brute_force(void)
+{
+    pn_square_params p;
+    pn_mesh m;
+    int i, tested = 0, skipped = 0, partial = 0;
+    const int ks[] = {1, 3, 4, 8, 16};
+    pn_square_scene_params(&p);
+    REQUIRE(pn_builtin_scene("square", &m, NULL, NULL, 0) == 0);
+    for (i = 0; i < 600; i++) {
+        int k = ks[i % 5], si, sj, hidden = 0;
+        double x = 3.4 * rnd() - 1.7, z = 3.4 * rnd() - 1.7, expect;
+        double P[3];
+        if (pn_square_min_edge_distance(&p, x, z, k) < 1e-6) {
+            skipped++;
+            continue;
+        }
+        P[0] = x;
+        P[1] = p.ground_y;
+        P[2] = z;
+        for (sj = 0; sj < k; sj++) {
+            for (si = 0; si < k; si++) {
+                double S[3];
+                S[0] = ((double)(2 * si + 1) / k - 1.0) * p.light_half;
+                S[1] = p.light_y;
+                S[2] = ((double)(2 * sj + 1) / k - 1.0) * p.light_half;
+                /* triangles 0, 1 are the occluder */
+                hidden += seg_blocked(&m, P, S, 0, 2);
+            }
+        }
+        expect = 1.0 - (double)hidden / ((double)k * k);
+        CHECK_MSG(fabs(pn_square_closed_form(&p, x, z, k) - expect) < 1e-12,
+                  "x=%g z=%g k=%d closed %g brute %g", x, z, k,
+                  pn_square_closed_form(&p, x, z, k), expect);
+        if (expect > 0.0 && expect < 1.0) partial++;
+        tested++;
+    }
+    CHECK(tested > 500);
+    CHECK(partial > 100);
+    fprintf(stderr, "  brute force: %d points (%d in penumbra), %d skipped\n", tested, partial,
+            skipped);
+    pn_mesh_free(&m);
+}
+
+static void test_square_edge_distance(void)
+{
+    pn_square_params p;
+    pn_square_scene_params(&p);
+    /* k = 2: samples at +-0.25. From x = 0.75 the projected occluder spans [-1.75, 0.25]
+     * in x: a sample sits exactly on the projected edge. */
+    CHECK(pn_square_min_edge_distance(&p, 0.75, 0.0, 2) == 0.0);
+    /* From x = 0.7 the projected x-interval ends at (0.5 - 0.5 * 0.7) / 0.5 = 0.3. */
+    CHECK(fabs(pn_square_min_edge_distance(&p, 0.7, 0.0, 2) - 0.05) < 1e-12);
+    /* Centre: projected square [-1, 1]^2, nearest sample (+-0.25) is 0.75 from an edge. */
+    CHECK(fabs(pn_square_min_edge_distance(&p, 0.0, 0.0, 2) - 0.75) < 1e-12);
+    /* Outside past a corner: Euclidean distance to the corner. From (3, 3) the square is
+     * [-4, -2]^2; the nearest sample (-0.25, -0.25) is (1.75, 1.75) from its corner. */
+    CHECK(fabs(pn_square_min_edge_distance(&p, 3.0, 3.0, 2) - 1.75 * sqrt(2.0)) < 1e-12);
+    CHECK(pn_square_min_edge_distance(&p, 0.0, 0.0, 0) == HUGE_VAL);
+}
+
+int main(void)
+{
+    RUN(test_all_scenes);
+    RUN(test_unknown_name);
+    RUN(test_deterministic);
+    RUN(test_spheres_closed);
+    RUN(test_box_closed);
+    RUN(test_thin_slivers);
+    RUN(test_square_mesh_matches_params);
+    RUN(test_square_closed_form_values);
+    RUN(test_square_convergence);
+    RUN(test_square_brute_force);
+    RUN(test_square_edge_distance);
+    return pn_test_summary();
+}

@@ -86,29 +86,58 @@ PN_KFN int pn_row_pass(float rb, float hu, int32_t i, uint32_t k, int strict)
     return strict ? v > 0.0f : v >= 0.0f;
 }
 
-PN_KFN void pn_row_narrow(float rb, float hu, uint32_t k, int strict, int32_t *lo, int32_t *hi)
+/* The same walk along a column: v(j) = (h0 + b_j*hv) + cst, the evaluation order of a
+ * sample's value with the i term fixed (cst = a_i*hu). */
+PN_KFN int pn_col_pass(float h0, float hv, float cst, int32_t j, uint32_t k, int strict)
+{
+    float v = (h0 + pn_sample_coord(j, k) * hv) + cst;
+    return strict ? v > 0.0f : v >= 0.0f;
+}
+
+/* Narrows [*lo, *hi] to the indices n where rb + a_n*slope (+ cst, for columns) passes.
+ * col = 0: a row, rb is the row base, cst unused; col = 1: a column, rb is h0. */
+PN_KFN int pn_pass_at(int col, float rb, float slope, float cst, int32_t n, uint32_t k, int strict)
+{
+    return col ? pn_col_pass(rb, slope, cst, n, k, strict) : pn_row_pass(rb, slope, n, k, strict);
+}
+
+PN_KFN void pn_narrow(int col, float rb, float slope, float cst, uint32_t k, int strict, int32_t *lo, int32_t *hi)
 {
     int32_t kk = (int32_t)k;
     if (*lo > *hi) return;
-    if (hu == 0.0f) {
-        if (!pn_row_pass(rb, hu, 0, k, strict)) *hi = *lo - 1;
+    if (slope == 0.0f) {
+        if (!pn_pass_at(col, rb, slope, cst, 0, k, strict)) *hi = *lo - 1;
         return;
     }
     {
-        /* Real root a* = -rb/hu as a sample index; only a starting point for the walk. */
-        float est = ((-rb / hu + 1.0f) * (float)k - 1.0f) * 0.5f;
-        if (hu > 0.0f) { /* increasing: passes on [first, k-1] */
+        /* Real root as a sample index; only a starting point for the exact walk. */
+        float est = ((-(rb + cst) / slope + 1.0f) * (float)k - 1.0f) * 0.5f;
+        if (slope > 0.0f) { /* increasing: passes on [first, k-1] */
             int32_t i = pn_kceil_clamp(est, 0, kk);
-            while (i > 0 && pn_row_pass(rb, hu, i - 1, k, strict)) i--;
-            while (i < kk && !pn_row_pass(rb, hu, i, k, strict)) i++;
+            while (i > 0 && pn_pass_at(col, rb, slope, cst, i - 1, k, strict)) i--;
+            while (i < kk && !pn_pass_at(col, rb, slope, cst, i, k, strict)) i++;
             if (i > *lo) *lo = i;
         } else { /* decreasing: passes on [0, last] */
             int32_t i = pn_kfloor_clamp(est, -1, kk - 1);
-            while (i < kk - 1 && pn_row_pass(rb, hu, i + 1, k, strict)) i++;
-            while (i >= 0 && !pn_row_pass(rb, hu, i, k, strict)) i--;
+            while (i < kk - 1 && pn_pass_at(col, rb, slope, cst, i + 1, k, strict)) i++;
+            while (i >= 0 && !pn_pass_at(col, rb, slope, cst, i, k, strict)) i--;
             if (i < *hi) *hi = i;
         }
     }
+}
+
+PN_KFN void pn_row_narrow(float rb, float hu, uint32_t k, int strict, int32_t *lo, int32_t *hi)
+{
+    pn_narrow(0, rb, hu, 0.0f, k, strict, lo, hi);
+}
+
+/* Rows j that can hold a passing sample: where the form's largest value in the row (at
+ * the end column its slope hu points to) passes. That value is monotone in j, so this is
+ * exact as a necessary condition: rows outside the range have no passing sample. */
+PN_KFN void pn_rows_narrow(pn_lin f, uint32_t k, int strict, int32_t *lo, int32_t *hi)
+{
+    float a = pn_sample_coord(f.hu > 0.0f ? (int32_t)k - 1 : 0, k);
+    pn_narrow(1, f.h0, f.hv, a * f.hu, k, strict, lo, hi);
 }
 
 PN_KFN void pn_mask_set_run(uint32_t *m, uint32_t k, int32_t j, int32_t lo, int32_t hi)
@@ -136,7 +165,7 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
     pn_lin plane, e[3], ne[3];
     int pos_ok, neg_ok;
     uint32_t any = 0;
-    int32_t j;
+    int32_t j, row_lo, row_hi;
 
     if (d0 == 0.0f) return 0; /* O in the plane: the segment starts on it (t = 0) */
     {
@@ -160,7 +189,25 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
              pn_lin_max(ne[2], k) >= 0.0f;
     if (!pos_ok && !neg_ok) return 0;
 
-    for (j = 0; j < (int32_t)k; j++) {
+    {
+        /* Rows where the plane and, for some orientation, all three edges can pass. */
+        int32_t plo = 0, phi = (int32_t)k - 1, jlo = (int32_t)k, jhi = -1, s, q;
+        pn_rows_narrow(plane, k, 1, &plo, &phi);
+        for (s = 0; s < 2; s++) {
+            int32_t lo = plo, hi = phi;
+            if (!(s == 0 ? pos_ok : neg_ok)) continue;
+            for (q = 0; q < 3; q++) pn_rows_narrow(s == 0 ? e[q] : ne[q], k, 0, &lo, &hi);
+            if (lo > hi) {
+                if (s == 0) pos_ok = 0; else neg_ok = 0;
+                continue;
+            }
+            jlo = pn_kmini(jlo, lo);
+            jhi = pn_kmaxi(jhi, hi);
+        }
+        row_lo = jlo;
+        row_hi = jhi;
+    }
+    for (j = row_lo; j <= row_hi; j++) {
         float b = pn_sample_coord(j, k);
         int32_t plo = 0, phi = (int32_t)k - 1;
         int s;

@@ -167,45 +167,52 @@ pn_status pn_bvh_build(pn_context *ctx)
             split = count / 2u;
             pn_select(tris, ix, axis, first, first + count - 1u, first + split);
         } else {
-            /* Binned SAH over all three axes. Costs: traversal 1, triangle 1. */
-            float best = PN_KINF, parent = pn_box_area(&box);
+            /* Binned SAH over all three axes, binned in one pass over the triangles.
+             * Costs: traversal 1, triangle 1. */
+            float best = PN_KINF, parent = pn_box_area(&box), scale[3];
             int best_axis = -1;
             uint32_t best_bin = 0;
+            pn_box bb[3][PN_BVH_BINS];
+            uint32_t bc[3][PN_BVH_BINS];
             int a;
             for (a = 0; a < 3; a++) {
-                pn_box bb[PN_BVH_BINS], acc;
-                uint32_t bc[PN_BVH_BINS], b, left = 0;
-                float ext = cbox.hi[a] - cbox.lo[a], scale, right_area[PN_BVH_BINS];
-                uint32_t right_count[PN_BVH_BINS];
-                if (!(ext > 0.0f)) continue;
-                scale = (float)PN_BVH_BINS / ext;
+                float ext = cbox.hi[a] - cbox.lo[a];
+                uint32_t b;
+                scale[a] = ext > 0.0f ? (float)PN_BVH_BINS / ext : 0.0f;
                 for (b = 0; b < PN_BVH_BINS; b++) {
-                    pn_box_empty(&bb[b]);
-                    bc[b] = 0;
+                    pn_box_empty(&bb[a][b]);
+                    bc[a][b] = 0;
                 }
-                for (i = first; i < first + count; i++) {
-                    pn_box tb;
-                    int32_t bin = pn_kfloor_clamp((pn_centroid(tris, ix[i], a) - cbox.lo[a]) * scale,
-                                                  0, (int32_t)PN_BVH_BINS - 1);
-                    pn_tri_box(tris, ix[i], &tb);
-                    pn_box_join(&bb[bin], &tb);
-                    bc[bin]++;
+            }
+            for (i = first; i < first + count; i++) {
+                pn_box tb;
+                pn_tri_box(tris, ix[i], &tb);
+                for (a = 0; a < 3; a++) {
+                    int32_t bin;
+                    if (scale[a] == 0.0f) continue;
+                    bin = pn_kfloor_clamp((pn_centroid(tris, ix[i], a) - cbox.lo[a]) * scale[a], 0,
+                                          (int32_t)PN_BVH_BINS - 1);
+                    pn_box_join(&bb[a][bin], &tb);
+                    bc[a][bin]++;
                 }
+            }
+            for (a = 0; a < 3; a++) {
+                pn_box acc;
+                uint32_t b, left = 0, rc = 0, right_count[PN_BVH_BINS];
+                float right_area[PN_BVH_BINS];
+                if (scale[a] == 0.0f) continue;
                 pn_box_empty(&acc);
-                {
-                    uint32_t rc = 0;
-                    for (b = PN_BVH_BINS - 1u; b > 0u; b--) {
-                        pn_box_join(&acc, &bb[b]);
-                        rc += bc[b];
-                        right_area[b] = pn_box_area(&acc);
-                        right_count[b] = rc;
-                    }
+                for (b = PN_BVH_BINS - 1u; b > 0u; b--) {
+                    pn_box_join(&acc, &bb[a][b]);
+                    rc += bc[a][b];
+                    right_area[b] = pn_box_area(&acc);
+                    right_count[b] = rc;
                 }
                 pn_box_empty(&acc);
                 for (b = 0; b + 1u < PN_BVH_BINS; b++) {
                     float cost;
-                    pn_box_join(&acc, &bb[b]);
-                    left += bc[b];
+                    pn_box_join(&acc, &bb[a][b]);
+                    left += bc[a][b];
                     if (left == 0u || right_count[b + 1u] == 0u) continue;
                     cost = pn_box_area(&acc) * (float)left + right_area[b + 1u] * (float)right_count[b + 1u];
                     if (cost < best) {
@@ -223,11 +230,10 @@ pn_status pn_bvh_build(pn_context *ctx)
                        (parent <= 0.0f || (float)count <= 1.0f + best / parent)) {
                 leaf = 1;
             } else {
-                float scale = (float)PN_BVH_BINS / (cbox.hi[best_axis] - cbox.lo[best_axis]);
                 uint32_t lo = first, hi = first + count;
                 while (lo < hi) {
                     int32_t bin = pn_kfloor_clamp(
-                        (pn_centroid(tris, ix[lo], best_axis) - cbox.lo[best_axis]) * scale, 0,
+                        (pn_centroid(tris, ix[lo], best_axis) - cbox.lo[best_axis]) * scale[best_axis], 0,
                         (int32_t)PN_BVH_BINS - 1);
                     if ((uint32_t)bin <= best_bin)
                         lo++;

@@ -62,7 +62,12 @@ PN_KFN pn_lin pn_edge_form(pn_v3 P1, pn_v3 P2, pn_v3 O, pn_v3 cO, pn_v3 U, pn_v3
     int flip = pn_v3_less(P2, P1);
     pn_v3 a = flip ? P2 : P1;
     pn_v3 b = flip ? P1 : P2;
-    pn_v3 m = pn_v3_cross(pn_v3_sub(a, O), pn_v3_sub(b, O));
+    /* (a - O) x (b - O) written as (a - O) x (b - a): the same vector, but b - a of two
+     * nearby floats is exact, so a small triangle far from O keeps an accurate edge plane
+     * (the first form cancels to noise when |a - O| / |b - a| is large, and then blocks
+     * samples its exact segment misses by a wide margin: found on the dragon). Both
+     * triangles sharing the edge still compute the same floats. */
+    pn_v3 m = pn_v3_cross(pn_v3_sub(a, O), pn_v3_sub(b, a));
     r.h0 = pn_v3_dot(cO, m);
     r.hu = pn_v3_dot(U, m);
     r.hv = pn_v3_dot(V, m);

@@ -301,6 +301,96 @@ static void test_watertight(void)
     pn_setup_free(&s);
 }
 
+/* ---- the predicate against double precision ----------------------------------------------
+ * Random triangles of every scale, many tiny and far from O, many nearly edge-on (O close
+ * to their plane): the configurations where float cancellation bites. A sample the float
+ * predicate blocks must have a segment that, moved by at most 1e-4 light half-edges, hits
+ * the triangle in double precision (no false blocks); a sample whose four moved segments
+ * all hit must be blocked (no misses). The edge-plane formula this replaced failed it. */
+static uint32_t rng_state = 12345u;
+static double rnd(void)
+{
+    rng_state = rng_state * 1664525u + 1013904223u;
+    return (double)(rng_state >> 8) / 16777216.0;
+}
+
+static int dbl_hit(const double P[3], const double S[3], const float *A, const float *B, const float *C)
+{
+    double d[3] = {S[0] - P[0], S[1] - P[1], S[2] - P[2]}, mg, t = pn_test_ray_tri(P, d, A, B, C, &mg);
+    return t > 0.0 && t < 1.0;
+}
+
+static void test_predicate_vs_double(void)
+{
+    pn_light l = {{0.0f, 1.0f, 0.0f}, {0.25f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.25f}};
+    pn_klight kl = klight_of(&l, 16, 0.0f, 1.0f);
+    uint32_t trial, false_blocks = 0, misses = 0, blocked_total = 0;
+    static const double off[4][2] = {{1e-4, 0}, {-1e-4, 0}, {0, 1e-4}, {0, -1e-4}};
+    kl.N[0] = 0.0f;
+    kl.N[1] = -1.0f; /* emits down: u x v = -y */
+    kl.N[2] = 0.0f;
+    for (trial = 0; trial < 20000u; trial++) {
+        float tri[9];
+        uint32_t m[PN_MASK_WORDS_MAX], i, j;
+        pn_v3 O = pn_v3_make((float)(rnd() - 0.5) * 0.2f, (float)(rnd() * 0.05), (float)(rnd() - 0.5) * 0.2f);
+        double P[3] = {O.x, O.y, O.z}, size = pow(10.0, -6.0 + 5.0 * rnd()), ctr[3], e1[3], e2[3];
+        double h = 0.1 + 0.8 * rnd(); /* height of the triangle between O and the light */
+        int q;
+        /* A point on a random segment O -> light sample, then a triangle around it whose
+         * plane nearly contains O in half of the trials. */
+        {
+            double a = rnd() * 2.0 - 1.0, b = rnd() * 2.0 - 1.0, S[3] = {0.25 * a, 1.0, 0.25 * b};
+            for (q = 0; q < 3; q++) ctr[q] = P[q] + h * (S[q] - P[q]);
+        }
+        for (q = 0; q < 3; q++) e1[q] = rnd() - 0.5;
+        if (trial & 1u) {
+            for (q = 0; q < 3; q++) e2[q] = (ctr[q] - P[q]) + (rnd() - 0.5) * 1e-4; /* edge-on */
+        } else {
+            for (q = 0; q < 3; q++) e2[q] = rnd() - 0.5;
+        }
+        {
+            double l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+            double l2 = sqrt(e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2]);
+            for (q = 0; q < 3; q++) {
+                tri[q] = (float)(ctr[q] - size * e1[q] / l1);
+                tri[3 + q] = (float)(ctr[q] + size * e1[q] / l1);
+                tri[6 + q] = (float)(ctr[q] + size * (trial % 3u == 0 ? 30.0 : 1.0) * e2[q] / l2);
+            }
+        }
+        pn_mask_clear(m);
+        pn_tri_mask(O, pn_v3_make(tri[0], tri[1], tri[2]), pn_v3_make(tri[3], tri[4], tri[5]),
+                    pn_v3_make(tri[6], tri[7], tri[8]), &kl, m);
+        for (j = 0; j < 16; j++)
+            for (i = 0; i < 16; i++) {
+                int bit = (int)(m[(j * 16 + i) >> 5] >> ((j * 16 + i) & 31u) & 1u), any = 0, all = 1;
+                double a = (2.0 * i + 1) / 16 - 1, b = (2.0 * j + 1) / 16 - 1;
+                for (q = 0; q < 5; q++) {
+                    double S[3];
+                    int c, hit;
+                    for (c = 0; c < 3; c++)
+                        S[c] = kl.c[c] + (a + (q < 4 ? off[q][0] : 0.0)) * kl.U[c] + (b + (q < 4 ? off[q][1] : 0.0)) * kl.V[c];
+                    hit = dbl_hit(P, S, tri, tri + 3, tri + 6);
+                    any |= hit;
+                    if (q < 4) all &= hit;
+                }
+                blocked_total += (uint32_t)bit;
+                if (bit && !any) {
+                    if (false_blocks < 3) fprintf(stderr, "trial %u: sample %u,%u blocked in float, missed in double\n", trial, i, j);
+                    false_blocks++;
+                }
+                if (!bit && all) {
+                    if (misses < 3) fprintf(stderr, "trial %u: sample %u,%u hit in double, missed in float\n", trial, i, j);
+                    misses++;
+                }
+            }
+    }
+    fprintf(stderr, "predicate vs double: 20000 triangles, %u blocked samples, %u false blocks, %u misses\n",
+            blocked_total, false_blocks, misses);
+    CHECK(blocked_total > 1000u);
+    CHECK(false_blocks == 0u);
+    CHECK(misses == 0u);
+}
+
 /* ---- point light, one-sided light, determinism ------------------------------------------- */
 
 static void test_point_and_one_sided(void)
@@ -377,6 +467,7 @@ int main(void)
     RUN(test_square_closed_form);
     RUN(test_culling_vs_brute_force);
     RUN(test_watertight);
+    RUN(test_predicate_vs_double);
     RUN(test_point_and_one_sided);
     RUN(test_thread_determinism);
     return pn_test_summary();

@@ -26,14 +26,33 @@ static int pn_frame_pools(const pn_limits *l, uint64_t *off)
 {
     uint64_t px = (uint64_t)l->max_width * l->max_height;
     size_t dummy;
-    return pn_bump(off, px, sizeof(float), &dummy) &&          /* depth */
-           pn_bump(off, px, sizeof(uint32_t), &dummy) &&       /* tri_id */
-           pn_bump(off, px * 3u, sizeof(float), &dummy) &&     /* position */
-           pn_bump(off, px * 3u, sizeof(float), &dummy) &&     /* normal */
-           pn_bump(off, px, sizeof(float), &dummy) &&          /* visibility */
-           pn_bump(off, px, sizeof(uint32_t), &dummy) &&       /* rgba */
-           pn_bump(off, l->max_triangles, sizeof(uint32_t), &dummy) && /* raster rows */
-           pn_bump(off, l->max_height, sizeof(pn_shadow_counters), &dummy);
+    if (!(pn_bump(off, px, sizeof(float), &dummy) &&          /* depth */
+          pn_bump(off, px, sizeof(uint32_t), &dummy) &&       /* tri_id */
+          pn_bump(off, px * 3u, sizeof(float), &dummy) &&     /* position */
+          pn_bump(off, px * 3u, sizeof(float), &dummy) &&     /* normal */
+          pn_bump(off, px, sizeof(float), &dummy) &&          /* visibility */
+          pn_bump(off, px, 4u, &dummy) &&                     /* rgba */
+          pn_bump(off, l->max_triangles, sizeof(uint32_t), &dummy) && /* raster rows */
+          pn_bump(off, l->max_height, sizeof(pn_shadow_counters), &dummy)))
+        return 0;
+#if PN_ENABLE_GEARS
+    {
+        /* pn_gears_pools() in ports/ allocates exactly these, in this order. */
+        uint64_t g = pn_gears_grid_max(l), cells = 6u * g * g;
+        return pn_bump(off, l->max_triangles, 6u * 8u, &dummy) &&         /* cell rects */
+               pn_bump(off, (uint64_t)l->max_triangles + 1u, 4u, &dummy) && /* pair offsets */
+               pn_bump(off, px, 4u, &dummy) &&                            /* pixel cells */
+               pn_bump(off, l->max_height, 32u, &dummy) &&                /* row boxes */
+               pn_bump(off, cells + 1u, 4u, &dummy) &&                    /* cell offsets */
+               pn_bump(off, cells, 4u, &dummy) &&                         /* pixels per cell */
+               pn_bump(off, cells, 4u, &dummy) &&                         /* cell cursors */
+               pn_bump(off, 6u * g, 8u, &dummy) &&                        /* pairs per grid row */
+               pn_bump(off, pn_gears_pairs_max(l), 8u, &dummy) &&         /* pairs */
+               pn_bump(off, pn_gears_pairs_max(l), 4u, &dummy);           /* cell-sorted */
+    }
+#else
+    return 1;
+#endif
 }
 
 pn_status pn_carve(const pn_limits *l, pn_layout *out)
@@ -41,7 +60,8 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
     uint64_t off = 0, frame_start;
     pn_layout lay;
     if (l->max_triangles < 1u || l->max_triangles > PN_MAX_TRIANGLES || l->max_width < 1u ||
-        l->max_width > PN_MAX_WIDTH || l->max_height < 1u || l->max_height > PN_MAX_HEIGHT)
+        l->max_width > PN_MAX_WIDTH || l->max_height < 1u || l->max_height > PN_MAX_HEIGHT ||
+        l->gears_pairs > (1u << 28) || l->gears_grid_max > 1024u)
         return PN_E_LIMIT;
     if (!pn_bump(&off, 1u, sizeof(pn_context), &lay.ctx) ||
         !pn_bump(&off, l->max_triangles, 9u * sizeof(float), &lay.tris) ||
@@ -100,7 +120,12 @@ void pn_limits_max(pn_limits *limits)
     limits->max_triangles = PN_MAX_TRIANGLES;
     limits->max_width = PN_MAX_WIDTH;
     limits->max_height = PN_MAX_HEIGHT;
+    limits->gears_pairs = 0;
+    limits->gears_grid_max = 0;
 }
+
+uint32_t pn_gears_pairs_max(const pn_limits *l) { return l->gears_pairs ? l->gears_pairs : PN_GEARS_PAIRS; }
+uint32_t pn_gears_grid_max(const pn_limits *l) { return l->gears_grid_max ? l->gears_grid_max : PN_GEARS_GRID_MAX; }
 
 pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes)
 {

@@ -128,6 +128,16 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out)
     s.shadow_candidates = ctx->shadow_candidates;
     s.shadow_blocking = ctx->shadow_blocking;
     s.lit_pixels = ctx->lit_pixels;
+    s.gears_pairs = ctx->gears.pairs;
+    s.gears_assignments = ctx->gears.assignments;
+    s.gears_tiles = ctx->gears.tiles;
+    s.gears_faces = ctx->gears.faces;
+    s.gears_cells_used = ctx->gears.cells_used;
+    s.gears_max_tris_per_cell = ctx->gears.max_tris;
+    s.gears_max_pixels_per_cell = ctx->gears.max_pix;
+    s.gears_mean_tris_per_cell = ctx->gears.mean_tris;
+    s.gears_mean_pixels_per_cell = ctx->gears.mean_pix;
+    s.gears_pairs_high_water = ctx->gears.pairs_high;
     *out = s;
     return PN_OK;
 }
@@ -137,6 +147,9 @@ uint32_t pn_build_info(void)
     uint32_t f = PN_BUILD_PORT_SCALAR;
 #if PN_ENABLE_REFERENCE
     f |= PN_BUILD_REFERENCE;
+#endif
+#if PN_ENABLE_GEARS
+    f |= PN_BUILD_GEARS;
 #endif
     return f;
 }

@@ -21,6 +21,8 @@ void pn_frame_options_default(pn_frame_options *opt)
     opt->background[1] = 24;
     opt->background[2] = 40;
     opt->background[3] = 255;
+    opt->gears_grid = 128;
+    opt->exact_stats = 0;
 }
 
 static pn_status pn_check_vec(pn_context *ctx, const float *v, const char *what)
@@ -134,12 +136,22 @@ static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
         return pn_fail(ctx, PN_E_INVALID_ARG, "eps must be >= 0 and <= 2^40");
     if (!(o->albedo >= 0.0f && o->albedo <= 1.0f && o->ambient >= 0.0f && o->ambient <= 1.0f))
         return pn_fail(ctx, PN_E_INVALID_ARG, "albedo and ambient must be in [0, 1]");
+    if (o->exact_stats > 1u) return pn_fail(ctx, PN_E_INVALID_ARG, "exact_stats must be 0 or 1");
     switch (o->algo) {
     case PN_ALGO_REFERENCE:
 #if PN_ENABLE_REFERENCE
         return PN_OK;
 #else
         return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_REFERENCE is not compiled in (PN_ENABLE_REFERENCE 0)");
+#endif
+    case PN_ALGO_GEARS:
+#if PN_ENABLE_GEARS
+        if (o->gears_grid < 1u || o->gears_grid > pn_gears_grid_max(&ctx->limits))
+            return pn_fail(ctx, PN_E_INVALID_ARG, "gears_grid = %u; it must be in 1 .. %u (pn_limits.gears_grid_max)",
+                           o->gears_grid, pn_gears_grid_max(&ctx->limits));
+        return PN_OK;
+#else
+        return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_GEARS is not compiled in (PN_ENABLE_GEARS 0)");
 #endif
     }
     return pn_fail(ctx, PN_E_INVALID_ARG, "unknown algorithm %u", (uint32_t)o->algo);
@@ -167,6 +179,8 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     fs.algo = (uint32_t)opt->algo;
     fs.width = opt->width;
     fs.height = opt->height;
+    fs.gears_grid = opt->gears_grid;
+    fs.exact_stats = opt->exact_stats;
 
     px = (size_t)opt->width * opt->height;
     pn_frame_reset(ctx);

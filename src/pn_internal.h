@@ -32,6 +32,8 @@ typedef struct pn_frame_state {
     pn_kshade shade;
     uint32_t algo;
     uint32_t width, height;
+    uint32_t gears_grid;
+    uint32_t exact_stats;
     float *depth;
     uint32_t *tri_id;
     float *pos;
@@ -80,10 +82,17 @@ struct pn_context {
     uint64_t pass_ns[PN_PASS_COUNT];
     uint64_t shadow_candidates, shadow_blocking;
     uint32_t lit_pixels;
+    struct {
+        uint64_t pairs, assignments;
+        uint32_t tiles, faces, cells_used, max_tris, max_pix, pairs_high;
+        float mean_tris, mean_pix;
+    } gears;
     char message[256];
 };
 
 /* pn_arena.c */
+uint32_t pn_gears_pairs_max(const pn_limits *l);
+uint32_t pn_gears_grid_max(const pn_limits *l);
 pn_status pn_carve(const pn_limits *limits, pn_layout *out);
 void pn_frame_reset(pn_context *ctx);
 void *pn_frame_alloc(pn_context *ctx, size_t count, size_t elem, const char *pool);

@@ -557,26 +557,32 @@ static void resolve_indirect(graph *g, const site *sites, size_t nsites, int ver
     }
     /* Each site: its call locations once, then the functions they may reach. */
     for (k = 0; k < nsites; k++) {
-        int from = node_find(g, sites[k].name), printed = 0;
+        int from = node_find(g, sites[k].name), printed = 0, reached = 0;
         if (from < 0) continue;
         for (e = 0; e < ne; e++) {
-            const edge *ed = &g->edges[e];
-            if (ed->to != -1 || ed->from != from) continue;
-            if (verbose) printf(printed ? ", %s" : "  pointer calls in %s at %s", printed ? ed->loc : sites[k].name, ed->loc);
+            /* edge_add may move g->edges: keep the call site, not a pointer into the array. */
+            const char *loc = g->edges[e].loc;
+            if (g->edges[e].to != -1 || g->edges[e].from != from) continue;
+            if (verbose && printed) printf(", %s", loc);
+            if (verbose && !printed) printf("  pointer calls in %s at %s", sites[k].name, loc);
             printed = 1;
             for (t = 0; t < g_ntaken && sites[k].cls != CLS_EXTERNAL; t++) {
                 int to;
                 if (!(g_taken[t].cls & sites[k].cls)) continue;
                 to = taken_node(g, &g_taken[t]);
-                if (to >= 0) edge_add(g, from, to, ed->loc, 1);
+                if (to >= 0) edge_add(g, from, to, loc, 1);
             }
         }
         if (!printed || !verbose) continue;
         printf("\n      may reach (%s):", cls_name(sites[k].cls));
         if (sites[k].cls == CLS_EXTERNAL) printf(" only the caller's callback (not library code)");
         for (t = 0; t < g_ntaken; t++)
-            if ((g_taken[t].cls & sites[k].cls) && taken_node(g, &g_taken[t]) >= 0) printf(" %s", g_taken[t].name);
-        if (sites[k].cls & CLS_PASSED) printf(", and the caller's parallel_for (not library code)");
+            if ((g_taken[t].cls & sites[k].cls) && taken_node(g, &g_taken[t]) >= 0) {
+                printf(" %s", g_taken[t].name);
+                reached++;
+            }
+        if (sites[k].cls & CLS_PASSED)
+            printf("%s the caller's parallel_for (not library code)", reached ? ", and" : "");
         printf("\n");
     }
 }
@@ -869,8 +875,8 @@ int main(int argc, char **argv)
         return 1;
     }
     if (S.dumps + O.dumps == 0)
-        printf("note: no -fdump-ipa-cgraph files found: no address-taken function is known, so indirect "
-               "calls resolve to nothing\n");
+        fail("no -fdump-ipa-cgraph output next to any object: without it the targets of pointer calls "
+             "are unknown and the stack bound would be too low");
 
     printf("address-taken library functions (from -fdump-ipa-cgraph):\n");
     for (t = 0; t < g_ntaken; t++) {

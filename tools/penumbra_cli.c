@@ -21,6 +21,7 @@ typedef struct pn_algo_name {
 
 static const pn_algo_name pn_algos[] = {
     {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE},
+    {"gears", PN_ALGO_GEARS, PN_BUILD_GEARS},
 };
 #define PN_ALGO_COUNT (sizeof(pn_algos) / sizeof(pn_algos[0]))
 
@@ -33,8 +34,8 @@ static void usage(FILE *f)
             "  penumbra render [SCENE.glb | --builtin NAME] [--algo A] [--port P] [--size WxH] [--k K]\n"
             "                  [--eye x,y,z --target x,y,z --up x,y,z --fov DEG]\n"
             "                  [--light-center x,y,z --light-u x,y,z --light-v x,y,z]\n"
-            "                  [--ground on|off] [--eps E] [--threads N] --out image.png\n"
-            "                  [--vis vis.pfm] [--ids ids.bin] [--stats stats.json]\n"
+            "                  [--ground on|off] [--eps E] [--grid N] [--exact-stats] [--threads N]\n"
+            "                  --out image.png [--vis vis.pfm] [--ids ids.bin] [--stats stats.json]\n"
             "  penumbra demo [--out DIR] [--size WxH] [--k K] [--threads N]\n"
             "  penumbra info\n"
             "algorithms:");
@@ -106,6 +107,15 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
             ms_total);
     fprintf(f, "  \"shadow_candidates\": %llu,\n  \"shadow_blocking\": %llu,\n  \"lit_pixels\": %u,\n",
             (unsigned long long)st->shadow_candidates, (unsigned long long)st->shadow_blocking, st->lit_pixels);
+    fprintf(f, "  \"gears_grid\": %u,\n  \"gears_pairs\": %llu,\n  \"gears_assignments\": %llu,\n"
+               "  \"gears_tiles\": %u,\n  \"gears_faces\": %u,\n  \"gears_cells_used\": %u,\n"
+               "  \"gears_max_tris_per_cell\": %u,\n  \"gears_mean_tris_per_cell\": %.3f,\n"
+               "  \"gears_max_pixels_per_cell\": %u,\n  \"gears_mean_pixels_per_cell\": %.3f,\n"
+               "  \"gears_pairs_high_water\": %u,\n",
+            opt->gears_grid, (unsigned long long)st->gears_pairs, (unsigned long long)st->gears_assignments,
+            st->gears_tiles, st->gears_faces, st->gears_cells_used, st->gears_max_tris_per_cell,
+            st->gears_mean_tris_per_cell, st->gears_max_pixels_per_cell, st->gears_mean_pixels_per_cell,
+            st->gears_pairs_high_water);
     fprintf(f, "  \"mean_visibility\": %.9g\n}\n", mean);
     return fclose(f) != 0;
 }
@@ -177,6 +187,8 @@ static int cmd_render(int argc, char **argv)
             else if (strcmp(v, "off") == 0) ground = 0;
             else BAD("--ground");
         } else if (strcmp(a, "--eps") == 0) { NEED_ARG; eps_rel = strtof(v, NULL); }
+        else if (strcmp(a, "--grid") == 0) { NEED_ARG; opt.gears_grid = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--exact-stats") == 0) opt.exact_stats = 1;
         else if (strcmp(a, "--threads") == 0) { NEED_ARG; threads = atoi(v); if (threads < 1) BAD(a); }
         else if (strcmp(a, "--out") == 0) { NEED_ARG; out = v; }
         else if (strcmp(a, "--vis") == 0) { NEED_ARG; vis = v; }

@@ -104,6 +104,7 @@ int pn_host_open(pn_host *h, uint32_t max_triangles, uint32_t max_w, uint32_t ma
     pn_limits lim;
     pn_status st;
     memset(h, 0, sizeof(*h));
+    memset(&lim, 0, sizeof(lim));
     lim.max_triangles = max_triangles;
     lim.max_width = max_w;
     lim.max_height = max_h;

@@ -7,6 +7,18 @@
 #error "PN_ENABLE_REFERENCE must be 0 or 1"
 #endif
 
+#if PN_ENABLE_GEARS != 0 && PN_ENABLE_GEARS != 1
+#error "PN_ENABLE_GEARS must be 0 or 1"
+#endif
+
+#if PN_GEARS_GRID_MAX < 1 || PN_GEARS_GRID_MAX > 1024
+#error "PN_GEARS_GRID_MAX must be in 1 .. 1024"
+#endif
+
+#if PN_GEARS_PAIRS < 1 || PN_GEARS_PAIRS > (1u << 28)
+#error "PN_GEARS_PAIRS must be in 1 .. 2^28"
+#endif
+
 #if PN_MASK_K_MAX != 4 && PN_MASK_K_MAX != 8 && PN_MASK_K_MAX != 16 && PN_MASK_K_MAX != 32
 #error "PN_MASK_K_MAX must be 4, 8, 16 or 32 (the light mask is k x k bits in 32-bit words)"
 #endif

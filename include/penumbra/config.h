@@ -20,6 +20,12 @@
 #define PN_ENABLE_REFERENCE 1
 #endif
 
+/* GEARS (Wang et al. 2014): exact k x k visibility from per-pixel potentially blocking
+ * triangle sets on a light-aligned grid. Costs the GEARS frame pools below. */
+#ifndef PN_ENABLE_GEARS
+#define PN_ENABLE_GEARS 1
+#endif
+
 /* ---- Limits (they size the arena; see pn_arena_size()). ------------------------------ */
 
 /* Largest triangle count a scene may have, including any ground plane the caller adds.
@@ -49,6 +55,23 @@
  * of a work item: k*k/8 bytes (128 bytes for 32). */
 #ifndef PN_MASK_K_MAX
 #define PN_MASK_K_MAX 32u
+#endif
+
+/* ---- GEARS ---------------------------------------------------------------------------- */
+
+/* Largest grid resolution per axis (the frame option gears_grid, default 128, may be any
+ * value up to this). Costs 6 faces x res^2 x 12 bytes of frame arena (cell offsets and
+ * pixel counts; a point light uses a cube of 6 grids). Range 1 .. 1024. */
+#ifndef PN_GEARS_GRID_MAX
+#define PN_GEARS_GRID_MAX 256u
+#endif
+
+/* (triangle, cell) pairs one pass can hold. A frame that needs more is split into tiles of
+ * cells processed in turn (the result stays exact); a single cell needing more returns
+ * PN_E_POOL_EXHAUSTED. Costs 12 bytes per pair (pair 8, cell-sorted copy 4).
+ * Range 1 .. 2^28. */
+#ifndef PN_GEARS_PAIRS
+#define PN_GEARS_PAIRS (1u << 22)
 #endif
 
 /* ---- BVH ------------------------------------------------------------------------------ */

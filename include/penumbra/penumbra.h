@@ -30,7 +30,7 @@
  *   one call at a time per context.
  *
  * USAGE
- *   pn_limits lim = { 100000, 512, 512 };     // max triangles, max width, max height
+ *   pn_limits lim = { 100000, 512, 512, 0, 0 };  // max triangles, width, height; GEARS pools default
  *   size_t bytes; pn_arena_size(&lim, &bytes);
  *   void *mem = my_alloc(bytes);             // or static uint8_t mem[PN_ARENA_BYTES_MAX(...)]
  *   pn_context *ctx; pn_init(&ctx, mem, bytes, &lim);
@@ -98,6 +98,8 @@ typedef struct pn_limits {
     uint32_t max_triangles;
     uint32_t max_width;
     uint32_t max_height;
+    uint32_t gears_pairs;    /* GEARS (triangle, cell) pair pool; 0: PN_GEARS_PAIRS */
+    uint32_t gears_grid_max; /* largest GEARS grid resolution; 0: PN_GEARS_GRID_MAX */
 } pn_limits;
 
 /* Limits equal to the compile-time maxima. */
@@ -114,7 +116,18 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
  * PN_MAX_WIDTH, PN_MAX_HEIGHT)]. A test checks it never falls below pn_arena_size. */
 #define PN_ARENA_BYTES_MAX(t, w, h)                                                         \
     ((size_t)(16u * 1024u) + (size_t)(t) * 112u + (size_t)(w) * (size_t)(h) * 40u +          \
-     (size_t)(h) * 8u + 32u * (size_t)PN_ARENA_ALIGN)
+     (size_t)(h) * 16u + 32u * (size_t)PN_ARENA_ALIGN + PN_GEARS_BYTES_MAX(t, w, h))
+#if PN_ENABLE_GEARS
+/* GEARS frame pools at the default pair pool and grid maximum: per triangle 6 cell
+ * rectangles (48) and a pair offset (4); per pixel its cell (4); per row an origin box (32);
+ * per cell (6 faces) offsets and counts (12); per pair 12. */
+#define PN_GEARS_BYTES_MAX(t, w, h)                                                         \
+    ((size_t)(t) * 52u + 4u + (size_t)(w) * (size_t)(h) * 4u + (size_t)(h) * 32u +           \
+     6u * (size_t)PN_GEARS_GRID_MAX * (size_t)PN_GEARS_GRID_MAX * 12u + 4u +                  \
+     6u * (size_t)PN_GEARS_GRID_MAX * 8u + (size_t)PN_GEARS_PAIRS * 12u)
+#else
+#define PN_GEARS_BYTES_MAX(t, w, h) ((size_t)0)
+#endif
 
 /* Wraps `memory` (bytes long, any alignment, caller-owned, must outlive the context) and
  * carves every pool. On PN_OK *out_ctx points into `memory`. On failure nothing in
@@ -166,7 +179,8 @@ typedef struct pn_light {
 } pn_light;
 
 typedef enum pn_algo {
-    PN_ALGO_REFERENCE = 0
+    PN_ALGO_REFERENCE = 0,
+    PN_ALGO_GEARS = 1
 } pn_algo;
 
 typedef struct pn_frame_options {
@@ -178,6 +192,9 @@ typedef struct pn_frame_options {
     float albedo;   /* shading: rgb = albedo * (ambient + visibility * cos) ; [0, 1] */
     float ambient;  /* [0, 1] */
     uint8_t background[4]; /* RGBA8 of pixels that see no triangle */
+    uint32_t gears_grid;   /* GEARS grid cells per axis, 1 .. limits.gears_grid_max (128) */
+    uint32_t exact_stats;  /* 1: no early exit on a full mask, so pn_stats counts every
+                              candidate's predicate ("necessary" assignments, paper Table 6) */
 } pn_frame_options;
 
 /* 512x512, k = 16, reference, eps = 1e-4, albedo 0.8, ambient 0.1, dark blue background. */
@@ -224,12 +241,23 @@ typedef struct pn_stats {
     uint64_t shadow_candidates;  /* triangles handed to the predicate in the last frame */
     uint64_t shadow_blocking;    /* ...of which blocked at least one sample */
     uint32_t lit_pixels;         /* pixels that see a triangle facing the light */
+    /* GEARS (paper Tables 5 and 6), last frame */
+    uint64_t gears_pairs;        /* (triangle, cell) pairs generated, over all tiles */
+    uint64_t gears_assignments;  /* triangle-to-pixel assignments: sum over cells of
+                                    triangles x pixels */
+    uint32_t gears_tiles;        /* passes the pair pool needed */
+    uint32_t gears_faces;        /* 1 for an area light, 6 for a point light (cube) */
+    uint32_t gears_cells_used;   /* cells with at least one pixel */
+    uint32_t gears_max_tris_per_cell, gears_max_pixels_per_cell;
+    float gears_mean_tris_per_cell, gears_mean_pixels_per_cell; /* over cells with pixels */
+    uint32_t gears_pairs_high_water; /* most pairs held at once */
 } pn_stats;
 
 pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);
 
 /* Which algorithms and ports this build holds, as flags. */
 #define PN_BUILD_REFERENCE 0x1u
+#define PN_BUILD_GEARS 0x2u
 #define PN_BUILD_PORT_SCALAR 0x100u
 uint32_t pn_build_info(void);
 

@@ -4,9 +4,8 @@
  * not depend on how they are scheduled. */
 #include <string.h>
 
-#include "pn_internal.h"
 #include "pn_raster.h"
-#include "pn_reference.h"
+#include "pn_scalar.h"
 #include "pn_shade.h"
 
 #define PN_SETUP_CHUNK 4096u
@@ -94,6 +93,13 @@ static pn_status pn_scalar_shadow(pn_context *ctx, pn_frame_state *fs)
     case PN_ALGO_REFERENCE:
         pn_run(ctx, fs->height, pn_task_reference, &tk);
         break;
+#if PN_ENABLE_GEARS
+    case PN_ALGO_GEARS: {
+        pn_status st = pn_scalar_gears(ctx, fs);
+        if (st != PN_OK) return st;
+        break;
+    }
+#endif
     default:
         return pn_fail(ctx, PN_E_UNSUPPORTED, "scalar port: algorithm %u not available", fs->algo);
     }

@@ -27,11 +27,23 @@ PN_KFN pn_v3 pn_v3_cross(pn_v3 a, pn_v3 b)
 {
     return pn_v3_make(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
+/* Unit vector along a; zero for a zero vector. Scaled by the largest component first, so
+ * a.a can neither underflow (a 1e-20 triangle's normal) nor overflow (2^82 components). */
 PN_KFN pn_v3 pn_v3_normalize(pn_v3 a)
 {
-    float len2 = pn_v3_dot(a, a);
-    float inv = len2 > 0.0f ? 1.0f / pn_ksqrt(len2) : 0.0f;
-    return pn_v3_scale(a, inv);
+    float ax = a.x < 0.0f ? -a.x : a.x, ay = a.y < 0.0f ? -a.y : a.y, az = a.z < 0.0f ? -a.z : a.z;
+    float m = ax > ay ? (ax > az ? ax : az) : (ay > az ? ay : az), len2;
+    if (!(m > 0.0f)) return pn_v3_make(0.0f, 0.0f, 0.0f);
+    a = pn_v3_scale(a, 1.0f / m);
+    len2 = pn_v3_dot(a, a);
+    return pn_v3_scale(a, 1.0f / pn_ksqrt(len2));
+}
+
+/* |x| + |y| + |z|: a magnitude for error bounds that cannot overflow where the Euclidean
+ * length's square would. */
+PN_KFN float pn_v3_l1(pn_v3 a)
+{
+    return (a.x < 0.0f ? -a.x : a.x) + (a.y < 0.0f ? -a.y : a.y) + (a.z < 0.0f ? -a.z : a.z);
 }
 PN_KFN float pn_kminf(float a, float b) { return a < b ? a : b; }
 PN_KFN float pn_kmaxf(float a, float b) { return a > b ? a : b; }

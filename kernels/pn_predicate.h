@@ -5,7 +5,8 @@
  * ABC when the open segment (O, S) meets the closed triangle:
  *
  *   plane:  O and S lie strictly on opposite sides of the triangle's plane, i.e. the
- *           segment crosses it at some t in (0, 1). This is the "clip to the slab between
+ *           segment crosses it at some t in (0, 1); "strictly" means by more than float
+ *           noise (1e-6 of the L1 magnitudes the side value is made of). This is the "clip to the slab between
  *           O's plane and the light plane" of the issue, done per sample: a triangle part
  *           behind O or behind the sample can never be crossed by (O, S);
  *   edges:  the three triple products (S - O) . ((P1 - O) x (P2 - O)) over the edges
@@ -85,33 +86,37 @@ PN_KFN float pn_lin_max(pn_lin f, uint32_t k)
 
 /* Samples i of one row (row base rb = h0 + b_j*hv) where rb + a_i*hu >= 0 (> 0 if
  * strict), as [*lo, *hi] narrowed in place. */
-PN_KFN int pn_row_pass(float rb, float hu, int32_t i, uint32_t k, int strict)
+/* strict = 0: passes when v >= 0 (edges: zero counts as inside). strict = 1: passes when
+ * v > thr, thr >= 0 (the plane: a crossing closer than float noise to the sample is not a
+ * crossing of the open segment). Both are monotone in v, so in i and j. */
+PN_KFN int pn_pass_v(float v, int strict, float thr) { return strict ? v > thr : v >= 0.0f; }
+
+PN_KFN int pn_row_pass(float rb, float hu, int32_t i, uint32_t k, int strict, float thr)
 {
-    float v = rb + pn_sample_coord(i, k) * hu;
-    return strict ? v > 0.0f : v >= 0.0f;
+    return pn_pass_v(rb + pn_sample_coord(i, k) * hu, strict, thr);
 }
 
 /* The same walk along a column: v(j) = (h0 + b_j*hv) + cst, the evaluation order of a
  * sample's value with the i term fixed (cst = a_i*hu). */
-PN_KFN int pn_col_pass(float h0, float hv, float cst, int32_t j, uint32_t k, int strict)
+PN_KFN int pn_col_pass(float h0, float hv, float cst, int32_t j, uint32_t k, int strict, float thr)
 {
-    float v = (h0 + pn_sample_coord(j, k) * hv) + cst;
-    return strict ? v > 0.0f : v >= 0.0f;
+    return pn_pass_v((h0 + pn_sample_coord(j, k) * hv) + cst, strict, thr);
 }
 
 /* Narrows [*lo, *hi] to the indices n where rb + a_n*slope (+ cst, for columns) passes.
  * col = 0: a row, rb is the row base, cst unused; col = 1: a column, rb is h0. */
-PN_KFN int pn_pass_at(int col, float rb, float slope, float cst, int32_t n, uint32_t k, int strict)
+PN_KFN int pn_pass_at(int col, float rb, float slope, float cst, int32_t n, uint32_t k, int strict, float thr)
 {
-    return col ? pn_col_pass(rb, slope, cst, n, k, strict) : pn_row_pass(rb, slope, n, k, strict);
+    return col ? pn_col_pass(rb, slope, cst, n, k, strict, thr) : pn_row_pass(rb, slope, n, k, strict, thr);
 }
 
-PN_KFN void pn_narrow(int col, float rb, float slope, float cst, uint32_t k, int strict, int32_t *lo, int32_t *hi)
+PN_KFN void pn_narrow(int col, float rb, float slope, float cst, uint32_t k, int strict, float thr, int32_t *lo,
+                      int32_t *hi)
 {
     int32_t kk = (int32_t)k;
     if (*lo > *hi) return;
     if (slope == 0.0f) {
-        if (!pn_pass_at(col, rb, slope, cst, 0, k, strict)) *hi = *lo - 1;
+        if (!pn_pass_at(col, rb, slope, cst, 0, k, strict, thr)) *hi = *lo - 1;
         return;
     }
     {
@@ -119,30 +124,30 @@ PN_KFN void pn_narrow(int col, float rb, float slope, float cst, uint32_t k, int
         float est = ((-(rb + cst) / slope + 1.0f) * (float)k - 1.0f) * 0.5f;
         if (slope > 0.0f) { /* increasing: passes on [first, k-1] */
             int32_t i = pn_kceil_clamp(est, 0, kk);
-            while (i > 0 && pn_pass_at(col, rb, slope, cst, i - 1, k, strict)) i--;
-            while (i < kk && !pn_pass_at(col, rb, slope, cst, i, k, strict)) i++;
+            while (i > 0 && pn_pass_at(col, rb, slope, cst, i - 1, k, strict, thr)) i--;
+            while (i < kk && !pn_pass_at(col, rb, slope, cst, i, k, strict, thr)) i++;
             if (i > *lo) *lo = i;
         } else { /* decreasing: passes on [0, last] */
             int32_t i = pn_kfloor_clamp(est, -1, kk - 1);
-            while (i < kk - 1 && pn_pass_at(col, rb, slope, cst, i + 1, k, strict)) i++;
-            while (i >= 0 && !pn_pass_at(col, rb, slope, cst, i, k, strict)) i--;
+            while (i < kk - 1 && pn_pass_at(col, rb, slope, cst, i + 1, k, strict, thr)) i++;
+            while (i >= 0 && !pn_pass_at(col, rb, slope, cst, i, k, strict, thr)) i--;
             if (i < *hi) *hi = i;
         }
     }
 }
 
-PN_KFN void pn_row_narrow(float rb, float hu, uint32_t k, int strict, int32_t *lo, int32_t *hi)
+PN_KFN void pn_row_narrow(float rb, float hu, uint32_t k, int strict, float thr, int32_t *lo, int32_t *hi)
 {
-    pn_narrow(0, rb, hu, 0.0f, k, strict, lo, hi);
+    pn_narrow(0, rb, hu, 0.0f, k, strict, thr, lo, hi);
 }
 
 /* Rows j that can hold a passing sample: where the form's largest value in the row (at
  * the end column its slope hu points to) passes. That value is monotone in j, so this is
  * exact as a necessary condition: rows outside the range have no passing sample. */
-PN_KFN void pn_rows_narrow(pn_lin f, uint32_t k, int strict, int32_t *lo, int32_t *hi)
+PN_KFN void pn_rows_narrow(pn_lin f, uint32_t k, int strict, float thr, int32_t *lo, int32_t *hi)
 {
     float a = pn_sample_coord(f.hu > 0.0f ? (int32_t)k - 1 : 0, k);
-    pn_narrow(1, f.h0, f.hv, a * f.hu, k, strict, lo, hi);
+    pn_narrow(1, f.h0, f.hv, a * f.hu, k, strict, thr, lo, hi);
 }
 
 PN_KFN void pn_mask_set_run(uint32_t *m, uint32_t k, int32_t j, int32_t lo, int32_t hi)
@@ -168,19 +173,28 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
     pn_v3 n = pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
     float d0 = pn_v3_dot(pn_v3_sub(O, A), n);
     pn_lin plane, e[3], ne[3];
+    float plane_thr;
     int pos_ok, neg_ok;
     uint32_t any = 0;
     int32_t j, row_lo, row_hi;
 
-    if (d0 == 0.0f) return 0; /* O in the plane: the segment starts on it (t = 0) */
     {
-        pn_v3 cA = pn_v3_sub(c, A);
+        /* Plane side of O and of the samples, each with its float-noise scale: a value
+         * within 1e-6 of the magnitudes it is made of has no reliable sign (O, the light
+         * and the plane nearly coplanar: fuzz/ found such a triangle "blocking" from
+         * beyond the light). O that close to the plane starts the segment on it (t = 0);
+         * a sample that close ends it there (t = 1): the open segment does not cross. */
+        pn_v3 cA = pn_v3_sub(c, A), OA = pn_v3_sub(O, A);
+        float nn = pn_v3_l1(n);
+        float dlim = 1e-6f * nn * pn_v3_l1(OA);
+        if (!(d0 > dlim || d0 < -dlim)) return 0;
         plane.h0 = pn_v3_dot(cA, n);
         plane.hu = pn_v3_dot(U, n);
         plane.hv = pn_v3_dot(V, n);
-        if (d0 > 0.0f) plane = pn_lin_neg(plane); /* S must be on the other side: > 0 */
+        plane_thr = 1e-6f * nn * (pn_v3_l1(cA) + pn_v3_l1(U) + pn_v3_l1(V));
+        if (d0 > 0.0f) plane = pn_lin_neg(plane); /* S must be on the other side: > thr */
     }
-    if (!(pn_lin_max(plane, k) > 0.0f)) return 0;
+    if (!(pn_lin_max(plane, k) > plane_thr)) return 0;
 
     e[0] = pn_edge_form(A, B, O, cO, U, V);
     e[1] = pn_edge_form(B, C, O, cO, U, V);
@@ -197,11 +211,11 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
     {
         /* Rows where the plane and, for some orientation, all three edges can pass. */
         int32_t plo = 0, phi = (int32_t)k - 1, jlo = (int32_t)k, jhi = -1, s, q;
-        pn_rows_narrow(plane, k, 1, &plo, &phi);
+        pn_rows_narrow(plane, k, 1, plane_thr, &plo, &phi);
         for (s = 0; s < 2; s++) {
             int32_t lo = plo, hi = phi;
             if (!(s == 0 ? pos_ok : neg_ok)) continue;
-            for (q = 0; q < 3; q++) pn_rows_narrow(s == 0 ? e[q] : ne[q], k, 0, &lo, &hi);
+            for (q = 0; q < 3; q++) pn_rows_narrow(s == 0 ? e[q] : ne[q], k, 0, 0.0f, &lo, &hi);
             if (lo > hi) {
                 if (s == 0) pos_ok = 0; else neg_ok = 0;
                 continue;
@@ -216,14 +230,14 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
         float b = pn_sample_coord(j, k);
         int32_t plo = 0, phi = (int32_t)k - 1;
         int s;
-        pn_row_narrow(plane.h0 + b * plane.hv, plane.hu, k, 1, &plo, &phi);
+        pn_row_narrow(plane.h0 + b * plane.hv, plane.hu, k, 1, plane_thr, &plo, &phi);
         if (plo > phi) continue;
         for (s = 0; s < 2; s++) {
             int32_t lo = plo, hi = phi, q;
             if (!(s == 0 ? pos_ok : neg_ok)) continue;
             for (q = 0; q < 3; q++) {
                 pn_lin f = s == 0 ? e[q] : ne[q];
-                pn_row_narrow(f.h0 + b * f.hv, f.hu, k, 0, &lo, &hi);
+                pn_row_narrow(f.h0 + b * f.hv, f.hu, k, 0, 0.0f, &lo, &hi);
             }
             if (lo <= hi) {
                 pn_mask_set_run(m, k, j, lo, hi);

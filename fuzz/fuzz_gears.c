@@ -1,0 +1,159 @@
+/* fuzz_gears - GEARS is conservative: every triangle whose predicate mask is non-zero for a
+ * shadow-ray origin has a cell rectangle that contains that origin's cell.
+ *
+ * The bytes make a small hostile configuration: a light of any orientation and aspect (or
+ * a point light), up to 24 triangles at scales from 1e-4 to 1e4 with vertices snapped onto,
+ * just in front of or just behind the light plane, slivers, and origins that include points
+ * whose segments to light samples run exactly through triangle vertices. The grid is built
+ * by the same functions the ports use (src/pn_gears.c, kernels/pn_gears.h). */
+#include <stdint.h>
+#include <string.h>
+
+#include "fuzz_check.h"
+#include "pn_gears_host.h"
+
+typedef struct pn_bytes {
+    const uint8_t *p;
+    size_t n, i;
+} pn_bytes;
+
+static uint32_t take(pn_bytes *b)
+{
+    uint32_t v = b->i < b->n ? b->p[b->i] : (uint32_t)(b->i * 2654435761u >> 24);
+    b->i++;
+    return v & 0xFFu;
+}
+
+/* A coordinate in [-1, 1) * scale, 16 bits of resolution. */
+static float coord(pn_bytes *b, float scale)
+{
+    uint32_t hi = take(b), lo = take(b); /* two statements: operand order is unspecified */
+    int32_t v = (int32_t)((hi << 8) | lo) - 32768;
+    return (float)v / 32768.0f * scale;
+}
+
+#define MAX_T 24
+#define MAX_O 48
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    static const float scales[6] = {1e-4f, 1e-2f, 1.0f, 1.0f, 1e2f, 1e4f};
+    pn_bytes b = {data, size, 0};
+    float scale = scales[take(&b) % 6u], tris[MAX_T * 9];
+    uint32_t nt = 1u + take(&b) % MAX_T, no = 1u + take(&b) % MAX_O, k = 4u << (take(&b) % 4u), t, o, f;
+    uint32_t G = 1u + take(&b) % 64u, mode = take(&b);
+    pn_klight L;
+    pn_v3 c, U, V, N, origins[MAX_O];
+    pn_kgrid faces[6];
+    uint32_t nfaces;
+    float obox[6] = {PN_KINF, PN_KINF, PN_KINF, -PN_KINF, -PN_KINF, -PN_KINF};
+
+    memset(&L, 0, sizeof(L));
+    c = pn_v3_make(coord(&b, scale), coord(&b, scale), coord(&b, scale));
+    if (mode & 1u) { /* point light */
+        U = V = N = pn_v3_make(0, 0, 0);
+        L.k = 1;
+        L.is_point = 1;
+    } else {
+        pn_v3 a = pn_v3_make(coord(&b, 1.0f), coord(&b, 1.0f), coord(&b, 1.0f));
+        pn_v3 r = pn_v3_make(coord(&b, 1.0f), coord(&b, 1.0f), coord(&b, 1.0f));
+        float lu = scale * (0.001f + (float)take(&b) / 64.0f), lv = lu * (0.01f + (float)take(&b) / 16.0f);
+        if (pn_v3_dot(a, a) < 1e-6f) a = pn_v3_make(1, 0, 0);
+        a = pn_v3_normalize(a);
+        N = pn_v3_cross(a, r);
+        if (pn_v3_dot(N, N) < 1e-6f) N = pn_v3_cross(a, pn_v3_make(a.y, a.z, a.x + 1.0f));
+        N = pn_v3_normalize(N);
+        U = pn_v3_scale(a, lu);
+        V = pn_v3_scale(pn_v3_normalize(pn_v3_cross(N, a)), lv);
+        N = pn_v3_normalize(pn_v3_cross(U, V));
+        L.k = k;
+    }
+    L.c[0] = c.x; L.c[1] = c.y; L.c[2] = c.z;
+    L.U[0] = U.x; L.U[1] = U.y; L.U[2] = U.z;
+    L.V[0] = V.x; L.V[1] = V.y; L.V[2] = V.z;
+    L.N[0] = N.x; L.N[1] = N.y; L.N[2] = N.z;
+
+    /* Triangles in front of the light, some vertices pulled onto or across its plane. */
+    for (t = 0; t < nt; t++) {
+        uint32_t q, how = take(&b);
+        float sz = (how & 0x80u) ? 1e-3f : 1.0f;
+        pn_v3 base = pn_v3_add(c, pn_v3_make(coord(&b, scale), coord(&b, scale), coord(&b, scale)));
+        for (q = 0; q < 3; q++) {
+            pn_v3 p = q == 0 ? base : pn_v3_add(base, pn_v3_make(coord(&b, scale * sz), coord(&b, scale * sz), coord(&b, scale * sz)));
+            if (!L.is_point) {
+                float h = pn_v3_dot(pn_v3_sub(p, c), N);
+                if (h < 0.0f) p = pn_v3_sub(p, pn_v3_scale(N, 2.0f * h)); /* mirror in front */
+                if (((how >> (2 * q)) & 3u) == 1u) p = pn_v3_sub(p, pn_v3_scale(N, pn_v3_dot(pn_v3_sub(p, c), N))); /* onto */
+                if (((how >> (2 * q)) & 3u) == 2u) p = pn_v3_sub(p, pn_v3_scale(N, pn_v3_dot(pn_v3_sub(p, c), N) * 1.0001f));
+            }
+            tris[t * 9 + q * 3 + 0] = p.x;
+            tris[t * 9 + q * 3 + 1] = p.y;
+            tris[t * 9 + q * 3 + 2] = p.z;
+        }
+    }
+    /* Origins: random points in front, or the extension of a sample->vertex segment beyond
+     * the vertex (its segment to that sample runs exactly through the vertex). */
+    for (o = 0; o < no; o++) {
+        uint32_t how = take(&b);
+        pn_v3 O = pn_v3_add(c, pn_v3_make(coord(&b, scale), coord(&b, scale), coord(&b, scale)));
+        if (how & 1u) {
+            uint32_t tt = take(&b) % nt, q = take(&b) % 3u, i = take(&b) % L.k, j = take(&b) % L.k;
+            pn_v3 vtx = pn_v3_make(tris[tt * 9 + q * 3], tris[tt * 9 + q * 3 + 1], tris[tt * 9 + q * 3 + 2]);
+            pn_v3 S = pn_v3_add(c, pn_v3_add(pn_v3_scale(U, pn_sample_coord((int32_t)i, L.k)),
+                                             pn_v3_scale(V, pn_sample_coord((int32_t)j, L.k))));
+            O = pn_v3_add(vtx, pn_v3_scale(pn_v3_sub(vtx, S), 0.25f + (float)take(&b) / 32.0f));
+        }
+        if (!L.is_point && !(pn_v3_dot(pn_v3_sub(O, c), N) > 0.0f)) O = pn_v3_sub(O, pn_v3_scale(N, 2.0f * pn_v3_dot(pn_v3_sub(O, c), N) - scale * 1e-3f));
+        if (!L.is_point && !(pn_v3_dot(pn_v3_sub(O, c), N) > 0.0f)) O = pn_v3_add(c, pn_v3_scale(N, scale));
+        origins[o] = O;
+        obox[0] = pn_kminf(obox[0], O.x);
+        obox[1] = pn_kminf(obox[1], O.y);
+        obox[2] = pn_kminf(obox[2], O.z);
+        obox[3] = pn_kmaxf(obox[3], O.x);
+        obox[4] = pn_kmaxf(obox[4], O.y);
+        obox[5] = pn_kmaxf(obox[5], O.z);
+    }
+
+    /* The grid, as the ports build it. */
+    nfaces = pn_gears_faces(&L, obox, scale, faces);
+    if (L.is_point) {
+        for (f = 0; f < 6; f++) pn_gears_bounds(&faces[f], -1.0f, -1.0f, 1.0f, 1.0f, G);
+    } else {
+        float pb[4] = {PN_KINF, PN_KINF, -PN_KINF, -PN_KINF};
+        for (o = 0; o < no; o++) {
+            float px, py;
+            pn_grid_project(&faces[0], origins[o], &px, &py);
+            pb[0] = pn_kminf(pb[0], px);
+            pb[1] = pn_kminf(pb[1], py);
+            pb[2] = pn_kmaxf(pb[2], px);
+            pb[3] = pn_kmaxf(pb[3], py);
+        }
+        pn_gears_bounds(&faces[0], pb[0], pb[1], pb[2], pb[3], G);
+    }
+    FUZZ_CHECK(nfaces == (L.is_point ? 6u : 1u), "faces %u", nfaces);
+
+    for (o = 0; o < no; o++) {
+        uint32_t face = pn_gears_origin_face(&L, origins[o]), cell, cx, cy;
+        float px, py;
+        pn_grid_project(&faces[face], origins[o], &px, &py);
+        cell = pn_grid_cell(&faces[face], px, py);
+        cx = cell % G;
+        cy = cell / G;
+        for (t = 0; t < nt; t++) {
+            uint32_t m[PN_MASK_WORDS_MAX];
+            pn_v3 A = pn_v3_make(tris[t * 9], tris[t * 9 + 1], tris[t * 9 + 2]);
+            pn_v3 B = pn_v3_make(tris[t * 9 + 3], tris[t * 9 + 4], tris[t * 9 + 5]);
+            pn_v3 C = pn_v3_make(tris[t * 9 + 6], tris[t * 9 + 7], tris[t * 9 + 8]);
+            pn_cellrect r;
+            pn_mask_clear(m);
+            if (!pn_tri_mask(origins[o], A, B, C, &L, m)) continue;
+            r = pn_gears_tri_cells(&faces[face], &L, A, B, C);
+            FUZZ_CHECK(!pn_cellrect_is_empty(r) && cx >= (r.lo & 0xFFFFu) && cx <= (r.hi & 0xFFFFu) &&
+                           cy >= (r.lo >> 16) && cy <= (r.hi >> 16),
+                       "triangle %u blocks %u samples from origin %u (face %u, cell %u,%u) but its cells are "
+                       "[%u..%u] x [%u..%u]",
+                       t, pn_mask_count(m, L.k), o, face, cx, cy, r.lo & 0xFFFFu, r.hi & 0xFFFFu, r.lo >> 16, r.hi >> 16);
+        }
+    }
+    return 0;
+}

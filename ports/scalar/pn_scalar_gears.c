@@ -221,15 +221,27 @@ static void pn_task_masks(void *task, uint32_t begin, uint32_t end)
             size_t pix = (size_t)y * fs->width + x;
             uint32_t cell = r->pix_cell[pix], e, own = fs->tri_id[pix];
             uint32_t m[PN_MASK_WORDS_MAX];
+            pn_frustum fr;
             pn_v3 O;
             /* A pixel has a cell only if it has an origin. */
             if (cell == PN_CELL_NONE || !pn_in_tile(r, cell) || !pn_pixel_origin(fs, pix, &O)) continue;
             pn_mask_clear(m);
+            pn_frustum_make(O, &fs->light, &fr);
             for (e = r->cell_off[cell]; e < r->cell_off[cell + 1u]; e++) {
                 uint32_t t = r->sorted[e];
                 pn_v3 A, B, C;
+                pn_kbvh_node box;
                 if (t == own) continue;
                 pn_tri_load(ctx->tris, t, &A, &B, &C);
+                /* The reference's conservative frustum test, on the triangle's own box:
+                 * a cheap reject before the predicate. */
+                box.bmin[0] = pn_kminf(A.x, pn_kminf(B.x, C.x));
+                box.bmin[1] = pn_kminf(A.y, pn_kminf(B.y, C.y));
+                box.bmin[2] = pn_kminf(A.z, pn_kminf(B.z, C.z));
+                box.bmax[0] = pn_kmaxf(A.x, pn_kmaxf(B.x, C.x));
+                box.bmax[1] = pn_kmaxf(A.y, pn_kmaxf(B.y, C.y));
+                box.bmax[2] = pn_kmaxf(A.z, pn_kmaxf(B.z, C.z));
+                if (!pn_frustum_box(&fr, &box)) continue;
                 cnt->candidates++;
                 cnt->blocking += pn_tri_mask(O, A, B, C, &fs->light, m);
                 if (!fs->exact_stats && pn_mask_full(m, k)) break;

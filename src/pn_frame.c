@@ -132,8 +132,8 @@ static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
                        o->k, (uint32_t)PN_MASK_K_MAX);
     if (!pn_finite(o->eps) || !pn_finite(o->albedo) || !pn_finite(o->ambient))
         return pn_fail(ctx, PN_E_NONFINITE, "eps, albedo or ambient is NaN or infinite");
-    if (!(o->eps >= 0.0f) || o->eps > PN_MAX_COORD)
-        return pn_fail(ctx, PN_E_INVALID_ARG, "eps must be >= 0 and <= 2^40");
+    if (!(o->eps >= 0.0f)) return pn_fail(ctx, PN_E_INVALID_ARG, "eps must be >= 0");
+    if (o->eps > PN_MAX_COORD) return pn_fail(ctx, PN_E_LIMIT, "eps exceeds 2^40");
     if (!(o->albedo >= 0.0f && o->albedo <= 1.0f && o->ambient >= 0.0f && o->ambient <= 1.0f))
         return pn_fail(ctx, PN_E_INVALID_ARG, "albedo and ambient must be in [0, 1]");
     if (o->exact_stats > 1u) return pn_fail(ctx, PN_E_INVALID_ARG, "exact_stats must be 0 or 1");

@@ -17,7 +17,9 @@
  *
  * TRUST MODEL
  *   Everything the caller passes is validated: NULL pointers, NaN/Inf, indices out of
- *   range, degenerate lights and cameras, sizes beyond the limits. Bad input returns a
+ *   range, degenerate lights and cameras, sizes beyond the limits, and coordinates beyond
+ *   2^40 in magnitude (PN_E_LIMIT: the predicate's triple products must stay far from
+ *   float overflow). Bad input returns a
  *   specific pn_status, stores a message (pn_last_error), writes no out-parameter and
  *   modifies no caller memory. Scene data is *copied* into the arena by pn_scene_set, so
  *   the caller may free or change its arrays afterwards. Degenerate (zero-area) triangles
@@ -157,9 +159,11 @@ pn_status pn_set_clock(pn_context *ctx, pn_clock_fn clock, void *user);
  * vertex_count xyz float triples, `indices` triangle_count index triples; both are read,
  * never written, and may be freed after the call. Replaces the previous scene.
  * Statuses: PN_E_INVALID_ARG (NULL, zero triangles), PN_E_LIMIT (counts over the
- * limits), PN_E_NONFINITE (any vertex not finite), PN_E_INDEX_RANGE. Zero-area triangles
+ * limits, or a coordinate beyond 2^40), PN_E_NONFINITE (any vertex not finite),
+ * PN_E_INDEX_RANGE. Zero-area triangles
  * are kept (their ids stay valid) but never drawn nor blocking; pn_stats counts them.
- * On failure the previous scene is gone (pn_render returns PN_E_NO_SCENE). */
+ * Validation reads everything before anything is written: on failure the previous scene
+ * stays in place. */
 pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_count,
                        const uint32_t *indices, uint32_t triangle_count);
 
@@ -185,7 +189,8 @@ typedef enum pn_algo {
 
 typedef struct pn_frame_options {
     uint32_t width, height; /* >= 1, <= the context's limits */
-    uint32_t k;             /* 4, 8, 16 or 32, <= PN_MASK_K_MAX; ignored for a point light */
+    uint32_t k;             /* 4, 8, 16 or 32, <= PN_MASK_K_MAX (checked even for a point
+                               light, which then uses one sample) */
     pn_algo algo;
     float eps;      /* shadow-ray offset in scene units (the CLI uses 1e-4 * scene diagonal);
                        finite, >= 0 */
@@ -217,8 +222,10 @@ typedef struct pn_frame {
 
 /* Renders one frame: G-buffer, shadow pass of opt->algo, shading.
  * Statuses: PN_E_INVALID_ARG, PN_E_NO_SCENE, PN_E_NONFINITE (camera or light),
- * PN_E_CAMERA, PN_E_LIGHT_DEGENERATE, PN_E_LIGHT_NOT_ORTHO, PN_E_IMAGE_SIZE, PN_E_LIMIT,
- * PN_E_UNSUPPORTED. *out is written only on PN_OK. */
+ * PN_E_CAMERA, PN_E_LIGHT_DEGENERATE, PN_E_LIGHT_NOT_ORTHO, PN_E_IMAGE_SIZE, PN_E_LIMIT
+ * (sizes over the limits, coordinates or eps beyond 2^40), PN_E_UNSUPPORTED,
+ * PN_E_POOL_EXHAUSTED (GEARS: a single grid cell needs more pairs than the pair pool;
+ * the message names the pool and the count). *out is written only on PN_OK. */
 pn_status pn_render(pn_context *ctx, const pn_camera *camera, const pn_light *light,
                     const pn_frame_options *opt, pn_frame *out);
 

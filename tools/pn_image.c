@@ -1,5 +1,6 @@
 /* pn_image.c - PNG (stb_image_write), PFM and raw-id output (see pn_image.h). */
 #include "pn_image.h"
+#include "pn_mesh.h"
 
 #include <errno.h>
 #include <math.h>
@@ -14,30 +15,20 @@
 /* Per-side limit: keeps w * 4 inside int for stb and w * h * 4 far inside size_t. */
 #define PN_IMAGE_MAX_DIM 65536u
 
-static void pn_image_err(char *err, size_t err_size, const char *fmt, ...)
-{
-    va_list ap;
-    if (err == NULL || err_size == 0) {
-        return;
-    }
-    va_start(ap, fmt);
-    vsnprintf(err, err_size, fmt, ap);
-    va_end(ap);
-}
 
 static int pn_image_check_args(const char *fn, const char *path, const void *data, uint32_t w,
                                uint32_t h, char *err, size_t err_size)
 {
     if (path == NULL || path[0] == '\0') {
-        pn_image_err(err, err_size, "%s: no path given", fn);
+        pn_tools_err(err, err_size, "%s: no path given", fn);
         return 1;
     }
     if (data == NULL) {
-        pn_image_err(err, err_size, "%s: '%s': pixel data is NULL", fn, path);
+        pn_tools_err(err, err_size, "%s: '%s': pixel data is NULL", fn, path);
         return 1;
     }
     if (w == 0 || h == 0 || w > PN_IMAGE_MAX_DIM || h > PN_IMAGE_MAX_DIM) {
-        pn_image_err(err, err_size, "%s: '%s': size %ux%u outside 1..%u per side", fn, path,
+        pn_tools_err(err, err_size, "%s: '%s': size %ux%u outside 1..%u per side", fn, path,
                      (unsigned)w, (unsigned)h, PN_IMAGE_MAX_DIM);
         return 1;
     }
@@ -65,7 +56,7 @@ static int pn_close_checked(FILE *f, int write_failed, const char *fn, const cha
         e = errno ? errno : EIO;
     }
     if (e != 0) {
-        pn_image_err(err, err_size, "%s: cannot write '%s': %s", fn, path, strerror(e));
+        pn_tools_err(err, err_size, "%s: cannot write '%s': %s", fn, path, strerror(e));
         return 1;
     }
     return 0;
@@ -95,7 +86,7 @@ int pn_write_png(const char *path, const uint8_t *rgba, uint32_t w, uint32_t h, 
     }
     sink.f = fopen(path, "wb");
     if (sink.f == NULL) {
-        pn_image_err(err, err_size, "pn_write_png: cannot create '%s': %s", path,
+        pn_tools_err(err, err_size, "pn_write_png: cannot create '%s': %s", path,
                      strerror(errno));
         return 1;
     }
@@ -104,7 +95,7 @@ int pn_write_png(const char *path, const uint8_t *rgba, uint32_t w, uint32_t h, 
     ok = stbi_write_png_to_func(pn_png_write_cb, &sink, (int)w, (int)h, 4, rgba, (int)(w * 4u));
     if (!ok) {
         fclose(sink.f);
-        pn_image_err(err, err_size, "pn_write_png: '%s': PNG encoding failed (out of memory?)",
+        pn_tools_err(err, err_size, "pn_write_png: '%s': PNG encoding failed (out of memory?)",
                      path);
         return 1;
     }
@@ -123,12 +114,12 @@ int pn_write_pfm(const char *path, const float *gray, uint32_t w, uint32_t h, ch
     }
     row = (unsigned char *)malloc((size_t)w * 4u);
     if (row == NULL) {
-        pn_image_err(err, err_size, "pn_write_pfm: out of memory");
+        pn_tools_err(err, err_size, "pn_write_pfm: out of memory");
         return 1;
     }
     f = fopen(path, "wb");
     if (f == NULL) {
-        pn_image_err(err, err_size, "pn_write_pfm: cannot create '%s': %s", path,
+        pn_tools_err(err, err_size, "pn_write_pfm: cannot create '%s': %s", path,
                      strerror(errno));
         free(row);
         return 1;
@@ -203,7 +194,7 @@ int pn_read_pfm(const char *path, float **out, uint32_t *w, uint32_t *h, char *e
     unsigned char *row = NULL;
 
     if (out == NULL || w == NULL || h == NULL || path == NULL) {
-        pn_image_err(err, err_size, "pn_read_pfm: NULL argument");
+        pn_tools_err(err, err_size, "pn_read_pfm: NULL argument");
         return 1;
     }
     *out = NULL;
@@ -211,27 +202,27 @@ int pn_read_pfm(const char *path, float **out, uint32_t *w, uint32_t *h, char *e
     *h = 0;
     f = fopen(path, "rb");
     if (f == NULL) {
-        pn_image_err(err, err_size, "pn_read_pfm: cannot open '%s': %s", path, strerror(errno));
+        pn_tools_err(err, err_size, "pn_read_pfm: cannot open '%s': %s", path, strerror(errno));
         return 1;
     }
     if (pn_pfm_token(f, tok, sizeof tok) == 0 || strcmp(tok, "Pf") != 0) {
-        pn_image_err(err, err_size, "pn_read_pfm: '%s' is not a grayscale PFM (no \"Pf\")",
+        pn_tools_err(err, err_size, "pn_read_pfm: '%s' is not a grayscale PFM (no \"Pf\")",
                      path);
         goto fail;
     }
     if (pn_pfm_token(f, tok, sizeof tok) == 0 || !pn_parse_dim(tok, &ww) ||
         pn_pfm_token(f, tok, sizeof tok) == 0 || !pn_parse_dim(tok, &hh)) {
-        pn_image_err(err, err_size, "pn_read_pfm: '%s': bad width/height (1..%u)", path,
+        pn_tools_err(err, err_size, "pn_read_pfm: '%s': bad width/height (1..%u)", path,
                      PN_IMAGE_MAX_DIM);
         goto fail;
     }
     if (pn_pfm_token(f, tok, sizeof tok) == 0) {
-        pn_image_err(err, err_size, "pn_read_pfm: '%s': missing scale", path);
+        pn_tools_err(err, err_size, "pn_read_pfm: '%s': missing scale", path);
         goto fail;
     }
     scale = strtod(tok, &end);
     if (*end != '\0' || scale == 0.0 || !isfinite(scale)) {
-        pn_image_err(err, err_size, "pn_read_pfm: '%s': bad scale '%s'", path, tok);
+        pn_tools_err(err, err_size, "pn_read_pfm: '%s': bad scale '%s'", path, tok);
         goto fail;
     }
     big_endian = scale > 0.0;
@@ -240,11 +231,11 @@ int pn_read_pfm(const char *path, float **out, uint32_t *w, uint32_t *h, char *e
     data_start = ftell(f);
     if (data_start < 0 || fseek(f, 0, SEEK_END) != 0 || (file_end = ftell(f)) < 0 ||
         fseek(f, data_start, SEEK_SET) != 0) {
-        pn_image_err(err, err_size, "pn_read_pfm: '%s': cannot seek", path);
+        pn_tools_err(err, err_size, "pn_read_pfm: '%s': cannot seek", path);
         goto fail;
     }
     if ((uint64_t)(file_end - data_start) != (uint64_t)ww * hh * 4u) {
-        pn_image_err(err, err_size,
+        pn_tools_err(err, err_size,
                      "pn_read_pfm: '%s': %ld data bytes, %ux%u floats need %llu", path,
                      file_end - data_start, (unsigned)ww, (unsigned)hh,
                      (unsigned long long)ww * hh * 4u);
@@ -253,14 +244,14 @@ int pn_read_pfm(const char *path, float **out, uint32_t *w, uint32_t *h, char *e
     pix = (float *)malloc((size_t)ww * hh * sizeof(float));
     row = (unsigned char *)malloc((size_t)ww * 4u);
     if (pix == NULL || row == NULL) {
-        pn_image_err(err, err_size, "pn_read_pfm: '%s': out of memory", path);
+        pn_tools_err(err, err_size, "pn_read_pfm: '%s': out of memory", path);
         goto fail;
     }
     /* File rows run bottom to top; the caller gets top row first. */
     for (y = hh; y-- > 0;) {
         float *dst = pix + (size_t)y * ww;
         if (fread(row, 4, ww, f) != ww) {
-            pn_image_err(err, err_size, "pn_read_pfm: '%s': short read", path);
+            pn_tools_err(err, err_size, "pn_read_pfm: '%s': short read", path);
             goto fail;
         }
         for (x = 0; x < ww; x++) {
@@ -297,12 +288,12 @@ int pn_write_ids(const char *path, const uint32_t *ids, uint32_t w, uint32_t h, 
     }
     row = (unsigned char *)malloc((size_t)w * 4u);
     if (row == NULL) {
-        pn_image_err(err, err_size, "pn_write_ids: out of memory");
+        pn_tools_err(err, err_size, "pn_write_ids: out of memory");
         return 1;
     }
     f = fopen(path, "wb");
     if (f == NULL) {
-        pn_image_err(err, err_size, "pn_write_ids: cannot create '%s': %s", path,
+        pn_tools_err(err, err_size, "pn_write_ids: cannot create '%s': %s", path,
                      strerror(errno));
         free(row);
         return 1;

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static void pn_mesh_set_err(char *err, size_t err_size, const char *fmt, ...)
+void pn_tools_err(char *err, size_t err_size, const char *fmt, ...)
 {
     va_list ap;
     if (err == NULL || err_size == 0) {
@@ -92,12 +92,12 @@ int pn_mesh_add_ground(pn_mesh *mesh, char *err, size_t err_size)
     size_t nv, nt;
 
     if (mesh == NULL) {
-        pn_mesh_set_err(err, err_size, "pn_mesh_add_ground: mesh is NULL");
+        pn_tools_err(err, err_size, "pn_mesh_add_ground: mesh is NULL");
         return 1;
     }
     if (mesh->triangle_count == 0 || mesh->vertex_count == 0 || mesh->positions == NULL ||
         mesh->indices == NULL) {
-        pn_mesh_set_err(err, err_size, "pn_mesh_add_ground: mesh is empty");
+        pn_tools_err(err, err_size, "pn_mesh_add_ground: mesh is empty");
         pn_mesh_free(mesh);
         return 1;
     }
@@ -106,14 +106,14 @@ int pn_mesh_add_ground(pn_mesh *mesh, char *err, size_t err_size)
      * plane. */
     diag = pn_mesh_diag(mesh);
     if (!(diag > 0.0f) || !isfinite(diag)) {
-        pn_mesh_set_err(err, err_size,
+        pn_tools_err(err, err_size,
                         "pn_mesh_add_ground: mesh bounding box has no extent (diagonal %g)",
                         (double)diag);
         pn_mesh_free(mesh);
         return 1;
     }
     if (mesh->vertex_count > UINT32_MAX - 4u || mesh->triangle_count > UINT32_MAX / 3u - 2u) {
-        pn_mesh_set_err(err, err_size, "pn_mesh_add_ground: mesh too large to extend");
+        pn_tools_err(err, err_size, "pn_mesh_add_ground: mesh too large to extend");
         pn_mesh_free(mesh);
         return 1;
     }
@@ -122,14 +122,14 @@ int pn_mesh_add_ground(pn_mesh *mesh, char *err, size_t err_size)
     nt = (size_t)mesh->triangle_count + 2u;
     pos = (float *)realloc(mesh->positions, nv * 3u * sizeof(float));
     if (pos == NULL) {
-        pn_mesh_set_err(err, err_size, "pn_mesh_add_ground: out of memory (%zu vertices)", nv);
+        pn_tools_err(err, err_size, "pn_mesh_add_ground: out of memory (%zu vertices)", nv);
         pn_mesh_free(mesh);
         return 1;
     }
     mesh->positions = pos;
     idx = (uint32_t *)realloc(mesh->indices, nt * 3u * sizeof(uint32_t));
     if (idx == NULL) {
-        pn_mesh_set_err(err, err_size, "pn_mesh_add_ground: out of memory (%zu triangles)", nt);
+        pn_tools_err(err, err_size, "pn_mesh_add_ground: out of memory (%zu triangles)", nt);
         pn_mesh_free(mesh);
         return 1;
     }

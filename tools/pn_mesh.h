@@ -23,6 +23,9 @@ typedef struct pn_mesh {
     float bbox_max[3];
 } pn_mesh;
 
+/* Formats a message into err (if err != NULL and err_size > 0); shared by the tools. */
+void pn_tools_err(char *err, size_t err_size, const char *fmt, ...);
+
 /* Frees the arrays and zeroes the struct. NULL and an empty mesh are fine. */
 void pn_mesh_free(pn_mesh *mesh);
 

@@ -21,16 +21,6 @@
 
 /* ---- Errors and the mesh builder ------------------------------------------------------ */
 
-static void pn_sc_set_err(char *err, size_t err_size, const char *fmt, ...)
-{
-    va_list ap;
-    if (err == NULL || err_size == 0) {
-        return;
-    }
-    va_start(ap, fmt);
-    vsnprintf(err, err_size, fmt, ap);
-    va_end(ap);
-}
 
 /* Exact-capacity builder: every scene knows its vertex and triangle counts up front, so
  * one allocation per array and no realloc. The counters are checked against the
@@ -407,12 +397,12 @@ int pn_builtin_scene(const char *name, pn_mesh *out, pn_scene_view *view, char *
     size_t i;
 
     if (out == NULL) {
-        pn_sc_set_err(err, err_size, "pn_builtin_scene: out is NULL");
+        pn_tools_err(err, err_size, "pn_builtin_scene: out is NULL");
         return 1;
     }
     memset(out, 0, sizeof(*out));
     if (name == NULL) {
-        pn_sc_set_err(err, err_size, "pn_builtin_scene: name is NULL");
+        pn_tools_err(err, err_size, "pn_builtin_scene: name is NULL");
         return 1;
     }
     for (i = 0; pn_sc_names[i] != NULL; i++) {
@@ -421,7 +411,7 @@ int pn_builtin_scene(const char *name, pn_mesh *out, pn_scene_view *view, char *
         }
     }
     if (pn_sc_names[i] == NULL) {
-        pn_sc_set_err(err, err_size,
+        pn_tools_err(err, err_size,
                       "unknown built-in scene '%s' (known: square, spheres, elongated-cube, "
                       "thin)",
                       name);
@@ -429,14 +419,14 @@ int pn_builtin_scene(const char *name, pn_mesh *out, pn_scene_view *view, char *
     }
     memset(&v, 0, sizeof(v));
     if (pn_sc_builders[i](&b, &v) != 0) {
-        pn_sc_set_err(err, err_size, "built-in scene '%s': out of memory", name);
+        pn_tools_err(err, err_size, "built-in scene '%s': out of memory", name);
         return 3;
     }
     if (b.overflow || b.nv != b.cap_v || b.nt != b.cap_t) {
         /* Unreachable unless a builder's counts drift from its capacity. */
         free(b.pos);
         free(b.idx);
-        pn_sc_set_err(err, err_size,
+        pn_tools_err(err, err_size,
                       "built-in scene '%s': internal error (%u/%u vertices, %u/%u triangles)",
                       name, (unsigned)b.nv, (unsigned)b.cap_v, (unsigned)b.nt,
                       (unsigned)b.cap_t);

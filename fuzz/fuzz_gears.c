@@ -106,12 +106,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (!L.is_point && !(pn_v3_dot(pn_v3_sub(O, c), N) > 0.0f)) O = pn_v3_sub(O, pn_v3_scale(N, 2.0f * pn_v3_dot(pn_v3_sub(O, c), N) - scale * 1e-3f));
         if (!L.is_point && !(pn_v3_dot(pn_v3_sub(O, c), N) > 0.0f)) O = pn_v3_add(c, pn_v3_scale(N, scale));
         origins[o] = O;
-        obox[0] = pn_kminf(obox[0], O.x);
-        obox[1] = pn_kminf(obox[1], O.y);
-        obox[2] = pn_kminf(obox[2], O.z);
-        obox[3] = pn_kmaxf(obox[3], O.x);
-        obox[4] = pn_kmaxf(obox[4], O.y);
-        obox[5] = pn_kmaxf(obox[5], O.z);
+        pn_box3_add(obox, O);
     }
 
     /* The grid, as the ports build it. */
@@ -119,15 +114,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (L.is_point) {
         for (f = 0; f < 6; f++) pn_gears_bounds(&faces[f], -1.0f, -1.0f, 1.0f, 1.0f, G);
     } else {
-        float pb[4] = {PN_KINF, PN_KINF, -PN_KINF, -PN_KINF};
-        for (o = 0; o < no; o++) {
-            float px, py;
-            pn_grid_project(&faces[0], origins[o], &px, &py);
-            pb[0] = pn_kminf(pb[0], px);
-            pb[1] = pn_kminf(pb[1], py);
-            pb[2] = pn_kmaxf(pb[2], px);
-            pb[3] = pn_kmaxf(pb[3], py);
-        }
+        float pb[4];
+        pn_box2_empty(pb);
+        for (o = 0; o < no; o++) pn_box_add(&faces[0], origins[o], pb);
         pn_gears_bounds(&faces[0], pb[0], pb[1], pb[2], pb[3], G);
     }
     FUZZ_CHECK(nfaces == (L.is_point ? 6u : 1u), "faces %u", nfaces);

@@ -114,14 +114,52 @@ PN_KFN pn_cellrect pn_cellrect_all(const pn_kgrid *g)
 
 /* Cells the shadow volume of triangle ABC may touch (paper A.3, made robust as described
  * at the top of this file). */
-PN_KFN void pn_box_add(const pn_kgrid *g, pn_v3 X, float *b)
+/* Boxes as float arrays: 2-D (min x, min y, max x, max y) and 3-D (min xyz, max xyz). */
+PN_KFN void pn_box2_empty(float *b)
 {
-    float px, py;
-    pn_grid_project(g, X, &px, &py);
+    b[0] = b[1] = PN_KINF;
+    b[2] = b[3] = -PN_KINF;
+}
+
+PN_KFN void pn_box2_add(float *b, float px, float py)
+{
     b[0] = pn_kminf(b[0], px);
     b[1] = pn_kminf(b[1], py);
     b[2] = pn_kmaxf(b[2], px);
     b[3] = pn_kmaxf(b[3], py);
+}
+
+PN_KFN void pn_box3_empty(float *b)
+{
+    b[0] = b[1] = b[2] = PN_KINF;
+    b[3] = b[4] = b[5] = -PN_KINF;
+}
+
+PN_KFN void pn_box3_add(float *b, pn_v3 p)
+{
+    b[0] = pn_kminf(b[0], p.x);
+    b[1] = pn_kminf(b[1], p.y);
+    b[2] = pn_kminf(b[2], p.z);
+    b[3] = pn_kmaxf(b[3], p.x);
+    b[4] = pn_kmaxf(b[4], p.y);
+    b[5] = pn_kmaxf(b[5], p.z);
+}
+
+/* Joins box b (n = 4 or 6 floats) into acc. */
+PN_KFN void pn_box_join_n(float *acc, const float *b, uint32_t n)
+{
+    uint32_t i, h = n / 2u;
+    for (i = 0; i < h; i++) {
+        acc[i] = pn_kminf(acc[i], b[i]);
+        acc[h + i] = pn_kmaxf(acc[h + i], b[h + i]);
+    }
+}
+
+PN_KFN void pn_box_add(const pn_kgrid *g, pn_v3 X, float *b)
+{
+    float px, py;
+    pn_grid_project(g, X, &px, &py);
+    pn_box2_add(b, px, py);
 }
 
 PN_KFN pn_cellrect pn_gears_tri_cells(const pn_kgrid *g, const pn_klight *L, pn_v3 A, pn_v3 B, pn_v3 C)
@@ -133,8 +171,7 @@ PN_KFN pn_cellrect pn_gears_tri_cells(const pn_kgrid *g, const pn_klight *L, pn_
     in[0] = A;
     in[1] = B;
     in[2] = C;
-    box[0] = box[1] = PN_KINF;
-    box[2] = box[3] = -PN_KINF;
+    pn_box2_empty(box);
     if (g->is_point) {
         /* The shadow of T from a point is the cone from c through T: an origin O is
          * blocked through B = c + s (O - c), so O and B project to the same cell of any

@@ -918,6 +918,36 @@ int pn_finish(bool ok, const std::string &why, const char *where, pn_mesh *out, 
     return 1;
 }
 
+// Runs load(), turning every exception tinygltf or the conversion can throw into a message.
+template <class Load>
+bool pn_guarded(Load load, std::string *why)
+{
+    try {
+        return load();
+    } catch (const std::bad_alloc &) {
+        *why = "out of memory";
+    } catch (const std::exception &e) {
+        *why = std::string("glTF parse error: ") + e.what();
+    } catch (...) {
+        *why = "glTF parse error: unknown exception";
+    }
+    return false;
+}
+
+// File callbacks (scoped or refusing) and no image decoding.
+void pn_prepare_loader(tinygltf::TinyGLTF *loader, tinygltf::FileExistsFunction exists,
+                       tinygltf::ReadWholeFileFunction read, void *user)
+{
+    tinygltf::FsCallbacks fs;
+    fs.FileExists = exists;
+    fs.ExpandFilePath = pn_fs_expand;
+    fs.ReadWholeFile = read;
+    fs.WriteWholeFile = pn_fs_write;
+    fs.user_data = user;
+    loader->SetFsCallbacks(fs);
+    loader->SetImageLoader(pn_skip_image, nullptr);
+}
+
 }  // namespace
 
 extern "C" int pn_gltf_load(const char *path, pn_mesh *out, char *err, size_t err_size)
@@ -935,11 +965,11 @@ extern "C" int pn_gltf_load(const char *path, pn_mesh *out, char *err, size_t er
         return 1;
     }
     std::string why;
-    bool ok = false;
-    try {
-        const std::string p(path);
-        bool binary = false;
-        if (pn_precheck_file(p, &binary, &why)) {
+    bool ok = pn_guarded(
+        [&]() {
+            const std::string p(path);
+            bool binary = false;
+            if (!pn_precheck_file(p, &binary, &why)) return false;
             tinygltf::TinyGLTF loader;
             tinygltf::Model model;
             std::string terr, twarn;
@@ -947,32 +977,16 @@ extern "C" int pn_gltf_load(const char *path, pn_mesh *out, char *err, size_t er
             scope.main_path = p;
             size_t sep = p.find_last_of("/\\");
             scope.base_dir = sep == std::string::npos ? std::string() : p.substr(0, sep);
-            tinygltf::FsCallbacks fs;
-            fs.FileExists = pn_fs_scoped_exists;
-            fs.ExpandFilePath = pn_fs_expand;
-            fs.ReadWholeFile = pn_fs_scoped_read;
-            fs.WriteWholeFile = pn_fs_write;
-            fs.user_data = &scope;
-            loader.SetFsCallbacks(fs);
-            loader.SetImageLoader(pn_skip_image, nullptr);
+            pn_prepare_loader(&loader, pn_fs_scoped_exists, pn_fs_scoped_read, &scope);
             bool loaded = binary ? loader.LoadBinaryFromFile(&model, &terr, &twarn, p)
                                  : loader.LoadASCIIFromFile(&model, &terr, &twarn, p);
             if (!loaded) {
                 why = "glTF parse error: " + pn_tidy(terr);
-            } else {
-                ok = pn_model_to_mesh(model, PN_GLTF_MAX_TRIANGLES, out, &why);
+                return false;
             }
-        }
-    } catch (const std::bad_alloc &) {
-        why = "out of memory";
-        ok = false;
-    } catch (const std::exception &e) {
-        why = std::string("glTF parse error: ") + e.what();
-        ok = false;
-    } catch (...) {
-        why = "glTF parse error: unknown exception";
-        ok = false;
-    }
+            return pn_model_to_mesh(model, PN_GLTF_MAX_TRIANGLES, out, &why);
+        },
+        &why);
     return pn_finish(ok, why, path, out, err, err_size);
 }
 
@@ -1005,43 +1019,26 @@ extern "C" int pn_gltf_load_memory_limit(const unsigned char *data, size_t size,
         return 1;
     }
     std::string why;
-    bool ok = false;
-    try {
-        uint32_t json_len = 0, length = 0;
-        static const unsigned char zeros[20] = {0};
-        if (!pn_glb_check_header(size >= 20 ? data : zeros, size, &json_len, &length, &why) ||
-            !pn_json_depth_ok(data + 20, json_len, &why) ||
-            !pn_glb_check_bin(20ull + json_len + 8 <= length ? data + 20 + json_len : nullptr,
-                              20ull + json_len, length, &why)) {
-            ok = false;
-        } else {
+    bool ok = pn_guarded(
+        [&]() {
+            uint32_t json_len = 0, length = 0;
+            static const unsigned char zeros[20] = {0};
+            if (!pn_glb_check_header(size >= 20 ? data : zeros, size, &json_len, &length, &why) ||
+                !pn_json_depth_ok(data + 20, json_len, &why) ||
+                !pn_glb_check_bin(20ull + json_len + 8 <= length ? data + 20 + json_len : nullptr,
+                                  20ull + json_len, length, &why))
+                return false;
             tinygltf::TinyGLTF loader;
             tinygltf::Model model;
             std::string terr, twarn;
-            tinygltf::FsCallbacks fs;
-            fs.FileExists = pn_fs_exists;
-            fs.ExpandFilePath = pn_fs_expand;
-            fs.ReadWholeFile = pn_fs_read;
-            fs.WriteWholeFile = pn_fs_write;
-            fs.user_data = nullptr;
-            loader.SetFsCallbacks(fs);
-            loader.SetImageLoader(pn_skip_image, nullptr);
+            pn_prepare_loader(&loader, pn_fs_exists, pn_fs_read, nullptr);
             // Only the declared length is handed over: bytes past it are not part of the GLB.
             if (!loader.LoadBinaryFromMemory(&model, &terr, &twarn, data, length, "")) {
                 why = "glTF parse error: " + pn_tidy(terr);
-            } else {
-                ok = pn_model_to_mesh(model, max_triangles, out, &why);
+                return false;
             }
-        }
-    } catch (const std::bad_alloc &) {
-        why = "out of memory";
-        ok = false;
-    } catch (const std::exception &e) {
-        why = std::string("glTF parse error: ") + e.what();
-        ok = false;
-    } catch (...) {
-        why = "glTF parse error: unknown exception";
-        ok = false;
-    }
+            return pn_model_to_mesh(model, max_triangles, out, &why);
+        },
+        &why);
     return pn_finish(ok, why, "glb in memory", out, err, err_size);
 }

@@ -63,8 +63,7 @@ static void pn_task_origins(void *task, uint32_t begin, uint32_t end)
         float *b = r->row_box + (size_t)y * 8u;
         pn_shadow_counters *cnt = (pn_shadow_counters *)fs->counters + y;
         memset(cnt, 0, sizeof(*cnt));
-        b[0] = b[1] = b[2] = PN_KINF;
-        b[3] = b[4] = b[5] = -PN_KINF;
+        pn_box3_empty(b);
         for (x = 0; x < fs->width; x++) {
             size_t pix = (size_t)y * fs->width + x;
             pn_v3 O;
@@ -74,12 +73,7 @@ static void pn_task_origins(void *task, uint32_t begin, uint32_t end)
             }
             fs->vis[pix] = 1.0f; /* until a tile's triangles block samples */
             cnt->lit++;
-            b[0] = pn_kminf(b[0], O.x);
-            b[1] = pn_kminf(b[1], O.y);
-            b[2] = pn_kminf(b[2], O.z);
-            b[3] = pn_kmaxf(b[3], O.x);
-            b[4] = pn_kmaxf(b[4], O.y);
-            b[5] = pn_kmaxf(b[5], O.z);
+            pn_box3_add(b, O);
         }
     }
 }
@@ -91,18 +85,14 @@ static void pn_task_project(void *task, uint32_t begin, uint32_t end)
     uint32_t y, x;
     for (y = begin; y < end; y++) {
         float *b = r->row_box + (size_t)y * 8u;
-        b[0] = b[1] = PN_KINF;
-        b[2] = b[3] = -PN_KINF;
+        pn_box2_empty(b);
         for (x = 0; x < fs->width; x++) {
             size_t pix = (size_t)y * fs->width + x;
             pn_v3 O;
             float px, py;
             if (!pn_pixel_origin(fs, pix, &O)) continue;
             pn_grid_project(&r->faces[0], O, &px, &py);
-            b[0] = pn_kminf(b[0], px);
-            b[1] = pn_kminf(b[1], py);
-            b[2] = pn_kmaxf(b[2], px);
-            b[3] = pn_kmaxf(b[3], py);
+            pn_box2_add(b, px, py);
         }
     }
 }
@@ -367,30 +357,20 @@ pn_status pn_scalar_gears(pn_context *ctx, pn_frame_state *fs)
 
     /* A.1/A.2: origins, cameras, grid bounds, pixel cells. */
     pn_run(ctx, fs->height, pn_task_origins, &r);
-    obox[0] = obox[1] = obox[2] = PN_KINF;
-    obox[3] = obox[4] = obox[5] = -PN_KINF;
+    pn_box3_empty(obox);
     for (y = 0; y < fs->height; y++) {
-        const float *b = r.row_box + (size_t)y * 8u;
         lit += ((pn_shadow_counters *)fs->counters)[y].lit;
-        for (f = 0; f < 3; f++) {
-            obox[f] = pn_kminf(obox[f], b[f]);
-            obox[3 + f] = pn_kmaxf(obox[3 + f], b[3 + f]);
-        }
+        pn_box_join_n(obox, r.row_box + (size_t)y * 8u, 6u);
     }
     if (lit == 0u) return PN_OK; /* nothing can be shadowed */
     r.nfaces = pn_gears_faces(&fs->light, obox, ctx->scene_diag, r.faces);
     if (fs->light.is_point) {
         for (f = 0; f < 6; f++) pn_gears_bounds(&r.faces[f], -1.0f, -1.0f, 1.0f, 1.0f, G);
     } else {
-        float pb[4] = {PN_KINF, PN_KINF, -PN_KINF, -PN_KINF};
+        float pb[4];
+        pn_box2_empty(pb);
         pn_run(ctx, fs->height, pn_task_project, &r);
-        for (y = 0; y < fs->height; y++) {
-            const float *b = r.row_box + (size_t)y * 8u;
-            pb[0] = pn_kminf(pb[0], b[0]);
-            pb[1] = pn_kminf(pb[1], b[1]);
-            pb[2] = pn_kmaxf(pb[2], b[2]);
-            pb[3] = pn_kmaxf(pb[3], b[3]);
-        }
+        for (y = 0; y < fs->height; y++) pn_box_join_n(pb, r.row_box + (size_t)y * 8u, 4u);
         pn_gears_bounds(&r.faces[0], pb[0], pb[1], pb[2], pb[3], G);
     }
     pn_run(ctx, fs->height, pn_task_pixel_cells, &r);

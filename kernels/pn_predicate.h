@@ -161,44 +161,93 @@ PN_KFN void pn_mask_set_run(uint32_t *m, uint32_t k, int32_t j, int32_t lo, int3
 
 /* ---- The predicate -------------------------------------------------------------------- */
 
+/* The four linear forms of triangle ABC seen from O: the plane form (oriented so that a
+ * sample passes when its value is > thr) and the three edge forms. pn_tri_mask() and
+ * pn_tri_sample() both evaluate exactly these floats in exactly the same order, so the
+ * mask of a whole pixel and a single ray agree bit for bit. */
+typedef struct pn_tri_forms {
+    pn_lin plane;
+    float plane_thr;
+    pn_lin e[3];
+} pn_tri_forms;
+
+/* The plane form; returns 0 when O is within float noise of the triangle's plane (then
+ * no sample is blocked). */
+PN_KFN int pn_tri_plane(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, pn_tri_forms *F)
+{
+    pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]);
+    pn_v3 V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
+    pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]);
+    pn_v3 n = pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
+    float d0 = pn_v3_dot(pn_v3_sub(O, A), n);
+    /* Plane side of O and of the samples, each with its float-noise scale: a value
+     * within 1e-6 of the magnitudes it is made of has no reliable sign (O, the light
+     * and the plane nearly coplanar: fuzz/ found such a triangle "blocking" from
+     * beyond the light). O that close to the plane starts the segment on it (t = 0);
+     * a sample that close ends it there (t = 1): the open segment does not cross. */
+    pn_v3 cA = pn_v3_sub(c, A), OA = pn_v3_sub(O, A);
+    float nn = pn_v3_l1(n);
+    float dlim = 1e-6f * nn * pn_v3_l1(OA);
+    if (!(d0 > dlim || d0 < -dlim)) return 0;
+    F->plane.h0 = pn_v3_dot(cA, n);
+    F->plane.hu = pn_v3_dot(U, n);
+    F->plane.hv = pn_v3_dot(V, n);
+    F->plane_thr = 1e-6f * nn * (pn_v3_l1(cA) + pn_v3_l1(U) + pn_v3_l1(V));
+    if (d0 > 0.0f) F->plane = pn_lin_neg(F->plane); /* S must be on the other side: > thr */
+    return 1;
+}
+
+PN_KFN void pn_tri_edges(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, pn_tri_forms *F)
+{
+    pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]);
+    pn_v3 V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
+    pn_v3 cO = pn_v3_sub(pn_v3_make(L->c[0], L->c[1], L->c[2]), O);
+    F->e[0] = pn_edge_form(A, B, O, cO, U, V);
+    F->e[1] = pn_edge_form(B, C, O, cO, U, V);
+    F->e[2] = pn_edge_form(C, A, O, cO, U, V);
+}
+
+/* Value of a form at sample (a, b), in the one evaluation order (see the top). */
+PN_KFN float pn_lin_at(pn_lin f, float a, float b) { return (f.h0 + b * f.hv) + a * f.hu; }
+
+/* Sample (i, j) alone: 1 if triangle ABC blocks it from O. The per-ray form of
+ * pn_tri_mask(), for PN_ALGO_RAYTRACE: the same forms, the same value for each sample,
+ * the same comparisons (an edge value v passes the negated orientation when -v >= 0,
+ * and negation is exact). */
+PN_KFN uint32_t pn_tri_sample(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, int32_t i, int32_t j)
+{
+    pn_tri_forms F;
+    float a = pn_sample_coord(i, L->k), b = pn_sample_coord(j, L->k), v0, v1, v2;
+    if (!pn_tri_plane(O, A, B, C, L, &F)) return 0u;
+    if (!pn_pass_v(pn_lin_at(F.plane, a, b), 1, F.plane_thr)) return 0u;
+    pn_tri_edges(O, A, B, C, L, &F);
+    v0 = pn_lin_at(F.e[0], a, b);
+    v1 = pn_lin_at(F.e[1], a, b);
+    v2 = pn_lin_at(F.e[2], a, b);
+    return (uint32_t)((v0 >= 0.0f && v1 >= 0.0f && v2 >= 0.0f) || (-v0 >= 0.0f && -v1 >= 0.0f && -v2 >= 0.0f));
+}
+
 /* ORs into m (PN_MASK_WORDS_MAX words, bit j*k + i) the samples of light L that triangle
  * ABC blocks from O. Returns 1 if it blocks at least one sample, else 0. */
 PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, uint32_t *m)
 {
     uint32_t k = L->k;
-    pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]);
-    pn_v3 V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
-    pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]);
-    pn_v3 cO = pn_v3_sub(c, O);
-    pn_v3 n = pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
-    float d0 = pn_v3_dot(pn_v3_sub(O, A), n);
+    pn_tri_forms F;
     pn_lin plane, e[3], ne[3];
     float plane_thr;
     int pos_ok, neg_ok;
     uint32_t any = 0;
     int32_t j, row_lo, row_hi;
 
-    {
-        /* Plane side of O and of the samples, each with its float-noise scale: a value
-         * within 1e-6 of the magnitudes it is made of has no reliable sign (O, the light
-         * and the plane nearly coplanar: fuzz/ found such a triangle "blocking" from
-         * beyond the light). O that close to the plane starts the segment on it (t = 0);
-         * a sample that close ends it there (t = 1): the open segment does not cross. */
-        pn_v3 cA = pn_v3_sub(c, A), OA = pn_v3_sub(O, A);
-        float nn = pn_v3_l1(n);
-        float dlim = 1e-6f * nn * pn_v3_l1(OA);
-        if (!(d0 > dlim || d0 < -dlim)) return 0;
-        plane.h0 = pn_v3_dot(cA, n);
-        plane.hu = pn_v3_dot(U, n);
-        plane.hv = pn_v3_dot(V, n);
-        plane_thr = 1e-6f * nn * (pn_v3_l1(cA) + pn_v3_l1(U) + pn_v3_l1(V));
-        if (d0 > 0.0f) plane = pn_lin_neg(plane); /* S must be on the other side: > thr */
-    }
+    if (!pn_tri_plane(O, A, B, C, L, &F)) return 0;
+    plane = F.plane;
+    plane_thr = F.plane_thr;
     if (!(pn_lin_max(plane, k) > plane_thr)) return 0;
 
-    e[0] = pn_edge_form(A, B, O, cO, U, V);
-    e[1] = pn_edge_form(B, C, O, cO, U, V);
-    e[2] = pn_edge_form(C, A, O, cO, U, V);
+    pn_tri_edges(O, A, B, C, L, &F);
+    e[0] = F.e[0];
+    e[1] = F.e[1];
+    e[2] = F.e[2];
     ne[0] = pn_lin_neg(e[0]);
     ne[1] = pn_lin_neg(e[1]);
     ne[2] = pn_lin_neg(e[2]);

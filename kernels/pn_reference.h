@@ -112,14 +112,54 @@ typedef struct pn_shadow_counters {
     uint32_t overflow;   /* traversal stack overflows (must stay 0) */
 } pn_shadow_counters;
 
+/* A stack traversal of the BVH, stepped from leaf to leaf: the leaves whose boxes the
+ * frustum can reach, in a fixed order. Start with pn_bvh_walk_init(); pn_bvh_next_leaf()
+ * returns the next such leaf's node index, or PN_BVH_DONE. */
+#define PN_BVH_DONE 0xFFFFFFFFu
+
+typedef struct pn_bvh_walk {
+    uint32_t stack[PN_BVH_STACK];
+    uint32_t sp, node;
+} pn_bvh_walk;
+
+PN_KFN void pn_bvh_walk_init(pn_bvh_walk *w)
+{
+    w->sp = 0u;
+    w->node = 0u;
+}
+
+PN_KFN uint32_t pn_bvh_next_leaf(pn_bvh_walk *w, const pn_frustum *fr, PN_CONST pn_kbvh_node *nodes,
+                                 pn_shadow_counters *cnt)
+{
+    while (w->node != PN_BVH_DONE) {
+        uint32_t cur = w->node;
+        PN_CONST pn_kbvh_node *nd = nodes + cur;
+        if (pn_frustum_box(fr, nd)) {
+            if (nd->count == 0u && nd->first != 0u) { /* interior (an empty root has first 0) */
+                if (w->sp < PN_BVH_STACK) {
+                    w->stack[w->sp++] = nd->first + 1u;
+                } else {
+                    cnt->overflow++;
+                }
+                w->node = nd->first;
+                continue;
+            }
+            w->node = w->sp == 0u ? PN_BVH_DONE : w->stack[--w->sp];
+            return cur;
+        }
+        w->node = w->sp == 0u ? PN_BVH_DONE : w->stack[--w->sp];
+    }
+    return PN_BVH_DONE;
+}
+
 /* Visibility of one G-buffer pixel (P, unit geometric normal nrm, own triangle id). */
 PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris,
                                 PN_CONST pn_kbvh_node *nodes, PN_CONST uint32_t *tri_index,
                                 const pn_klight *L, pn_shadow_counters *cnt)
 {
     uint32_t m[PN_MASK_WORDS_MAX];
-    uint32_t stack[PN_BVH_STACK];
-    uint32_t sp = 0, node = 0, k = L->k;
+    uint32_t leaf, k = L->k;
+    pn_bvh_walk w;
     pn_frustum fr;
     pn_v3 O;
 
@@ -127,32 +167,19 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
     cnt->lit++;
     pn_mask_clear(m);
     pn_frustum_make(O, L, &fr);
-    for (;;) {
-        PN_CONST pn_kbvh_node *nd = nodes + node;
-        if (pn_frustum_box(&fr, nd)) {
-            if (nd->count == 0u && nd->first != 0u) { /* interior (an empty root has first 0) */
-                if (sp < PN_BVH_STACK) {
-                    stack[sp++] = nd->first + 1u;
-                } else {
-                    cnt->overflow++;
-                }
-                node = nd->first;
-                continue;
-            } else {
-                uint32_t e;
-                for (e = 0; e < nd->count; e++) {
-                    uint32_t t = tri_index[nd->first + e];
-                    pn_v3 A, B, C;
-                    if (t == own) continue;
-                    pn_tri_load(tris, t, &A, &B, &C);
-                    cnt->candidates++;
-                    cnt->blocking += pn_tri_mask(O, A, B, C, L, m);
-                }
-                if (pn_mask_full(m, k)) break;
-            }
+    pn_bvh_walk_init(&w);
+    while ((leaf = pn_bvh_next_leaf(&w, &fr, nodes, cnt)) != PN_BVH_DONE) {
+        PN_CONST pn_kbvh_node *nd = nodes + leaf;
+        uint32_t e;
+        for (e = 0; e < nd->count; e++) {
+            uint32_t t = tri_index[nd->first + e];
+            pn_v3 A, B, C;
+            if (t == own) continue;
+            pn_tri_load(tris, t, &A, &B, &C);
+            cnt->candidates++;
+            cnt->blocking += pn_tri_mask(O, A, B, C, L, m);
         }
-        if (sp == 0u) break;
-        node = stack[--sp];
+        if (pn_mask_full(m, k)) break;
     }
     return pn_mask_visibility(m, k);
 }

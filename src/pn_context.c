@@ -151,5 +151,8 @@ uint32_t pn_build_info(void)
 #if PN_ENABLE_GEARS
     f |= PN_BUILD_GEARS;
 #endif
+#if PN_ENABLE_RAYTRACE
+    f |= PN_BUILD_RAYTRACE;
+#endif
     return f;
 }

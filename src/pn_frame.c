@@ -153,6 +153,12 @@ static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
 #else
         return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_GEARS is not compiled in (PN_ENABLE_GEARS 0)");
 #endif
+    case PN_ALGO_RAYTRACE:
+#if PN_ENABLE_RAYTRACE
+        return PN_OK;
+#else
+        return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_RAYTRACE is not compiled in (PN_ENABLE_RAYTRACE 0)");
+#endif
     }
     return pn_fail(ctx, PN_E_INVALID_ARG, "unknown algorithm %u", (uint32_t)o->algo);
 }

@@ -22,6 +22,7 @@ typedef struct pn_algo_name {
 static const pn_algo_name pn_algos[] = {
     {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE},
     {"gears", PN_ALGO_GEARS, PN_BUILD_GEARS},
+    {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},
 };
 #define PN_ALGO_COUNT (sizeof(pn_algos) / sizeof(pn_algos[0]))
 

@@ -11,6 +11,10 @@
 #error "PN_ENABLE_GEARS must be 0 or 1"
 #endif
 
+#if PN_ENABLE_RAYTRACE != 0 && PN_ENABLE_RAYTRACE != 1
+#error "PN_ENABLE_RAYTRACE must be 0 or 1"
+#endif
+
 #if PN_GEARS_GRID_MAX < 1 || PN_GEARS_GRID_MAX > 1024
 #error "PN_GEARS_GRID_MAX must be in 1 .. 1024"
 #endif

@@ -26,6 +26,13 @@
 #define PN_ENABLE_GEARS 1
 #endif
 
+/* Per-sample ray tracing: k^2 shadow segments per pixel, each traced alone through the
+ * BVH to its first blocker, with the reference's predicate (so the same bits). The
+ * baseline GEARS is measured against; costs no arena. */
+#ifndef PN_ENABLE_RAYTRACE
+#define PN_ENABLE_RAYTRACE 1
+#endif
+
 /* ---- Limits (they size the arena; see pn_arena_size()). ------------------------------ */
 
 /* Largest triangle count a scene may have, including any ground plane the caller adds.

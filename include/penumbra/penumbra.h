@@ -184,7 +184,8 @@ typedef struct pn_light {
 
 typedef enum pn_algo {
     PN_ALGO_REFERENCE = 0,
-    PN_ALGO_GEARS = 1
+    PN_ALGO_GEARS = 1,
+    PN_ALGO_RAYTRACE = 2 /* k^2 single shadow rays per pixel; same bits as the reference */
 } pn_algo;
 
 typedef struct pn_frame_options {
@@ -245,8 +246,10 @@ typedef struct pn_stats {
     uint32_t bvh_depth;
     uint32_t bvh_max_leaf;
     uint64_t pass_ns[PN_PASS_COUNT]; /* 0 without a clock; last scene set / last frame */
-    uint64_t shadow_candidates;  /* triangles handed to the predicate in the last frame */
-    uint64_t shadow_blocking;    /* ...of which blocked at least one sample */
+    uint64_t shadow_candidates;  /* triangles handed to the predicate in the last frame
+                                    (PN_ALGO_RAYTRACE: ray-triangle tests) */
+    uint64_t shadow_blocking;    /* ...of which blocked at least one sample (per pixel;
+                                    PN_ALGO_RAYTRACE: blocked rays) */
     uint32_t lit_pixels;         /* pixels that see a triangle facing the light */
     /* GEARS (paper Tables 5 and 6), last frame */
     uint64_t gears_pairs;        /* (triangle, cell) pairs generated, over all tiles */
@@ -265,6 +268,7 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);
 /* Which algorithms and ports this build holds, as flags. */
 #define PN_BUILD_REFERENCE 0x1u
 #define PN_BUILD_GEARS 0x2u
+#define PN_BUILD_RAYTRACE 0x4u
 #define PN_BUILD_PORT_SCALAR 0x100u
 uint32_t pn_build_info(void);
 

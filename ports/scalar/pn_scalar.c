@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "pn_raster.h"
+#include "pn_raytrace.h"
 #include "pn_scalar.h"
 #include "pn_shade.h"
 
@@ -60,7 +61,8 @@ static pn_status pn_scalar_gbuffer(pn_context *ctx, pn_frame_state *fs)
 
 static pn_v3 pn_px3(const float *a, size_t pix) { return pn_v3_make(a[pix * 3u], a[pix * 3u + 1u], a[pix * 3u + 2u]); }
 
-static void pn_task_reference(void *task, uint32_t begin, uint32_t end)
+/* Rows [begin, end) of a per-pixel algorithm: PN_ALGO_REFERENCE or PN_ALGO_RAYTRACE. */
+static void pn_task_per_pixel(void *task, uint32_t begin, uint32_t end)
 {
     pn_scalar_task *tk = (pn_scalar_task *)task;
     pn_frame_state *fs = tk->fs;
@@ -73,10 +75,15 @@ static void pn_task_reference(void *task, uint32_t begin, uint32_t end)
         for (x = 0; x < fs->width; x++) {
             size_t pix = (size_t)y * fs->width + x;
             uint32_t id = fs->tri_id[pix];
-            fs->vis[pix] = id == PN_NO_TRIANGLE
-                               ? 1.0f
-                               : pn_reference_pixel(pn_px3(fs->pos, pix), pn_px3(fs->nrm, pix), id, ctx->tris,
-                                                    ctx->nodes, ctx->tri_index, &fs->light, &c);
+            pn_v3 P = pn_px3(fs->pos, pix), N = pn_px3(fs->nrm, pix);
+            if (id == PN_NO_TRIANGLE)
+                fs->vis[pix] = 1.0f;
+#if PN_ENABLE_RAYTRACE
+            else if (fs->algo == PN_ALGO_RAYTRACE)
+                fs->vis[pix] = pn_raytrace_pixel(P, N, id, ctx->tris, ctx->nodes, ctx->tri_index, &fs->light, &c);
+#endif
+            else
+                fs->vis[pix] = pn_reference_pixel(P, N, id, ctx->tris, ctx->nodes, ctx->tri_index, &fs->light, &c);
         }
         cnt[y] = c;
     }
@@ -90,9 +97,16 @@ static pn_status pn_scalar_shadow(pn_context *ctx, pn_frame_state *fs)
     tk.ctx = ctx;
     tk.fs = fs;
     switch (fs->algo) {
+#if PN_ENABLE_REFERENCE
     case PN_ALGO_REFERENCE:
-        pn_run(ctx, fs->height, pn_task_reference, &tk);
+        pn_run(ctx, fs->height, pn_task_per_pixel, &tk);
         break;
+#endif
+#if PN_ENABLE_RAYTRACE
+    case PN_ALGO_RAYTRACE:
+        pn_run(ctx, fs->height, pn_task_per_pixel, &tk);
+        break;
+#endif
 #if PN_ENABLE_GEARS
     case PN_ALGO_GEARS: {
         pn_status st = pn_scalar_gears(ctx, fs);

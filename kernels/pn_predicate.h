@@ -21,11 +21,12 @@
  *     see it with opposite signs; with zero counted as inside by both, a sample can never
  *     slip between them;
  *   - monotone: IEEE multiply and add are monotone, so for a fixed row h is monotone in i,
- *     and for fixed i monotone in j. Each form passes on a prefix or suffix of a row, a
- *     row's blocked samples are one interval per orientation, and the extreme value over
- *     the grid is at a corner. Interval ends are found by evaluating h itself (an estimate
- *     from a division only picks the starting point), so the result is the per-sample
- *     answer exactly, at a fraction of the cost.
+ *     and for fixed i monotone in j. Each form passes on a prefix or suffix of a row,
+ *     and the extreme value over the grid is at a corner. So the rows that can hold a
+ *     blocked sample are found exactly by walking h itself along the best column (an
+ *     estimate only picks the starting point); within them every sample is evaluated,
+ *     four at a time without branches (pn_row_bits). The mask is the per-sample answer
+ *     exactly: tests/test_raytrace.c compares every bit with pn_tri_sample().
  * A point light is the case k = 1, U = V = 0. */
 #ifndef PN_PREDICATE_H
 #define PN_PREDICATE_H
@@ -110,8 +111,10 @@ PN_KFN int pn_pass_at(int col, float rb, float slope, float cst, int32_t n, uint
     return col ? pn_col_pass(rb, slope, cst, n, k, strict, thr) : pn_row_pass(rb, slope, n, k, strict, thr);
 }
 
-PN_KFN void pn_narrow(int col, float rb, float slope, float cst, uint32_t k, int strict, float thr, int32_t *lo,
-                      int32_t *hi)
+/* rs is 1/slope (any value when slope is 0): it only places the starting point of the
+ * walk, so its rounding never matters; precomputing it saves a division per row. */
+PN_KFN void pn_narrow(int col, float rb, float slope, float cst, float rs, uint32_t k, int strict, float thr,
+                      int32_t *lo, int32_t *hi)
 {
     int32_t kk = (int32_t)k;
     if (*lo > *hi) return;
@@ -121,7 +124,7 @@ PN_KFN void pn_narrow(int col, float rb, float slope, float cst, uint32_t k, int
     }
     {
         /* Real root as a sample index; only a starting point for the exact walk. */
-        float est = ((-(rb + cst) / slope + 1.0f) * (float)k - 1.0f) * 0.5f;
+        float est = ((-(rb + cst) * rs + 1.0f) * (float)k - 1.0f) * 0.5f;
         if (slope > 0.0f) { /* increasing: passes on [first, k-1] */
             int32_t i = pn_kceil_clamp(est, 0, kk);
             while (i > 0 && pn_pass_at(col, rb, slope, cst, i - 1, k, strict, thr)) i--;
@@ -136,10 +139,7 @@ PN_KFN void pn_narrow(int col, float rb, float slope, float cst, uint32_t k, int
     }
 }
 
-PN_KFN void pn_row_narrow(float rb, float hu, uint32_t k, int strict, float thr, int32_t *lo, int32_t *hi)
-{
-    pn_narrow(0, rb, hu, 0.0f, k, strict, thr, lo, hi);
-}
+PN_KFN float pn_recip(float v) { return v != 0.0f ? 1.0f / v : 0.0f; }
 
 /* Rows j that can hold a passing sample: where the form's largest value in the row (at
  * the end column its slope hu points to) passes. That value is monotone in j, so this is
@@ -147,7 +147,7 @@ PN_KFN void pn_row_narrow(float rb, float hu, uint32_t k, int strict, float thr,
 PN_KFN void pn_rows_narrow(pn_lin f, uint32_t k, int strict, float thr, int32_t *lo, int32_t *hi)
 {
     float a = pn_sample_coord(f.hu > 0.0f ? (int32_t)k - 1 : 0, k);
-    pn_narrow(1, f.h0, f.hv, a * f.hu, k, strict, thr, lo, hi);
+    pn_narrow(1, f.h0, f.hv, a * f.hu, pn_recip(f.hv), k, strict, thr, lo, hi);
 }
 
 PN_KFN void pn_mask_set_run(uint32_t *m, uint32_t k, int32_t j, int32_t lo, int32_t hi)
@@ -227,6 +227,31 @@ PN_KFN uint32_t pn_tri_sample(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_kligh
     return (uint32_t)((v0 >= 0.0f && v1 >= 0.0f && v2 >= 0.0f) || (-v0 >= 0.0f && -v1 >= 0.0f && -v2 >= 0.0f));
 }
 
+/* Bits i < n4 (a multiple of 4) of one row where the plane value pb + a_i*phu passes
+ * (> thr) and the three edge values b_q + a_i*h_q are all >= 0 or all <= 0 (-v >= 0 is
+ * v <= 0, so this is both orientations of pn_tri_sample()). Branch-free, four lanes at a
+ * time: the inner loop vectorizes. */
+PN_KFN uint32_t pn_row_bits(const float *av, int32_t n4, float pb, float phu, float thr, float b0, float h0,
+                            float b1, float h1, float b2, float h2)
+{
+    const uint32_t lane[4] = {1u, 2u, 4u, 8u};
+    uint32_t bits = 0u;
+    int32_t i0, l;
+    for (i0 = 0; i0 < n4; i0 += 4) {
+        uint32_t r = 0u;
+        for (l = 0; l < 4; l++) {
+            float a = av[i0 + l];
+            float vp = pb + a * phu, v0 = b0 + a * h0, v1 = b1 + a * h1, v2 = b2 + a * h2;
+            int32_t pos = (v0 >= 0.0f) & (v1 >= 0.0f) & (v2 >= 0.0f);
+            int32_t neg = (v0 <= 0.0f) & (v1 <= 0.0f) & (v2 <= 0.0f);
+            int32_t ok = (vp > thr) & (pos | neg);
+            r |= (0u - (uint32_t)ok) & lane[l];
+        }
+        bits |= r << i0;
+    }
+    return bits;
+}
+
 /* ORs into m (PN_MASK_WORDS_MAX words, bit j*k + i) the samples of light L that triangle
  * ABC blocks from O. Returns 1 if it blocks at least one sample, else 0. */
 PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, uint32_t *m)
@@ -275,21 +300,24 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
         row_lo = jlo;
         row_hi = jhi;
     }
-    for (j = row_lo; j <= row_hi; j++) {
-        float b = pn_sample_coord(j, k);
-        int32_t plo = 0, phi = (int32_t)k - 1;
-        int s;
-        pn_row_narrow(plane.h0 + b * plane.hv, plane.hu, k, 1, plane_thr, &plo, &phi);
-        if (plo > phi) continue;
-        for (s = 0; s < 2; s++) {
-            int32_t lo = plo, hi = phi, q;
-            if (!(s == 0 ? pos_ok : neg_ok)) continue;
-            for (q = 0; q < 3; q++) {
-                pn_lin f = s == 0 ? e[q] : ne[q];
-                pn_row_narrow(f.h0 + b * f.hv, f.hu, k, 0, 0.0f, &lo, &hi);
-            }
-            if (lo <= hi) {
-                pn_mask_set_run(m, k, j, lo, hi);
+    {
+        /* Every sample of the candidate rows, evaluated branch-free four at a time (the
+         * inner loop vectorizes): the same value and comparisons as pn_tri_sample().
+         * a_i = (2i+1)*(1/k) - 1 equals pn_sample_coord() exactly: k is a power of two. */
+        float rk = 1.0f / (float)k, av[PN_MASK_K_MAX + 3u];
+        uint32_t keep = k >= 32u ? 0xFFFFFFFFu : ((1u << k) - 1u);
+        int32_t n4 = ((int32_t)k + 3) & ~3, i;
+        for (i = 0; i < n4; i++) av[i] = (float)(2 * i + 1) * rk - 1.0f;
+        for (j = row_lo; j <= row_hi; j++) {
+            float b = av[j];
+            float pb = plane.h0 + b * plane.hv;
+            float b0 = e[0].h0 + b * e[0].hv, b1 = e[1].h0 + b * e[1].hv, b2 = e[2].h0 + b * e[2].hv;
+            uint32_t bits, bit = (uint32_t)j * k;
+            if (((m[bit >> 5] >> (bit & 31u)) & keep) == keep) continue; /* row already blocked */
+            bits = pn_row_bits(av, n4, pb, plane.hu, plane_thr, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu);
+            bits &= keep;
+            if (bits) {
+                m[bit >> 5] |= bits << (bit & 31u);
                 any = 1;
             }
         }

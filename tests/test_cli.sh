@@ -18,6 +18,14 @@ check test "$(head -n 3 sq.pfm | tr '\n' ' ')" = "Pf 64 48 -1.0 "
 check grep -q '"view_source": "builtin"' sq.json
 check grep -q '"k": 8' sq.json
 
+# Every algorithm the build lists renders the same visibility bytes as the reference here.
+for a in gears raytrace; do
+  "$bin" render --builtin square --size 64x48 --k 8 --algo $a --out sq_$a.png --vis sq_$a.pfm --stats sq_$a.json 2>err.txt
+  check test $? -eq 0
+  check grep -q "\"algo\": \"$a\"" sq_$a.json
+  check cmp -s sq.pfm sq_$a.pfm
+done
+
 # View and light flags override the defaults and are recorded; point light via zero edges.
 "$bin" render --builtin square --size 32x32 --eye 0,6,6 --target 0,0,0 --up 0,1,0 --fov 45 \
     --light-center 0,4,0 --light-u 0,0,0 --light-v 0,0,0 --out pt.png --stats pt.json 2>err.txt

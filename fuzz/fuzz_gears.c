@@ -32,6 +32,17 @@ static float coord(pn_bytes *b, float scale)
     return (float)v / 32768.0f * scale;
 }
 
+/* Three coordinates x, y, z taken in that order. Not pn_v3_make(coord(), coord(), coord()):
+ * argument evaluation order is unspecified (GCC goes right to left, clang left to right), and
+ * the replay build (gcc) must decode the bytes exactly as the libFuzzer build (clang) did. */
+static pn_v3 coord3(pn_bytes *b, float scale)
+{
+    float x = coord(b, scale);
+    float y = coord(b, scale);
+    float z = coord(b, scale);
+    return pn_v3_make(x, y, z);
+}
+
 #define MAX_T 24
 #define MAX_O 48
 
@@ -49,14 +60,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     float obox[6] = {PN_KINF, PN_KINF, PN_KINF, -PN_KINF, -PN_KINF, -PN_KINF};
 
     memset(&L, 0, sizeof(L));
-    c = pn_v3_make(coord(&b, scale), coord(&b, scale), coord(&b, scale));
+    c = coord3(&b, scale);
     if (mode & 1u) { /* point light */
         U = V = N = pn_v3_make(0, 0, 0);
         L.k = 1;
         L.is_point = 1;
     } else {
-        pn_v3 a = pn_v3_make(coord(&b, 1.0f), coord(&b, 1.0f), coord(&b, 1.0f));
-        pn_v3 r = pn_v3_make(coord(&b, 1.0f), coord(&b, 1.0f), coord(&b, 1.0f));
+        pn_v3 a = coord3(&b, 1.0f);
+        pn_v3 r = coord3(&b, 1.0f);
         float lu = scale * (0.001f + (float)take(&b) / 64.0f), lv = lu * (0.01f + (float)take(&b) / 16.0f);
         if (pn_v3_dot(a, a) < 1e-6f) a = pn_v3_make(1, 0, 0);
         a = pn_v3_normalize(a);
@@ -77,9 +88,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     for (t = 0; t < nt; t++) {
         uint32_t q, how = take(&b);
         float sz = (how & 0x80u) ? 1e-3f : 1.0f;
-        pn_v3 base = pn_v3_add(c, pn_v3_make(coord(&b, scale), coord(&b, scale), coord(&b, scale)));
+        pn_v3 base = pn_v3_add(c, coord3(&b, scale));
         for (q = 0; q < 3; q++) {
-            pn_v3 p = q == 0 ? base : pn_v3_add(base, pn_v3_make(coord(&b, scale * sz), coord(&b, scale * sz), coord(&b, scale * sz)));
+            pn_v3 p = q == 0 ? base : pn_v3_add(base, coord3(&b, scale * sz));
             if (!L.is_point) {
                 float h = pn_v3_dot(pn_v3_sub(p, c), N);
                 if (h < 0.0f) p = pn_v3_sub(p, pn_v3_scale(N, 2.0f * h)); /* mirror in front */
@@ -95,7 +106,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
      * the vertex (its segment to that sample runs exactly through the vertex). */
     for (o = 0; o < no; o++) {
         uint32_t how = take(&b);
-        pn_v3 O = pn_v3_add(c, pn_v3_make(coord(&b, scale), coord(&b, scale), coord(&b, scale)));
+        pn_v3 O = pn_v3_add(c, coord3(&b, scale));
         if (how & 1u) {
             uint32_t tt = take(&b) % nt, q = take(&b) % 3u, i = take(&b) % L.k, j = take(&b) % L.k;
             pn_v3 vtx = pn_v3_make(tris[tt * 9 + q * 3], tris[tt * 9 + q * 3 + 1], tris[tt * 9 + q * 3 + 2]);

@@ -304,7 +304,7 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
         /* Every sample of the candidate rows, evaluated branch-free four at a time (the
          * inner loop vectorizes): the same value and comparisons as pn_tri_sample().
          * a_i = (2i+1)*(1/k) - 1 equals pn_sample_coord() exactly: k is a power of two. */
-        float rk = 1.0f / (float)k, av[PN_MASK_K_MAX + 3u];
+        float rk = 1.0f / (float)k, av[32]; /* k <= 32, so k rounded up to 4 is <= 32 */
         uint32_t keep = k >= 32u ? 0xFFFFFFFFu : ((1u << k) - 1u);
         int32_t n4 = ((int32_t)k + 3) & ~3, i;
         for (i = 0; i < n4; i++) av[i] = (float)(2 * i + 1) * rk - 1.0f;

@@ -1,9 +1,14 @@
 /* pn_kernel.h - the qualifier vocabulary that lets kernels/ compile both as C99 (scalar
  * port, host) and as OpenCL C 1.2 (OpenCL port). Every kernels/ header includes it first.
+ * OpenCL compilers define __OPENCL_VERSION__; Clang without a device target defines only
+ * __OPENCL_C_VERSION__, so either selects the OpenCL branch.
  *
  *   PN_KFN      a kernel helper function (static inline in C, plain inline-able in CL)
  *   PN_GLOBAL   pointer into the arena (device global memory in OpenCL)
  *   PN_CONST    read-only pointer into the arena
+ *   pn_katomic_add(p, v)   32-bit unsigned atomic add into the arena, returns the old value:
+ *               for order-independent reductions (counts, histograms) only, never for
+ *               anything whose result depends on which work item came first
  *
  * Kernel code uses only + - * / and pn_ksqrt on float, 32-bit integers, fixed-size
  * arrays, loops and no recursion, no function pointers, no double, no libc: both
@@ -12,7 +17,7 @@
 #ifndef PN_KERNEL_H
 #define PN_KERNEL_H
 
-#ifdef __OPENCL_VERSION__
+#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
 #pragma OPENCL FP_CONTRACT OFF
 #define PN_KFN static inline
 #define PN_GLOBAL __global
@@ -21,8 +26,15 @@ typedef uint uint32_t;
 typedef int int32_t;
 typedef ushort uint16_t;
 typedef uchar uint8_t;
+typedef ulong uint64_t;
 #define pn_ksqrt(x) sqrt(x)
 #define PN_KINF INFINITY
+#define pn_katomic_add(p, v) atomic_add((p), (v))
+/* The OpenCL port passes the host's configuration as build options (-D...), so both
+ * ports size their private arrays alike. */
+#if !defined(PN_MASK_WORDS_MAX) || !defined(PN_BVH_STACK)
+#error "OpenCL build options must define PN_MASK_WORDS_MAX and PN_BVH_STACK (ports/opencl does)"
+#endif
 #else
 #include <stdint.h>
 #include "penumbra/config.h"
@@ -33,6 +45,10 @@ typedef uchar uint8_t;
  * with -fno-math-errno (it becomes vsqrt.f32 on Cortex-M7, sqrtss on x86). */
 #define pn_ksqrt(x) __builtin_sqrtf(x)
 #define PN_KINF (__builtin_inff())
+/* GCC/Clang builtin (like the two above): inline on x86 and on ARMv7-M (ldrex/strex), no
+ * library call, so it stays freestanding. Relaxed: only the sum matters, and the caller's
+ * parallel-for joins before anything reads it. */
+#define pn_katomic_add(p, v) __atomic_fetch_add((p), (v), __ATOMIC_RELAXED)
 #endif
 
 #endif

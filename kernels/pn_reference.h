@@ -75,25 +75,31 @@ PN_KFN int pn_slab(float o, float d, float lo, float hi, float *t0, float *t1)
     return *t0 <= *t1;
 }
 
-/* 0 when the box certainly holds nothing the frustum's segments can cross. */
-PN_KFN int pn_frustum_box(const pn_frustum *fr, PN_CONST pn_kbvh_node *nd)
+/* 0 when the box [lo, hi] certainly holds nothing the frustum's segments can cross. The
+ * box comes by value so that a box in private memory (GEARS' per-triangle box) and a BVH
+ * node in the arena take the same test (OpenCL C 1.2 has no generic address space). */
+PN_KFN int pn_frustum_aabb(const pn_frustum *fr, pn_v3 lo, pn_v3 hi)
 {
     if (fr->is_point) {
         float t0 = 0.0f, t1 = 1.0f, tol = fr->tol;
-        return pn_slab(fr->seg_o.x, fr->seg_d.x, nd->bmin[0] - tol, nd->bmax[0] + tol, &t0, &t1) &&
-               pn_slab(fr->seg_o.y, fr->seg_d.y, nd->bmin[1] - tol, nd->bmax[1] + tol, &t0, &t1) &&
-               pn_slab(fr->seg_o.z, fr->seg_d.z, nd->bmin[2] - tol, nd->bmax[2] + tol, &t0, &t1);
+        return pn_slab(fr->seg_o.x, fr->seg_d.x, lo.x - tol, hi.x + tol, &t0, &t1) &&
+               pn_slab(fr->seg_o.y, fr->seg_d.y, lo.y - tol, hi.y + tol, &t0, &t1) &&
+               pn_slab(fr->seg_o.z, fr->seg_d.z, lo.z - tol, hi.z + tol, &t0, &t1);
     } else {
         uint32_t q;
         for (q = 0; q < 6; q++) {
             pn_v3 n = fr->n[q];
-            pn_v3 v = pn_v3_make(n.x >= 0.0f ? nd->bmin[0] : nd->bmax[0],
-                                 n.y >= 0.0f ? nd->bmin[1] : nd->bmax[1],
-                                 n.z >= 0.0f ? nd->bmin[2] : nd->bmax[2]);
+            pn_v3 v = pn_v3_make(n.x >= 0.0f ? lo.x : hi.x, n.y >= 0.0f ? lo.y : hi.y, n.z >= 0.0f ? lo.z : hi.z);
             if (pn_v3_dot(n, v) > fr->d[q]) return 0;
         }
         return 1;
     }
+}
+
+PN_KFN int pn_frustum_box(const pn_frustum *fr, PN_CONST pn_kbvh_node *nd)
+{
+    return pn_frustum_aabb(fr, pn_v3_make(nd->bmin[0], nd->bmin[1], nd->bmin[2]),
+                           pn_v3_make(nd->bmax[0], nd->bmax[1], nd->bmax[2]));
 }
 
 PN_KFN void pn_tri_load(PN_CONST float *tris, uint32_t t, pn_v3 *A, pn_v3 *B, pn_v3 *C)

@@ -5,7 +5,6 @@
 #include <string.h>
 
 #include "pn_gears_host.h"
-#include "pn_kmath.h"
 
 #if PN_ENABLE_GEARS
 
@@ -98,19 +97,183 @@ void pn_gears_bounds(pn_kgrid *g, float x0, float y0, float x1, float y1, uint32
     g->res_y = res;
 }
 
-/* Tiles: runs of global grid rows (face * res + row) whose pairs fit the pool; a row that
- * alone exceeds it is split into runs of its cells by pn_gears_split_row. */
-uint32_t pn_gears_next_tile(const uint64_t *row_pairs, uint32_t rows, uint32_t start, uint64_t pool,
-                            uint32_t *end_out)
+/* uint64 -> float through two 32-bit halves: a bare-metal target converts those in
+ * hardware, where a direct 64-bit conversion needs a libgcc helper. */
+static float pn_u64_to_f32(uint64_t v)
 {
-    uint64_t sum = 0;
-    uint32_t r = start;
-    while (r < rows && sum + row_pairs[r] <= pool) {
-        sum += row_pairs[r];
-        r++;
+    return (float)(uint32_t)(v >> 32) * 4294967296.0f + (float)(uint32_t)v;
+}
+
+pn_status pn_gears_begin(pn_context *ctx, const pn_frame_state *fs, pn_gears_frame *g)
+{
+    size_t px = (size_t)fs->width * fs->height;
+    uint32_t gmax = pn_gears_grid_max(&ctx->limits);
+    size_t cmax = 6u * (size_t)gmax * gmax;
+    memset(g, 0, sizeof(*g));
+    g->pool = pn_gears_pairs_max(&ctx->limits);
+    g->cells_max = (uint32_t)cmax;
+    g->faces.res = fs->gears_grid;
+    /* Same pools, same order as pn_frame_pools() in src/pn_arena.c. */
+    if (!(g->rects = (pn_cellrect *)pn_frame_alloc(ctx, ctx->limits.max_triangles, 6u * 8u, "gears cell rects")) ||
+        !(g->tri_off = (uint32_t *)pn_frame_alloc(ctx, (size_t)ctx->limits.max_triangles + 1u, 4u, "gears pair offsets")) ||
+        !(g->pix_cell = (uint32_t *)pn_frame_alloc(ctx, px, 4u, "gears pixel cells")) ||
+        !(g->row_box = (float *)pn_frame_alloc(ctx, fs->height, 32u, "gears row boxes")) ||
+        !(g->cell_off = (uint32_t *)pn_frame_alloc(ctx, cmax + 1u, 4u, "gears cell offsets")) ||
+        !(g->cell_pix = (uint32_t *)pn_frame_alloc(ctx, cmax, 4u, "gears pixels per cell")) ||
+        !(g->cell_cur = (uint32_t *)pn_frame_alloc(ctx, cmax, 4u, "gears cell cursors")) ||
+        !(g->row_pairs = (uint32_t *)pn_frame_alloc(ctx, 6u * (size_t)gmax, 8u, "gears pairs per row")) ||
+        !(g->pairs = (uint32_t *)pn_frame_alloc(ctx, g->pool, 8u, "gears pairs")) ||
+        !(g->sorted = (uint32_t *)pn_frame_alloc(ctx, g->pool, 4u, "gears sorted pairs")))
+        return PN_E_POOL_EXHAUSTED;
+    memset(&ctx->gears, 0, sizeof(ctx->gears));
+    return PN_OK;
+}
+
+uint32_t pn_gears_cameras(pn_context *ctx, const pn_frame_state *fs, pn_gears_frame *g)
+{
+    float obox[6];
+    uint32_t y, f, G = g->faces.res;
+    pn_box3_empty(obox);
+    for (y = 0; y < fs->height; y++) {
+        g->lit += ((const pn_shadow_counters *)fs->counters)[y].lit;
+        pn_box_join_n(obox, g->row_box + (size_t)y * 8u, 6u);
     }
-    *end_out = r; /* == start: row `start` alone exceeds the pool */
-    return r > start;
+    if (g->lit == 0u) return 0;
+    g->faces.n = pn_gears_faces(&fs->light, obox, ctx->scene_diag, g->faces.f);
+    g->cells = g->faces.n * G * G;
+    g->rows = g->faces.n * G;
+    if (fs->light.is_point)
+        for (f = 0; f < 6; f++) pn_gears_bounds(&g->faces.f[f], -1.0f, -1.0f, 1.0f, 1.0f, G);
+    return 1;
+}
+
+void pn_gears_grid(const pn_frame_state *fs, pn_gears_frame *g)
+{
+    float pb[4];
+    uint32_t y;
+    pn_box2_empty(pb);
+    for (y = 0; y < fs->height; y++) pn_box_join_n(pb, g->row_box + (size_t)y * 8u, 4u);
+    pn_gears_bounds(&g->faces.f[0], pb[0], pb[1], pb[2], pb[3], g->faces.res);
+}
+
+static uint64_t pn_row_pairs_at(const pn_gears_frame *g, uint32_t r)
+{
+    return (uint64_t)g->row_pairs[2u * r] | ((uint64_t)g->row_pairs[2u * r + 1u] << 32);
+}
+
+static void pn_tile_set(pn_ktile *t, uint32_t face, uint32_t r0, uint32_t r1, uint32_t x0, uint32_t x1)
+{
+    memset(t, 0, sizeof(*t));
+    t->face = face;
+    t->r0 = r0;
+    t->r1 = r1;
+    t->x0 = x0;
+    t->x1 = x1;
+}
+
+/* Tiles: runs of global grid rows (face * res + row) whose pairs fit the pool, cut at face
+ * boundaries (a tile never spans two faces); a row that alone exceeds the pool goes as
+ * runs of consecutive cells, its per-cell counts taken afresh before each run (the tile
+ * before it used cell_cur). */
+pn_status pn_gears_plan_next(pn_context *ctx, pn_gears_frame *g, pn_ktile *tile, uint32_t *action)
+{
+    uint32_t G = g->faces.res;
+    for (;;) {
+        if (g->plan_split) {
+            uint32_t row = g->plan_start, face = row / G, ry = row % G, x, xe;
+            uint64_t sum = 0;
+            if (g->plan_xs >= G) {
+                g->plan_split = 0;
+                g->plan_start++;
+                continue;
+            }
+            if (!g->plan_counted) {
+                pn_tile_set(tile, face, ry, ry, 0, G - 1u);
+                g->plan_counted = 1;
+                *action = PN_GEARS_PLAN_COUNT_ROW;
+                return PN_OK;
+            }
+            for (x = 0; g->plan_xs == 0u && x < G; x++)
+                if (g->cell_cur[x] > g->pool)
+                    return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
+                                   "GEARS pair pool 'gears pairs' holds %u pairs; cell %u of grid row %u alone "
+                                   "needs %u (raise pn_limits.gears_pairs or PN_GEARS_PAIRS)",
+                                   g->pool, x, row, g->cell_cur[x]);
+            for (xe = g->plan_xs; xe < G && sum + g->cell_cur[xe] <= g->pool; xe++) sum += g->cell_cur[xe];
+            pn_tile_set(tile, face, ry, ry, g->plan_xs, xe - 1u);
+            g->plan_xs = xe;
+            g->plan_counted = 0;
+            *action = PN_GEARS_PLAN_TILE;
+            return PN_OK;
+        }
+        if (g->plan_s0 < g->plan_end) {
+            uint32_t face = g->plan_s0 / G, e0 = (face + 1u) * G < g->plan_end ? (face + 1u) * G : g->plan_end;
+            pn_tile_set(tile, face, g->plan_s0 % G, (e0 - 1u) % G, 0, G - 1u);
+            g->plan_s0 = e0;
+            *action = PN_GEARS_PLAN_TILE;
+            return PN_OK;
+        }
+        if (g->plan_start >= g->rows) {
+            *action = PN_GEARS_PLAN_DONE;
+            return PN_OK;
+        }
+        {
+            uint64_t sum = 0;
+            uint32_t r = g->plan_start;
+            while (r < g->rows && sum + pn_row_pairs_at(g, r) <= g->pool) sum += pn_row_pairs_at(g, r++);
+            if (r == g->plan_start) { /* this row alone exceeds the pool */
+                g->plan_split = 1;
+                g->plan_xs = 0;
+                g->plan_counted = 0;
+            } else {
+                g->plan_s0 = g->plan_start;
+                g->plan_end = r;
+                g->plan_start = r;
+            }
+        }
+    }
+}
+
+pn_status pn_gears_tile_pairs(pn_context *ctx, pn_gears_frame *g, uint64_t need)
+{
+    if (need > g->pool) return pn_fail(ctx, PN_E_INTERNAL, "GEARS tile plan exceeded the pair pool");
+    g->tiles++;
+    g->total_pairs += need;
+    if (need > g->pairs_high) g->pairs_high = (uint32_t)need;
+    return PN_OK;
+}
+
+void pn_gears_tile_cells(pn_gears_frame *g)
+{
+    uint32_t c;
+    for (c = 0; c < g->cells; c++) {
+        uint32_t n = g->cell_off[c + 1u] - g->cell_off[c];
+        if (n && g->cell_pix[c]) {
+            g->assignments += (uint64_t)n * g->cell_pix[c];
+            g->sum_tris_cell += n;
+            if (n > g->max_tris_cell) g->max_tris_cell = n;
+        }
+    }
+}
+
+void pn_gears_end(pn_context *ctx, const pn_gears_frame *g)
+{
+    uint32_t c, used = 0, max_pix = 0;
+    for (c = 0; c < g->cells; c++)
+        if (g->cell_pix[c]) {
+            used++;
+            if (g->cell_pix[c] > max_pix) max_pix = g->cell_pix[c];
+        }
+    ctx->gears.pairs = g->total_pairs;
+    ctx->gears.assignments = g->assignments;
+    ctx->gears.tiles = g->tiles;
+    ctx->gears.faces = g->faces.n;
+    ctx->gears.cells_used = used;
+    ctx->gears.max_tris = g->max_tris_cell;
+    ctx->gears.max_pix = max_pix;
+    ctx->gears.mean_tris = used ? pn_u64_to_f32(g->sum_tris_cell) / (float)used : 0.0f;
+    ctx->gears.mean_pix = used ? pn_u64_to_f32(g->lit) / (float)used : 0.0f;
+    ctx->gears.pairs_high = g->pairs_high;
 }
 
 #endif

@@ -1,0 +1,246 @@
+/* pn_gears_pass.h - the work items of a GEARS frame (paper §3-4), shared by both ports:
+ * the scalar port loops over them (ports/scalar/pn_scalar_gears.c), the OpenCL port runs
+ * them as kernels (kernels/pn_gears.cl). The host steps between them (grid cameras, tile
+ * plan, statistics) are src/pn_gears.c.
+ *
+ *   per row       origins (visibility start, lit count, box of origins), projected box
+ *   per pixel     grid cell of the pixel's origin, and the cell's pixel count
+ *   per triangle  cell rectangle on each face; pairs per grid row (tile plan); pairs per
+ *                 cell of one grid row (a row split into runs of cells); pair count and
+ *                 scatter within a tile
+ *   per pixel     the mask of the pixel's cell's triangles, in ascending triangle order
+ *
+ * Counts that many work items add to (pixels per cell, pairs per row or cell) use
+ * pn_katomic_add: integer sums, the same whatever the order. */
+#ifndef PN_GEARS_PASS_H
+#define PN_GEARS_PASS_H
+
+#include "pn_gears.h"
+#include "pn_reference.h"
+
+/* The grid cameras of a frame: n faces (1 area light, 6 point light) of res x res cells. */
+typedef struct pn_kfaces {
+    pn_kgrid f[6];
+    uint32_t n, res, pad0, pad1;
+} pn_kfaces;
+
+/* A tile of cells: grid rows [r0, r1] and columns [x0, x1] of one face. */
+typedef struct pn_ktile {
+    uint32_t face, r0, r1, x0, x1, pad0, pad1, pad2;
+} pn_ktile;
+
+/* Shadow-ray origin of a pixel, or 0 when the pixel has no triangle or cannot see the
+ * light (its visibility is then final: 1 or 0). */
+PN_KFN int pn_gears_origin(const pn_klight *L, PN_CONST uint32_t *tri_id, PN_CONST float *pos, PN_CONST float *nrm,
+                           size_t pix, pn_v3 *O)
+{
+    if (tri_id[pix] == 0xFFFFFFFFu) return 0;
+    return pn_shadow_origin(pn_v3_load(pos + pix * 3u), pn_v3_load(nrm + pix * 3u), L, O);
+}
+
+/* Row y: visibility of final pixels (background 1, facing away 0) and 1 for the rest
+ * until a tile's triangles block samples; the row's counters (lit pixels); the 3-D box of
+ * its origins into row_box[y * 8 ..]. */
+PN_KFN void pn_gears_origins_row(const pn_klight *L, uint32_t width, uint32_t y, PN_CONST uint32_t *tri_id,
+                                 PN_CONST float *pos, PN_CONST float *nrm, PN_GLOBAL float *vis,
+                                 PN_GLOBAL float *row_box, PN_GLOBAL pn_shadow_counters *cnt)
+{
+    float b[6];
+    uint32_t x, i, lit = 0;
+    pn_box3_empty(b);
+    for (x = 0; x < width; x++) {
+        size_t pix = (size_t)y * width + x;
+        pn_v3 O;
+        if (!pn_gears_origin(L, tri_id, pos, nrm, pix, &O)) {
+            vis[pix] = tri_id[pix] == 0xFFFFFFFFu ? 1.0f : 0.0f;
+            continue;
+        }
+        vis[pix] = 1.0f;
+        lit++;
+        pn_box3_add(b, O);
+    }
+    for (i = 0; i < 6u; i++) row_box[(size_t)y * 8u + i] = b[i];
+    cnt[y].candidates = 0u;
+    cnt[y].blocking = 0u;
+    cnt[y].lit = lit;
+    cnt[y].overflow = 0u;
+}
+
+/* Row y: the 2-D box of its origins projected by the area light's grid camera. */
+PN_KFN void pn_gears_project_row(const pn_klight *L, const pn_kgrid *g, uint32_t width, uint32_t y,
+                                 PN_CONST uint32_t *tri_id, PN_CONST float *pos, PN_CONST float *nrm,
+                                 PN_GLOBAL float *row_box)
+{
+    float b[4];
+    uint32_t x, i;
+    pn_box2_empty(b);
+    for (x = 0; x < width; x++) {
+        pn_v3 O;
+        if (pn_gears_origin(L, tri_id, pos, nrm, (size_t)y * width + x, &O)) pn_box_add(g, O, b);
+    }
+    for (i = 0; i < 4u; i++) row_box[(size_t)y * 8u + i] = b[i];
+}
+
+/* Pixel pix: its global cell (face * res^2 + cell) or PN_CELL_NONE, and one more pixel in
+ * that cell's count (cell_pix zeroed beforehand). */
+PN_KFN void pn_gears_pixel_cell(const pn_klight *L, const pn_kfaces *F, PN_CONST uint32_t *tri_id,
+                                PN_CONST float *pos, PN_CONST float *nrm, size_t pix, PN_GLOBAL uint32_t *pix_cell,
+                                PN_GLOBAL uint32_t *cell_pix)
+{
+    pn_v3 O;
+    float px, py;
+    uint32_t f, cell;
+    if (!pn_gears_origin(L, tri_id, pos, nrm, pix, &O)) {
+        pix_cell[pix] = PN_CELL_NONE;
+        return;
+    }
+    f = pn_gears_origin_face(L, O);
+    pn_grid_project(&F->f[f], O, &px, &py);
+    cell = f * F->res * F->res + pn_grid_cell(&F->f[f], px, py);
+    pix_cell[pix] = cell;
+    pn_katomic_add(&cell_pix[cell], 1u);
+}
+
+/* Triangle t: its rectangle of cells on every face (A.3), rects[t * 6 + face]. */
+PN_KFN void pn_gears_tri_rects(const pn_kfaces *F, const pn_klight *L, PN_CONST float *tris, PN_CONST uint8_t *flags,
+                               uint32_t t, PN_GLOBAL pn_cellrect *rects)
+{
+    uint32_t f;
+    pn_v3 A, B, C;
+    if (flags[t] & PN_TRI_DEGENERATE) {
+        for (f = 0; f < F->n; f++) rects[(size_t)t * 6u + f] = pn_cellrect_empty();
+        return;
+    }
+    pn_tri_load(tris, t, &A, &B, &C);
+    for (f = 0; f < F->n; f++) rects[(size_t)t * 6u + f] = pn_gears_tri_cells(&F->f[f], L, A, B, C);
+}
+
+/* Pairs are made only for cells that hold pixels (paper §5.4: cells where no pixel
+ * sample projects are discarded). Pairs of rectangle row y, columns [x0, x1]. */
+PN_KFN uint32_t pn_gears_row_count(PN_CONST uint32_t *cell_pix, uint32_t res, uint32_t face, uint32_t y, uint32_t x0,
+                                   uint32_t x1)
+{
+    PN_CONST uint32_t *cp = cell_pix + ((size_t)face * res + y) * res;
+    uint32_t x, n = 0;
+    for (x = x0; x <= x1; x++) n += cp[x] != 0u;
+    return n;
+}
+
+/* Triangle t: its pairs added to each global grid row (face * res + row) it covers, as a
+ * 64-bit count in two words (low, high) per row: row_pairs[2 r], row_pairs[2 r + 1].
+ * The carry goes with the add that wrapped the low word, so the sum is exact in any order. */
+PN_KFN void pn_gears_tri_row_pairs(const pn_kfaces *F, PN_CONST pn_cellrect *rects, PN_CONST uint32_t *cell_pix,
+                                   uint32_t t, PN_GLOBAL uint32_t *row_pairs)
+{
+    uint32_t f, y;
+    for (f = 0; f < F->n; f++) {
+        pn_cellrect rc = rects[(size_t)t * 6u + f];
+        if (pn_cellrect_is_empty(rc)) continue;
+        for (y = rc.lo >> 16; y <= rc.hi >> 16; y++) {
+            uint32_t n = pn_gears_row_count(cell_pix, F->res, f, y, rc.lo & 0xFFFFu, rc.hi & 0xFFFFu);
+            PN_GLOBAL uint32_t *w = row_pairs + 2u * ((size_t)f * F->res + y);
+            if (n != 0u && pn_katomic_add(&w[0], n) > 0xFFFFFFFFu - n) pn_katomic_add(&w[1], 1u);
+        }
+    }
+}
+
+/* Triangle t: its pairs in each cell of grid row ry of face `face`, added to counts[x]. */
+PN_KFN void pn_gears_tri_row_cells(PN_CONST pn_cellrect *rects, PN_CONST uint32_t *cell_pix, uint32_t res,
+                                   uint32_t face, uint32_t ry, uint32_t t, PN_GLOBAL uint32_t *counts)
+{
+    pn_cellrect rc = rects[(size_t)t * 6u + face];
+    uint32_t x;
+    if (pn_cellrect_is_empty(rc) || ry < (rc.lo >> 16) || ry > (rc.hi >> 16)) return;
+    for (x = rc.lo & 0xFFFFu; x <= (rc.hi & 0xFFFFu); x++)
+        if (cell_pix[((size_t)face * res + ry) * res + x] != 0u) pn_katomic_add(&counts[x], 1u);
+}
+
+/* Triangle t's rectangle on the tile's face, clipped to the tile; 0 if nothing is left. */
+PN_KFN int pn_gears_tile_rect(PN_CONST pn_cellrect *rects, uint32_t t, const pn_ktile *tl, uint32_t *x0, uint32_t *y0,
+                              uint32_t *x1, uint32_t *y1)
+{
+    pn_cellrect rc = rects[(size_t)t * 6u + tl->face];
+    if (pn_cellrect_is_empty(rc)) return 0;
+    *x0 = rc.lo & 0xFFFFu;
+    *y0 = rc.lo >> 16;
+    *x1 = rc.hi & 0xFFFFu;
+    *y1 = rc.hi >> 16;
+    if (*y0 < tl->r0) *y0 = tl->r0;
+    if (*y1 > tl->r1) *y1 = tl->r1;
+    if (*x0 < tl->x0) *x0 = tl->x0;
+    if (*x1 > tl->x1) *x1 = tl->x1;
+    return *x0 <= *x1 && *y0 <= *y1;
+}
+
+/* Triangle t: how many pairs it makes in the tile. */
+PN_KFN uint32_t pn_gears_tri_count(PN_CONST pn_cellrect *rects, PN_CONST uint32_t *cell_pix, uint32_t res,
+                                   const pn_ktile *tl, uint32_t t)
+{
+    uint32_t x0, y0, x1, y1, y, n = 0;
+    if (pn_gears_tile_rect(rects, t, tl, &x0, &y0, &x1, &y1))
+        for (y = y0; y <= y1; y++) n += pn_gears_row_count(cell_pix, res, tl->face, y, x0, x1);
+    return n;
+}
+
+/* Triangle t: its pairs (global cell, t) in row-major cell order from pair index `o` on
+ * (its exclusive prefix sum of the counts). */
+PN_KFN void pn_gears_tri_scatter(PN_CONST pn_cellrect *rects, PN_CONST uint32_t *cell_pix, uint32_t res,
+                                 const pn_ktile *tl, uint32_t t, uint32_t o, PN_GLOBAL uint32_t *pairs)
+{
+    uint32_t x0, y0, x1, y1, x, y, base = tl->face * res * res;
+    if (!pn_gears_tile_rect(rects, t, tl, &x0, &y0, &x1, &y1)) return;
+    for (y = y0; y <= y1; y++)
+        for (x = x0; x <= x1; x++) {
+            uint32_t cell = base + y * res + x;
+            if (!cell_pix[cell]) continue;
+            pairs[(size_t)o * 2u] = cell;
+            pairs[(size_t)o * 2u + 1u] = t;
+            o++;
+        }
+}
+
+PN_KFN int pn_gears_in_tile(const pn_ktile *tl, uint32_t res, uint32_t cell)
+{
+    uint32_t cells = res * res, f = cell / cells, in_face = cell % cells;
+    uint32_t y = in_face / res, x = in_face % res;
+    return f == tl->face && y >= tl->r0 && y <= tl->r1 && x >= tl->x0 && x <= tl->x1;
+}
+
+/* Pixel pix, if its cell is in the tile: the mask of the cell's triangles
+ * sorted[cell_off[cell] .. cell_off[cell + 1]) (ascending ids), stopping at a full mask
+ * unless `exact`; returns 1 and the visibility in *vis_out, else 0. */
+PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktile *tl, uint32_t res,
+                               PN_CONST uint32_t *tri_id, PN_CONST float *pos, PN_CONST float *nrm,
+                               PN_CONST uint32_t *pix_cell, PN_CONST uint32_t *cell_off, PN_CONST uint32_t *sorted,
+                               PN_CONST float *tris, size_t pix, pn_shadow_counters *cnt, float *vis_out)
+{
+    uint32_t cell = pix_cell[pix], own = tri_id[pix], e, k = L->k;
+    uint32_t m[PN_MASK_WORDS_MAX];
+    pn_frustum fr;
+    pn_v3 O;
+    /* A pixel has a cell only if it has an origin. */
+    if (cell == PN_CELL_NONE || !pn_gears_in_tile(tl, res, cell) || !pn_gears_origin(L, tri_id, pos, nrm, pix, &O))
+        return 0;
+    pn_mask_clear(m);
+    pn_frustum_make(O, L, &fr);
+    for (e = cell_off[cell]; e < cell_off[cell + 1u]; e++) {
+        uint32_t t = sorted[e];
+        pn_v3 A, B, C;
+        if (t == own) continue;
+        pn_tri_load(tris, t, &A, &B, &C);
+        /* The reference's conservative frustum test, on the triangle's own box: a cheap
+         * reject before the predicate. */
+        if (!pn_frustum_aabb(&fr, pn_v3_make(pn_kminf(A.x, pn_kminf(B.x, C.x)), pn_kminf(A.y, pn_kminf(B.y, C.y)),
+                                             pn_kminf(A.z, pn_kminf(B.z, C.z))),
+                             pn_v3_make(pn_kmaxf(A.x, pn_kmaxf(B.x, C.x)), pn_kmaxf(A.y, pn_kmaxf(B.y, C.y)),
+                                        pn_kmaxf(A.z, pn_kmaxf(B.z, C.z)))))
+            continue;
+        cnt->candidates++;
+        cnt->blocking += pn_tri_mask(O, A, B, C, L, m);
+        if (!exact && pn_mask_full(m, k)) break;
+    }
+    *vis_out = pn_mask_visibility(m, k);
+    return 1;
+}
+
+#endif

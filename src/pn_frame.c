@@ -187,6 +187,7 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     fs.height = opt->height;
     fs.gears_grid = opt->gears_grid;
     fs.exact_stats = opt->exact_stats;
+    fs.self = port->self;
 
     px = (size_t)opt->width * opt->height;
     pn_frame_reset(ctx);

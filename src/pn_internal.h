@@ -44,6 +44,7 @@ typedef struct pn_frame_state {
     void *counters;     /* per-work-item shadow counters (pn_shadow_counters[height]) */
     uint64_t candidates, blocking;
     uint32_t lit, overflow;
+    void *self;         /* the port's own state (pn_port.self) */
 } pn_frame_state;
 
 typedef struct pn_port {
@@ -51,6 +52,7 @@ typedef struct pn_port {
     pn_status (*gbuffer)(pn_context *ctx, pn_frame_state *fs);
     pn_status (*shadow)(pn_context *ctx, pn_frame_state *fs);
     pn_status (*shade)(pn_context *ctx, pn_frame_state *fs);
+    void *self; /* handed to the passes as pn_frame_state.self (the OpenCL port's device) */
 } pn_port;
 
 struct pn_context {
@@ -69,6 +71,7 @@ struct pn_context {
     size_t frame_high;
     /* scene */
     uint32_t has_scene;
+    uint32_t scene_version; /* changes whenever pn_scene_set replaces the scene */
     uint32_t tri_count;
     uint32_t degenerate;
     uint32_t bvh_nodes, bvh_depth, bvh_max_leaf, bvh_tris;

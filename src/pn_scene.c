@@ -53,6 +53,7 @@ pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_
     /* Valid: from here on the previous scene is replaced. */
     t0 = pn_now(ctx);
     ctx->has_scene = 0;
+    ctx->scene_version++;
     lo[0] = lo[1] = lo[2] = PN_MAX_COORD;
     hi[0] = hi[1] = hi[2] = -PN_MAX_COORD;
     for (t = 0; t < triangle_count; t++) {

@@ -152,7 +152,7 @@ static pn_status pn_scalar_shade(pn_context *ctx, pn_frame_state *fs)
     return PN_OK;
 }
 
-static const pn_port pn_port_scalar = {"scalar", pn_scalar_gbuffer, pn_scalar_shadow, pn_scalar_shade};
+static const pn_port pn_port_scalar = {"scalar", pn_scalar_gbuffer, pn_scalar_shadow, pn_scalar_shade, NULL};
 
 pn_status pn_render(pn_context *ctx, const pn_camera *camera, const pn_light *light,
                     const pn_frame_options *opt, pn_frame *out)

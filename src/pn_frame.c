@@ -208,6 +208,17 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     t0 = pn_now(ctx);
     if ((st = port->shadow(ctx, &fs)) != PN_OK) return st;
     ctx->pass_ns[PN_PASS_SHADOW] = pn_now(ctx) - t0;
+    {
+        /* Every port leaves one pn_shadow_counters per row; integer sums, any port alike. */
+        const pn_shadow_counters *cnt = (const pn_shadow_counters *)fs.counters;
+        uint32_t y;
+        for (y = 0; y < fs.height; y++) {
+            fs.candidates += cnt[y].candidates;
+            fs.blocking += cnt[y].blocking;
+            fs.lit += cnt[y].lit;
+            fs.overflow += cnt[y].overflow;
+        }
+    }
     if (fs.overflow)
         return pn_fail(ctx, PN_E_INTERNAL, "BVH traversal stack overflowed %u times", fs.overflow);
     t0 = pn_now(ctx);

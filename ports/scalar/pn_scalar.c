@@ -92,8 +92,6 @@ static void pn_task_per_pixel(void *task, uint32_t begin, uint32_t end)
 static pn_status pn_scalar_shadow(pn_context *ctx, pn_frame_state *fs)
 {
     pn_scalar_task tk;
-    pn_shadow_counters *cnt = (pn_shadow_counters *)fs->counters;
-    uint32_t y;
     tk.ctx = ctx;
     tk.fs = fs;
     switch (fs->algo) {
@@ -116,12 +114,6 @@ static pn_status pn_scalar_shadow(pn_context *ctx, pn_frame_state *fs)
 #endif
     default:
         return pn_fail(ctx, PN_E_UNSUPPORTED, "scalar port: algorithm %u not available", fs->algo);
-    }
-    for (y = 0; y < fs->height; y++) {
-        fs->candidates += cnt[y].candidates;
-        fs->blocking += cnt[y].blocking;
-        fs->lit += cnt[y].lit;
-        fs->overflow += cnt[y].overflow;
     }
     return PN_OK;
 }

@@ -1,0 +1,90 @@
+/* penumbra/opencl.h - the OpenCL port: the same passes as pn_render(), run as OpenCL
+ * kernels built from the same kernels/ source, byte for byte the same results.
+ *
+ * WHAT IT IS
+ *   A separate static library (penumbra_opencl), built only where OpenCL headers and an
+ *   ICD loader exist; the core library never links OpenCL. It binds to one pn_context:
+ *   the device holds ONE buffer that mirrors the context's arena (the same pools at the
+ *   same offsets, sized by the same carve as pn_arena_size), the scene is uploaded when
+ *   pn_scene_set changed it, and every frame's results are read back into the host arena,
+ *   so the pn_frame of pn_opencl_render points into the caller's memory exactly as with
+ *   pn_render. Kernel sources are compiled into the library; nothing is read from disk.
+ *
+ * NUMERICS
+ *   Kernels are built with -cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt and
+ *   FP_CONTRACT OFF; they use no relaxed math, no float atomics, and nothing whose result
+ *   depends on the order work items run in. A device must report correctly rounded
+ *   divide/sqrt, round to nearest, denormals and inf/NaN for single precision and the
+ *   host's endianness, or pn_opencl_create returns PN_E_UNSUPPORTED saying which is missing.
+ *
+ * DEVICE CHOICE (first that applies)
+ *   1. pn_opencl_options.device, if not NULL and not empty;
+ *   2. the environment variable PN_OPENCL_DEVICE, if set and not empty;
+ *   3. the first CPU device of a PoCL platform ("Portable Computing Language"), else the
+ *      first device of the first platform that has one.
+ *   A device string is either "P:D" (platform index, device index, as clinfo -l lists
+ *   them) or text matched, ignoring case, against "<platform name> / <device name>".
+ *
+ * MEMORY
+ *   The host side allocates with malloc only for the port object; device memory is one
+ *   buffer of the arena's size. PoCL caches compiled kernels on disk (POCL_CACHE_DIR).
+ *
+ * THREADS
+ *   As for pn_context: one call at a time per context, and the port counts as a user of
+ *   its context (do not render with the scalar port on another thread meanwhile). */
+#ifndef PENUMBRA_OPENCL_H
+#define PENUMBRA_OPENCL_H
+
+#include "penumbra/penumbra.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pn_opencl pn_opencl;
+
+typedef struct pn_opencl_options {
+    const char *device; /* device string (see DEVICE CHOICE) or NULL; copied, not kept */
+} pn_opencl_options;
+
+/* No device string: PN_OPENCL_DEVICE or the default device. */
+void pn_opencl_options_default(pn_opencl_options *opt);
+
+/* Picks the device, checks it, builds the kernels (and runs each once on an empty range so
+ * that implementations that compile per launch, like PoCL, have compiled everything) and
+ * creates the device buffer. opt may be NULL (defaults). On PN_OK *out is a new port bound
+ * to ctx, which must outlive it. Statuses: PN_E_INVALID_ARG (NULL ctx or out),
+ * PN_E_DEVICE (no platform or device, no device matching the device string, a failing
+ * OpenCL call: the message names the call, the OpenCL error and its code, e.g.
+ * "clCreateBuffer(arena, 123456 bytes): CL_MEM_OBJECT_ALLOCATION_FAILURE (-4)"; a kernel
+ * build error: the message starts the build log), PN_E_UNSUPPORTED (the device lacks a
+ * capability listed under NUMERICS, or the arena exceeds its largest buffer).
+ * Messages are in pn_last_error(ctx). *out is written only on PN_OK. */
+pn_status pn_opencl_create(pn_context *ctx, const pn_opencl_options *opt, pn_opencl **out);
+
+/* pn_render() on the device: the same validation, statuses and results (byte for byte),
+ * plus PN_E_INVALID_ARG for a NULL port and PN_E_DEVICE when an OpenCL call fails. */
+pn_status pn_opencl_render(pn_opencl *cl, const pn_camera *camera, const pn_light *light,
+                           const pn_frame_options *opt, pn_frame *out);
+
+/* Releases the device objects and the port. NULL is allowed. */
+void pn_opencl_destroy(pn_opencl *cl);
+
+/* "<device name> (<platform name>)"; "" for NULL. Valid until pn_opencl_destroy. */
+const char *pn_opencl_device_name(const pn_opencl *cl);
+
+typedef struct pn_opencl_info {
+    double build_ms;       /* clBuildProgram, wall clock */
+    double warmup_ms;      /* the first launch of every kernel (per-launch JIT, PoCL) */
+    uint64_t buffer_bytes; /* the device buffer: the arena's carved size */
+    uint32_t scene_uploads;  /* scenes uploaded so far (one per changed scene) */
+    uint32_t kernels;        /* kernels in the program */
+} pn_opencl_info;
+
+/* Statuses: PN_E_INVALID_ARG (NULL). */
+pn_status pn_opencl_get_info(const pn_opencl *cl, pn_opencl_info *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,572 @@
+/* Cross-port harness (issue 4): every algorithm in pn_x_algos on the scalar port and on
+ * the OpenCL port, compared with memcmp: visibility, RGBA image and the whole G-buffer
+ * (depth, triangle ids, positions, normals), plus the statuses, the messages and the
+ * counters of pn_stats (the same work in the same order gives the same counts).
+ *
+ * Scenes: every built-in scene and every .glb in PN_SCENES_DIR (../shared/scenes), each
+ * with its area light and with a point light at the light's centre, at sizes that keep
+ * the run within a couple of minutes on two cores. Then: k = 4 .. 32, GEARS grids and
+ * exact statistics, GEARS tiles from small pair pools (whole grid rows and rows split into
+ * runs of cells) and PN_E_POOL_EXHAUSTED, errors and the API's promises (device choice,
+ * one scene upload per scene, results in the caller's arena, buffer creation failure).
+ *
+ * A later algorithm plugs in by adding a row to pn_x_algos (and its kernel to the port). */
+#define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define CL_TARGET_OPENCL_VERSION 120
+#include <CL/cl.h>
+
+#include "penumbra/opencl.h"
+#include "penumbra/penumbra.h"
+#include "pn_scenes.h"
+#include "pn_setup.h"
+#include "pn_test.h"
+
+static const struct {
+    const char *name;
+    pn_algo algo;
+    uint32_t build_flag;
+} pn_x_algos[] = {
+    {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE},
+    {"gears", PN_ALGO_GEARS, PN_BUILD_GEARS},
+    {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},
+};
+#define PN_X_ALGOS (sizeof(pn_x_algos) / sizeof(pn_x_algos[0]))
+
+/* ---- one frame, kept ----------------------------------------------------------------- */
+
+typedef struct pn_xframe {
+    size_t n;
+    float *vis, *depth, *pos, *nrm;
+    uint32_t *ids;
+    uint8_t *rgba;
+    pn_stats st;
+} pn_xframe;
+
+static int xframe_init(pn_xframe *f, size_t n)
+{
+    f->n = n;
+    f->vis = (float *)malloc(n * sizeof(float));
+    f->depth = (float *)malloc(n * sizeof(float));
+    f->pos = (float *)malloc(n * 3u * sizeof(float));
+    f->nrm = (float *)malloc(n * 3u * sizeof(float));
+    f->ids = (uint32_t *)malloc(n * sizeof(uint32_t));
+    f->rgba = (uint8_t *)malloc(n * 4u);
+    return f->vis && f->depth && f->pos && f->nrm && f->ids && f->rgba;
+}
+
+static void xframe_free(pn_xframe *f)
+{
+    free(f->vis);
+    free(f->depth);
+    free(f->pos);
+    free(f->nrm);
+    free(f->ids);
+    free(f->rgba);
+    memset(f, 0, sizeof(*f));
+}
+
+static void xframe_keep(pn_xframe *f, const pn_frame *fr, pn_context *ctx)
+{
+    size_t n = (size_t)fr->width * fr->height;
+    memcpy(f->vis, fr->visibility, n * sizeof(float));
+    memcpy(f->depth, fr->depth, n * sizeof(float));
+    memcpy(f->pos, fr->position, n * 3u * sizeof(float));
+    memcpy(f->nrm, fr->normal, n * 3u * sizeof(float));
+    memcpy(f->ids, fr->tri_id, n * sizeof(uint32_t));
+    memcpy(f->rgba, fr->rgba, n * 4u);
+    pn_get_stats(ctx, &f->st);
+}
+
+/* Pixels whose `size`-byte records differ. */
+static size_t count_diff(const void *a, const void *b, size_t n, size_t size)
+{
+    size_t i, d = 0;
+    for (i = 0; i < n; i++) d += memcmp((const uint8_t *)a + i * size, (const uint8_t *)b + i * size, size) != 0;
+    return d;
+}
+
+static int same_buffer(const char *what, const char *buf, const void *a, const void *b, size_t n, size_t size)
+{
+    int same = memcmp(a, b, n * size) == 0;
+    CHECK_MSG(same, "%s: %s differs in %zu of %zu pixels", what, buf, count_diff(a, b, n, size), n);
+    return same;
+}
+
+/* Everything of frame b (OpenCL) against kept frame a (scalar). */
+static int same_frame(const char *what, const pn_xframe *a, const pn_xframe *b)
+{
+    int ok = 1;
+    size_t n = a->n;
+    ok &= same_buffer(what, "visibility", a->vis, b->vis, n, sizeof(float));
+    ok &= same_buffer(what, "rgba", a->rgba, b->rgba, n, 4u);
+    ok &= same_buffer(what, "depth", a->depth, b->depth, n, sizeof(float));
+    ok &= same_buffer(what, "tri_id", a->ids, b->ids, n, sizeof(uint32_t));
+    ok &= same_buffer(what, "position", a->pos, b->pos, n, 3u * sizeof(float));
+    ok &= same_buffer(what, "normal", a->nrm, b->nrm, n, 3u * sizeof(float));
+#define SAME_STAT(field)                                                                                   \
+    CHECK_MSG(a->st.field == b->st.field, "%s: stats." #field " scalar %llu opencl %llu", what,         \
+              (unsigned long long)a->st.field, (unsigned long long)b->st.field)
+    SAME_STAT(shadow_candidates);
+    SAME_STAT(shadow_blocking);
+    SAME_STAT(lit_pixels);
+    SAME_STAT(gears_pairs);
+    SAME_STAT(gears_assignments);
+    SAME_STAT(gears_tiles);
+    SAME_STAT(gears_faces);
+    SAME_STAT(gears_cells_used);
+    SAME_STAT(gears_max_tris_per_cell);
+    SAME_STAT(gears_max_pixels_per_cell);
+    SAME_STAT(gears_pairs_high_water);
+#undef SAME_STAT
+    CHECK_MSG(memcmp(&a->st.gears_mean_tris_per_cell, &b->st.gears_mean_tris_per_cell, sizeof(float)) == 0 &&
+                  memcmp(&a->st.gears_mean_pixels_per_cell, &b->st.gears_mean_pixels_per_cell, sizeof(float)) == 0,
+              "%s: GEARS means differ", what);
+    return ok;
+}
+
+/* ---- both ports on one configuration --------------------------------------------------- */
+
+typedef struct pn_xrig {
+    pn_host h;
+    pn_opencl *cl;
+    pn_xframe a, b; /* scalar, OpenCL */
+    size_t cap;     /* pixels a and b hold */
+} pn_xrig;
+
+static int in_arena(const pn_xrig *r, const void *p, size_t bytes)
+{
+    const uint8_t *lo = (const uint8_t *)r->h.memory, *q = (const uint8_t *)p;
+    return q >= lo && q + bytes <= lo + r->h.bytes;
+}
+
+/* Renders opt on both ports; statuses and messages must agree, and on PN_OK everything.
+ * Returns the status. */
+static pn_status cross(pn_xrig *r, const pn_camera *cam, const pn_light *light, const pn_frame_options *opt,
+                       const char *what)
+{
+    pn_frame fa, fb;
+    pn_status sa, sb;
+    char msg_a[256];
+    size_t n = (size_t)opt->width * opt->height;
+    sa = pn_render(r->h.ctx, cam, light, opt, &fa);
+    snprintf(msg_a, sizeof(msg_a), "%s", pn_last_error(r->h.ctx));
+    if (sa == PN_OK && n > r->cap) { /* the context's limits are the harness's too */
+        CHECK_MSG(0, "%s: harness holds %zu pixels, the frame has %zu", what, r->cap, n);
+        return PN_E_INTERNAL;
+    }
+    if (sa == PN_OK) xframe_keep(&r->a, &fa, r->h.ctx);
+    sb = pn_opencl_render(r->cl, cam, light, opt, &fb);
+    CHECK_MSG(sa == sb, "%s: scalar %s (%s), opencl %s (%s)", what, pn_status_str(sa), msg_a, pn_status_str(sb),
+              pn_last_error(r->h.ctx));
+    if (sa != PN_OK || sb != PN_OK) {
+        if (sa == sb) CHECK_MSG(strcmp(msg_a, pn_last_error(r->h.ctx)) == 0, "%s: messages differ", what);
+        return sa != PN_OK ? sa : sb;
+    }
+    /* The frame points into the caller's arena, as pn_render's does. */
+    CHECK_MSG(in_arena(r, fb.visibility, n * 4u) && in_arena(r, fb.rgba, n * 4u) && in_arena(r, fb.tri_id, n * 4u) &&
+                  in_arena(r, fb.depth, n * 4u) && in_arena(r, fb.position, n * 12u) && in_arena(r, fb.normal, n * 12u),
+              "%s: the OpenCL frame does not point into the arena", what);
+    CHECK(fb.visibility == fa.visibility && fb.rgba == fa.rgba && fb.width == opt->width && fb.height == opt->height);
+    r->b.n = r->a.n = n;
+    xframe_keep(&r->b, &fb, r->h.ctx);
+    return same_frame(what, &r->a, &r->b) ? PN_OK : PN_E_INTERNAL;
+}
+
+static int rig_open(pn_xrig *r, const pn_limits *lim, const pn_opencl_options *opt)
+{
+    size_t bytes;
+    pn_status st;
+    memset(r, 0, sizeof(*r));
+    r->cap = (size_t)lim->max_width * lim->max_height;
+    if (!xframe_init(&r->a, r->cap) || !xframe_init(&r->b, r->cap) || pn_arena_size(lim, &bytes) != PN_OK) return 1;
+    r->h.bytes = bytes;
+    r->h.memory = malloc(bytes);
+    if (!r->h.memory || pn_init(&r->h.ctx, r->h.memory, bytes, lim) != PN_OK) return 1;
+    r->h.threads.count = pn_threads_cores();
+    pn_set_parallel_for(r->h.ctx, pn_threads_parallel_for, &r->h.threads);
+    st = pn_opencl_create(r->h.ctx, opt, &r->cl);
+    if (st != PN_OK) fprintf(stderr, "pn_opencl_create: %s: %s\n", pn_status_str(st), pn_last_error(r->h.ctx));
+    return st != PN_OK;
+}
+
+static void rig_close(pn_xrig *r)
+{
+    pn_opencl_destroy(r->cl);
+    xframe_free(&r->a);
+    xframe_free(&r->b);
+    pn_host_close(&r->h);
+}
+
+static pn_light point_light(const pn_light *l)
+{
+    pn_light p = *l;
+    memset(p.u, 0, sizeof(p.u));
+    memset(p.v, 0, sizeof(p.v));
+    return p;
+}
+
+static void opts(pn_frame_options *o, const pn_setup *s, uint32_t w, uint32_t h, uint32_t k, pn_algo algo)
+{
+    pn_frame_options_default(o);
+    o->width = w;
+    o->height = h;
+    o->k = k;
+    o->eps = s->eps;
+    o->algo = algo;
+}
+
+/* ---- scenes ------------------------------------------------------------------------------ */
+
+typedef struct pn_xscene {
+    char src[512];
+    int builtin;
+    uint32_t w, h, k;
+} pn_xscene;
+
+#define PN_X_MAX_SCENES 32
+
+/* Built-ins (sizes and k chosen per scene: spheres and thin are dense in shadow rays),
+ * then every .glb of the shared set in name order. */
+static int list_scenes(pn_xscene *out)
+{
+    static const pn_xscene builtins[] = {
+        {"square", 1, 96, 72, 32}, {"spheres", 1, 48, 40, 8}, {"elongated-cube", 1, 80, 64, 16}, {"thin", 1, 64, 48, 4}};
+    struct dirent **names;
+    int n = 0, i, m;
+    for (i = 0; i < (int)(sizeof(builtins) / sizeof(builtins[0])); i++) out[n++] = builtins[i];
+    m = scandir(PN_SCENES_DIR, &names, NULL, alphasort);
+    for (i = 0; i < m; i++) {
+        size_t len = strlen(names[i]->d_name);
+        if (len > 4 && strcmp(names[i]->d_name + len - 4, ".glb") == 0 && n < PN_X_MAX_SCENES) {
+            pn_xscene *s = out + n++;
+            snprintf(s->src, sizeof(s->src), "%s/%s", PN_SCENES_DIR, names[i]->d_name);
+            s->builtin = 0;
+            s->w = 48;
+            s->h = 40;
+            s->k = 16;
+        }
+        free(names[i]);
+    }
+    if (m >= 0) free(names);
+    return n;
+}
+
+static pn_xrig g_rig;
+static pn_xscene g_scenes[PN_X_MAX_SCENES];
+static pn_setup g_setups[PN_X_MAX_SCENES];
+static int g_loaded[PN_X_MAX_SCENES], g_nscenes;
+
+static void test_scenes(void)
+{
+    int i, glbs = 0;
+    for (i = 0; i < g_nscenes; i++) {
+        const pn_setup *s = &g_setups[i];
+        int q;
+        size_t a;
+        glbs += !g_scenes[i].builtin;
+        if (!g_loaded[i]) continue;
+        CHECK_MSG(pn_scene_set(g_rig.h.ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices,
+                               s->mesh.triangle_count) == PN_OK,
+                  "%s: %s", s->name, pn_last_error(g_rig.h.ctx));
+        for (q = 0; q < 2; q++) {
+            pn_light light = q ? point_light(&s->light) : s->light;
+            for (a = 0; a < PN_X_ALGOS; a++) {
+                pn_frame_options o;
+                char what[256];
+                if (!(pn_build_info() & pn_x_algos[a].build_flag)) continue;
+                opts(&o, s, g_scenes[i].w, g_scenes[i].h, g_scenes[i].k, pn_x_algos[a].algo);
+                snprintf(what, sizeof(what), "%s %ux%u k=%u %s light, %s", s->name, o.width, o.height, o.k,
+                         q ? "point" : "area", pn_x_algos[a].name);
+                if (cross(&g_rig, &s->camera, &light, &o, what) == PN_OK)
+                    fprintf(stderr, "same: %s (%u lit pixels, %llu candidates)\n", what, g_rig.a.st.lit_pixels,
+                            (unsigned long long)g_rig.a.st.shadow_candidates);
+            }
+        }
+    }
+    /* The shared set is there (a missing ../shared would otherwise pass vacuously). */
+    CHECK_MSG(glbs >= 1, "no .glb scene in %s", PN_SCENES_DIR);
+}
+
+/* k = 4 .. 32 on spot; GEARS grids 1 and 37 and exact statistics on spheres. */
+static void test_options(void)
+{
+    static const uint32_t ks[4] = {4, 8, 16, 32};
+    pn_setup s;
+    char err[256], what[256];
+    size_t a;
+    int i;
+    pn_frame_options o;
+    REQUIRE(pn_setup_load(&s, PN_SCENES_DIR "/spot.glb", 0, -1, err, sizeof(err)) == 0);
+    REQUIRE(pn_scene_set(g_rig.h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) ==
+            PN_OK);
+    for (i = 0; i < 4; i++)
+        for (a = 0; a < PN_X_ALGOS; a++) {
+            opts(&o, &s, 40, 32, ks[i], pn_x_algos[a].algo);
+            snprintf(what, sizeof(what), "spot k=%u %s", ks[i], pn_x_algos[a].name);
+            CHECK(cross(&g_rig, &s.camera, &s.light, &o, what) == PN_OK);
+        }
+    pn_setup_free(&s);
+    REQUIRE(pn_setup_load(&s, "spheres", 1, -1, err, sizeof(err)) == 0);
+    REQUIRE(pn_scene_set(g_rig.h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) ==
+            PN_OK);
+    for (i = 0; i < 3; i++) {
+        opts(&o, &s, 40, 40, 16, PN_ALGO_GEARS);
+        o.gears_grid = i == 0 ? 1u : 37u;
+        o.exact_stats = i == 2;
+        snprintf(what, sizeof(what), "spheres GEARS grid %u exact_stats %u", o.gears_grid, o.exact_stats);
+        CHECK(cross(&g_rig, &s.camera, &s.light, &o, what) == PN_OK);
+    }
+    pn_setup_free(&s);
+}
+
+/* GEARS through tiles: pair pools of a fifth of the frame's pairs (runs of grid rows) and
+ * far below one grid row (rows split into runs of cells), against the one-pass frame;
+ * and a pool below the largest cell: PN_E_POOL_EXHAUSTED on both ports. */
+static void test_tiling(void)
+{
+    pn_setup s;
+    char err[256], what[256];
+    pn_frame_options o;
+    pn_xframe one;
+    uint64_t pairs;
+    uint32_t max_cell, pools[3], i, q;
+    REQUIRE(pn_setup_load(&s, "spheres", 1, -1, err, sizeof(err)) == 0);
+    REQUIRE(pn_scene_set(g_rig.h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) ==
+            PN_OK);
+    REQUIRE(xframe_init(&one, 48u * 48u));
+    for (q = 0; q < 2; q++) {
+        pn_light light = q ? point_light(&s.light) : s.light;
+        opts(&o, &s, 48, 48, 16, PN_ALGO_GEARS);
+        o.gears_grid = 32;
+        snprintf(what, sizeof(what), "spheres GEARS one pass, %s light", q ? "point" : "area");
+        REQUIRE(cross(&g_rig, &s.camera, &light, &o, what) == PN_OK);
+        CHECK(q ? g_rig.a.st.gears_tiles <= g_rig.a.st.gears_faces : g_rig.a.st.gears_tiles == 1u);
+        pairs = g_rig.a.st.gears_pairs;
+        max_cell = g_rig.a.st.gears_max_tris_per_cell;
+        memcpy(one.vis, g_rig.a.vis, 48u * 48u * sizeof(float));
+        pools[0] = (uint32_t)(pairs / 5u);
+        pools[1] = max_cell + max_cell / 2u; /* below a grid row of 32 cells: split rows */
+        pools[2] = max_cell - 1u;            /* below the largest cell */
+        for (i = 0; i < 3; i++) {
+            pn_xrig small;
+            pn_limits lim;
+            pn_status st;
+            memset(&lim, 0, sizeof(lim));
+            lim.max_triangles = s.mesh.triangle_count;
+            lim.max_width = 48;
+            lim.max_height = 48;
+            lim.gears_pairs = pools[i];
+            if (rig_open(&small, &lim, NULL) != 0) {
+                CHECK_MSG(0, "small-pool rig");
+                rig_close(&small);
+                continue;
+            }
+            REQUIRE(pn_scene_set(small.h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices,
+                                 s.mesh.triangle_count) == PN_OK);
+            snprintf(what, sizeof(what), "spheres GEARS %s light, pool %u of %llu pairs (largest cell %u)",
+                     q ? "point" : "area", pools[i], (unsigned long long)pairs, max_cell);
+            st = cross(&small, &s.camera, &light, &o, what);
+            if (i < 2) {
+                CHECK_MSG(st == PN_OK, "%s", what);
+                CHECK_MSG(small.b.st.gears_tiles > 1u, "%s: %u tiles", what, small.b.st.gears_tiles);
+                CHECK_MSG(i == 0 || small.b.st.gears_tiles > (uint32_t)(pairs / pools[1]),
+                          "%s: %u tiles, no row split?", what, small.b.st.gears_tiles);
+                CHECK_MSG(memcmp(small.b.vis, one.vis, 48u * 48u * sizeof(float)) == 0, "%s: differs from one pass",
+                          what);
+                fprintf(stderr, "same: %s: %u tiles\n", what, small.b.st.gears_tiles);
+            } else {
+                CHECK_MSG(st == PN_E_POOL_EXHAUSTED, "%s: %s", what, pn_status_str(st));
+                CHECK(strstr(pn_last_error(small.h.ctx), "gears pairs") != NULL);
+            }
+            rig_close(&small);
+        }
+    }
+    xframe_free(&one);
+    pn_setup_free(&s);
+}
+
+/* ---- the API's promises ------------------------------------------------------------------ */
+
+static void test_api(void)
+{
+    pn_setup s;
+    char err[256];
+    pn_opencl *cl = NULL, *other = NULL;
+    pn_opencl_options o;
+    pn_opencl_info info, info2;
+    pn_frame_options fo;
+    pn_frame fr;
+    pn_status st;
+    const char *env = getenv("PN_OPENCL_DEVICE");
+    char saved_env[256] = "";
+    if (env) snprintf(saved_env, sizeof(saved_env), "%s", env);
+
+    CHECK(pn_opencl_create(NULL, NULL, &cl) == PN_E_INVALID_ARG);
+    CHECK(pn_opencl_create(g_rig.h.ctx, NULL, NULL) == PN_E_INVALID_ARG);
+    CHECK(pn_opencl_render(NULL, NULL, NULL, NULL, NULL) == PN_E_INVALID_ARG);
+    CHECK(pn_opencl_get_info(NULL, &info) == PN_E_INVALID_ARG);
+    CHECK(pn_opencl_get_info(g_rig.cl, NULL) == PN_E_INVALID_ARG);
+    CHECK(strcmp(pn_opencl_device_name(NULL), "") == 0);
+    pn_opencl_destroy(NULL);
+    CHECK(strlen(pn_opencl_device_name(g_rig.cl)) > 0);
+    fprintf(stderr, "device: %s\n", pn_opencl_device_name(g_rig.cl));
+
+    /* Device strings: an option, then the environment; no match is PN_E_DEVICE. */
+    pn_opencl_options_default(&o);
+    o.device = "no-such-opencl-device";
+    cl = NULL;
+    CHECK(pn_opencl_create(g_rig.h.ctx, &o, &cl) == PN_E_DEVICE && cl == NULL);
+    CHECK(strstr(pn_last_error(g_rig.h.ctx), "no-such-opencl-device") != NULL);
+    o.device = "0:999";
+    CHECK(pn_opencl_create(g_rig.h.ctx, &o, &cl) == PN_E_DEVICE && cl == NULL);
+    setenv("PN_OPENCL_DEVICE", "no-such-opencl-device", 1);
+    CHECK(pn_opencl_create(g_rig.h.ctx, NULL, &cl) == PN_E_DEVICE && cl == NULL);
+    o.device = "portable computing language"; /* the option wins over the environment */
+    st = pn_opencl_create(g_rig.h.ctx, &o, &other);
+    CHECK_MSG(st == PN_OK, "%s", pn_last_error(g_rig.h.ctx));
+    setenv("PN_OPENCL_DEVICE", "0:0", 1);
+    st = pn_opencl_create(g_rig.h.ctx, NULL, &cl);
+    CHECK_MSG(st == PN_OK, "%s", pn_last_error(g_rig.h.ctx));
+    if (env) setenv("PN_OPENCL_DEVICE", saved_env, 1);
+    else unsetenv("PN_OPENCL_DEVICE");
+
+    /* Validation and statuses as pn_render's: no scene yet on a fresh context. */
+    {
+        pn_xrig fresh;
+        pn_limits lim = {64, 16, 16, 0, 0};
+        pn_camera cam = {{0, 1, 3}, {0, 0, 0}, {0, 1, 0}, 45.0f};
+        pn_light light = {{0, 3, 0}, {0.5f, 0, 0}, {0, 0, 0.5f}};
+        static const float quad[12] = {-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};
+        static const uint32_t idx[6] = {0, 2, 1, 0, 3, 2};
+        REQUIRE(rig_open(&fresh, &lim, NULL) == 0);
+        pn_frame_options_default(&fo);
+        fo.width = fo.height = 16;
+        CHECK(cross(&fresh, &cam, &light, &fo, "no scene") == PN_E_NO_SCENE);
+        REQUIRE(pn_scene_set(fresh.h.ctx, quad, 4, idx, 2) == PN_OK);
+        fo.k = 3;
+        CHECK(cross(&fresh, &cam, &light, &fo, "k = 3") == PN_E_INVALID_ARG);
+        fo.k = 16;
+        fo.width = 17;
+        CHECK(cross(&fresh, &cam, &light, &fo, "17 wide") == PN_E_LIMIT);
+        fo.width = 16;
+        fo.algo = (pn_algo)77;
+        CHECK(cross(&fresh, &cam, &light, &fo, "algo 77") == PN_E_INVALID_ARG);
+        fo.algo = PN_ALGO_REFERENCE;
+        light.v[0] = 0.25f;
+        CHECK(cross(&fresh, &cam, &light, &fo, "skewed light") == PN_E_LIGHT_NOT_ORTHO);
+        light.v[0] = 0.0f;
+        cam.fov_deg = 180.0f;
+        CHECK(cross(&fresh, &cam, &light, &fo, "fov 180") == PN_E_CAMERA);
+        cam.fov_deg = 45.0f;
+        CHECK(cross(&fresh, &cam, &light, &fo, "quad") == PN_OK);
+        rig_close(&fresh);
+    }
+
+    /* One upload per scene: frames alone upload nothing, a new scene once. */
+    REQUIRE(pn_setup_load(&s, "square", 1, -1, err, sizeof(err)) == 0);
+    if (cl) {
+        REQUIRE(pn_scene_set(g_rig.h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) ==
+                PN_OK);
+        opts(&fo, &s, 32, 32, 8, PN_ALGO_REFERENCE);
+        REQUIRE(pn_opencl_get_info(cl, &info) == PN_OK);
+        CHECK(pn_opencl_render(cl, &s.camera, &s.light, &fo, &fr) == PN_OK);
+        CHECK(pn_opencl_render(cl, &s.camera, &s.light, &fo, &fr) == PN_OK);
+        fo.algo = PN_ALGO_GEARS;
+        CHECK(pn_opencl_render(cl, &s.camera, &s.light, &fo, &fr) == PN_OK);
+        REQUIRE(pn_opencl_get_info(cl, &info2) == PN_OK);
+        CHECK_MSG(info2.scene_uploads == info.scene_uploads + 1u, "uploads %u -> %u", info.scene_uploads,
+                  info2.scene_uploads);
+        CHECK(pn_render(g_rig.h.ctx, &s.camera, &s.light, &fo, &fr) == PN_OK); /* scalar: no upload either */
+        CHECK(pn_scene_set(g_rig.h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) ==
+              PN_OK);
+        CHECK(pn_opencl_render(cl, &s.camera, &s.light, &fo, &fr) == PN_OK);
+        CHECK(pn_opencl_render(cl, &s.camera, &s.light, &fo, &fr) == PN_OK);
+        REQUIRE(pn_opencl_get_info(cl, &info) == PN_OK);
+        CHECK_MSG(info.scene_uploads == info2.scene_uploads + 1u, "uploads %u -> %u", info2.scene_uploads,
+                  info.scene_uploads);
+        CHECK(info.buffer_bytes > 0u && info.kernels > 0u && info.build_ms > 0.0);
+        fprintf(stderr, "kernel build %.1f ms, first launches %.1f ms, %u kernels, buffer %llu bytes\n", info.build_ms,
+                info.warmup_ms, info.kernels, (unsigned long long)info.buffer_bytes);
+    }
+    pn_opencl_destroy(cl);
+    pn_opencl_destroy(other);
+    pn_setup_free(&s);
+}
+
+/* The device buffer mirrors the arena: an arena the device cannot hold in one buffer
+ * fails pn_opencl_create with PN_E_DEVICE naming the OpenCL error and its code, and the
+ * context stays usable. */
+static void test_buffer_failure(void)
+{
+    cl_platform_id plat;
+    cl_device_id dev;
+    cl_ulong max_alloc = 0;
+    pn_limits lim;
+    size_t bytes;
+    void *mem;
+    pn_context *ctx;
+    pn_opencl *cl = NULL;
+    pn_status st;
+    const char *msg;
+    REQUIRE(clGetPlatformIDs(1, &plat, NULL) == CL_SUCCESS);
+    REQUIRE(clGetDeviceIDs(plat, CL_DEVICE_TYPE_ALL, 1, &dev, NULL) == CL_SUCCESS);
+    REQUIRE(clGetDeviceInfo(dev, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof(max_alloc), &max_alloc, NULL) == CL_SUCCESS);
+    memset(&lim, 0, sizeof(lim));
+    lim.max_triangles = 1024;
+    lim.max_width = 64;
+    lim.max_height = 64;
+    /* Pairs cost 12 bytes each: a pool just past the device's largest buffer. */
+    lim.gears_pairs = max_alloc / 12u + 1024u < (1u << 28) ? (uint32_t)(max_alloc / 12u + 1024u) : (1u << 28);
+    REQUIRE(pn_arena_size(&lim, &bytes) == PN_OK);
+    mem = malloc(bytes); /* untouched beyond the context: pages stay virtual */
+    REQUIRE(mem != NULL);
+    REQUIRE(pn_init(&ctx, mem, bytes, &lim) == PN_OK);
+    st = pn_opencl_create(ctx, NULL, &cl);
+    msg = pn_last_error(ctx);
+    fprintf(stderr, "arena %zu bytes, device buffers up to %llu: %s %s\n", bytes, (unsigned long long)max_alloc,
+            pn_status_str(st), msg);
+    if ((cl_ulong)bytes > max_alloc) {
+        CHECK(st == PN_E_DEVICE && cl == NULL);
+        CHECK(strstr(msg, "clCreateBuffer") != NULL && strstr(msg, "CL_") != NULL && strstr(msg, "(-") != NULL);
+    } else { /* a device with buffers above 3 GiB: the arena fits, so creation works */
+        CHECK(st == PN_OK);
+        pn_opencl_destroy(cl);
+    }
+    free(mem);
+}
+
+int main(void)
+{
+    pn_limits lim;
+    int i;
+    memset(&lim, 0, sizeof(lim));
+    /* One context for every scene: the largest scene and image of the list. */
+    g_nscenes = list_scenes(g_scenes);
+    lim.max_triangles = 1;
+    lim.max_width = 96;
+    lim.max_height = 72;
+    for (i = 0; i < g_nscenes; i++) {
+        char err[256];
+        g_loaded[i] = pn_setup_load(&g_setups[i], g_scenes[i].src, g_scenes[i].builtin, -1, err, sizeof(err)) == 0;
+        CHECK_MSG(g_loaded[i], "%s: %s", g_scenes[i].src, err);
+        if (g_loaded[i] && g_setups[i].mesh.triangle_count > lim.max_triangles)
+            lim.max_triangles = g_setups[i].mesh.triangle_count;
+    }
+    if (rig_open(&g_rig, &lim, NULL) != 0) {
+        CHECK_MSG(0, "cannot open the OpenCL port (see above)");
+        return pn_test_summary();
+    }
+    RUN(test_api);
+    RUN(test_buffer_failure);
+    RUN(test_options);
+    RUN(test_tiling);
+    RUN(test_scenes);
+    rig_close(&g_rig);
+    for (i = 0; i < g_nscenes; i++)
+        if (g_loaded[i]) pn_setup_free(&g_setups[i]);
+    return pn_test_summary();
+}

@@ -18,9 +18,11 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
+# PoCL compiles the OpenCL kernels once and caches them: inside the build directory.
 demo: build
-	$(BUILD)/tools/penumbra demo --out out/demo
+	POCL_CACHE_DIR=$(abspath $(BUILD))/pocl-cache $(BUILD)/tools/penumbra demo --out out/demo
 
+# ctest sets POCL_CACHE_DIR=$(BUILD)/pocl-cache for the tests that build OpenCL kernels.
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 

@@ -63,6 +63,27 @@ check test $r -eq 2
 "$bin" render --builtin square --algo nosuch --out x.png 2>err.txt; r=$?
 check test $r -eq 2
 
+# --port opencl (when built): the same files, byte for byte, and the port in the stats.
+"$bin" render --builtin square --port nosuch --out x.png 2>err.txt; r=$?
+check test $r -eq 2
+if "$bin" info | grep -q '^ports: .*opencl'; then
+  for algo in reference gears raytrace; do
+    "$bin" render "$scenes/spot.glb" --size 40x32 --k 8 --algo $algo --out s_$algo.png --vis s_$algo.pfm \
+        --ids s_$algo.bin 2>err.txt
+    check test $? -eq 0
+    "$bin" render "$scenes/spot.glb" --size 40x32 --k 8 --algo $algo --port opencl --out o_$algo.png \
+        --vis o_$algo.pfm --ids o_$algo.bin --stats o_$algo.json 2>err.txt
+    check test $? -eq 0
+    check cmp -s s_$algo.png o_$algo.png
+    check cmp -s s_$algo.pfm o_$algo.pfm
+    check cmp -s s_$algo.bin o_$algo.bin
+    check grep -q '"port": "opencl"' o_$algo.json
+  done
+  PN_OPENCL_DEVICE=no-such-device "$bin" render --builtin square --port opencl --out x.png 2>err.txt; r=$?
+  check test $r -eq 1
+  check grep -q 'PN_E_DEVICE' err.txt
+fi
+
 # The demo at a small size: every image and the sheet.
 "$bin" demo --out demo --size 48x48 --k 4 > demo.txt 2>err.txt
 check test $? -eq 0

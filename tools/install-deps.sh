@@ -2,7 +2,9 @@
 # Installs the Debian 12 packages the build and tests need, if any are missing.
 # As root: apt-get installs them. Otherwise: prints the exact command and fails.
 set -eu
-PKGS="cmake make gcc g++ libtinygltf-dev libstb-dev gcc-arm-none-eabi libnewlib-arm-none-eabi"
+# OpenCL port: headers, the ICD loader to link against, and PoCL as the CPU device.
+PKGS="cmake make gcc g++ libtinygltf-dev libstb-dev gcc-arm-none-eabi libnewlib-arm-none-eabi
+      pocl-opencl-icd ocl-icd-opencl-dev opencl-headers"
 missing=""
 for p in $PKGS; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

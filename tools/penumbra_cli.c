@@ -9,9 +9,18 @@
 #include <sys/stat.h>
 
 #include "penumbra/penumbra.h"
+#if PN_HAVE_OPENCL
+#include "penumbra/opencl.h"
+#endif
 #include "pn_image.h"
 #include "pn_scenes.h"
 #include "pn_setup.h"
+
+#if PN_HAVE_OPENCL
+#define PN_CLI_PORTS "scalar opencl"
+#else
+#define PN_CLI_PORTS "scalar"
+#endif
 
 typedef struct pn_algo_name {
     const char *name;
@@ -35,7 +44,8 @@ static void usage(FILE *f)
     size_t i;
     fprintf(f,
             "usage:\n"
-            "  penumbra render [SCENE.glb | --builtin NAME] [--algo A] [--port P] [--size WxH] [--k K]\n"
+            "  penumbra render [SCENE.glb | --builtin NAME] [--algo A] [--port P] [--cl-device SPEC]\n"
+            "                  [--size WxH] [--k K]\n"
             "                  [--eye x,y,z --target x,y,z --up x,y,z --fov DEG]\n"
             "                  [--light-center x,y,z --light-u x,y,z --light-v x,y,z]\n"
             "                  [--ground on|off] [--eps E] [--grid N] [--exact-stats] [--threads N]\n"
@@ -45,7 +55,7 @@ static void usage(FILE *f)
             "algorithms:");
     for (i = 0; i < PN_ALGO_COUNT; i++)
         if (pn_build_info() & pn_algos[i].build_flag) fprintf(f, " %s", pn_algos[i].name);
-    fprintf(f, "\nports: scalar\nbuilt-in scenes:");
+    fprintf(f, "\nports: " PN_CLI_PORTS "\nbuilt-in scenes:");
     for (; *names; names++) fprintf(f, " %s", *names);
     fprintf(f, "\n");
 }
@@ -68,6 +78,64 @@ static const char *algo_name(pn_algo a)
     for (i = 0; i < PN_ALGO_COUNT; i++)
         if (pn_algos[i].algo == a) return pn_algos[i].name;
     return "?";
+}
+
+/* The port a frame is rendered with: "scalar" (pn_render) or "opencl" (pn_opencl_render,
+ * on the device PN_OPENCL_DEVICE or --cl-device picks). */
+typedef struct cli_port {
+    const char *name;
+#if PN_HAVE_OPENCL
+    pn_opencl *cl;
+#endif
+} cli_port;
+
+static int cli_port_known(const char *name)
+{
+    return strcmp(name, "scalar") == 0 || (PN_HAVE_OPENCL && strcmp(name, "opencl") == 0);
+}
+
+/* 0, or 1 after printing why the port cannot run on ctx. */
+static int cli_port_open(cli_port *p, const char *name, const char *device, pn_context *ctx)
+{
+    memset(p, 0, sizeof(*p));
+    p->name = name;
+#if PN_HAVE_OPENCL
+    if (strcmp(name, "opencl") == 0) {
+        pn_opencl_options o;
+        pn_status st;
+        pn_opencl_info info;
+        pn_opencl_options_default(&o);
+        o.device = device;
+        if ((st = pn_opencl_create(ctx, &o, &p->cl)) != PN_OK) {
+            fprintf(stderr, "penumbra: OpenCL port: %s (%s)\n", pn_last_error(ctx), pn_status_str(st));
+            return 1;
+        }
+        pn_opencl_get_info(p->cl, &info);
+        fprintf(stderr, "OpenCL: %s, kernels built in %.0f ms (+%.0f ms first launches)\n", pn_opencl_device_name(p->cl),
+                info.build_ms, info.warmup_ms);
+    }
+#else
+    (void)device;
+    (void)ctx;
+#endif
+    return 0;
+}
+
+static pn_status cli_port_render(cli_port *p, pn_context *ctx, const pn_camera *cam, const pn_light *light,
+                                 const pn_frame_options *opt, pn_frame *fr)
+{
+#if PN_HAVE_OPENCL
+    if (p->cl) return pn_opencl_render(p->cl, cam, light, opt, fr);
+#endif
+    return pn_render(ctx, cam, light, opt, fr);
+}
+
+static void cli_port_close(cli_port *p)
+{
+#if PN_HAVE_OPENCL
+    pn_opencl_destroy(p->cl);
+#endif
+    memset(p, 0, sizeof(*p));
 }
 
 static void json_vec(FILE *f, const char *key, const float v[3], int comma)
@@ -127,7 +195,8 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
 static int cmd_render(int argc, char **argv)
 {
     const char *scene = NULL, *builtin = NULL, *out = NULL, *vis = NULL, *ids = NULL, *stats = NULL;
-    const char *port = "scalar";
+    const char *port = "scalar", *device = NULL;
+    cli_port cp;
     pn_frame_options opt;
     pn_setup s;
     pn_host h;
@@ -171,11 +240,14 @@ static int cmd_render(int argc, char **argv)
             if (r) BAD("--algo");
         } else if (strcmp(a, "--port") == 0) {
             NEED_ARG;
-            if (strcmp(v, "scalar") != 0) {
-                fprintf(stderr, "penumbra: port '%s' is not available in this build (ports: scalar)\n", v);
+            if (!cli_port_known(v)) {
+                fprintf(stderr, "penumbra: port '%s' is not available in this build (ports: " PN_CLI_PORTS ")\n", v);
                 return 2;
             }
             port = v;
+        } else if (strcmp(a, "--cl-device") == 0) {
+            NEED_ARG;
+            device = v;
         } else if (strcmp(a, "--size") == 0) { NEED_ARG; if (pn_parse_size(v, &opt.width, &opt.height)) BAD("--size"); }
         else if (strcmp(a, "--k") == 0) { NEED_ARG; opt.k = (uint32_t)strtoul(v, NULL, 10); }
         else if (strcmp(a, "--eye") == 0) { NEED_ARG; if (pn_parse_vec3(v, cam.eye)) BAD(a); have[0] = 1; }
@@ -239,12 +311,14 @@ static int cmd_render(int argc, char **argv)
     }
     h.threads.progress = 1;
     h.threads.label = "render";
+    memset(&cp, 0, sizeof(cp));
     if ((rs = pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count)) != PN_OK) {
         fprintf(stderr, "penumbra: scene rejected: %s (%s)\n", pn_last_error(h.ctx), pn_status_str(rs));
         goto fail;
     }
+    if (cli_port_open(&cp, port, device, h.ctx) != 0) goto fail;
     t0 = pn_threads_now_ns(NULL);
-    rs = pn_render(h.ctx, &s.camera, &s.light, &opt, &fr);
+    rs = cli_port_render(&cp, h.ctx, &s.camera, &s.light, &opt, &fr);
     ms = (pn_threads_now_ns(NULL) - t0) / 1e6;
     if (rs != PN_OK) {
         fprintf(stderr, "penumbra: render failed: %s (%s)\n", pn_last_error(h.ctx), pn_status_str(rs));
@@ -263,10 +337,12 @@ static int cmd_render(int argc, char **argv)
     }
     fprintf(stderr, "%s: %ux%u k=%u %s/%s %.1f ms (bvh %.1f ms)\n", s.name, fr.width, fr.height, opt.k,
             algo_name(opt.algo), port, ms, st.pass_ns[PN_PASS_BVH_BUILD] / 1e6);
+    cli_port_close(&cp);
     pn_host_close(&h);
     pn_setup_free(&s);
     return 0;
 fail:
+    cli_port_close(&cp);
     pn_host_close(&h);
     pn_setup_free(&s);
     return 1;
@@ -313,6 +389,20 @@ static void err_to_rgba(const float *v, const float *ref, size_t n, uint8_t *out
     }
 }
 
+/* Root mean square and largest |v - ref|. */
+static void vis_error(const float *v, const float *ref, size_t n, double *rmse, double *max_err)
+{
+    double se = 0.0, mx = 0.0;
+    size_t p;
+    for (p = 0; p < n; p++) {
+        double e = fabs((double)v[p] - ref[p]);
+        se += e * e;
+        if (e > mx) mx = e;
+    }
+    *rmse = sqrt(se / (double)n);
+    *max_err = mx;
+}
+
 static void blit(uint8_t *sheet, uint32_t sw, const uint8_t *img, uint32_t w, uint32_t h, uint32_t ox, uint32_t oy)
 {
     uint32_t y;
@@ -351,7 +441,8 @@ static int cmd_demo(int argc, char **argv)
         pn_host h;
         pn_frame_options opt;
         float *ref = NULL;
-        uint8_t *tmp;
+        uint8_t *tmp, *kept;
+        cli_port cp;
         size_t a, n = (size_t)w * hgt;
         if (pn_setup_load(&s, names[si], 1, -1, err, sizeof(err)) ||
             pn_host_open(&h, s.mesh.triangle_count, w, hgt, threads, err, sizeof(err))) {
@@ -366,16 +457,20 @@ static int cmd_demo(int argc, char **argv)
         opt.eps = s.eps;
         ref = (float *)malloc(n * sizeof(float));
         tmp = (uint8_t *)malloc(n * 4);
-        if (!ref || !tmp || pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices,
-                                         s.mesh.triangle_count) != PN_OK) {
+        kept = (uint8_t *)malloc(n * 8);
+        memset(&cp, 0, sizeof(cp));
+        if (!ref || !tmp || !kept || pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices,
+                                                  s.mesh.triangle_count) != PN_OK) {
             fprintf(stderr, "penumbra: %s: %s\n", names[si], h.ctx ? pn_last_error(h.ctx) : "out of memory");
             rc = 1;
         }
+        /* Every frame again on the OpenCL port when it is built: same bytes, its time. */
+        if (rc == 0 && PN_HAVE_OPENCL && cli_port_open(&cp, "opencl", NULL, h.ctx) != 0)
+            fprintf(stderr, "penumbra demo: scalar port only\n");
         for (a = 0; rc == 0 && a < PN_DEMO_ALGO_COUNT; a++) {
             pn_frame fr;
             uint64_t t0;
             double ms, se = 0.0, mx = 0.0;
-            size_t p;
             uint32_t col = a == 0 ? 0 : 2 + 2 * (uint32_t)(a - 1);
             if (!(pn_build_info() & pn_algos[a].build_flag)) continue;
             opt.algo = pn_algos[a].algo;
@@ -387,13 +482,8 @@ static int cmd_demo(int argc, char **argv)
             }
             ms = (pn_threads_now_ns(NULL) - t0) / 1e6;
             if (a == 0) memcpy(ref, fr.visibility, n * sizeof(float));
-            for (p = 0; p < n; p++) {
-                double e = fabs((double)fr.visibility[p] - ref[p]);
-                se += e * e;
-                if (e > mx) mx = e;
-            }
-            printf("%-16s %-10s %-7s %10.1f %10.6f %10.6f\n", names[si], pn_algos[a].name, "scalar", ms,
-                   sqrt(se / (double)n), mx);
+            vis_error(fr.visibility, ref, n, &se, &mx);
+            printf("%-16s %-10s %-7s %10.1f %10.6f %10.6f\n", names[si], pn_algos[a].name, "scalar", ms, se, mx);
             snprintf(path, sizeof(path), "%s/%s_%s.png", outdir, names[si], pn_algos[a].name);
             if (pn_write_png(path, fr.rgba, w, hgt, err, sizeof(err))) { fprintf(stderr, "%s\n", err); rc = 1; }
             blit(sheet, sw, fr.rgba, w, hgt, gap + col * (w + gap), gap + si * (hgt + gap));
@@ -404,9 +494,32 @@ static int cmd_demo(int argc, char **argv)
                 err_to_rgba(fr.visibility, ref, n, tmp);
                 blit(sheet, sw, tmp, w, hgt, gap + (col + 1) * (w + gap), gap + si * (hgt + gap));
             }
+#if PN_HAVE_OPENCL
+            if (cp.cl) { /* after the sheet used the scalar frame: this one overwrites it */
+                pn_frame fo;
+                memcpy(kept, fr.visibility, n * 4);
+                memcpy(kept + n * 4, fr.rgba, n * 4);
+                t0 = pn_threads_now_ns(NULL);
+                if (cli_port_render(&cp, h.ctx, &s.camera, &s.light, &opt, &fo) != PN_OK) {
+                    fprintf(stderr, "penumbra: %s/%s/opencl: %s\n", names[si], pn_algos[a].name, pn_last_error(h.ctx));
+                    rc = 1;
+                    break;
+                }
+                ms = (pn_threads_now_ns(NULL) - t0) / 1e6;
+                vis_error(fo.visibility, ref, n, &se, &mx);
+                printf("%-16s %-10s %-7s %10.1f %10.6f %10.6f\n", names[si], pn_algos[a].name, "opencl", ms, se, mx);
+                if (memcmp(kept, fo.visibility, n * 4) != 0 || memcmp(kept + n * 4, fo.rgba, n * 4) != 0) {
+                    fprintf(stderr, "penumbra: %s/%s: the OpenCL frame differs from the scalar one\n", names[si],
+                            pn_algos[a].name);
+                    rc = 1;
+                }
+            }
+#endif
         }
         free(ref);
         free(tmp);
+        free(kept);
+        cli_port_close(&cp);
         pn_host_close(&h);
         pn_setup_free(&s);
         if (rc) break;

@@ -17,7 +17,7 @@ check test $r -eq 0
 [ $r -eq 0 ] || cat "$work.stderr" >&2
 md=$work/RESULTS.md
 check test -s "$md"
-for s in square elongated-cube thin; do
+for s in square elongated-cube; do
   check grep -q "^| $s | " "$md"
 done
 if [ -f "$scenes/spot.glb" ]; then

@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <time.h>
 
 #include "penumbra/penumbra.h"
@@ -32,16 +33,17 @@ typedef struct bench_algo {
     const char *name;
     pn_algo algo;
     uint32_t build_flag;
-    int exact; /* must match the reference bit for bit */
+    int exact;     /* must match the reference bit for bit */
+    int all_ports; /* 0: measured on the first port only (a baseline, not a product) */
 } bench_algo;
 
 /* Every algorithm of the library; a new one is one line here (and its accuracy, timing
  * and gallery columns follow). */
 static const bench_algo algos[] = {
-    {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE, 1},
-    {"GEARS", PN_ALGO_GEARS, PN_BUILD_GEARS, 1},
+    {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE, 1, 1},
+    {"GEARS", PN_ALGO_GEARS, PN_BUILD_GEARS, 1, 1},
 #ifdef PN_BUILD_RAYTRACE
-    {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE, 1},
+    {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE, 1, 0},
 #endif
 };
 #define NALGO ((int)(sizeof(algos) / sizeof(algos[0])))
@@ -90,6 +92,9 @@ typedef struct bench_opts {
     const char *only;         /* comma list, NULL: all */
     const char *sweep_scenes; /* comma list */
     const char *label;
+    const char *algos;        /* comma list of algorithm names and "embree"; NULL: all */
+    int nports;               /* the first nports entries of ports[] */
+    int lean;                 /* no exact-statistics frame, masks or gallery (profiling) */
     int quick;
     int threads; /* all cores when 0 */
     int reps, reps_slow;  /* repetitions; reps_slow when one repetition takes > slow_s */
@@ -108,7 +113,7 @@ static int in_list(const char *list, const char *name)
     while (*p) {
         const char *e = strchr(p, ',');
         size_t len = e ? (size_t)(e - p) : strlen(p);
-        if (len == n && strncmp(p, name, n) == 0) return 1;
+        if (len == n && strncasecmp(p, name, n) == 0) return 1;
         if (!e) break;
         p = e + 1;
     }
@@ -192,7 +197,8 @@ typedef struct scene_state {
     pn_embree *emb;        /* NULL when Embree is absent or failed */
     char emb_err[256];
     int emb_built;         /* scene built into emb */
-    pn_gbuf g;             /* G-buffer of the current point, from the reference */
+    pn_gbuf g;             /* G-buffer of the current point, from its first frame */
+    int need_gbuf;
     uint32_t threads;
     /* from the main point, for the sweeps and the headline plot */
     pn_embree_api best_api;
@@ -314,8 +320,10 @@ static void job_run(scene_state *ss, job *j, const pn_light *light, int rep)
         pn_get_stats(ss->h.ctx, &j->st);
         j->pass[j->n] = j->st.pass_ns[PN_PASS_SHADOW] / 1e6;
         j->n++;
-        if (rep == 0 && j->algo == A_REF) {
-            /* Every baseline traces from this frame's G-buffer. */
+        if (ss->need_gbuf) {
+            /* Every baseline traces from the point's G-buffer (the same for every
+             * algorithm: the rasterizer does not depend on it). */
+            ss->need_gbuf = 0;
             pn_gbuf_free(&ss->g);
             if (pn_gbuf_copy(&ss->g, &fr) != 0) progress("warning: out of memory copying the G-buffer");
         }
@@ -335,6 +343,7 @@ static void job_run(scene_state *ss, job *j, const pn_light *light, int rep)
 static int run_jobs(const bench_opts *o, scene_state *ss, job *jobs, int njobs, const pn_light *light)
 {
     int rep, i, reps = o->reps;
+    ss->need_gbuf = 1;
     for (rep = 0; rep < reps; rep++) {
         uint64_t t0 = pn_threads_now_ns(NULL);
         for (i = 0; i < njobs; i++) job_run(ss, &jobs[i], light, rep);
@@ -638,7 +647,20 @@ static void main_point(const bench_opts *o, report *r, scene_state *ss, int firs
         if (!(pn_build_info() & algos[a].build_flag)) {
             lib[a].ok = 0;
             snprintf(lib[a].err, sizeof(lib[a].err), "not compiled in");
+        } else if (!first_port && !algos[a].all_ports) {
+            lib[a].ok = 0;
+            snprintf(lib[a].err, sizeof(lib[a].err), "first port only");
+        } else if (!in_list(o->algos, algos[a].name)) {
+            lib[a].ok = 0;
+            snprintf(lib[a].err, sizeof(lib[a].err), "not selected (--algos)");
         }
+    if (!in_list(o->algos, "embree")) {
+        ebuild.ok = 0;
+        for (i = 0; i < PN_EMBREE_API_COUNT; i++) {
+            emb[i].ok = 0;
+            snprintf(emb[i].err, sizeof(emb[i].err), "not selected (--algos)");
+        }
+    }
     /* One array so that run_jobs interleaves them: builds, then the algorithms (reference
      * first: it provides the G-buffer), then Embree. */
     all[nall++] = bset;
@@ -653,7 +675,7 @@ static void main_point(const bench_opts *o, report *r, scene_state *ss, int firs
     for (a = 0; a < NALGO; a++) lib[a] = all[2 + a];
     for (i = 0; i < PN_EMBREE_API_COUNT; i++) emb[i] = all[2 + NALGO + i];
     for (a = 0; a < NALGO; a++)
-        if (!lib[a].ok) progress("    %s: %s", algos[a].name, lib[a].err);
+        if (!lib[a].ok && (first_port || algos[a].all_ports)) progress("    %s: %s", algos[a].name, lib[a].err);
     for (i = 0; i < PN_EMBREE_API_COUNT; i++)
         if (!emb[i].ok && ss->emb) progress("    Embree %s: %s", pn_embree_api_name((pn_embree_api)i), emb[i].err);
 
@@ -691,7 +713,7 @@ static void main_point(const bench_opts *o, report *r, scene_state *ss, int firs
             emb_best == emb_best ? (emb_api[0] == '1' && emb_api[1] == '6' ? "rtcOccluded16" : "rtcOccluded1") : "n/a",
             c[4], c[5]);
     }
-    if (first_port) {
+    if (first_port && !o->lean) {
         pn_stats gst = lib[A_GEARS].st, xst;
         job exact;
         int have_exact = 0;
@@ -1088,7 +1110,8 @@ static void print_report(report *r, const bench_opts *o, FILE *out, const char *
                  "sample, over all assignments the grid made (a GEARS frame with `exact_stats = 1`).\n\n");
     fprintf(out, "![GEARS speed-ups](speedup.png)\n\n");
     fprintf(out, "## Per port: milliseconds and speed-up over Embree (issue 5, table 1)\n\n%s\n", r->buf[SEC_PORTS]);
-    fprintf(out, "Embree runs with the same thread count as the port on its row. A port added to `ports[]` in "
+    fprintf(out, "Embree runs with the same thread count as the port on its row. The per-sample ray tracer is a "
+                 "baseline, measured on the first row of each scene only. A port added to `ports[]` in "
                  "tools/penumbra_bench.c gets its rows here.\n\n");
     fprintf(out, "## Embree 3 baseline\n\n%s\n", r->buf[SEC_EMBREE]);
     fprintf(out, "Static: shadow pass against shadow pass (paper Table 7, column B). Dynamic: Embree's BVH build plus "
@@ -1173,6 +1196,7 @@ static void usage(void)
 {
     fprintf(stderr,
             "usage: penumbra_bench [--out DIR] [--scenes DIR] [--quick] [--only a,b] [--sweep-scenes a,b]\n"
+            "                      [--algos reference,GEARS,raytrace,embree] [--ports N] [--lean]\n"
             "                      [--reps N] [--reps-slow N] [--slow-seconds S] [--threads N] [--size N] [--k K]\n"
             "                      [--sweep-res a,b] [--sweep-k a,b] [--sweep-grid a,b] [--label TEXT]\n"
             "Prints Markdown tables and writes DIR/RESULTS.md, DIR/data/*.dat, DIR/plots.gp (gnuplot) and\n"
@@ -1197,6 +1221,7 @@ int main(int argc, char **argv)
     o.reps = 5;
     o.reps_slow = 3;
     o.slow_s = 30.0;
+    o.nports = NPORT;
     o.size = 512;
     o.k = 16;
     o.grid = 128;
@@ -1204,6 +1229,7 @@ int main(int argc, char **argv)
     for (i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (strcmp(a, "--quick") == 0) o.quick = 1;
+        else if (strcmp(a, "--lean") == 0) o.lean = 1;
         else if (!v) {
             usage();
             return 2;
@@ -1212,6 +1238,8 @@ int main(int argc, char **argv)
         else if (strcmp(a, "--only") == 0) o.only = argv[++i];
         else if (strcmp(a, "--sweep-scenes") == 0) o.sweep_scenes = argv[++i];
         else if (strcmp(a, "--label") == 0) o.label = argv[++i];
+        else if (strcmp(a, "--algos") == 0) o.algos = argv[++i];
+        else if (strcmp(a, "--ports") == 0) o.nports = atoi(argv[++i]);
         else if (strcmp(a, "--reps") == 0) o.reps = atoi(argv[++i]);
         else if (strcmp(a, "--reps-slow") == 0) o.reps_slow = atoi(argv[++i]);
         else if (strcmp(a, "--slow-seconds") == 0) o.slow_s = atof(argv[++i]);
@@ -1229,7 +1257,7 @@ int main(int argc, char **argv)
     if (o.quick) {
         /* A small subset that still runs every code path: CI-friendly (well under two
          * minutes on two cores). */
-        if (!o.only) o.only = "square,elongated-cube,thin,spot";
+        if (!o.only) o.only = "square,elongated-cube,spot";
         o.sweep_scenes = "spot";
         o.size = 128;
         o.reps = o.reps_slow = 3;
@@ -1315,7 +1343,7 @@ int main(int argc, char **argv)
             if (!builtin[i]) stem[strlen(stem) - 4] = '\0';
             sweepable = in_list(o.sweep_scenes, stem);
             progress("[%d/%d] %s", i + 1, nscenes, stem);
-            for (p = 0; p < NPORT; p++) {
+            for (p = 0; p < NPORT && p < o.nports; p++) {
                 scene_state ss;
                 uint32_t max_size = o.size;
                 if (p == 0 && sweepable)

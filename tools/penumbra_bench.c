@@ -814,17 +814,44 @@ enum { SW_RES, SW_K, SW_LIGHT, SW_GRID };
 
 static const char *sweep_file[] = {"sweep_resolution", "sweep_k", "sweep_light", "sweep_grid"};
 
+/* Rows of a sweep table, one cell per swept value. */
+typedef struct rowset {
+    char text[6][2048];
+    int len[6];
+} rowset;
+
+static void row_add(rowset *rs, int i, const char *cell)
+{
+    rs->len[i] += snprintf(rs->text[i] + rs->len[i], sizeof(rs->text[i]) - (size_t)rs->len[i], " %s |", cell);
+}
+
+static void row_ms(rowset *rs, int i, double ms)
+{
+    char c[64];
+    fmt_ms(c, sizeof(c), ms);
+    row_add(rs, i, c);
+}
+
+static void row_ratio(rowset *rs, int i, double num, double den)
+{
+    char c[64];
+    fmt_ratio(c, sizeof(c), num, den);
+    row_add(rs, i, c);
+}
+
 /* One sweep over one scene: per value, GEARS, the reference and Embree (the API that won
  * at the main point), interleaved; the grid sweep runs every grid in one set of jobs
  * (reference and Embree do not depend on it) plus one exact-statistics GEARS frame per
  * grid for the necessary/total column. */
 static void sweep(const bench_opts *o, report *r, scene_state *ss, int kind, pn_embree_api api)
 {
-    char data[8192], cell[64], rows[6][2048];
-    int dl = 0, v, nv, i, rl[6] = {0};
+    char data[8192], cell[64];
+    rowset rs;
+    int dl = 0, v, nv, i;
     const char *labels[6];
     int nrows = 3;
     pn_frame_options base;
+    memset(&rs, 0, sizeof(rs));
     base_options(o, ss, &base);
     nv = kind == SW_RES ? (int)o->n_res : kind == SW_K ? (int)o->n_k : kind == SW_LIGHT ? (int)o->n_light : (int)o->n_grid;
     dl += snprintf(data + dl, sizeof(data) - (size_t)dl, "# %s %s: value gears_ms reference_ms embree_ms%s\n",
@@ -875,19 +902,15 @@ static void sweep(const bench_opts *o, report *r, scene_state *ss, int kind, pn_
             const job *g = v == 0 ? &jobs[nv] : &jobs[v];
             double gm = job_pass(g), rm = job_pass(&jobs[0]), em = job_pass(&jobs[nv + 1]);
             double pct = xs[v].gears_assignments ? 100.0 * (double)xs[v].shadow_blocking / (double)xs[v].gears_assignments : NAN;
-            fmt_ms(cell, sizeof(cell), gm);
-            rl[0] += snprintf(rows[0] + rl[0], sizeof(rows[0]) - (size_t)rl[0], " %s |", cell);
-            fmt_ms(cell, sizeof(cell), rm);
-            rl[1] += snprintf(rows[1] + rl[1], sizeof(rows[1]) - (size_t)rl[1], " %s |", cell);
-            fmt_ms(cell, sizeof(cell), em);
-            rl[2] += snprintf(rows[2] + rl[2], sizeof(rows[2]) - (size_t)rl[2], " %s |", cell);
+            row_ms(&rs, 0, gm);
+            row_ms(&rs, 1, rm);
+            row_ms(&rs, 2, em);
             if (pct == pct) snprintf(cell, sizeof(cell), "%.1f%%", pct);
             else snprintf(cell, sizeof(cell), "n/a");
-            rl[3] += snprintf(rows[3] + rl[3], sizeof(rows[3]) - (size_t)rl[3], " %s |", cell);
-            rl[4] += snprintf(rows[4] + rl[4], sizeof(rows[4]) - (size_t)rl[4], " %u / %.1f |",
-                              xs[v].gears_max_tris_per_cell, xs[v].gears_mean_tris_per_cell);
-            fmt_ratio(cell, sizeof(cell), em, gm);
-            rl[5] += snprintf(rows[5] + rl[5], sizeof(rows[5]) - (size_t)rl[5], " %s |", cell);
+            row_add(&rs, 3, cell);
+            snprintf(cell, sizeof(cell), "%u / %.1f", xs[v].gears_max_tris_per_cell, xs[v].gears_mean_tris_per_cell);
+            row_add(&rs, 4, cell);
+            row_ratio(&rs, 5, em, gm);
             dl += snprintf(data + dl, sizeof(data) - (size_t)dl, "%u %.4f %.4f %.4f %.3f\n", o->sweep_grid[v], gm, rm,
                            em, pct);
         }
@@ -919,16 +942,11 @@ static void sweep(const bench_opts *o, report *r, scene_state *ss, int kind, pn_
             rm = job_pass(&jobs[0]);
             gm = job_pass(&jobs[1]);
             em = job_pass(&jobs[2]);
-            fmt_ms(cell, sizeof(cell), gm);
-            rl[0] += snprintf(rows[0] + rl[0], sizeof(rows[0]) - (size_t)rl[0], " %s |", cell);
-            fmt_ms(cell, sizeof(cell), rm);
-            rl[1] += snprintf(rows[1] + rl[1], sizeof(rows[1]) - (size_t)rl[1], " %s |", cell);
-            fmt_ms(cell, sizeof(cell), em);
-            rl[2] += snprintf(rows[2] + rl[2], sizeof(rows[2]) - (size_t)rl[2], " %s |", cell);
-            fmt_ratio(cell, sizeof(cell), rm, gm);
-            rl[3] += snprintf(rows[3] + rl[3], sizeof(rows[3]) - (size_t)rl[3], " %s |", cell);
-            fmt_ratio(cell, sizeof(cell), em, gm);
-            rl[4] += snprintf(rows[4] + rl[4], sizeof(rows[4]) - (size_t)rl[4], " %s |", cell);
+            row_ms(&rs, 0, gm);
+            row_ms(&rs, 1, rm);
+            row_ms(&rs, 2, em);
+            row_ratio(&rs, 3, rm, gm);
+            row_ratio(&rs, 4, em, gm);
             dl += snprintf(data + dl, sizeof(data) - (size_t)dl, "%g %.4f %.4f %.4f\n", value, gm, rm, em);
             for (i = 0; i < 3; i++) {
                 if (!jobs[i].ok) progress("    %s", jobs[i].err);
@@ -937,7 +955,7 @@ static void sweep(const bench_opts *o, report *r, scene_state *ss, int kind, pn_
         }
     }
     for (i = 0; i < nrows; i++)
-        sec(r, SEC_RES + kind, "| %s | %s |%s\n", i == 0 ? ss->s.name : "", labels[i], rows[i]);
+        sec(r, SEC_RES + kind, "| %s | %s |%s\n", i == 0 ? ss->s.name : "", labels[i], rs.text[i]);
     write_data(o, sweep_file[kind], ss->s.name, data);
 }
 
@@ -1070,6 +1088,40 @@ static void plot_headline(report *r, const bench_opts *o)
             o->size, o->size, o->k, r->hmin / 1.5, r->hmax * 1.5, A_RT >= 0 ? ", '' using 4 title 'vs raytrace'" : "");
 }
 
+/* The sections after the headline, in order: heading and the note that explains the
+ * columns (the sweeps and the accuracy heading are built in print_report). */
+static const struct {
+    int sec;
+    const char *heading, *note;
+} notes[] = {
+    {SEC_PORTS, "## Per port: milliseconds and speed-up over Embree (issue 5, table 1)",
+     "Embree runs with the same thread count as the port on its row. The per-sample ray tracer is a baseline, "
+     "measured on the first row of each scene only. A port added to `ports[]` in tools/penumbra_bench.c gets its "
+     "rows here."},
+    {SEC_EMBREE, "## Embree 3 baseline",
+     "Static: shadow pass against shadow pass (paper Table 7, column B). Dynamic: Embree's BVH build plus its pass "
+     "against our scene copy and BVH build plus GEARS' pass (column C: a scene that changes every frame)."},
+    {SEC_RES, NULL, NULL},
+    {SEC_K, NULL, NULL},
+    {SEC_LIGHT, NULL, NULL},
+    {SEC_GRID, NULL, NULL},
+    {SEC_GRIDEFF, "## GEARS grid efficiency (paper Tables 5 and 6)",
+     "Per cell: over the cells that hold at least one pixel. Assignments: triangles x pixels summed over cells. "
+     "\"After frustum cull\": assignments that survive the pixel's light-frustum test and reach the predicate. "
+     "Necessary: those that block at least one sample (exact statistics, no early exit)."},
+    {SEC_MEMORY, "## Memory",
+     "Arena columns: `pn_arena_size` for the scene's triangle count at that image size and GEARS pool "
+     "configuration. Persistent and high-water: `pn_stats` after the main-point frames (the context was sized for "
+     "the largest image of the run). GEARS tiles: passes the pair pool needed."},
+    {SEC_ACCURACY, NULL,
+     "Wrong pixels: visibility not bit-identical to the reference's. Exact algorithms must show zero."},
+    {SEC_MASKS, "### Embree against our predicate, bit by bit",
+     "Our masks are recomputed in the tool by the library's kernels (`pn_tri_mask` over a host BVH with the "
+     "reference's frustum cull); the last column checks that their visibility is byte-identical to the reference's "
+     "frame. Embree's masks come from rtcOccluded1. Compared: every mask bit of every pixel that has a shadow-ray "
+     "origin."},
+};
+
 static void print_report(report *r, const bench_opts *o, FILE *out, const char *mach, const char *emb_info, int threads,
                          double minutes)
 {
@@ -1109,40 +1161,24 @@ static void print_report(report *r, const bench_opts *o, FILE *out, const char *
     fprintf(out, "\"necessary / total\" is paper Table 6: triangle-to-pixel assignments that block at least one "
                  "sample, over all assignments the grid made (a GEARS frame with `exact_stats = 1`).\n\n");
     fprintf(out, "![GEARS speed-ups](speedup.png)\n\n");
-    fprintf(out, "## Per port: milliseconds and speed-up over Embree (issue 5, table 1)\n\n%s\n", r->buf[SEC_PORTS]);
-    fprintf(out, "Embree runs with the same thread count as the port on its row. The per-sample ray tracer is a "
-                 "baseline, measured on the first row of each scene only. A port added to `ports[]` in "
-                 "tools/penumbra_bench.c gets its rows here.\n\n");
-    fprintf(out, "## Embree 3 baseline\n\n%s\n", r->buf[SEC_EMBREE]);
-    fprintf(out, "Static: shadow pass against shadow pass (paper Table 7, column B). Dynamic: Embree's BVH build plus "
-                 "its pass against our scene copy and BVH build plus GEARS' pass (column C: a scene that changes every "
-                 "frame).\n\n");
-    for (s = SEC_RES; s <= SEC_GRID; s++) {
-        fprintf(out, "## %s\n\n", sweep_title[s - SEC_RES]);
-        if (r->sweep_scenes) {
-            fprintf(out, "%s\n![%s](%s.png)\n\n", r->buf[s], sweep_title[s - SEC_RES], sweep_file[s - SEC_RES]);
-        } else {
-            fprintf(out, "(no sweep scenes in this run)\n\n");
+    for (s = 0; s < (int)(sizeof(notes) / sizeof(notes[0])); s++) {
+        int sw = notes[s].sec;
+        if (sw >= SEC_RES && sw <= SEC_GRID) {
+            fprintf(out, "## %s\n\n", sweep_title[sw - SEC_RES]);
+            if (r->sweep_scenes)
+                fprintf(out, "%s\n![%s](%s.png)\n\n", r->buf[sw], sweep_title[sw - SEC_RES], sweep_file[sw - SEC_RES]);
+            else fprintf(out, "(no sweep scenes in this run)\n\n");
+            if (sw == SEC_GRID)
+                fprintf(out, "Shadow pass ms, medians; %d threads. Light diagonal d scales the default light's "
+                             "half-edges by d / 2, so 2 is the default light (as in the paper, whose default column "
+                             "is 2).\n\n",
+                        threads);
+            continue;
         }
+        if (sw == SEC_ACCURACY) fprintf(out, "## Accuracy against the reference (%ux%u, k = %u)\n\n", o->size, o->size, o->k);
+        else fprintf(out, "%s\n\n", notes[s].heading);
+        fprintf(out, "%s\n%s\n\n", r->buf[sw], notes[s].note);
     }
-    fprintf(out, "Shadow pass ms, medians; %d threads. Light diagonal d scales the default light's half-edges by "
-                 "d / 2, so 2 is the default light (as in the paper, whose default column is 2).\n\n",
-            threads);
-    fprintf(out, "## GEARS grid efficiency (paper Tables 5 and 6)\n\n%s\n", r->buf[SEC_GRIDEFF]);
-    fprintf(out, "Per cell: over the cells that hold at least one pixel. Assignments: triangles x pixels summed over "
-                 "cells. \"After frustum cull\": assignments that survive the pixel's light-frustum test and reach the "
-                 "predicate. Necessary: those that block at least one sample (exact statistics, no early exit).\n\n");
-    fprintf(out, "## Memory\n\n%s\n", r->buf[SEC_MEMORY]);
-    fprintf(out, "Arena columns: `pn_arena_size` for the scene's triangle count at that image size and GEARS pool "
-                 "configuration. Persistent and high-water: `pn_stats` after the main-point frames (the context was "
-                 "sized for the largest image of the run). GEARS tiles: passes the pair pool needed.\n\n");
-    fprintf(out, "## Accuracy against the reference (%ux%u, k = %u)\n\n%s\n", o->size, o->size, o->k, r->buf[SEC_ACCURACY]);
-    fprintf(out, "Wrong pixels: visibility not bit-identical to the reference's. Exact algorithms must show zero.\n\n");
-    fprintf(out, "### Embree against our predicate, bit by bit\n\n%s\n", r->buf[SEC_MASKS]);
-    fprintf(out, "Our masks are recomputed in the tool by the library's kernels (`pn_tri_mask` over a host BVH with the "
-                 "reference's frustum cull); the last column checks that their visibility is byte-identical to the "
-                 "reference's frame. Embree's masks come from rtcOccluded1. Compared: every mask bit of every pixel "
-                 "that has a shadow-ray origin.\n\n");
     fprintf(out, "## Gallery\n\nPer shared scene: the shaded reference, its visibility, each algorithm's image and its "
                  "error heat map against the reference (|error| x 4, black = identical), and Embree's visibility and "
                  "error.\n\n%s",

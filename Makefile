@@ -33,7 +33,7 @@ test: build
 bench-build:
 	@sh tools/install-deps.sh bench
 	@cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS=-g -DCMAKE_CXX_FLAGS=-g -DPN_BUILD_TESTS=OFF >/dev/null
-	@cmake --build $(BENCH_BUILD) -j $(JOBS) --target penumbra_bench
+	@cmake --build $(BENCH_BUILD) -j $(JOBS) --target penumbra_bench penumbra_cli
 
 bench: bench-build
 	sh tools/bench.sh full $(BENCH_BUILD)/tools/penumbra_bench docs/bench $(PN_SCENES_DIR)

@@ -5,6 +5,7 @@
 # full:  every built-in scene and every .glb in SCENES_DIR, the paper-style sweeps, the
 #        gallery; OUT_DIR (docs/bench) is emptied first, so it is regenerated from scratch.
 # quick: a small subset with every code path (see --quick in tools/penumbra_bench.c).
+# full also appends tools/bench_profile.sh's callgrind table (where the time goes).
 # Plots and the gallery are drawn by gnuplot from OUT_DIR/plots.gp when gnuplot is
 # installed (make bench installs it); without it the tables are still written.
 set -eu
@@ -14,13 +15,14 @@ case "$mode" in full) flag= ;; quick) flag=--quick ;; *) echo "$0: mode must be 
 [ -x "$bin" ] || { echo "$0: $bin is not an executable (build the penumbra_bench target)" >&2; exit 1; }
 case "$out" in ''|/|.|..) echo "$0: refusing to empty '$out'" >&2; exit 2 ;; esac
 
+label=
+root=$(dirname "$0")/..
+if rev=$(git -C "$root" rev-parse --short HEAD 2>/dev/null); then
+  label="commit $rev"
+  git -C "$root" diff --quiet HEAD -- . ':!docs/bench' 2>/dev/null || label="$label with local changes"
+fi
 rm -rf "$out"
 mkdir -p "$out"
-label=
-if rev=$(git -C "$(dirname "$0")" rev-parse --short HEAD 2>/dev/null); then
-  label="commit $rev"
-  git -C "$(dirname "$0")" diff --quiet HEAD -- 2>/dev/null || label="$label with local changes"
-fi
 set -- --out "$out"
 [ -n "$scenes" ] && set -- "$@" --scenes "$scenes"
 [ -n "$flag" ] && set -- "$@" "$flag"
@@ -32,4 +34,8 @@ else
   echo "bench: gnuplot not found: no plots or gallery (apt install gnuplot-nox)" >&2
 fi
 rm -rf "$out/work"
+if [ "$mode" = full ]; then
+  # Where the time goes: callgrind instruction counts of every shadow pass (valgrind).
+  sh "$(dirname "$0")/bench_profile.sh" "$bin" "$(dirname "$bin")/penumbra" "$scenes" >> "$out/RESULTS.md"
+fi
 echo "bench: wrote $out/RESULTS.md" >&2

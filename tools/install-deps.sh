@@ -2,13 +2,13 @@
 # Installs the Debian 12 packages the build and tests need, if any are missing.
 # As root: apt-get installs them. Otherwise: prints the exact command and fails.
 #   tools/install-deps.sh         what `make demo` and `make test` need
-#   tools/install-deps.sh bench   also the benchmark's own: the Embree 3 baseline and gnuplot
-#                                 for the plots (make bench, make bench-quick)
+#   tools/install-deps.sh bench   also the benchmark's own: the Embree 3 baseline, gnuplot
+#                                 for the plots and valgrind for its profile (make bench)
 set -eu
 PKGS="cmake make gcc g++ libtinygltf-dev libstb-dev gcc-arm-none-eabi libnewlib-arm-none-eabi"
 case "${1:-}" in
   "") ;;
-  bench) PKGS="$PKGS libembree-dev gnuplot-nox" ;;
+  bench) PKGS="$PKGS libembree-dev gnuplot-nox valgrind" ;;
   *) echo "usage: $0 [bench]" >&2; exit 2 ;;
 esac
 missing=""

@@ -1,11 +1,17 @@
 # The two set-up commands of the README. Everything else is CMake (build/).
 #   make demo   install missing Debian packages (as root), build, render the demo into out/demo/
 #   make test   install missing Debian packages (as root), build, run the whole ctest suite
+# Benchmarks (not part of make test; a separate Release build in build-bench/):
+#   make bench        also installs Embree and gnuplot, runs every scene and sweep, and
+#                     regenerates docs/bench/ (RESULTS.md, plots, gallery) from scratch; slow
+#   make bench-quick  the same on a small subset, into build-bench/bench-quick/ (< 2 minutes)
 BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
+BENCH_BUILD ?= build-bench
+PN_SCENES_DIR ?= $(abspath ../shared/scenes)
 
-.PHONY: all deps configure build demo test clean
+.PHONY: all deps configure build demo test clean bench bench-quick bench-build
 
 all: build
 
@@ -26,5 +32,16 @@ demo: build
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
+bench-build:
+	@sh tools/install-deps.sh bench
+	@cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS=-g -DCMAKE_CXX_FLAGS=-g -DPN_BUILD_TESTS=OFF >/dev/null
+	@cmake --build $(BENCH_BUILD) -j $(JOBS) --target penumbra_bench penumbra_cli
+
+bench: bench-build
+	sh tools/bench.sh full $(BENCH_BUILD)/tools/penumbra_bench docs/bench $(PN_SCENES_DIR)
+
+bench-quick: bench-build
+	sh tools/bench.sh quick $(BENCH_BUILD)/tools/penumbra_bench $(BENCH_BUILD)/bench-quick $(PN_SCENES_DIR)
+
 clean:
-	rm -rf $(BUILD) out
+	rm -rf $(BUILD) $(BENCH_BUILD) out

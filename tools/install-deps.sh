@@ -1,10 +1,18 @@
 #!/bin/sh
 # Installs the Debian 12 packages the build and tests need, if any are missing.
 # As root: apt-get installs them. Otherwise: prints the exact command and fails.
+#   tools/install-deps.sh         what `make demo` and `make test` need
+#   tools/install-deps.sh bench   also the benchmark's own: the Embree 3 baseline, gnuplot
+#                                 for the plots and valgrind for its profile (make bench)
 set -eu
 # OpenCL port: headers, the ICD loader to link against, and PoCL as the CPU device.
 PKGS="cmake make gcc g++ libtinygltf-dev libstb-dev gcc-arm-none-eabi libnewlib-arm-none-eabi
       pocl-opencl-icd ocl-icd-opencl-dev opencl-headers"
+case "${1:-}" in
+  "") ;;
+  bench) PKGS="$PKGS libembree-dev gnuplot-nox valgrind" ;;
+  *) echo "usage: $0 [bench]" >&2; exit 2 ;;
+esac
 missing=""
 for p in $PKGS; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

@@ -6,7 +6,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "penumbra/penumbra.h"
 #if PN_HAVE_OPENCL
@@ -350,46 +349,6 @@ fail:
 
 /* ---- demo --------------------------------------------------------------------------- */
 
-static int mkdir_p(const char *path)
-{
-    char buf[1024];
-    size_t i, n = strlen(path);
-    if (n >= sizeof(buf)) return 1;
-    memcpy(buf, path, n + 1);
-    for (i = 1; i <= n; i++)
-        if (buf[i] == '/' || buf[i] == '\0') {
-            char c = buf[i];
-            buf[i] = '\0';
-            if (mkdir(buf, 0777) != 0 && errno != EEXIST) return 1;
-            buf[i] = c;
-        }
-    return 0;
-}
-
-/* Visibility as gray, and |error| as a heat map (black 0, red..yellow up to 1). */
-static void vis_to_rgba(const float *v, size_t n, uint8_t *out)
-{
-    size_t i;
-    for (i = 0; i < n; i++) {
-        uint8_t g = (uint8_t)lrintf(fminf(fmaxf(v[i], 0.0f), 1.0f) * 255.0f);
-        out[i * 4] = out[i * 4 + 1] = out[i * 4 + 2] = g;
-        out[i * 4 + 3] = 255;
-    }
-}
-
-static void err_to_rgba(const float *v, const float *ref, size_t n, uint8_t *out)
-{
-    size_t i;
-    for (i = 0; i < n; i++) {
-        float e = fminf(fabsf(v[i] - ref[i]) * 4.0f, 1.0f); /* x4: 0.25 error is full scale */
-        out[i * 4] = (uint8_t)lrintf(e > 0.0f ? 64.0f + 191.0f * fminf(e * 2.0f, 1.0f) : 0.0f);
-        out[i * 4 + 1] = (uint8_t)lrintf(e > 0.5f ? 255.0f * (e - 0.5f) * 2.0f : 0.0f);
-        out[i * 4 + 2] = 0;
-        out[i * 4 + 3] = 255;
-    }
-}
-
-/* Root mean square and largest |v - ref|. */
 static void vis_error(const float *v, const float *ref, size_t n, double *rmse, double *max_err)
 {
     double se = 0.0, mx = 0.0;
@@ -401,12 +360,6 @@ static void vis_error(const float *v, const float *ref, size_t n, double *rmse, 
     }
     *rmse = sqrt(se / (double)n);
     *max_err = mx;
-}
-
-static void blit(uint8_t *sheet, uint32_t sw, const uint8_t *img, uint32_t w, uint32_t h, uint32_t ox, uint32_t oy)
-{
-    uint32_t y;
-    for (y = 0; y < h; y++) memcpy(sheet + ((size_t)(oy + y) * sw + ox) * 4, img + (size_t)y * w * 4, (size_t)w * 4);
 }
 
 static int cmd_demo(int argc, char **argv)
@@ -426,7 +379,7 @@ static int cmd_demo(int argc, char **argv)
         else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc) threads = atoi(argv[++i]);
         else { fprintf(stderr, "penumbra demo: unknown option %s\n", argv[i]); return 2; }
     }
-    if (mkdir_p(outdir)) { fprintf(stderr, "penumbra: cannot create %s\n", outdir); return 1; }
+    if (pn_mkdir_p(outdir)) { fprintf(stderr, "penumbra: cannot create %s\n", outdir); return 1; }
     while (names[nscenes]) nscenes++;
     /* Sheet: one row per scene: shaded reference, reference visibility, then per algorithm
      * its shaded image and its error heat map against the reference. */
@@ -486,13 +439,13 @@ static int cmd_demo(int argc, char **argv)
             printf("%-16s %-10s %-7s %10.1f %10.6f %10.6f\n", names[si], pn_algos[a].name, "scalar", ms, se, mx);
             snprintf(path, sizeof(path), "%s/%s_%s.png", outdir, names[si], pn_algos[a].name);
             if (pn_write_png(path, fr.rgba, w, hgt, err, sizeof(err))) { fprintf(stderr, "%s\n", err); rc = 1; }
-            blit(sheet, sw, fr.rgba, w, hgt, gap + col * (w + gap), gap + si * (hgt + gap));
+            pn_blit_rgba(sheet, sw, fr.rgba, w, hgt, gap + col * (w + gap), gap + si * (hgt + gap));
             if (a == 0) {
-                vis_to_rgba(fr.visibility, n, tmp);
-                blit(sheet, sw, tmp, w, hgt, gap + 1 * (w + gap), gap + si * (hgt + gap));
+                pn_vis_to_rgba(fr.visibility, n, tmp);
+                pn_blit_rgba(sheet, sw, tmp, w, hgt, gap + 1 * (w + gap), gap + si * (hgt + gap));
             } else {
-                err_to_rgba(fr.visibility, ref, n, tmp);
-                blit(sheet, sw, tmp, w, hgt, gap + (col + 1) * (w + gap), gap + si * (hgt + gap));
+                pn_err_to_rgba(fr.visibility, ref, n, tmp);
+                pn_blit_rgba(sheet, sw, tmp, w, hgt, gap + (col + 1) * (w + gap), gap + si * (hgt + gap));
             }
 #if PN_HAVE_OPENCL
             if (cp.cl) { /* after the sheet used the scalar frame: this one overwrites it */

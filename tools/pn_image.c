@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 /* The implementation comes from libstb (Debian's -lstb); only the declarations are needed. */
 #include "stb_image_write.h"
@@ -310,4 +311,50 @@ int pn_write_ids(const char *path, const uint32_t *ids, uint32_t w, uint32_t h, 
     }
     free(row);
     return pn_close_checked(f, failed, "pn_write_ids", path, err, err_size);
+}
+
+void pn_vis_to_rgba(const float *vis, size_t n, uint8_t *rgba)
+{
+    size_t i;
+    for (i = 0; i < n; i++) {
+        uint8_t g = (uint8_t)lrintf(fminf(fmaxf(vis[i], 0.0f), 1.0f) * 255.0f);
+        rgba[i * 4] = rgba[i * 4 + 1] = rgba[i * 4 + 2] = g;
+        rgba[i * 4 + 3] = 255;
+    }
+}
+
+void pn_err_to_rgba(const float *vis, const float *ref, size_t n, uint8_t *rgba)
+{
+    size_t i;
+    for (i = 0; i < n; i++) {
+        float e = fminf(fabsf(vis[i] - ref[i]) * 4.0f, 1.0f); /* x4: 0.25 error is full scale */
+        rgba[i * 4] = (uint8_t)lrintf(e > 0.0f ? 64.0f + 191.0f * fminf(e * 2.0f, 1.0f) : 0.0f);
+        rgba[i * 4 + 1] = (uint8_t)lrintf(e > 0.5f ? 255.0f * (e - 0.5f) * 2.0f : 0.0f);
+        rgba[i * 4 + 2] = 0;
+        rgba[i * 4 + 3] = 255;
+    }
+}
+
+void pn_blit_rgba(uint8_t *sheet, uint32_t sheet_w, const uint8_t *img, uint32_t w, uint32_t h,
+                  uint32_t ox, uint32_t oy)
+{
+    uint32_t y;
+    for (y = 0; y < h; y++)
+        memcpy(sheet + ((size_t)(oy + y) * sheet_w + ox) * 4, img + (size_t)y * w * 4, (size_t)w * 4);
+}
+
+int pn_mkdir_p(const char *path)
+{
+    char buf[1024];
+    size_t i, n = strlen(path);
+    if (n == 0 || n >= sizeof(buf)) return 1;
+    memcpy(buf, path, n + 1);
+    for (i = 1; i <= n; i++)
+        if (buf[i] == '/' || buf[i] == '\0') {
+            char c = buf[i];
+            buf[i] = '\0';
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST) return 1;
+            buf[i] = c;
+        }
+    return 0;
 }

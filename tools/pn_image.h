@@ -35,6 +35,22 @@ int pn_read_pfm(const char *path, float **out, uint32_t *w, uint32_t *h, char *e
 int pn_write_ids(const char *path, const uint32_t *ids, uint32_t w, uint32_t h, char *err,
                  size_t err_size);
 
+/* Visibility in [0, 1] (clamped) as opaque gray RGBA8, n pixels. */
+void pn_vis_to_rgba(const float *vis, size_t n, uint8_t *rgba);
+
+/* |vis - ref| as an opaque heat map, n pixels: black where equal, then dark red up to
+ * yellow; the error is scaled x4, so 0.25 and above is full scale. */
+void pn_err_to_rgba(const float *vis, const float *ref, size_t n, uint8_t *rgba);
+
+/* Copies a w x h RGBA8 image into a sheet sheet_w pixels wide at (ox, oy); the caller
+ * guarantees it fits. */
+void pn_blit_rgba(uint8_t *sheet, uint32_t sheet_w, const uint8_t *img, uint32_t w, uint32_t h,
+                  uint32_t ox, uint32_t oy);
+
+/* mkdir -p: creates every missing directory of path (mode 0777 before umask).
+ * Returns 0 if the directory exists afterwards. */
+int pn_mkdir_p(const char *path);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,1433 @@
+/* penumbra_bench - the measuring instrument every algorithm reports through (issue 5).
+ *
+ * Prints Markdown tables (and writes them to OUT/RESULTS.md), data files and a gnuplot
+ * program for the plots (OUT/plots.gp), and the gallery panels. Method: every number is
+ * the median of several repetitions; within a repetition the algorithms, the Embree
+ * baseline and the BVH builds run one after the other, so every ratio compares
+ * measurements taken side by side in the same run. The machine, core count and thread
+ * count are printed with the tables. Timing lives here, never in tests.
+ *
+ * usage: penumbra_bench [--out DIR] [--scenes DIR] [--quick] [--only a,b] [--reps N]
+ *                       [--threads N] [--sweep-scenes a,b] [--label TEXT]
+ * See tools/bench.sh (make bench / make bench-quick) for how it is run. */
+#define _POSIX_C_SOURCE 200809L
+#include <dirent.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <time.h>
+
+#include "penumbra/penumbra.h"
+#include "pn_bench.h"
+#include "pn_image.h"
+#include "pn_scenes.h"
+#include "pn_setup.h"
+
+/* ---- What is measured: algorithms and ports ------------------------------------------- */
+
+typedef struct bench_algo {
+    const char *name;
+    pn_algo algo;
+    uint32_t build_flag;
+    int exact;     /* must match the reference bit for bit */
+    int all_ports; /* 0: measured on the first port only (a baseline, not a product) */
+} bench_algo;
+
+/* Every algorithm of the library; a new one is one line here (and its accuracy, timing
+ * and gallery columns follow). */
+static const bench_algo algos[] = {
+    {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE, 1, 1},
+    {"GEARS", PN_ALGO_GEARS, PN_BUILD_GEARS, 1, 1},
+#ifdef PN_BUILD_RAYTRACE
+    {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE, 1, 0},
+#endif
+};
+#define NALGO ((int)(sizeof(algos) / sizeof(algos[0])))
+#define A_REF 0
+#define A_GEARS 1
+#ifdef PN_BUILD_RAYTRACE
+#define A_RT 2
+#else
+#define A_RT (-1)
+#endif
+
+/* A port renders a frame on a context that already holds the scene. The scalar port is
+ * pn_render with the host's parallel-for at `threads`; a port with a device of its own
+ * (the OpenCL port: pn_opencl_create in attach, pn_opencl_render in render,
+ * pn_opencl_destroy in detach) adds its three functions and one line to `ports`. */
+typedef struct bench_port {
+    const char *name;
+    int threads; /* host threads for the port and for Embree beside it; 0: all cores */
+    int (*attach)(pn_host *h, void **state, char *err, size_t err_size);
+    pn_status (*render)(pn_host *h, void *state, const pn_camera *cam, const pn_light *light,
+                        const pn_frame_options *opt, pn_frame *out);
+    void (*detach)(void *state);
+} bench_port;
+
+static pn_status scalar_render(pn_host *h, void *state, const pn_camera *cam, const pn_light *light,
+                               const pn_frame_options *opt, pn_frame *out)
+{
+    (void)state;
+    return pn_render(h->ctx, cam, light, opt, out);
+}
+
+static const bench_port ports[] = {
+    {"scalar", 0, NULL, scalar_render, NULL},
+    {"scalar", 1, NULL, scalar_render, NULL},
+};
+#define NPORT ((int)(sizeof(ports) / sizeof(ports[0])))
+
+/* ---- Options ---------------------------------------------------------------------------- */
+
+#define MAX_REPS 15
+#define MAX_SCENES 64
+
+typedef struct bench_opts {
+    const char *out_dir;
+    const char *scenes_dir;
+    const char *only;         /* comma list, NULL: all */
+    const char *sweep_scenes; /* comma list */
+    const char *label;
+    const char *algos;        /* comma list of algorithm names and "embree"; NULL: all */
+    int nports;               /* the first nports entries of ports[] */
+    int lean;                 /* no exact-statistics frame, masks or gallery (profiling) */
+    int quick;
+    int threads; /* all cores when 0 */
+    int reps, reps_slow;  /* repetitions; reps_slow when one repetition takes > slow_s */
+    double slow_s;
+    uint32_t size, k, grid;
+    uint32_t sweep_res[8], n_res, sweep_k[8], n_k, sweep_grid[8], n_grid;
+    float sweep_light[8];
+    uint32_t n_light;
+} bench_opts;
+
+static int in_list(const char *list, const char *name)
+{
+    size_t n = strlen(name);
+    const char *p = list;
+    if (!list) return 1;
+    while (*p) {
+        const char *e = strchr(p, ',');
+        size_t len = e ? (size_t)(e - p) : strlen(p);
+        if (len == n && strncasecmp(p, name, n) == 0) return 1;
+        if (!e) break;
+        p = e + 1;
+    }
+    return 0;
+}
+
+/* ---- Small helpers ---------------------------------------------------------------------- */
+
+static double median(const double *v, int n)
+{
+    double s[MAX_REPS];
+    int i, j;
+    if (n <= 0) return NAN;
+    memcpy(s, v, (size_t)n * sizeof(double));
+    for (i = 1; i < n; i++)
+        for (j = i; j > 0 && s[j - 1] > s[j]; j--) {
+            double t = s[j];
+            s[j] = s[j - 1];
+            s[j - 1] = t;
+        }
+    return n % 2 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
+}
+
+static void fmt_ms(char *b, size_t n, double ms)
+{
+    if (!(ms == ms)) snprintf(b, n, "n/a");
+    else if (ms >= 100.0) snprintf(b, n, "%.0f", ms);
+    else if (ms >= 10.0) snprintf(b, n, "%.1f", ms);
+    else snprintf(b, n, "%.2f", ms);
+}
+
+/* "12.3x" for a ratio a/b of two medians, "n/a" when either is missing. */
+static void fmt_ratio(char *b, size_t n, double num, double den)
+{
+    double r = num / den;
+    if (!(num == num) || !(den == den) || !(den > 0.0)) snprintf(b, n, "n/a");
+    else if (r >= 10.0) snprintf(b, n, "%.1fx", r);
+    else snprintf(b, n, "%.2fx", r);
+}
+
+static void progress(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+    fflush(stderr);
+}
+
+static int port_threads(const bench_opts *o, const bench_port *p)
+{
+    int t = p->threads > 0 ? p->threads : (o->threads > 0 ? o->threads : pn_threads_cores());
+    return t;
+}
+
+/* ---- Jobs: one timed thing inside a repetition ------------------------------------------ */
+
+enum { JOB_LIB, JOB_EMBREE, JOB_SCENE_SET, JOB_EMBREE_BUILD };
+
+typedef struct job {
+    int kind;
+    int algo;              /* JOB_LIB: index into algos */
+    pn_embree_api api;     /* JOB_EMBREE */
+    pn_frame_options opt;  /* JOB_LIB, and k for JOB_EMBREE */
+    int keep;              /* keep the first repetition's visibility (and image) */
+    /* results */
+    double pass[MAX_REPS], total[MAX_REPS];
+    int n, ok;
+    char err[256];
+    pn_stats st;           /* of the last repetition */
+    float *vis;
+    uint8_t *rgba;
+} job;
+
+typedef struct scene_state {
+    pn_setup s;
+    pn_host h;
+    const bench_port *port;
+    void *port_state;
+    pn_embree *emb;        /* NULL when Embree is absent or failed */
+    char emb_err[256];
+    int emb_built;         /* scene built into emb */
+    pn_gbuf g;             /* G-buffer of the current point, from its first frame */
+    int need_gbuf;
+    uint32_t threads;
+    /* from the main point, for the sweeps and the headline plot */
+    pn_embree_api best_api;
+    double gears_vs_ref, gears_vs_emb, gears_vs_rt;
+} scene_state;
+
+static void job_lib(job *j, int algo, const pn_frame_options *opt, int keep)
+{
+    memset(j, 0, sizeof(*j));
+    j->kind = JOB_LIB;
+    j->algo = algo;
+    j->opt = *opt;
+    j->opt.algo = algos[algo].algo;
+    j->keep = keep;
+    j->ok = 1;
+}
+
+static void job_emb(job *j, pn_embree_api api, const pn_frame_options *opt, int keep)
+{
+    memset(j, 0, sizeof(*j));
+    j->kind = JOB_EMBREE;
+    j->api = api;
+    j->opt = *opt;
+    j->keep = keep;
+    j->ok = 1;
+}
+
+static void job_free(job *j)
+{
+    free(j->vis);
+    free(j->rgba);
+    j->vis = NULL;
+    j->rgba = NULL;
+}
+
+static double job_pass(const job *j) { return j->ok && j->n > 0 ? median(j->pass, j->n) : NAN; }
+static double job_total(const job *j) { return j->ok && j->n > 0 ? median(j->total, j->n) : NAN; }
+
+/* Runs one job once; rep 0 of a keeping job stores its visibility. */
+static void job_run(scene_state *ss, job *j, const pn_light *light, int rep)
+{
+    char err[256];
+    size_t npx;
+    if (!j->ok) return;
+    if (j->kind == JOB_SCENE_SET) {
+        pn_stats st;
+        pn_setup *s = &ss->s;
+        if (pn_scene_set(ss->h.ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices,
+                         s->mesh.triangle_count) != PN_OK) {
+            snprintf(j->err, sizeof(j->err), "pn_scene_set: %s", pn_last_error(ss->h.ctx));
+            j->ok = 0;
+            return;
+        }
+        pn_get_stats(ss->h.ctx, &st);
+        j->pass[j->n] = st.pass_ns[PN_PASS_BVH_BUILD] / 1e6;
+        j->total[j->n] = (st.pass_ns[PN_PASS_BVH_BUILD] + st.pass_ns[PN_PASS_SCENE_COPY]) / 1e6;
+        j->n++;
+        return;
+    }
+    if (j->kind == JOB_EMBREE_BUILD) {
+        double ms;
+        if (!ss->emb) {
+            snprintf(j->err, sizeof(j->err), "%s", ss->emb_err);
+            j->ok = 0;
+            return;
+        }
+        if (pn_embree_build(ss->emb, &ss->s.mesh, 0, &ms, err, sizeof(err)) != 0) {
+            snprintf(j->err, sizeof(j->err), "%s", err);
+            j->ok = 0;
+            return;
+        }
+        ss->emb_built = 1;
+        j->pass[j->n] = j->total[j->n] = ms;
+        j->n++;
+        return;
+    }
+    npx = (size_t)j->opt.width * j->opt.height;
+    if (j->kind == JOB_EMBREE) {
+        double ms;
+        float *vis;
+        if (!ss->emb || !ss->g.pos) {
+            snprintf(j->err, sizeof(j->err), "%s", ss->emb ? "no G-buffer" : ss->emb_err);
+            j->ok = 0;
+            return;
+        }
+        if (!ss->emb_built) {
+            if (pn_embree_build(ss->emb, &ss->s.mesh, 0, &ms, err, sizeof(err)) != 0) {
+                snprintf(j->err, sizeof(j->err), "%s", err);
+                j->ok = 0;
+                return;
+            }
+            ss->emb_built = 1;
+        }
+        vis = (float *)malloc(npx * sizeof(float));
+        if (!vis || pn_embree_shadow(ss->emb, j->api, &ss->g, light, j->opt.k, j->opt.eps, &ss->h.threads, vis,
+                                     NULL, &ms, err, sizeof(err)) != 0) {
+            snprintf(j->err, sizeof(j->err), "%s", vis ? err : "out of memory");
+            j->ok = 0;
+            free(vis);
+            return;
+        }
+        j->pass[j->n] = j->total[j->n] = ms;
+        j->n++;
+        if (rep == 0 && j->keep) j->vis = vis;
+        else free(vis);
+        return;
+    }
+    {
+        pn_frame fr;
+        pn_status st;
+        uint64_t t0 = pn_threads_now_ns(NULL);
+        st = ss->port->render(&ss->h, ss->port_state, &ss->s.camera, light, &j->opt, &fr);
+        if (st != PN_OK) {
+            snprintf(j->err, sizeof(j->err), "%s: %s", pn_status_str(st), pn_last_error(ss->h.ctx));
+            j->ok = 0;
+            return;
+        }
+        j->total[j->n] = (pn_threads_now_ns(NULL) - t0) / 1e6;
+        pn_get_stats(ss->h.ctx, &j->st);
+        j->pass[j->n] = j->st.pass_ns[PN_PASS_SHADOW] / 1e6;
+        j->n++;
+        if (ss->need_gbuf) {
+            /* Every baseline traces from the point's G-buffer (the same for every
+             * algorithm: the rasterizer does not depend on it). */
+            ss->need_gbuf = 0;
+            pn_gbuf_free(&ss->g);
+            if (pn_gbuf_copy(&ss->g, &fr) != 0) progress("warning: out of memory copying the G-buffer");
+        }
+        if (rep == 0 && j->keep) {
+            j->vis = (float *)malloc(npx * sizeof(float));
+            j->rgba = (uint8_t *)malloc(npx * 4);
+            if (j->vis) memcpy(j->vis, fr.visibility, npx * sizeof(float));
+            if (j->rgba) memcpy(j->rgba, fr.rgba, npx * 4);
+        }
+    }
+}
+
+/* Runs the jobs interleaved: rep 0 of all, then rep 1 of all, ... The number of
+ * repetitions is o->reps, or o->reps_slow when the first repetition took longer than
+ * o->slow_s seconds (the dragon at 512x512 takes a minute per repetition). Returns the
+ * repetitions made. */
+static int run_jobs(const bench_opts *o, scene_state *ss, job *jobs, int njobs, const pn_light *light)
+{
+    int rep, i, reps = o->reps;
+    ss->need_gbuf = 1;
+    for (rep = 0; rep < reps; rep++) {
+        uint64_t t0 = pn_threads_now_ns(NULL);
+        for (i = 0; i < njobs; i++) job_run(ss, &jobs[i], light, rep);
+        if (rep == 0 && (pn_threads_now_ns(NULL) - t0) / 1e9 > o->slow_s && o->reps_slow < reps)
+            reps = o->reps_slow;
+    }
+    return reps;
+}
+
+/* ---- Accuracy ----------------------------------------------------------------------------- */
+
+typedef struct accuracy {
+    double rmse, max_err, wrong_frac;
+    int identical;
+    int ok;
+} accuracy;
+
+static accuracy compare_vis(const float *a, const float *ref, size_t n)
+{
+    accuracy r;
+    double se = 0.0;
+    size_t i, wrong = 0;
+    memset(&r, 0, sizeof(r));
+    if (!a || !ref) return r;
+    r.ok = 1;
+    for (i = 0; i < n; i++) {
+        double e = fabs((double)a[i] - (double)ref[i]);
+        se += e * e;
+        if (e > r.max_err) r.max_err = e;
+        if (a[i] != ref[i]) wrong++;
+    }
+    r.rmse = sqrt(se / (double)n);
+    r.wrong_frac = (double)wrong / (double)n;
+    r.identical = memcmp(a, ref, n * sizeof(float)) == 0;
+    return r;
+}
+
+/* ---- Sections: each is a memory stream filled scene by scene, printed in order at the end */
+
+enum {
+    SEC_HEADLINE,
+    SEC_PORTS,
+    SEC_EMBREE,
+    SEC_RES,
+    SEC_K,
+    SEC_LIGHT,
+    SEC_GRID,
+    SEC_GRIDEFF,
+    SEC_MEMORY,
+    SEC_ACCURACY,
+    SEC_MASKS,
+    SEC_GALLERY,
+    SEC_COUNT
+};
+
+typedef struct report {
+    FILE *sec[SEC_COUNT];
+    char *buf[SEC_COUNT];
+    size_t len[SEC_COUNT];
+    FILE *plots; /* gnuplot program */
+    char *plots_buf;
+    size_t plots_len;
+    double hmin, hmax; /* range of the headline ratios */
+    int sweep_scenes;
+    char sweep_names[MAX_SCENES][128];
+} report;
+
+static void sec(report *r, int s, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(r->sec[s], fmt, ap);
+    va_end(ap);
+}
+
+static void emb_cell(char *b, size_t n, const job *j1, const job *j16, double *best, const char **api)
+{
+    double a = job_pass(j1), c = job_pass(j16);
+    char m[32];
+    *best = NAN;
+    *api = "";
+    if (a == a && (!(c == c) || a <= c)) {
+        *best = a;
+        *api = "1";
+    } else if (c == c) {
+        *best = c;
+        *api = "16";
+    }
+    fmt_ms(m, sizeof(m), *best);
+    if (*best == *best) snprintf(b, n, "%s (%s)", m, *api);
+    else snprintf(b, n, "n/a");
+}
+
+/* ---- Per-scene work ----------------------------------------------------------------------- */
+
+static void write_data(const bench_opts *o, const char *name, const char *scene, const char *text)
+{
+    char path[1400];
+    FILE *f;
+    snprintf(path, sizeof(path), "%s/data/%s_%s.dat", o->out_dir, name, scene);
+    f = fopen(path, "w");
+    if (!f) {
+        progress("warning: cannot write %s: %s", path, strerror(errno));
+        return;
+    }
+    fputs(text, f);
+    fclose(f);
+}
+
+static void scaled_light(const pn_light *l, float s, pn_light *out)
+{
+    int a;
+    *out = *l;
+    for (a = 0; a < 3; a++) {
+        out->u[a] = l->u[a] * s;
+        out->v[a] = l->v[a] * s;
+    }
+}
+
+static int scene_open(const bench_opts *o, scene_state *ss, const char *source, int builtin, const bench_port *port,
+                      uint32_t max_size)
+{
+    char err[512];
+    memset(ss, 0, sizeof(*ss));
+    if (pn_setup_load(&ss->s, source, builtin, -1, err, sizeof(err)) != 0) {
+        progress("%s: %s", source, err);
+        return 1;
+    }
+    ss->port = port;
+    ss->threads = (uint32_t)port_threads(o, port);
+    if (pn_host_open(&ss->h, ss->s.mesh.triangle_count, max_size, max_size, (int)ss->threads, err, sizeof(err)) != 0 ||
+        pn_scene_set(ss->h.ctx, ss->s.mesh.positions, ss->s.mesh.vertex_count, ss->s.mesh.indices,
+                     ss->s.mesh.triangle_count) != PN_OK) {
+        progress("%s: %s", source, ss->h.ctx ? pn_last_error(ss->h.ctx) : err);
+        return 1;
+    }
+    if (port->attach && port->attach(&ss->h, &ss->port_state, err, sizeof(err)) != 0) {
+        progress("%s: port %s: %s", source, port->name, err);
+        return 1;
+    }
+    if (pn_embree_open(&ss->emb, (int)ss->threads, ss->emb_err, sizeof(ss->emb_err)) != 0) ss->emb = NULL;
+    return 0;
+}
+
+static void scene_close(scene_state *ss)
+{
+    if (ss->port && ss->port->detach) ss->port->detach(ss->port_state);
+    pn_embree_close(ss->emb);
+    pn_gbuf_free(&ss->g);
+    pn_host_close(&ss->h);
+    pn_setup_free(&ss->s);
+}
+
+static void base_options(const bench_opts *o, const scene_state *ss, pn_frame_options *opt)
+{
+    pn_frame_options_default(opt);
+    opt->width = opt->height = o->size;
+    opt->k = o->k;
+    opt->gears_grid = o->grid;
+    opt->eps = ss->s.eps;
+}
+
+/* Gallery panels of one scene: written as PNGs under OUT/work/gallery, composed with
+ * titles by gnuplot (plots.gp). */
+static void gallery(const bench_opts *o, report *r, scene_state *ss, job *lib, int nlib, const job *emb,
+                    uint32_t w, uint32_t h)
+{
+    char dir[1200], path[1400], err[256], title[160];
+    size_t n = (size_t)w * h;
+    uint8_t *tmp = (uint8_t *)malloc(n * 4);
+    const float *ref = lib[A_REF].vis;
+    int a, panels = 0;
+    char list[16][2][1400];
+    if (!tmp || !ref) {
+        free(tmp);
+        return;
+    }
+    snprintf(dir, sizeof(dir), "%s/work/gallery/%s", o->out_dir, ss->s.name);
+    pn_mkdir_p(dir);
+#define PANEL(file, img, ...)                                                               \
+    do {                                                                                    \
+        snprintf(path, sizeof(path), "%s/%s.png", dir, file);                               \
+        if (pn_write_png(path, img, w, h, err, sizeof(err)) == 0 && panels < 16) {          \
+            snprintf(list[panels][0], sizeof(list[0][0]), "work/gallery/%s/%s.png", ss->s.name, file); \
+            snprintf(list[panels][1], sizeof(list[0][1]), __VA_ARGS__);                      \
+            panels++;                                                                       \
+        }                                                                                   \
+    } while (0)
+    for (a = 0; a < nlib; a++) {
+        char ms[32];
+        if (!lib[a].rgba || !lib[a].vis) continue;
+        fmt_ms(ms, sizeof(ms), job_pass(&lib[a]));
+        PANEL(algos[a].name, lib[a].rgba, "%s, %s ms", algos[a].name, ms);
+        if (a == A_REF) {
+            pn_vis_to_rgba(ref, n, tmp);
+            PANEL("reference_vis", tmp, "reference visibility");
+        } else {
+            accuracy acc = compare_vis(lib[a].vis, ref, n);
+            pn_err_to_rgba(lib[a].vis, ref, n, tmp);
+            snprintf(title, sizeof(title), "%s error", algos[a].name);
+            PANEL(title, tmp, "%s |error| x4 (%s)", algos[a].name, acc.identical ? "identical" : "differs");
+        }
+    }
+    if (emb && emb->vis) {
+        char ms[32];
+        accuracy acc = compare_vis(emb->vis, ref, n);
+        fmt_ms(ms, sizeof(ms), job_pass(emb));
+        pn_vis_to_rgba(emb->vis, n, tmp);
+        PANEL("embree_vis", tmp, "Embree visibility, %s ms", ms);
+        pn_err_to_rgba(emb->vis, ref, n, tmp);
+        PANEL("embree_error", tmp, "Embree |error| x4 (%.4f%% px)", 100.0 * acc.wrong_frac);
+    }
+#undef PANEL
+    free(tmp);
+    /* gnuplot: one row of panels with titles. */
+    fprintf(r->plots, "\n# gallery: %s\n", ss->s.name);
+    fprintf(r->plots, "set terminal pngcairo size %d,%d font 'sans,9'\nset output 'gallery/%s.png'\n",
+            panels * 240, 262, ss->s.name);
+    fprintf(r->plots, "set multiplot layout 1,%d margins 0.005,0.995,0.02,0.9 spacing 0.004,0\n"
+                      "unset border; unset tics; unset key; unset colorbox\nset size ratio -1\n",
+            panels);
+    for (a = 0; a < panels; a++)
+        fprintf(r->plots, "set title \"%s\"\nplot '%s' binary filetype=png with rgbimage\n", list[a][1],
+                list[a][0]);
+    fprintf(r->plots, "unset multiplot\nunset title\nset size noratio\nset border; set tics\n");
+    sec(r, SEC_GALLERY, "### %s\n\n![%s: reference, GEARS and the other algorithms with error heat maps](gallery/%s.png)\n\n",
+        ss->s.name, ss->s.name, ss->s.name);
+}
+
+/* Bit-level agreement of our masks (the library's predicate, recomputed in the tool and
+ * checked against the reference's visibility) with Embree's rtcOccluded1 masks. */
+static void mask_agreement(report *r, scene_state *ss, const pn_frame_options *opt, const float *ref_vis)
+{
+    size_t n = (size_t)opt->width * opt->height;
+    pn_masks ours, theirs;
+    pn_mask_diff d;
+    float *our_vis = (float *)malloc(n * sizeof(float)), *emb_vis = (float *)malloc(n * sizeof(float));
+    char err[256];
+    double ms;
+    int ok = our_vis && emb_vis;
+    memset(&ours, 0, sizeof(ours));
+    memset(&theirs, 0, sizeof(theirs));
+    ok = ok && pn_masks_alloc(&ours, opt->width, opt->height, opt->k) == 0 &&
+         pn_masks_alloc(&theirs, opt->width, opt->height, opt->k) == 0;
+    snprintf(err, sizeof(err), "out of memory");
+    progress("    masks: ours (kernels/ predicate, host BVH) and Embree's, bit by bit");
+    ok = ok &&
+         pn_our_masks(&ss->s.mesh, &ss->g, &ss->s.light, opt->k, opt->eps, &ss->h.threads, &ours, our_vis, err,
+                      sizeof(err)) == 0 &&
+         pn_embree_shadow(ss->emb, PN_EMBREE_OCCLUDED1, &ss->g, &ss->s.light, opt->k, opt->eps, &ss->h.threads,
+                          emb_vis, &theirs, &ms, err, sizeof(err)) == 0;
+    if (ok) {
+        accuracy self = compare_vis(our_vis, ref_vis, n);
+        pn_masks_compare(&ours, &theirs, &d);
+        sec(r, SEC_MASKS, "| %s | %u | %llu | %llu | %.3g | %llu | %llu | %llu | %s |\n", ss->s.name, opt->k,
+            (unsigned long long)d.bits, (unsigned long long)d.differ, d.bits ? (double)d.differ / (double)d.bits : 0.0,
+            (unsigned long long)d.only_b, (unsigned long long)d.only_a, (unsigned long long)d.pixels_differ,
+            self.identical ? "yes" : "**no**");
+    } else {
+        sec(r, SEC_MASKS, "| %s | %u | n/a | n/a | n/a | n/a | n/a | n/a | %s |\n", ss->s.name, opt->k, err);
+    }
+    pn_masks_free(&ours);
+    pn_masks_free(&theirs);
+    free(our_vis);
+    free(emb_vis);
+}
+
+/* The main point: 512x512, k = 16, grid 128 on one port: every algorithm, both Embree APIs,
+ * both BVH builds, interleaved. On the first port it also produces the accuracy, mask
+ * agreement, grid-efficiency (exact stats), memory and gallery rows. */
+static void main_point(const bench_opts *o, report *r, scene_state *ss, int first_port, int glb)
+{
+    pn_frame_options opt;
+    job lib[NALGO], emb[PN_EMBREE_API_COUNT], bset, ebuild;
+    int a, reps, i;
+    size_t n;
+    pn_stats ref_only;
+    char c[12][64];
+    double emb_best;
+    const char *emb_api;
+    job all[NALGO + PN_EMBREE_API_COUNT + 2];
+    int nall = 0;
+
+    base_options(o, ss, &opt);
+    n = (size_t)opt.width * opt.height;
+    memset(&bset, 0, sizeof(bset));
+    bset.kind = JOB_SCENE_SET;
+    bset.ok = 1;
+    memset(&ebuild, 0, sizeof(ebuild));
+    ebuild.kind = JOB_EMBREE_BUILD;
+    ebuild.ok = ss->emb != NULL;
+    snprintf(ebuild.err, sizeof(ebuild.err), "%s", ss->emb_err);
+    for (a = 0; a < NALGO; a++) job_lib(&lib[a], a, &opt, first_port);
+    for (i = 0; i < PN_EMBREE_API_COUNT; i++) job_emb(&emb[i], (pn_embree_api)i, &opt, first_port);
+    if (!ss->emb)
+        for (i = 0; i < PN_EMBREE_API_COUNT; i++) {
+            emb[i].ok = 0;
+            snprintf(emb[i].err, sizeof(emb[i].err), "%s", ss->emb_err);
+        }
+    for (a = 0; a < NALGO; a++)
+        if (!(pn_build_info() & algos[a].build_flag)) {
+            lib[a].ok = 0;
+            snprintf(lib[a].err, sizeof(lib[a].err), "not compiled in");
+        } else if (!first_port && !algos[a].all_ports) {
+            lib[a].ok = 0;
+            snprintf(lib[a].err, sizeof(lib[a].err), "first port only");
+        } else if (!in_list(o->algos, algos[a].name)) {
+            lib[a].ok = 0;
+            snprintf(lib[a].err, sizeof(lib[a].err), "not selected (--algos)");
+        }
+    if (!in_list(o->algos, "embree")) {
+        ebuild.ok = 0;
+        for (i = 0; i < PN_EMBREE_API_COUNT; i++) {
+            emb[i].ok = 0;
+            snprintf(emb[i].err, sizeof(emb[i].err), "not selected (--algos)");
+        }
+    }
+    /* One array so that run_jobs interleaves them: builds, then the algorithms (reference
+     * first: it provides the G-buffer), then Embree. */
+    all[nall++] = bset;
+    all[nall++] = ebuild;
+    for (a = 0; a < NALGO; a++) all[nall++] = lib[a];
+    for (i = 0; i < PN_EMBREE_API_COUNT; i++) all[nall++] = emb[i];
+    progress("  %s/%s x%u: main point %ux%u k=%u", ss->s.name, ss->port->name, ss->threads, opt.width, opt.height,
+             opt.k);
+    reps = run_jobs(o, ss, all, nall, &ss->s.light);
+    bset = all[0];
+    ebuild = all[1];
+    for (a = 0; a < NALGO; a++) lib[a] = all[2 + a];
+    for (i = 0; i < PN_EMBREE_API_COUNT; i++) emb[i] = all[2 + NALGO + i];
+    for (a = 0; a < NALGO; a++)
+        if (!lib[a].ok && (first_port || algos[a].all_ports)) progress("    %s: %s", algos[a].name, lib[a].err);
+    for (i = 0; i < PN_EMBREE_API_COUNT; i++)
+        if (!emb[i].ok && ss->emb) progress("    Embree %s: %s", pn_embree_api_name((pn_embree_api)i), emb[i].err);
+
+    emb_cell(c[9], sizeof(c[9]), &emb[0], &emb[1], &emb_best, &emb_api);
+    ss->best_api = strcmp(emb_api, "1") == 0 ? PN_EMBREE_OCCLUDED1 : PN_EMBREE_OCCLUDED16;
+    /* ---- Table 1 (issue 5): per port, ms and speed-up over Embree ---- */
+    {
+        char row[1024];
+        int len = snprintf(row, sizeof(row), "| %s | %s | %u |", ss->s.name, ss->port->name, ss->threads);
+        for (a = 0; a < NALGO; a++) {
+            fmt_ms(c[0], sizeof(c[0]), job_pass(&lib[a]));
+            fmt_ms(c[1], sizeof(c[1]), job_total(&lib[a]));
+            len += snprintf(row + len, sizeof(row) - (size_t)len, " %s / %s |", c[0], c[1]);
+        }
+        len += snprintf(row + len, sizeof(row) - (size_t)len, " %s |", c[9]);
+        for (a = 0; a < NALGO; a++) {
+            fmt_ratio(c[0], sizeof(c[0]), emb_best, job_pass(&lib[a]));
+            len += snprintf(row + len, sizeof(row) - (size_t)len, " %s |", c[0]);
+        }
+        sec(r, SEC_PORTS, "%s %d |\n", row, reps);
+    }
+    /* ---- Embree details ---- */
+    {
+        double gears = job_pass(&lib[A_GEARS]);
+        double dyn_ours = job_total(&bset) + gears, dyn_emb = job_pass(&ebuild) + emb_best;
+        fmt_ms(c[0], sizeof(c[0]), job_pass(&ebuild));
+        fmt_ms(c[1], sizeof(c[1]), job_pass(&bset));
+        fmt_ms(c[2], sizeof(c[2]), job_pass(&emb[0]));
+        fmt_ms(c[3], sizeof(c[3]), job_pass(&emb[1]));
+        fmt_ratio(c[4], sizeof(c[4]), emb_best, gears);
+        fmt_ratio(c[5], sizeof(c[5]), dyn_emb, dyn_ours);
+        fmt_ratio(c[6], sizeof(c[6]), job_pass(&emb[0]), job_pass(&emb[1]));
+        sec(r, SEC_EMBREE, "| %s | %s | %u | %s | %s | %s | %s | %s | %s | %s | %s |\n", ss->s.name, ss->port->name,
+            ss->threads, c[0], c[1], c[2], c[3], c[6],
+            emb_best == emb_best ? (emb_api[0] == '1' && emb_api[1] == '6' ? "rtcOccluded16" : "rtcOccluded1") : "n/a",
+            c[4], c[5]);
+    }
+    if (first_port && !o->lean) {
+        pn_stats gst = lib[A_GEARS].st, xst;
+        job exact;
+        int have_exact = 0;
+        double gears = job_pass(&lib[A_GEARS]);
+        /* Headline row */
+        fmt_ms(c[0], sizeof(c[0]), job_pass(&lib[A_REF]));
+        fmt_ms(c[1], sizeof(c[1]), gears);
+        if (A_RT >= 0) fmt_ms(c[2], sizeof(c[2]), job_pass(&lib[A_RT]));
+        else snprintf(c[2], sizeof(c[2]), "not in this build");
+        fmt_ratio(c[3], sizeof(c[3]), job_pass(&lib[A_REF]), gears);
+        if (A_RT >= 0) fmt_ratio(c[4], sizeof(c[4]), job_pass(&lib[A_RT]), gears);
+        else snprintf(c[4], sizeof(c[4]), "n/a");
+        fmt_ratio(c[5], sizeof(c[5]), emb_best, gears);
+        ss->gears_vs_ref = job_pass(&lib[A_REF]) / gears;
+        ss->gears_vs_emb = emb_best / gears;
+        ss->gears_vs_rt = A_RT >= 0 ? job_pass(&lib[A_RT >= 0 ? A_RT : 0]) / gears : NAN;
+
+        /* GEARS with exact statistics (no early exit): paper Table 6's "necessary". */
+        job_lib(&exact, A_GEARS, &opt, 0);
+        exact.opt.exact_stats = 1;
+        job_run(ss, &exact, &ss->s.light, 1);
+        if (exact.ok) {
+            xst = exact.st;
+            have_exact = 1;
+        } else {
+            memset(&xst, 0, sizeof(xst));
+        }
+        if (have_exact && xst.gears_assignments > 0)
+            snprintf(c[6], sizeof(c[6]), "%.1f%%", 100.0 * (double)xst.shadow_blocking / (double)xst.gears_assignments);
+        else snprintf(c[6], sizeof(c[6]), "n/a");
+        sec(r, SEC_HEADLINE, "| %s | %u | %u | %s | %s | %s | %s | %s | %s | %s | %s |\n", ss->s.name,
+            lib[A_REF].st.triangles, lib[A_REF].st.lit_pixels, c[0], c[1], c[2], c[9], c[3], c[4], c[5], c[6]);
+
+        /* Grid efficiency at the main point (paper Tables 5 and 6). */
+        if (have_exact)
+            sec(r, SEC_GRIDEFF, "| %s | %u | %u | %u | %.1f | %u | %.1f | %llu | %.0f | %.0f | %.0f | %.1f%% | %.1f%% | %u |\n",
+                ss->s.name, o->grid, xst.gears_cells_used, xst.gears_max_tris_per_cell, xst.gears_mean_tris_per_cell,
+                xst.gears_max_pixels_per_cell, xst.gears_mean_pixels_per_cell, (unsigned long long)xst.gears_pairs,
+                xst.gears_assignments / 1e3, xst.shadow_candidates / 1e3, xst.shadow_blocking / 1e3,
+                xst.gears_assignments ? 100.0 * (double)xst.shadow_candidates / (double)xst.gears_assignments : 0.0,
+                xst.gears_assignments ? 100.0 * (double)xst.shadow_blocking / (double)xst.gears_assignments : 0.0,
+                xst.gears_tiles);
+
+        /* Memory: the size query for this scene at a few configurations, and what the
+         * frames actually used. */
+        {
+            pn_limits lim;
+            size_t b512 = 0, b1280 = 0, bsmall = 0;
+            memset(&lim, 0, sizeof(lim));
+            lim.max_triangles = ss->s.mesh.triangle_count;
+            lim.max_width = lim.max_height = 512;
+            pn_arena_size(&lim, &b512);
+            lim.max_width = lim.max_height = 1280;
+            pn_arena_size(&lim, &b1280);
+            lim.max_width = lim.max_height = 512;
+            lim.gears_pairs = 1u << 18;
+            lim.gears_grid_max = 128;
+            pn_arena_size(&lim, &bsmall);
+            pn_get_stats(ss->h.ctx, &ref_only);
+            sec(r, SEC_MEMORY, "| %s | %u | %.1f | %.1f | %.1f | %.1f | %.1f | %u | %u |\n", ss->s.name,
+                ss->s.mesh.triangle_count, b512 / 1048576.0, bsmall / 1048576.0, b1280 / 1048576.0,
+                ref_only.arena_persistent / 1048576.0, ref_only.arena_high_water / 1048576.0,
+                gst.gears_pairs_high_water, gst.gears_tiles);
+        }
+
+        /* Accuracy of every algorithm against the reference, and of Embree. */
+        for (a = 1; a < NALGO; a++) {
+            accuracy acc = compare_vis(lib[a].vis, lib[A_REF].vis, n);
+            if (!acc.ok) {
+                sec(r, SEC_ACCURACY, "| %s | %s | n/a | n/a | n/a | %s |\n", ss->s.name, algos[a].name, lib[a].err);
+                continue;
+            }
+            sec(r, SEC_ACCURACY, "| %s | %s | %.6f | %.6f | %.4f%% | %s |\n", ss->s.name, algos[a].name, acc.rmse,
+                acc.max_err, 100.0 * acc.wrong_frac,
+                algos[a].exact ? (acc.identical ? "exact: byte-identical" : "exact: **DIFFERS**") : "approximate");
+        }
+        if (emb[0].vis) {
+            accuracy acc = compare_vis(emb[0].vis, lib[A_REF].vis, n);
+            accuracy same = compare_vis(emb[1].vis, emb[0].vis, n);
+            sec(r, SEC_ACCURACY, "| %s | Embree | %.6f | %.6f | %.4f%% | outside baseline%s |\n", ss->s.name, acc.rmse,
+                acc.max_err, 100.0 * acc.wrong_frac,
+                !same.ok ? "" : same.identical ? "; rtcOccluded16 = rtcOccluded1" : "; rtcOccluded16 differs from rtcOccluded1");
+            mask_agreement(r, ss, &opt, lib[A_REF].vis);
+        } else {
+            sec(r, SEC_ACCURACY, "| %s | Embree | n/a | n/a | n/a | %s |\n", ss->s.name,
+                ss->emb ? emb[0].err : ss->emb_err);
+        }
+        if (glb) gallery(o, r, ss, lib, NALGO, &emb[0], opt.width, opt.height);
+        job_free(&exact);
+    }
+    for (a = 0; a < NALGO; a++) job_free(&lib[a]);
+    for (i = 0; i < PN_EMBREE_API_COUNT; i++) job_free(&emb[i]);
+}
+
+/* ---- Sweeps: GEARS' paper Tables 1-4 as analogues -------------------------------------- */
+
+enum { SW_RES, SW_K, SW_LIGHT, SW_GRID };
+
+static const char *sweep_file[] = {"sweep_resolution", "sweep_k", "sweep_light", "sweep_grid"};
+
+/* Rows of a sweep table, one cell per swept value. */
+typedef struct rowset {
+    char text[6][2048];
+    int len[6];
+} rowset;
+
+static void row_add(rowset *rs, int i, const char *cell)
+{
+    rs->len[i] += snprintf(rs->text[i] + rs->len[i], sizeof(rs->text[i]) - (size_t)rs->len[i], " %s |", cell);
+}
+
+static void row_ms(rowset *rs, int i, double ms)
+{
+    char c[64];
+    fmt_ms(c, sizeof(c), ms);
+    row_add(rs, i, c);
+}
+
+static void row_ratio(rowset *rs, int i, double num, double den)
+{
+    char c[64];
+    fmt_ratio(c, sizeof(c), num, den);
+    row_add(rs, i, c);
+}
+
+/* One sweep over one scene: per value, GEARS, the reference and Embree (the API that won
+ * at the main point), interleaved; the grid sweep runs every grid in one set of jobs
+ * (reference and Embree do not depend on it) plus one exact-statistics GEARS frame per
+ * grid for the necessary/total column. */
+static void sweep(const bench_opts *o, report *r, scene_state *ss, int kind, pn_embree_api api)
+{
+    char data[8192], cell[64];
+    rowset rs;
+    int dl = 0, v, nv, i;
+    const char *labels[6];
+    int nrows = 3;
+    pn_frame_options base;
+    memset(&rs, 0, sizeof(rs));
+    base_options(o, ss, &base);
+    nv = kind == SW_RES ? (int)o->n_res : kind == SW_K ? (int)o->n_k : kind == SW_LIGHT ? (int)o->n_light : (int)o->n_grid;
+    dl += snprintf(data + dl, sizeof(data) - (size_t)dl, "# %s %s: value gears_ms reference_ms embree_ms%s\n",
+                   sweep_file[kind], ss->s.name, kind == SW_GRID ? " necessary_pct" : "");
+    labels[0] = "GEARS ms";
+    labels[1] = "reference ms";
+    labels[2] = "Embree ms";
+    if (kind == SW_GRID) {
+        labels[3] = "necessary / total";
+        labels[4] = "tris per cell, max / mean";
+        labels[5] = "GEARS vs Embree";
+        nrows = 6;
+    } else {
+        labels[3] = "GEARS vs reference";
+        labels[4] = "GEARS vs Embree";
+        nrows = 5;
+    }
+    if (kind == SW_GRID) {
+        job jobs[10];
+        int nj = 0, reps;
+        pn_stats xs[8];
+        for (v = 0; v < nv; v++) {
+            job_lib(&jobs[nj], A_GEARS, &base, 0);
+            jobs[nj].opt.gears_grid = o->sweep_grid[v];
+            nj++;
+        }
+        /* The reference first in the array would give the G-buffer before Embree needs it. */
+        job_lib(&jobs[nj++], A_REF, &base, 0);
+        job_emb(&jobs[nj++], api, &base, 0);
+        {
+            job t = jobs[0];
+            jobs[0] = jobs[nv];
+            jobs[nv] = t;
+        }
+        progress("  %s: grid sweep", ss->s.name);
+        reps = run_jobs(o, ss, jobs, nj, &ss->s.light);
+        (void)reps;
+        for (v = 0; v < nv; v++) {
+            job x;
+            job_lib(&x, A_GEARS, &base, 0);
+            x.opt.gears_grid = o->sweep_grid[v];
+            x.opt.exact_stats = 1;
+            job_run(ss, &x, &ss->s.light, 1);
+            if (x.ok) xs[v] = x.st;
+            else memset(&xs[v], 0, sizeof(xs[v]));
+        }
+        for (v = 0; v < nv; v++) {
+            const job *g = v == 0 ? &jobs[nv] : &jobs[v];
+            double gm = job_pass(g), rm = job_pass(&jobs[0]), em = job_pass(&jobs[nv + 1]);
+            double pct = xs[v].gears_assignments ? 100.0 * (double)xs[v].shadow_blocking / (double)xs[v].gears_assignments : NAN;
+            row_ms(&rs, 0, gm);
+            row_ms(&rs, 1, rm);
+            row_ms(&rs, 2, em);
+            if (pct == pct) snprintf(cell, sizeof(cell), "%.1f%%", pct);
+            else snprintf(cell, sizeof(cell), "n/a");
+            row_add(&rs, 3, cell);
+            snprintf(cell, sizeof(cell), "%u / %.1f", xs[v].gears_max_tris_per_cell, xs[v].gears_mean_tris_per_cell);
+            row_add(&rs, 4, cell);
+            row_ratio(&rs, 5, em, gm);
+            dl += snprintf(data + dl, sizeof(data) - (size_t)dl, "%u %.4f %.4f %.4f %.3f\n", o->sweep_grid[v], gm, rm,
+                           em, pct);
+        }
+        for (i = 0; i < nj; i++) job_free(&jobs[i]);
+    } else {
+        for (v = 0; v < nv; v++) {
+            job jobs[3];
+            pn_frame_options opt = base;
+            pn_light light = ss->s.light;
+            double gm, rm, em;
+            float value = 0.0f;
+            if (kind == SW_RES) {
+                opt.width = opt.height = o->sweep_res[v];
+                value = (float)o->sweep_res[v];
+            } else if (kind == SW_K) {
+                opt.k = o->sweep_k[v];
+                value = (float)o->sweep_k[v];
+            } else {
+                /* Relative diagonal d: half-edges x d/2, so d = 2 is the default light (the
+                 * paper's default column too). */
+                scaled_light(&ss->s.light, o->sweep_light[v] * 0.5f, &light);
+                value = o->sweep_light[v];
+            }
+            job_lib(&jobs[0], A_REF, &opt, 0);
+            job_lib(&jobs[1], A_GEARS, &opt, 0);
+            job_emb(&jobs[2], api, &opt, 0);
+            progress("  %s: %s = %g", ss->s.name, sweep_file[kind], value);
+            run_jobs(o, ss, jobs, 3, &light);
+            rm = job_pass(&jobs[0]);
+            gm = job_pass(&jobs[1]);
+            em = job_pass(&jobs[2]);
+            row_ms(&rs, 0, gm);
+            row_ms(&rs, 1, rm);
+            row_ms(&rs, 2, em);
+            row_ratio(&rs, 3, rm, gm);
+            row_ratio(&rs, 4, em, gm);
+            dl += snprintf(data + dl, sizeof(data) - (size_t)dl, "%g %.4f %.4f %.4f\n", value, gm, rm, em);
+            for (i = 0; i < 3; i++) {
+                if (!jobs[i].ok) progress("    %s", jobs[i].err);
+                job_free(&jobs[i]);
+            }
+        }
+    }
+    for (i = 0; i < nrows; i++)
+        sec(r, SEC_RES + kind, "| %s | %s |%s\n", i == 0 ? ss->s.name : "", labels[i], rs.text[i]);
+    write_data(o, sweep_file[kind], ss->s.name, data);
+}
+
+/* ---- The report ----------------------------------------------------------------------- */
+
+static void machine(char *b, size_t n)
+{
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    char line[512], model[256] = "unknown CPU", fam[32] = "", mod[32] = "";
+    if (f) {
+        while (fgets(line, sizeof(line), f)) {
+            char *v = strchr(line, ':');
+            if (!v) continue;
+            v++;
+            while (*v == ' ') v++;
+            v[strcspn(v, "\n")] = '\0';
+            if (strncmp(line, "model name", 10) == 0 && strcmp(model, "unknown CPU") == 0)
+                snprintf(model, sizeof(model), "%s", v);
+            else if (strncmp(line, "cpu family", 10) == 0 && !fam[0]) snprintf(fam, sizeof(fam), "%s", v);
+            else if (strncmp(line, "model\t", 6) == 0 && !mod[0]) snprintf(mod, sizeof(mod), "%s", v);
+        }
+        fclose(f);
+    }
+    snprintf(b, n, "%s (family %s, model %s), %d cores online", model, fam[0] ? fam : "?", mod[0] ? mod : "?",
+             pn_threads_cores());
+}
+
+static void report_open(report *r, const bench_opts *o)
+{
+    int s, v;
+    char a[NALGO][64];
+    memset(r, 0, sizeof(*r));
+    for (s = 0; s < SEC_COUNT; s++) r->sec[s] = open_memstream(&r->buf[s], &r->len[s]);
+    r->plots = open_memstream(&r->plots_buf, &r->plots_len);
+    r->hmin = 0.5;
+    r->hmax = 20.0;
+    for (v = 0; v < NALGO; v++) snprintf(a[v], sizeof(a[v]), "%s", algos[v].name);
+
+    sec(r, SEC_HEADLINE,
+        "| scene | triangles | lit pixels | reference ms | GEARS ms | raytrace ms | Embree ms (API) | GEARS vs reference | "
+        "GEARS vs raytrace | GEARS vs Embree | necessary / total |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    sec(r, SEC_PORTS, "| scene | port | threads |");
+    for (v = 0; v < NALGO; v++) sec(r, SEC_PORTS, " %s ms (pass / total) |", a[v]);
+    sec(r, SEC_PORTS, " Embree ms (API) |");
+    for (v = 0; v < NALGO; v++) sec(r, SEC_PORTS, " %s speed-up over Embree |", a[v]);
+    sec(r, SEC_PORTS, " reps |\n| --- | --- | ---: |");
+    for (v = 0; v < 2 * NALGO + 2; v++) sec(r, SEC_PORTS, " ---: |");
+    sec(r, SEC_PORTS, "\n");
+    sec(r, SEC_EMBREE,
+        "| scene | port | threads | Embree BVH build ms | our BVH build ms | rtcOccluded1 ms | rtcOccluded16 ms | "
+        "rtcOccluded16 vs rtcOccluded1 | faster | GEARS vs Embree (static: pass only) | GEARS vs Embree (dynamic: build + pass) |\n"
+        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: | ---: |\n");
+    for (s = SEC_RES; s <= SEC_GRID; s++) {
+        const uint32_t *vals = s == SEC_RES ? o->sweep_res : s == SEC_K ? o->sweep_k : o->sweep_grid;
+        int nv = s == SEC_RES ? (int)o->n_res : s == SEC_K ? (int)o->n_k : s == SEC_LIGHT ? (int)o->n_light : (int)o->n_grid;
+        sec(r, s, "| scene | |");
+        for (v = 0; v < nv; v++) {
+            if (s == SEC_RES) sec(r, s, " %ux%u |", vals[v], vals[v]);
+            else if (s == SEC_K) sec(r, s, " %ux%u |", vals[v], vals[v]);
+            else if (s == SEC_LIGHT) sec(r, s, " %g |", o->sweep_light[v]);
+            else sec(r, s, " %ux%u |", vals[v], vals[v]);
+        }
+        sec(r, s, "\n| --- | --- |");
+        for (v = 0; v < nv; v++) sec(r, s, " ---: |");
+        sec(r, s, "\n");
+    }
+    sec(r, SEC_GRIDEFF,
+        "| scene | grid | cells with pixels | tris per cell max | tris per cell mean | pixels per cell max | "
+        "pixels per cell mean | pairs | assignments (x1000) | after frustum cull (x1000) | necessary (x1000) | "
+        "after cull / total | necessary / total | tiles |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    sec(r, SEC_MEMORY,
+        "| scene | triangles | arena MiB, 512x512 (default pools) | arena MiB, 512x512, 2^18 pairs, grid <= 128 | "
+        "arena MiB, 1280x1280 | persistent MiB (scene copy, BVH) | high-water MiB | GEARS pairs high water | GEARS tiles |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    sec(r, SEC_ACCURACY, "| scene | algorithm | RMSE | max error | wrong pixels | note |\n"
+                         "| --- | --- | ---: | ---: | ---: | --- |\n");
+    sec(r, SEC_MASKS,
+        "| scene | k | mask bits compared | bits that differ | fraction | blocked by Embree only | blocked by us only | "
+        "pixels with a difference | our masks reproduce the reference |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n");
+    fprintf(r->plots, "# Generated by penumbra_bench: run `gnuplot plots.gp` in this directory (tools/bench.sh does).\n"
+                      "# The gallery panels it reads from work/ are removed afterwards; make bench recreates them.\n");
+}
+
+static void plot_sweeps(report *r, const bench_opts *o)
+{
+    static const char *xlabel[] = {"output resolution (pixels per side)", "mask resolution k (k x k samples)",
+                                   "relative light diagonal (2 = default light)", "GEARS grid resolution (cells per side)"};
+    int kind, i;
+    if (r->sweep_scenes == 0) return;
+    for (kind = 0; kind < 4; kind++) {
+        char title[160];
+        if (kind == SW_RES) snprintf(title, sizeof(title), "cost vs output resolution (k = %u, grid %u)", o->k, o->grid);
+        else if (kind == SW_K) snprintf(title, sizeof(title), "cost vs mask resolution (%ux%u, grid %u)", o->size, o->size, o->grid);
+        else if (kind == SW_LIGHT)
+            snprintf(title, sizeof(title), "cost vs light size (%ux%u, k = %u, grid %u)", o->size, o->size, o->k, o->grid);
+        else snprintf(title, sizeof(title), "cost vs GEARS grid resolution (%ux%u, k = %u)", o->size, o->size, o->k);
+        fprintf(r->plots, "\n# %s\nset terminal pngcairo size 900,560 font 'sans,10'\nset output '%s.png'\n",
+                sweep_file[kind], sweep_file[kind]);
+        fprintf(r->plots, "set title '%s'\nset xlabel '%s'\nset ylabel 'shadow pass ms (median)'\nset logscale y\n"
+                          "set grid\nset key outside right top\n%s",
+                title, xlabel[kind], kind == SW_K || kind == SW_GRID ? "set logscale x 2\n" : "unset logscale x\n");
+        fprintf(r->plots, "plot ");
+        for (i = 0; i < r->sweep_scenes; i++) {
+            const char *s = r->sweep_names[i];
+            fprintf(r->plots,
+                    "%s'data/%s_%s.dat' using 1:2 with linespoints lw 2 pt 7 lc %d title '%s GEARS', "
+                    "'' using 1:3 with linespoints dt 2 pt 6 lc %d title '%s reference', "
+                    "'' using 1:4 with linespoints dt 3 pt 4 lc %d title '%s Embree'",
+                    i ? ", \\\n     " : "", sweep_file[kind], s, i + 1, s, i + 1, s, i + 1, s);
+        }
+        fprintf(r->plots, "\nunset logscale x\nunset logscale y\n");
+    }
+}
+
+static void plot_headline(report *r, const bench_opts *o)
+{
+    fprintf(r->plots,
+            "\n# headline speed-ups\nset terminal pngcairo size 1000,520 font 'sans,10'\nset output 'speedup.png'\n"
+            "set title 'GEARS shadow pass speed-up, %ux%u, k = %u (above 1: GEARS faster; medians of one run)'\n"
+            "set style data histogram\nset style histogram cluster gap 1\nset style fill solid 0.8 border -1\n"
+            "set logscale y\nset ylabel 'speed-up'\nunset xlabel\nset xtics rotate by -30\nset grid ytics\n"
+            "set key inside top right\nset yrange [%g:%g]\nset arrow 1 from graph 0, first 1 to graph 1, first 1 nohead dt 2\n"
+            "set arrow 2 from graph 0, first 10 to graph 1, first 10 nohead dt 3 lc rgb 'red'\n"
+            "set label 1 'goal 10x' at graph 0.01, first 10 offset 0,0.6 tc rgb 'red'\n"
+            "plot 'data/headline.dat' using 2:xtic(1) title 'vs reference', '' using 3 title 'vs Embree'%s\n"
+            "unset arrow 1\nunset arrow 2\nunset label 1\nunset logscale y\nset xtics norotate\nset yrange [*:*]\n",
+            o->size, o->size, o->k, r->hmin / 1.5, r->hmax * 1.5, A_RT >= 0 ? ", '' using 4 title 'vs raytrace'" : "");
+}
+
+/* The sections after the headline, in order: heading and the note that explains the
+ * columns (the sweeps and the accuracy heading are built in print_report). */
+static const struct {
+    int sec;
+    const char *heading, *note;
+} notes[] = {
+    {SEC_PORTS, "## Per port: milliseconds and speed-up over Embree (issue 5, table 1)",
+     "Embree runs with the same thread count as the port on its row. The per-sample ray tracer is a baseline, "
+     "measured on the first row of each scene only. A port added to `ports[]` in tools/penumbra_bench.c gets its "
+     "rows here."},
+    {SEC_EMBREE, "## Embree 3 baseline",
+     "Static: shadow pass against shadow pass (paper Table 7, column B). Dynamic: Embree's BVH build plus its pass "
+     "against our scene copy and BVH build plus GEARS' pass (column C: a scene that changes every frame)."},
+    {SEC_RES, NULL, NULL},
+    {SEC_K, NULL, NULL},
+    {SEC_LIGHT, NULL, NULL},
+    {SEC_GRID, NULL, NULL},
+    {SEC_GRIDEFF, "## GEARS grid efficiency (paper Tables 5 and 6)",
+     "Per cell: over the cells that hold at least one pixel. Assignments: triangles x pixels summed over cells. "
+     "\"After frustum cull\": assignments that survive the pixel's light-frustum test and reach the predicate. "
+     "Necessary: those that block at least one sample (exact statistics, no early exit)."},
+    {SEC_MEMORY, "## Memory",
+     "Arena columns: `pn_arena_size` for the scene's triangle count at that image size and GEARS pool "
+     "configuration. Persistent and high-water: `pn_stats` after the main-point frames (the context was sized for "
+     "the largest image of the run). GEARS tiles: passes the pair pool needed."},
+    {SEC_ACCURACY, NULL,
+     "Wrong pixels: visibility not bit-identical to the reference's. Exact algorithms must show zero."},
+    {SEC_MASKS, "### Embree against our predicate, bit by bit",
+     "Our masks are recomputed in the tool by the library's kernels (`pn_tri_mask` over a host BVH with the "
+     "reference's frustum cull); the last column checks that their visibility is byte-identical to the reference's "
+     "frame. Embree's masks come from rtcOccluded1. Compared: every mask bit of every pixel that has a shadow-ray "
+     "origin."},
+};
+
+static void print_report(report *r, const bench_opts *o, FILE *out, const char *mach, const char *emb_info, int threads,
+                         double minutes)
+{
+    static const char *sweep_title[] = {"Cost vs output resolution (paper Table 1)", "Cost vs mask resolution k (paper Table 2)",
+                                        "Cost vs light size (paper Table 3)", "Cost vs GEARS grid resolution (paper Table 4)"};
+    char date[64];
+    time_t now = time(NULL);
+    int s;
+    for (s = 0; s < SEC_COUNT; s++) fflush(r->sec[s]);
+    strftime(date, sizeof(date), "%Y-%m-%d %H:%M UTC", gmtime(&now));
+    fprintf(out, "# penumbra benchmark results\n\n");
+    fprintf(out, "Generated by `%s` (tools/penumbra_bench.c) on %s%s%s; the whole run took %.1f minutes. "
+                 "Every number below is what that run printed.\n\n",
+            o->quick ? "make bench-quick" : "make bench", date, o->label ? ", " : "", o->label ? o->label : "", minutes);
+    fprintf(out, "- Machine: %s. Threads: %d (the scalar port's parallel-for and Embree's `threads=N`), and 1 in the "
+                 "per-port table.\n",
+            mach, threads);
+    fprintf(out, "- Build: %s, compiler %s. %s.\n", PN_BENCH_BUILD_TYPE, __VERSION__, emb_info);
+    fprintf(out, "- Method: medians of %d repetitions (%d when one repetition took over %.0f s; the `reps` column says "
+                 "which); within a repetition every algorithm, both Embree APIs and both BVH builds run one after the "
+                 "other, so each ratio compares medians measured side by side in the same run. \"X vs Y\" is Y's median "
+                 "over X's: above 1 means X is faster.\n",
+            o->reps, o->reps_slow, o->slow_s);
+    fprintf(out, "- Shadow pass: `pn_get_stats` `pass_ns[PN_PASS_SHADOW]`; total: the wall time of `pn_render` "
+                 "(G-buffer, shadow pass, shading). Embree's pass starts from the reference's G-buffer and computes "
+                 "the same origins O (kernels/pn_predicate.h `pn_shadow_origin`) and the same k x k samples, traces "
+                 "k^2 occlusion rays per pixel (tnear 0, tfar 1 - 1e-6, direction S - O) and rejects the pixel's own "
+                 "triangle in an occlusion filter.\n");
+    fprintf(out, "- Defaults: %ux%u, k = %u, GEARS grid %u, eps = 1e-4 x scene diagonal, the CLI's automatic view and "
+                 "light for glTF scenes (with the ground plane) and each built-in scene's own.\n\n",
+            o->size, o->size, o->k, o->grid);
+    fprintf(out, "## Headline: per scene, %ux%u, k = %u, %d threads\n\n%s\n", o->size, o->size, o->k, threads,
+            r->buf[SEC_HEADLINE]);
+    if (A_RT < 0)
+        fprintf(out, "The raytrace column (PN_ALGO_RAYTRACE, k^2 single rays per pixel through the BVH) stays empty "
+                     "until that algorithm is in the build.\n\n");
+    fprintf(out, "\"necessary / total\" is paper Table 6: triangle-to-pixel assignments that block at least one "
+                 "sample, over all assignments the grid made (a GEARS frame with `exact_stats = 1`).\n\n");
+    fprintf(out, "![GEARS speed-ups](speedup.png)\n\n");
+    if (!o->quick)
+        fprintf(out, "Where the time goes: the callgrind section at the end of this page (tools/bench_profile.sh).\n\n");
+    for (s = 0; s < (int)(sizeof(notes) / sizeof(notes[0])); s++) {
+        int sw = notes[s].sec;
+        if (sw >= SEC_RES && sw <= SEC_GRID) {
+            fprintf(out, "## %s\n\n", sweep_title[sw - SEC_RES]);
+            if (r->sweep_scenes)
+                fprintf(out, "%s\n![%s](%s.png)\n\n", r->buf[sw], sweep_title[sw - SEC_RES], sweep_file[sw - SEC_RES]);
+            else fprintf(out, "(no sweep scenes in this run)\n\n");
+            if (sw == SEC_GRID)
+                fprintf(out, "Shadow pass ms, medians; %d threads. Light diagonal d scales the default light's "
+                             "half-edges by d / 2, so 2 is the default light (as in the paper, whose default column "
+                             "is 2).\n\n",
+                        threads);
+            continue;
+        }
+        if (sw == SEC_ACCURACY) fprintf(out, "## Accuracy against the reference (%ux%u, k = %u)\n\n", o->size, o->size, o->k);
+        else fprintf(out, "%s\n\n", notes[s].heading);
+        fprintf(out, "%s\n%s\n\n", r->buf[sw], notes[s].note);
+    }
+    fprintf(out, "## Gallery\n\nPer shared scene: the shaded reference, its visibility, each algorithm's image and its "
+                 "error heat map against the reference (|error| x 4, black = identical), and Embree's visibility and "
+                 "error.\n\n%s",
+            r->len[SEC_GALLERY] ? r->buf[SEC_GALLERY] : "(no glTF scenes in this run)\n");
+}
+
+static void report_close(report *r)
+{
+    int s;
+    for (s = 0; s < SEC_COUNT; s++) {
+        fclose(r->sec[s]);
+        free(r->buf[s]);
+    }
+    fclose(r->plots);
+    free(r->plots_buf);
+}
+
+static void headline_data(FILE *f, report *r, const scene_state *ss)
+{
+    double v[3];
+    int i;
+    v[0] = ss->gears_vs_ref;
+    v[1] = ss->gears_vs_emb;
+    v[2] = ss->gears_vs_rt;
+    for (i = 0; i < 3; i++)
+        if (v[i] > 0.0) {
+            if (v[i] < r->hmin) r->hmin = v[i];
+            if (v[i] > r->hmax) r->hmax = v[i];
+        }
+    /* gnuplot reads NaN as a missing point. */
+    fprintf(f, "%s %.4g %.4g %.4g\n", ss->s.name, ss->gears_vs_ref, ss->gears_vs_emb, ss->gears_vs_rt);
+}
+
+/* ---- main ---------------------------------------------------------------------------- */
+
+static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
+
+static int parse_list(const char *s, uint32_t *out, uint32_t max)
+{
+    uint32_t n = 0;
+    char *end;
+    while (*s && n < max) {
+        out[n++] = (uint32_t)strtoul(s, &end, 10);
+        if (*end != ',') break;
+        s = end + 1;
+    }
+    return (int)n;
+}
+
+static void usage(void)
+{
+    fprintf(stderr,
+            "usage: penumbra_bench [--out DIR] [--scenes DIR] [--quick] [--only a,b] [--sweep-scenes a,b]\n"
+            "                      [--algos reference,GEARS,raytrace,embree] [--ports N] [--lean]\n"
+            "                      [--reps N] [--reps-slow N] [--slow-seconds S] [--threads N] [--size N] [--k K]\n"
+            "                      [--sweep-res a,b] [--sweep-k a,b] [--sweep-grid a,b] [--label TEXT]\n"
+            "Prints Markdown tables and writes DIR/RESULTS.md, DIR/data/*.dat, DIR/plots.gp (gnuplot) and\n"
+            "the gallery panels under DIR/work/. Scenes: the built-ins and every .glb in --scenes\n"
+            "(default: $PN_SCENES_DIR).\n");
+}
+
+int main(int argc, char **argv)
+{
+    bench_opts o;
+    report r;
+    char *names[MAX_SCENES];
+    int builtin[MAX_SCENES], nscenes = 0, i, p, threads;
+    const char *const *bn = pn_builtin_scene_names();
+    char mach[512], emb_info[400], path[1400];
+    uint64_t t_start = pn_threads_now_ns(NULL);
+    FILE *f;
+
+    memset(&o, 0, sizeof(o));
+    o.out_dir = "bench-out";
+    o.scenes_dir = getenv("PN_SCENES_DIR");
+    o.reps = 5;
+    o.reps_slow = 3;
+    o.slow_s = 30.0;
+    o.nports = NPORT;
+    o.size = 512;
+    o.k = 16;
+    o.grid = 128;
+    o.sweep_scenes = "spot,chess_set,stanford_bunny,cad_infineon_easypim2b,thin";
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--quick") == 0) o.quick = 1;
+        else if (strcmp(a, "--lean") == 0) o.lean = 1;
+        else if (!v) {
+            usage();
+            return 2;
+        } else if (strcmp(a, "--out") == 0) o.out_dir = argv[++i];
+        else if (strcmp(a, "--scenes") == 0) o.scenes_dir = argv[++i];
+        else if (strcmp(a, "--only") == 0) o.only = argv[++i];
+        else if (strcmp(a, "--sweep-scenes") == 0) o.sweep_scenes = argv[++i];
+        else if (strcmp(a, "--label") == 0) o.label = argv[++i];
+        else if (strcmp(a, "--algos") == 0) o.algos = argv[++i];
+        else if (strcmp(a, "--ports") == 0) o.nports = atoi(argv[++i]);
+        else if (strcmp(a, "--reps") == 0) o.reps = atoi(argv[++i]);
+        else if (strcmp(a, "--reps-slow") == 0) o.reps_slow = atoi(argv[++i]);
+        else if (strcmp(a, "--slow-seconds") == 0) o.slow_s = atof(argv[++i]);
+        else if (strcmp(a, "--threads") == 0) o.threads = atoi(argv[++i]);
+        else if (strcmp(a, "--size") == 0) o.size = (uint32_t)atoi(argv[++i]);
+        else if (strcmp(a, "--k") == 0) o.k = (uint32_t)atoi(argv[++i]);
+        else if (strcmp(a, "--sweep-res") == 0) o.n_res = (uint32_t)parse_list(argv[++i], o.sweep_res, 8);
+        else if (strcmp(a, "--sweep-k") == 0) o.n_k = (uint32_t)parse_list(argv[++i], o.sweep_k, 8);
+        else if (strcmp(a, "--sweep-grid") == 0) o.n_grid = (uint32_t)parse_list(argv[++i], o.sweep_grid, 8);
+        else {
+            usage();
+            return 2;
+        }
+    }
+    if (o.quick) {
+        /* A small subset that still runs every code path: CI-friendly (well under two
+         * minutes on two cores). */
+        if (!o.only) o.only = "square,elongated-cube,spot";
+        o.sweep_scenes = "spot";
+        o.size = 128;
+        o.reps = o.reps_slow = 3;
+        if (!o.n_res) o.n_res = (uint32_t)parse_list("64,128,192", o.sweep_res, 8);
+        if (!o.n_k) o.n_k = (uint32_t)parse_list("4,16", o.sweep_k, 8);
+        if (!o.n_grid) o.n_grid = (uint32_t)parse_list("32,128", o.sweep_grid, 8);
+        o.n_light = 2;
+        o.sweep_light[0] = 1.0f;
+        o.sweep_light[1] = 4.0f;
+    } else {
+        if (!o.n_res) o.n_res = (uint32_t)parse_list("256,512,1024,1280", o.sweep_res, 8);
+        if (!o.n_k) o.n_k = (uint32_t)parse_list("4,8,16,32", o.sweep_k, 8);
+        if (!o.n_grid) o.n_grid = (uint32_t)parse_list("32,64,128,256", o.sweep_grid, 8);
+        o.n_light = 5;
+        for (i = 0; i < 5; i++) o.sweep_light[i] = (float)(i + 1);
+    }
+    if (o.reps < 1 || o.reps > MAX_REPS || o.reps_slow < 1 || o.reps_slow > MAX_REPS) {
+        fprintf(stderr, "penumbra_bench: --reps must be 1..%d\n", MAX_REPS);
+        return 2;
+    }
+    threads = o.threads > 0 ? o.threads : pn_threads_cores();
+
+    /* Scenes: built-ins, then the shared glTF files in name order. */
+    for (; *bn && nscenes < MAX_SCENES; bn++)
+        if (in_list(o.only, *bn)) {
+            names[nscenes] = strdup(*bn);
+            builtin[nscenes++] = 1;
+        }
+    if (o.scenes_dir) {
+        DIR *d = opendir(o.scenes_dir);
+        struct dirent *e;
+        int first = nscenes;
+        if (!d) progress("warning: cannot open scenes directory %s: %s", o.scenes_dir, strerror(errno));
+        while (d && (e = readdir(d)) != NULL && nscenes < MAX_SCENES) {
+            size_t len = strlen(e->d_name);
+            char stem[256];
+            if (len < 5 || strcmp(e->d_name + len - 4, ".glb") != 0 || len - 4 >= sizeof(stem)) continue;
+            memcpy(stem, e->d_name, len - 4);
+            stem[len - 4] = '\0';
+            if (!in_list(o.only, stem)) continue;
+            snprintf(path, sizeof(path), "%s/%s", o.scenes_dir, e->d_name);
+            names[nscenes] = strdup(path);
+            builtin[nscenes++] = 0;
+        }
+        if (d) closedir(d);
+        qsort(names + first, (size_t)(nscenes - first), sizeof(char *), cmp_str);
+    } else {
+        progress("note: no scenes directory (--scenes or PN_SCENES_DIR): built-in scenes only");
+    }
+
+    snprintf(path, sizeof(path), "%s/data", o.out_dir);
+    if (pn_mkdir_p(path) != 0) {
+        fprintf(stderr, "penumbra_bench: cannot create %s\n", path);
+        return 1;
+    }
+    snprintf(path, sizeof(path), "%s/gallery", o.out_dir);
+    pn_mkdir_p(path);
+    machine(mach, sizeof(mach));
+    {
+        pn_embree *e = NULL;
+        char err[256];
+        if (pn_embree_open(&e, threads, err, sizeof(err)) == 0) {
+            snprintf(emb_info, sizeof(emb_info), "%s", pn_embree_info(e));
+            pn_embree_close(e);
+        } else {
+            snprintf(emb_info, sizeof(emb_info), "Embree baseline unavailable: %s", err);
+        }
+    }
+    progress("penumbra_bench: %s; %d threads; %s; %d scenes", mach, threads, emb_info, nscenes);
+    report_open(&r, &o);
+
+    {
+        FILE *hd;
+        snprintf(path, sizeof(path), "%s/data/headline.dat", o.out_dir);
+        hd = fopen(path, "w");
+        if (hd) fprintf(hd, "# scene gears_vs_reference gears_vs_embree gears_vs_raytrace\n");
+        for (i = 0; i < nscenes; i++) {
+            const char *nm = builtin[i] ? names[i] : strrchr(names[i], '/') + 1;
+            char stem[256];
+            int sweepable;
+            pn_embree_api best_api = PN_EMBREE_OCCLUDED16;
+            snprintf(stem, sizeof(stem), "%s", nm);
+            if (!builtin[i]) stem[strlen(stem) - 4] = '\0';
+            sweepable = in_list(o.sweep_scenes, stem);
+            progress("[%d/%d] %s", i + 1, nscenes, stem);
+            for (p = 0; p < NPORT && p < o.nports; p++) {
+                scene_state ss;
+                uint32_t max_size = o.size;
+                if (p == 0 && sweepable)
+                    for (uint32_t v = 0; v < o.n_res; v++)
+                        if (o.sweep_res[v] > max_size) max_size = o.sweep_res[v];
+                if (scene_open(&o, &ss, names[i], builtin[i], &ports[p], max_size) != 0) {
+                    scene_close(&ss);
+                    continue;
+                }
+                main_point(&o, &r, &ss, p == 0, !builtin[i]);
+                if (p == 0 && hd) headline_data(hd, &r, &ss);
+                if (p == 0 && sweepable) {
+                    int kind;
+                    best_api = ss.best_api;
+                    for (kind = 0; kind < 4; kind++) sweep(&o, &r, &ss, kind, best_api);
+                    if (r.sweep_scenes < MAX_SCENES) snprintf(r.sweep_names[r.sweep_scenes++], 128, "%s", ss.s.name);
+                }
+                scene_close(&ss);
+            }
+            free(names[i]);
+        }
+        if (hd) fclose(hd);
+    }
+    plot_sweeps(&r, &o);
+    plot_headline(&r, &o);
+
+    snprintf(path, sizeof(path), "%s/RESULTS.md", o.out_dir);
+    f = fopen(path, "w");
+    if (!f) {
+        fprintf(stderr, "penumbra_bench: cannot write %s: %s\n", path, strerror(errno));
+        report_close(&r);
+        return 1;
+    }
+    {
+        double minutes = (pn_threads_now_ns(NULL) - t_start) / 6e10;
+        print_report(&r, &o, f, mach, emb_info, threads, minutes);
+        print_report(&r, &o, stdout, mach, emb_info, threads, minutes);
+    }
+    fclose(f);
+    fflush(r.plots);
+    snprintf(path, sizeof(path), "%s/plots.gp", o.out_dir);
+    f = fopen(path, "w");
+    if (f) {
+        fwrite(r.plots_buf, 1, r.plots_len, f);
+        fclose(f);
+    }
+    report_close(&r);
+    return 0;
+}

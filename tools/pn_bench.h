@@ -1,0 +1,104 @@
+/* pn_bench.h - the pieces of tools/penumbra_bench.c that live in their own files: the
+ * shadow-ray set-up shared with the library's kernels, the G-buffer snapshot every baseline
+ * traces from, the Embree 3 baseline and our own per-pixel masks. Host code: may allocate.
+ *
+ * Everything here reproduces DESIGN.md invariant 6 from the outside: the same G-buffer
+ * points, the same origin O = P + eps*n (kernels/pn_predicate.h pn_shadow_origin, compiled
+ * into the tool), the same k x k sample positions, so a mask bit means the same light
+ * sample whichever tracer produced it. */
+#ifndef PN_TOOLS_BENCH_H
+#define PN_TOOLS_BENCH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "penumbra/penumbra.h"
+#include "pn_mesh.h"
+#include "pn_threads.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* What a shadow pass needs from a rendered frame, copied out of the arena (the frame's
+ * pointers die at the next pn_render). */
+typedef struct pn_gbuf {
+    uint32_t width, height;
+    float *pos;     /* 3 per pixel */
+    float *nrm;     /* 3 per pixel */
+    uint32_t *tri;  /* PN_NO_TRIANGLE: background */
+} pn_gbuf;
+
+int pn_gbuf_copy(pn_gbuf *g, const pn_frame *fr);
+void pn_gbuf_free(pn_gbuf *g);
+
+/* Per-pixel masks: words_per_pixel 32-bit words a pixel, bit j*k + i = sample (i, j)
+ * blocked. Pixels without a triangle or behind the light have every word 0 and are not
+ * counted by the comparison (their visibility, 1 or 0, is fixed by convention). */
+typedef struct pn_masks {
+    uint32_t width, height, k, words;
+    uint32_t *bits;    /* width * height * words */
+    uint8_t *lit;      /* 1 where the pixel has a shadow-ray origin */
+} pn_masks;
+
+int pn_masks_alloc(pn_masks *m, uint32_t w, uint32_t h, uint32_t k);
+void pn_masks_free(pn_masks *m);
+
+/* Bitwise comparison of two mask sets over the pixels lit in both. */
+typedef struct pn_mask_diff {
+    uint64_t bits;        /* compared bits: lit pixels x k^2 */
+    uint64_t differ;      /* bits set in exactly one */
+    uint64_t only_a;      /* blocked in a only */
+    uint64_t only_b;      /* blocked in b only */
+    uint64_t pixels_differ; /* lit pixels with at least one differing bit */
+    uint64_t lit_pixels;
+} pn_mask_diff;
+
+void pn_masks_compare(const pn_masks *a, const pn_masks *b, pn_mask_diff *d);
+
+/* Our exact masks, computed in the tool from the library's own kernels/ predicate
+ * (pn_tri_mask) over the triangles a host-side BVH cannot rule out for the pixel's light
+ * frustum (pn_frustum_box, the reference's conservative cull). This is what the reference
+ * ORs per pixel; popcounts are checked against the reference's visibility by the caller.
+ * vis (may be NULL) receives the visibility of each pixel. */
+int pn_our_masks(const pn_mesh *mesh, const pn_gbuf *g, const pn_light *light, uint32_t k, float eps,
+                 pn_threads *threads, pn_masks *out, float *vis, char *err, size_t err_size);
+
+/* ---- Embree 3 baseline (tools/pn_bench_embree.c; a stub when Embree was not found) ------ */
+
+typedef enum pn_embree_api {
+    PN_EMBREE_OCCLUDED1 = 0,  /* rtcOccluded1, one ray at a time */
+    PN_EMBREE_OCCLUDED16 = 1, /* rtcOccluded16, 16 rays of one pixel per packet */
+    PN_EMBREE_API_COUNT = 2
+} pn_embree_api;
+
+const char *pn_embree_api_name(pn_embree_api api);
+
+typedef struct pn_embree pn_embree;
+
+/* 1 when the tool was built with Embree. */
+int pn_embree_compiled(void);
+
+/* A device with "threads=N" and the version/ISA in *info (static text until close). */
+int pn_embree_open(pn_embree **e, int threads, char *err, size_t err_size);
+const char *pn_embree_info(const pn_embree *e);
+void pn_embree_close(pn_embree *e);
+
+/* (Re)builds the scene from the mesh (one triangle geometry, default build quality and
+ * scene flags unless robust != 0: RTC_SCENE_FLAG_ROBUST). *build_ms is the commit alone
+ * (the BVH build), not the buffer copy. */
+int pn_embree_build(pn_embree *e, const pn_mesh *mesh, int robust, double *build_ms, char *err,
+                    size_t err_size);
+
+/* The shadow pass: per pixel, k^2 occlusion rays from O to the samples (tnear 0, tfar
+ * just under 1, direction S - O unnormalised), the pixel's own triangle rejected by an
+ * occlusion filter, spread over threads with pn_threads_parallel_for. Writes vis (w*h)
+ * and, if masks != NULL, the blocked bits. *ms is the wall time of the pass. */
+int pn_embree_shadow(pn_embree *e, pn_embree_api api, const pn_gbuf *g, const pn_light *light,
+                     uint32_t k, float eps, pn_threads *threads, float *vis, pn_masks *masks,
+                     double *ms, char *err, size_t err_size);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

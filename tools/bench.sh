@@ -23,6 +23,9 @@ if rev=$(git -C "$root" rev-parse --short HEAD 2>/dev/null); then
 fi
 rm -rf "$out"
 mkdir -p "$out"
+# The OpenCL port's kernels (PoCL) are compiled once and cached in the build directory.
+POCL_CACHE_DIR=${POCL_CACHE_DIR:-$(cd "$(dirname "$bin")/.." && pwd)/pocl-cache}
+export POCL_CACHE_DIR
 set -- --out "$out"
 [ -n "$scenes" ] && set -- "$@" --scenes "$scenes"
 [ -n "$flag" ] && set -- "$@" "$flag"

@@ -594,7 +594,7 @@ static void gallery(const bench_opts *o, report *r, scene_state *ss, job *lib, i
     free(tmp);
     /* gnuplot: one row of panels with titles. */
     fprintf(r->plots, "\n# gallery: %s\n", ss->s.name);
-    fprintf(r->plots, "set terminal pngcairo size %d,%d font 'sans,9'\nset output 'gallery/%s.png'\n",
+    fprintf(r->plots, "set terminal pngcairo noenhanced size %d,%d font 'sans,9'\nset output 'gallery/%s.png'\n",
             panels * 240, 262, ss->s.name);
     fprintf(r->plots, "set multiplot layout 1,%d margins 0.005,0.995,0.02,0.9 spacing 0.004,0\n"
                       "unset border; unset tics; unset key; unset colorbox\nset size ratio -1\n",
@@ -1089,7 +1089,7 @@ static void plot_sweeps(report *r, const bench_opts *o)
         else if (kind == SW_LIGHT)
             snprintf(title, sizeof(title), "cost vs light size (%ux%u, k = %u, grid %u)", o->size, o->size, o->k, o->grid);
         else snprintf(title, sizeof(title), "cost vs GEARS grid resolution (%ux%u, k = %u)", o->size, o->size, o->k);
-        fprintf(r->plots, "\n# %s\nset terminal pngcairo size 900,560 font 'sans,10'\nset output '%s.png'\n",
+        fprintf(r->plots, "\n# %s\nset terminal pngcairo noenhanced size 900,560 font 'sans,10'\nset output '%s.png'\n",
                 sweep_file[kind], sweep_file[kind]);
         fprintf(r->plots, "set title '%s'\nset xlabel '%s'\nset ylabel 'shadow pass ms (median)'\nset logscale y\n"
                           "set grid\nset key outside right top\n%s",
@@ -1110,7 +1110,7 @@ static void plot_sweeps(report *r, const bench_opts *o)
 static void plot_headline(report *r, const bench_opts *o)
 {
     fprintf(r->plots,
-            "\n# headline speed-ups\nset terminal pngcairo size 1000,520 font 'sans,10'\nset output 'speedup.png'\n"
+            "\n# headline speed-ups\nset terminal pngcairo noenhanced size 1000,520 font 'sans,10'\nset output 'speedup.png'\n"
             "set title 'GEARS shadow pass speed-up, %ux%u, k = %u (above 1: GEARS faster; medians of one run)'\n"
             "set style data histogram\nset style histogram cluster gap 1\nset style fill solid 0.8 border -1\n"
             "set logscale y\nset ylabel 'speed-up'\nunset xlabel\nset xtics rotate by -30\nset grid ytics\n"

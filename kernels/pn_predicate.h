@@ -235,8 +235,10 @@ PN_KFN uint32_t pn_tri_sample(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_kligh
  * group loop at -O2 (SSE2) and the outer loop at -O3; PoCL picks its own widths. The row is
  * most of the predicate's cost (issue 5 profile). Measured with callgrind (reference pass,
  * bunny 64x64): lanes written out by hand with a shift per group, as before, stayed scalar
- * (842 M instructions at -O3); one flat loop to n vectorizes at -O3 only (478 M, scalar at
- * -O2); this form 489 M at -O3 and vectorized at -O2 as well. */
+ * (842 M instructions at -O3); one flat loop to n: 478 M at -O3, but GCC 12 -O2 left it
+ * scalar (-fopt-info-vec on the loop alone); this form: 489 M at -O3, vectorized at -O2 too.
+ * Building pw costs one store per lane per call; hoisting it and av out of the call would
+ * change every caller's signature for about 1% (GEARS profile), so it stays here. */
 PN_KFN uint32_t pn_row_bits(const float *av, const uint32_t *pw, int32_t n4, float pb, float phu, float thr,
                             float b0, float h0, float b1, float h1, float b2, float h2)
 {

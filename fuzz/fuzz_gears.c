@@ -120,6 +120,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         pn_box3_add(obox, O);
     }
 
+    /* Tolerances as src/pn_frame.c sets them, from the diagonal of the box of the
+     * triangles (the library's scene box) and the origins (which a render puts on them). */
+    {
+        float sb[6] = {PN_KINF, PN_KINF, PN_KINF, -PN_KINF, -PN_KINF, -PN_KINF};
+        pn_v3 d;
+        for (t = 0; t < nt * 3u; t++) pn_box3_add(sb, pn_v3_make(tris[t * 3], tris[t * 3 + 1], tris[t * 3 + 2]));
+        pn_box_join_n(sb, obox, 6u);
+        d = pn_v3_make(sb[3] - sb[0], sb[4] - sb[1], sb[5] - sb[2]);
+        L.cross_tol = PN_CROSS_TOL * pn_ksqrt(pn_v3_dot(d, d));
+        L.cull_tol = L.cross_tol + 1e-5f * pn_ksqrt(pn_v3_dot(d, d));
+    }
+
     /* The grid, as the ports build it. */
     nfaces = pn_gears_faces(&L, obox, scale, faces);
     if (L.is_point) {
@@ -145,8 +157,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             pn_v3 B = pn_v3_make(tris[t * 9 + 3], tris[t * 9 + 4], tris[t * 9 + 5]);
             pn_v3 C = pn_v3_make(tris[t * 9 + 6], tris[t * 9 + 7], tris[t * 9 + 8]);
             pn_cellrect r;
+            pn_frustum fr;
             pn_mask_clear(m);
             if (!pn_tri_mask(origins[o], A, B, C, &L, m)) continue;
+            /* The per-pixel cull before the predicate (pn_gears_pixel_mask, the reference's
+             * BVH walk) must pass it too. */
+            pn_frustum_make(origins[o], &L, &fr);
+            FUZZ_CHECK(pn_frustum_aabb(&fr, pn_v3_make(pn_kminf(A.x, pn_kminf(B.x, C.x)), pn_kminf(A.y, pn_kminf(B.y, C.y)),
+                                                       pn_kminf(A.z, pn_kminf(B.z, C.z))),
+                                       pn_v3_make(pn_kmaxf(A.x, pn_kmaxf(B.x, C.x)), pn_kmaxf(A.y, pn_kmaxf(B.y, C.y)),
+                                                  pn_kmaxf(A.z, pn_kmaxf(B.z, C.z)))),
+                       "triangle %u blocks %u samples from origin %u but the frustum cull rejects its box", t,
+                       pn_mask_count(m, L.k), o);
             r = pn_gears_tri_cells(&faces[face], &L, A, B, C);
             FUZZ_CHECK(!pn_cellrect_is_empty(r) && cx >= (r.lo & 0xFFFFu) && cx <= (r.hi & 0xFFFFu) &&
                            cy >= (r.lo >> 16) && cy <= (r.hi >> 16),

@@ -5,25 +5,32 @@
  * ABC when the open segment (O, S) meets the closed triangle:
  *
  *   plane:  O and S lie strictly on opposite sides of the triangle's plane, i.e. the
- *           segment crosses it at some t in (0, 1); "strictly" means by more than float
- *           noise (1e-6 of the L1 magnitudes the side value is made of). This is the "clip to the slab between
- *           O's plane and the light plane" of the issue, done per sample: a triangle part
- *           behind O or behind the sample can never be crossed by (O, S);
+ *           segment crosses it at some t in (0, 1); "strictly" means by more than a
+ *           rigorous bound on the rounding of each side value. This is the "clip to the
+ *           slab between O's plane and the light plane" of the issue, done per sample: a
+ *           triangle part behind O or behind the sample can never be crossed by (O, S);
  *   edges:  the three triple products (S - O) . ((P1 - O) x (P2 - O)) over the edges
  *           P1P2 all have the same sign (zero counts as either). This is the edge-function
  *           test of the triangle projected from O onto the light plane, written without
- *           the division so that no vertex needs to be projected to infinity.
+ *           the division so that no vertex needs to be projected to infinity;
+ *   certainty: a sample whose edge values are within rounding of zero counts only if
+ *           its crossing (S - O).n is large enough that rounding cannot have put the
+ *           crossing point more than L->cross_tol off the triangle (pn_tri_graze). Only
+ *           segments at an edge and nearly in the triangle's plane, whose crossing point
+ *           is rounding noise, are dropped; this is what makes every cull widened by
+ *           cross_tol conservative for the float predicate.
  *
  * Every test is a linear form in (a_i, b_j): h(i, j) = (h0 + b_j*hv) + a_i*hu, always
  * evaluated in exactly that order. Consequences, relied on below and by GEARS:
  *   - watertight: an edge's form is computed from its endpoints in canonical
  *     (lexicographic) order, so the two triangles sharing it get the very same float h and
  *     see it with opposite signs; with zero counted as inside by both, a sample can never
- *     slip between them;
+ *     slip between them (unless its segment nearly lies in both triangles' planes, where
+ *     the certainty test drops it from both);
  *   - monotone: IEEE multiply and add are monotone, so for a fixed row h is monotone in i,
  *     and for fixed i monotone in j. Each form passes on a prefix or suffix of a row,
- *     and the extreme value over the grid is at a corner. So the rows that can hold a
- *     blocked sample are found exactly by walking h itself along the best column (an
+ *     and the extreme value over the grid is at a corner. So the rows where every form
+ *     can pass are found exactly by walking h itself along the best column (an
  *     estimate only picks the starting point); within them every sample is evaluated
  *     in one branch-free, vectorizable loop per row (pn_row_bits). The mask is the
  *     per-sample answer exactly: tests/test_raytrace.c compares every bit with
@@ -162,40 +169,104 @@ PN_KFN void pn_mask_set_run(uint32_t *m, uint32_t k, int32_t j, int32_t lo, int3
 
 /* ---- The predicate -------------------------------------------------------------------- */
 
+/* Unit roundoff of float, 2^-24. */
+#define PN_KU 5.9604645e-8f
+
+PN_KFN float pn_v3_linf(pn_v3 a)
+{
+    float x = a.x < 0.0f ? -a.x : a.x, y = a.y < 0.0f ? -a.y : a.y, z = a.z < 0.0f ? -a.z : a.z;
+    return pn_kmaxf(x, pn_kmaxf(y, z));
+}
+
 /* The four linear forms of triangle ABC seen from O: the plane form (oriented so that a
- * sample passes when its value is > thr) and the three edge forms. pn_tri_mask() and
+ * sample passes when its value is > plane_thr) and the three edge forms. pn_tri_mask() and
  * pn_tri_sample() both evaluate exactly these floats in exactly the same order, so the
- * mask of a whole pixel and a single ray agree bit for bit. */
+ * mask of a whole pixel and a single ray agree bit for bit. err_p, err_d and d0_abs are
+ * the plane's rounding bounds and |O's side value|, kept for pn_tri_graze(). */
 typedef struct pn_tri_forms {
     pn_lin plane;
     float plane_thr;
+    float err_p, err_d, d0_abs;
+    float graze_thr, e_err[3]; /* pn_tri_graze() */
     pn_lin e[3];
 } pn_tri_forms;
 
-/* The plane form; returns 0 when O is within float noise of the triangle's plane (then
- * no sample is blocked). */
+/* The plane form; returns 0 when O's side of the triangle's plane is within rounding (then
+ * no sample is blocked).
+ *
+ * Rounding bounds (u = 2^-24; |x|1 and |x|inf the L1 and max norms; standard model, every
+ * operation correctly rounded, no underflow). n = (B - A) x (C - A) computed is within
+ * 4.01 u Pn of the exact normal in L1, Pn = |B - A|1 |C - A|1. O's side value
+ * d0 = (O - A).n then errs by at most 8.01 u |O - A|inf Pn (dot 3u, O - A 1u, n 4.01u):
+ * err_d = 12 u |O - A|inf Pn, the slack above paying for the rounding of pn_tri_graze().
+ * A sample's plane value (h0 + b hv) + a hu, |a|, |b| <= 1, errs from the exact (S - A).n
+ * by at most 11.01 u (|c - A|inf + |U|inf + |V|inf) Pn (evaluation 3u, the three dots
+ * 3u, c - A 1u, n 4.01u): err_p, 12 u times that. With err_d and err_p as the thresholds,
+ * "O and S strictly on opposite sides" holds of the exact geometry whenever it holds of
+ * the floats. (Bounds of 1e-6 of |n|1 used before were not bounds for slivers, whose
+ * n cancels: fuzz/known-failures/README.md.) */
 PN_KFN int pn_tri_plane(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, pn_tri_forms *F)
 {
     pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]);
     pn_v3 V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
     pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]);
-    pn_v3 n = pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
-    float d0 = pn_v3_dot(pn_v3_sub(O, A), n);
-    /* Plane side of O and of the samples, each with its float-noise scale: a value
-     * within 1e-6 of the magnitudes it is made of has no reliable sign (O, the light
-     * and the plane nearly coplanar: fuzz/ found such a triangle "blocking" from
-     * beyond the light). O that close to the plane starts the segment on it (t = 0);
-     * a sample that close ends it there (t = 1): the open segment does not cross. */
+    pn_v3 BA = pn_v3_sub(B, A), CA = pn_v3_sub(C, A);
+    pn_v3 n = pn_v3_cross(BA, CA);
     pn_v3 cA = pn_v3_sub(c, A), OA = pn_v3_sub(O, A);
-    float nn = pn_v3_l1(n);
-    float dlim = 1e-6f * nn * pn_v3_l1(OA);
-    if (!(d0 > dlim || d0 < -dlim)) return 0;
+    float pn = pn_v3_l1(BA) * pn_v3_l1(CA);
+    float d0 = pn_v3_dot(OA, n);
+    float err_d = 12.0f * PN_KU * pn_v3_linf(OA) * pn;
+    if (!(d0 > err_d || d0 < -err_d)) return 0;
+    F->err_d = err_d;
+    F->d0_abs = d0 < 0.0f ? -d0 : d0;
     F->plane.h0 = pn_v3_dot(cA, n);
     F->plane.hu = pn_v3_dot(U, n);
     F->plane.hv = pn_v3_dot(V, n);
-    F->plane_thr = 1e-6f * nn * (pn_v3_l1(cA) + pn_v3_l1(U) + pn_v3_l1(V));
+    F->err_p = 12.0f * PN_KU * (pn_v3_linf(cA) + pn_v3_linf(U) + pn_v3_linf(V)) * pn;
+    F->plane_thr = F->err_p;
     if (d0 > 0.0f) F->plane = pn_lin_neg(F->plane); /* S must be on the other side: > thr */
     return 1;
+}
+
+/* Certainty of a blocked sample, which is what lets every cull widened by L->cross_tol
+ * (GEARS' boxes, the frustum tests of all algorithms) be conservative for this float
+ * predicate and not only for exact geometry.
+ *
+ * Each computed edge value errs from the exact (S - O).((P1 - O) x (P2 - P1)) by at most
+ * E_q = 11.01 u (|c - O|inf + |U|inf + |V|inf) |a - O|1 |b - a|1 over its canonical edge
+ * ab (cross product 4.01u, three dots 3u, c - O 1u, evaluation 3u); e_err[q] is 12 u
+ * times that. A sample whose three values are all >= e_err (or all <= -e_err), and whose
+ * plane values pass the rigorous plane thresholds, is certainly blocked: its exact segment
+ * crosses the closed triangle. The others that pass have some value within an edge's
+ * rounding band, where watertightness needs zero to count as inside. There the crossing
+ * point can be off the triangle: the edge forms sum to the crossing size X = (S - O).n
+ * exactly, X h_q / sum are the crossing's barycentric coordinates, each >= -E_q / X, so
+ * the crossing lies within (sum E_q) diam(T) / X of the triangle. Such a sample counts
+ * only when X > G = (sum E_q) diam / cross_tol, i.e. (X >= plane value - err_p + |d0| -
+ * err_d) when its plane value exceeds graze_thr = G + err_p + err_d - |d0|. What this
+ * drops is a sample at an edge of a triangle whose plane its segment nearly lies in: the
+ * crossing point is then rounding noise (fuzz/ found GEARS disagreeing with the reference
+ * on exactly such samples before). Both pn_tri_mask() and pn_tri_sample() call this.
+ * cross_tol <= 0 switches the test off (every band sample counts). */
+PN_KFN void pn_tri_graze(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, pn_tri_forms *F)
+{
+    float tol = L->cross_tol;
+    F->e_err[0] = F->e_err[1] = F->e_err[2] = 0.0f;
+    F->graze_thr = F->plane_thr;
+    if (tol > 0.0f) {
+        pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]);
+        pn_v3 V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
+        pn_v3 cO = pn_v3_sub(pn_v3_make(L->c[0], L->c[1], L->c[2]), O);
+        float lam = 12.0f * PN_KU * (pn_v3_linf(cO) + pn_v3_linf(U) + pn_v3_linf(V));
+        float dA = pn_v3_l1(pn_v3_sub(A, O)), dB = pn_v3_l1(pn_v3_sub(B, O)), dC = pn_v3_l1(pn_v3_sub(C, O));
+        float eAB = pn_v3_l1(pn_v3_sub(B, A)), eBC = pn_v3_l1(pn_v3_sub(C, B)), eCA = pn_v3_l1(pn_v3_sub(A, C));
+        float diam = pn_kmaxf(eAB, pn_kmaxf(eBC, eCA)), g;
+        F->e_err[0] = lam * (pn_kmaxf(dA, dB) * eAB);
+        F->e_err[1] = lam * (pn_kmaxf(dB, dC) * eBC);
+        F->e_err[2] = lam * (pn_kmaxf(dC, dA) * eCA);
+        g = (F->e_err[0] + F->e_err[1] + F->e_err[2]) * diam / tol;
+        F->graze_thr = pn_kmaxf(F->plane_thr, ((g + F->err_p) + F->err_d) - F->d0_abs);
+    }
 }
 
 PN_KFN void pn_tri_edges(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, pn_tri_forms *F)
@@ -219,13 +290,19 @@ PN_KFN uint32_t pn_tri_sample(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_kligh
 {
     pn_tri_forms F;
     float a = pn_sample_coord(i, L->k), b = pn_sample_coord(j, L->k), v0, v1, v2;
+    float vp;
     if (!pn_tri_plane(O, A, B, C, L, &F)) return 0u;
-    if (!pn_pass_v(pn_lin_at(F.plane, a, b), 1, F.plane_thr)) return 0u;
+    vp = pn_lin_at(F.plane, a, b);
+    if (!pn_pass_v(vp, 1, F.plane_thr)) return 0u;
     pn_tri_edges(O, A, B, C, L, &F);
     v0 = pn_lin_at(F.e[0], a, b);
     v1 = pn_lin_at(F.e[1], a, b);
     v2 = pn_lin_at(F.e[2], a, b);
-    return (uint32_t)((v0 >= 0.0f && v1 >= 0.0f && v2 >= 0.0f) || (-v0 >= 0.0f && -v1 >= 0.0f && -v2 >= 0.0f));
+    if (!((v0 >= 0.0f && v1 >= 0.0f && v2 >= 0.0f) || (-v0 >= 0.0f && -v1 >= 0.0f && -v2 >= 0.0f))) return 0u;
+    pn_tri_graze(O, A, B, C, L, &F);
+    /* Certain, or in a rounding band with a crossing large enough (pn_tri_graze). */
+    return (uint32_t)(vp > F.graze_thr || (v0 >= F.e_err[0] && v1 >= F.e_err[1] && v2 >= F.e_err[2]) ||
+                      (-v0 >= F.e_err[0] && -v1 >= F.e_err[1] && -v2 >= F.e_err[2]));
 }
 
 /* Bits i < n4 (k rounded up to a multiple of 4) of one row where the plane value
@@ -257,6 +334,33 @@ PN_KFN uint32_t pn_row_bits(const float *av, const uint32_t *pw, int32_t n4, flo
     return bits;
 }
 
+/* pn_row_bits() for a triangle some of whose samples can fall under the certainty test
+ * (pn_tri_graze): a lane that passes the plane (> thr) and the edges (all >= 0 or all
+ * <= 0) counts when its plane value also exceeds gthr or its edge values clear the
+ * rounding bounds r_q (all >= r_q or all <= -r_q): pn_tri_sample()'s expression. A copy
+ * of pn_row_bits()'s loop with three more tests, kept separate so that the hot loop
+ * (every row of every candidate) carries none of them. */
+PN_KFN uint32_t pn_row_bits_band(const float *av, const uint32_t *pw, int32_t n4, float pb, float phu, float thr,
+                                 float gthr, float b0, float h0, float b1, float h1, float b2, float h2, float r0,
+                                 float r1, float r2)
+{
+    uint32_t bits = 0u;
+    int32_t i0, l;
+    for (i0 = 0; i0 < n4; i0 += 4) {
+        for (l = 0; l < 4; l++) {
+            float a = av[i0 + l];
+            float vp = pb + a * phu, v0 = b0 + a * h0, v1 = b1 + a * h1, v2 = b2 + a * h2;
+            int32_t pos = (v0 >= 0.0f) & (v1 >= 0.0f) & (v2 >= 0.0f);
+            int32_t neg = (v0 <= 0.0f) & (v1 <= 0.0f) & (v2 <= 0.0f);
+            int32_t cpos = (v0 >= r0) & (v1 >= r1) & (v2 >= r2);
+            int32_t cneg = (-v0 >= r0) & (-v1 >= r1) & (-v2 >= r2);
+            int32_t ok = (vp > thr) & (pos | neg) & ((vp > gthr) | cpos | cneg);
+            bits |= (0u - (uint32_t)ok) & pw[i0 + l];
+        }
+    }
+    return bits;
+}
+
 /* ORs into m (PN_MASK_WORDS_MAX words, bit j*k + i) the samples of light L that triangle
  * ABC blocks from O. Returns 1 if it blocks at least one sample, else 0. */
 PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, uint32_t *m)
@@ -265,7 +369,7 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
     pn_tri_forms F;
     pn_lin plane, e[3], ne[3];
     float plane_thr;
-    int pos_ok, neg_ok;
+    int pos_ok, neg_ok, band;
     uint32_t any = 0;
     int32_t j, row_lo, row_hi;
 
@@ -316,15 +420,36 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
             av[i] = (float)(2 * i + 1) * rk - 1.0f;
             pw[i] = 1u << (uint32_t)i;
         }
+        uint32_t rows[32], bits, bit;
         for (j = row_lo; j <= row_hi; j++) {
             float b = av[j];
             float pb = plane.h0 + b * plane.hv;
             float b0 = e[0].h0 + b * e[0].hv, b1 = e[1].h0 + b * e[1].hv, b2 = e[2].h0 + b * e[2].hv;
-            uint32_t bits, bit = (uint32_t)j * k;
+            bit = (uint32_t)j * k;
+            rows[j] = 0u;
             if (((m[bit >> 5] >> (bit & 31u)) & keep) == keep) continue; /* row already blocked */
-            bits = pn_row_bits(av, pw, n4, pb, plane.hu, plane_thr, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu);
-            bits &= keep;
+            rows[j] = keep & pn_row_bits(av, pw, n4, pb, plane.hu, plane_thr, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu);
+            any |= rows[j];
+        }
+        if (!any) return 0;
+        /* Samples that pass: the certainty test (pn_tri_graze) can only drop some of them,
+         * and only if graze_thr is above plane_thr and some sample's plane value is at
+         * most graze_thr (the smallest over the grid is at a corner). Computed only now,
+         * for the few triangles that block something. */
+        pn_tri_graze(O, A, B, C, L, &F);
+        band = F.graze_thr > plane_thr && !(-pn_lin_max(pn_lin_neg(plane), k) > F.graze_thr);
+        any = 0;
+        for (j = row_lo; j <= row_hi; j++) {
+            bits = rows[j];
+            if (bits && band) {
+                float b = av[j];
+                float pb = plane.h0 + b * plane.hv;
+                float b0 = e[0].h0 + b * e[0].hv, b1 = e[1].h0 + b * e[1].hv, b2 = e[2].h0 + b * e[2].hv;
+                bits &= pn_row_bits_band(av, pw, n4, pb, plane.hu, plane_thr, F.graze_thr, b0, e[0].hu, b1, e[1].hu,
+                                         b2, e[2].hu, F.e_err[0], F.e_err[1], F.e_err[2]);
+            }
             if (bits) {
+                bit = (uint32_t)j * k;
                 m[bit >> 5] |= bits << (bit & 31u);
                 any = 1;
             }

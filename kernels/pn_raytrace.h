@@ -6,8 +6,9 @@
  * Every ray asks pn_tri_sample(), which evaluates the very forms pn_tri_mask() does, so
  * the result equals PN_ALGO_REFERENCE bit for bit (tests/test_raytrace.c). Culling uses
  * the same slack as the reference: a node is skipped only when the segment from O to the
- * float sample point misses its box grown by cull_tol, far above the rounding between
- * that point and the sample the forms describe. */
+ * float sample point misses its box grown by cull_tol, which exceeds the predicate's
+ * crossing tolerance (pn_tri_graze) by far more than the rounding between that point and
+ * the sample the forms describe. */
 #ifndef PN_RAYTRACE_H
 #define PN_RAYTRACE_H
 

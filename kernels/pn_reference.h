@@ -4,10 +4,12 @@
  * Culling is conservative with slack L->cull_tol: a node is skipped only when its box is
  * farther than cull_tol outside the light frustum (the pyramid from O over the light
  * rectangle, or the segment O-c for a point light). Every sample segment lies inside that
- * frustum, and a triangle the predicate reports as blocking lies within float rounding of
- * such a segment, so with cull_tol far above that rounding (the host sets 1e-5 of the
- * scene diagonal) culling never changes the mask. tests/test_reference.c checks this bit
- * for bit against all-triangles brute force. */
+ * frustum, and a triangle the predicate reports as blocking is crossed by such a segment
+ * within L->cross_tol of the triangle (pn_tri_graze), so with cull_tol = cross_tol plus
+ * 1e-5 of the scene diagonal for the frustum planes' own rounding, culling never changes
+ * the mask. tests/test_reference.c checks this bit for bit against all-triangles brute
+ * force; fuzz/fuzz_gears.c checks the frustum test against the predicate on hostile
+ * configurations. */
 #ifndef PN_REFERENCE_H
 #define PN_REFERENCE_H
 

@@ -101,4 +101,95 @@ static inline double pn_test_ray_tri(const double o[3], const double d[3], const
     return t;
 }
 
+/* Double-precision normal (B - A) x (C - A) of a float triangle. */
+static inline void pn_test_tri_normal(const float *A, const float *B, const float *C, double n[3])
+{
+    double e1[3], e2[3];
+    int c;
+    for (c = 0; c < 3; c++) {
+        e1[c] = (double)B[c] - A[c];
+        e2[c] = (double)C[c] - A[c];
+    }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+}
+
+/* Double-precision distance from point p to the segment [a, b]. */
+static inline double pn_test_point_seg(const double p[3], const double a[3], const double b[3])
+{
+    double ab[3], ap[3], t, den = 0.0, num = 0.0, d2 = 0.0;
+    int c;
+    for (c = 0; c < 3; c++) {
+        ab[c] = b[c] - a[c];
+        ap[c] = p[c] - a[c];
+        den += ab[c] * ab[c];
+        num += ab[c] * ap[c];
+    }
+    t = den > 0.0 ? num / den : 0.0;
+    t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+    for (c = 0; c < 3; c++) {
+        double e = ap[c] - t * ab[c];
+        d2 += e * e;
+    }
+    return sqrt(d2);
+}
+
+/* Double-precision distance from point p to the closed triangle ABC: to its plane when the
+ * foot lies inside, else to the nearest edge. */
+static inline double pn_test_point_tri(const double p[3], const float *A, const float *B, const float *C)
+{
+    double a[3], b[3], c3[3], n[3], ap[3], nn, h, foot[3], w[3];
+    int c;
+    for (c = 0; c < 3; c++) {
+        a[c] = A[c];
+        b[c] = B[c];
+        c3[c] = C[c];
+        ap[c] = p[c] - a[c];
+    }
+    pn_test_tri_normal(A, B, C, n);
+    nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    if (nn > 0.0) {
+        /* Barycentrics of the foot from the sub-triangle areas. */
+        h = (ap[0] * n[0] + ap[1] * n[1] + ap[2] * n[2]) / nn;
+        for (c = 0; c < 3; c++) foot[c] = p[c] - h * n[c];
+        {
+            const double *v[3] = {a, b, c3};
+            int q, inside = 1;
+            for (q = 0; q < 3; q++) {
+                const double *s = v[q], *t = v[(q + 1) % 3];
+                double x[3], y[3];
+                for (c = 0; c < 3; c++) {
+                    x[c] = t[c] - s[c];
+                    y[c] = foot[c] - s[c];
+                }
+                w[q] = (x[1] * y[2] - x[2] * y[1]) * n[0] + (x[2] * y[0] - x[0] * y[2]) * n[1] +
+                       (x[0] * y[1] - x[1] * y[0]) * n[2];
+                inside &= w[q] >= 0.0;
+            }
+            if (inside) return fabs(h) * sqrt(nn);
+        }
+    }
+    return fmin(pn_test_point_seg(p, a, b), fmin(pn_test_point_seg(p, b, c3), pn_test_point_seg(p, c3, a)));
+}
+
+/* Double-precision distance by which the segment [o, s] misses triangle ABC, measured where
+ * the guarantee of pn_tri_graze() (kernels/pn_predicate.h) measures it: from the point where
+ * the segment's line crosses the triangle's plane, clamped to the segment. */
+static inline double pn_test_seg_miss(const double o[3], const double s[3], const float *A, const float *B,
+                                      const float *C)
+{
+    double n[3], d0 = 0.0, ds = 0.0, t, x[3];
+    int c;
+    pn_test_tri_normal(A, B, C, n);
+    for (c = 0; c < 3; c++) {
+        d0 += (o[c] - A[c]) * n[c];
+        ds += (s[c] - A[c]) * n[c];
+    }
+    t = d0 != ds ? d0 / (d0 - ds) : 0.0;
+    t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+    for (c = 0; c < 3; c++) x[c] = o[c] + t * (s[c] - o[c]);
+    return pn_test_point_tri(x, A, B, C);
+}
+
 #endif

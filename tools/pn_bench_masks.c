@@ -82,7 +82,7 @@ void pn_masks_compare(const pn_masks *a, const pn_masks *b, pn_mask_diff *d)
     }
 }
 
-void pn_bench_klight(const pn_light *l, uint32_t k, float eps, float cull_tol, pn_klight *kl)
+void pn_bench_klight(const pn_light *l, uint32_t k, float eps, float cull_tol, float cross_tol, pn_klight *kl)
 {
     pn_v3 U = pn_v3_make(l->u[0], l->u[1], l->u[2]), V = pn_v3_make(l->v[0], l->v[1], l->v[2]);
     pn_v3 N = pn_v3_normalize(pn_v3_cross(U, V));
@@ -96,6 +96,7 @@ void pn_bench_klight(const pn_light *l, uint32_t k, float eps, float cull_tol, p
     kl->N[2] = N.z;
     kl->eps = eps;
     kl->cull_tol = cull_tol;
+    kl->cross_tol = cross_tol;
     kl->k = k;
     kl->is_point = 0;
 }
@@ -295,7 +296,8 @@ static void pn_mask_rows(void *task, uint32_t begin, uint32_t end)
 }
 
 int pn_our_masks(const pn_mesh *mesh, const pn_gbuf *g, const pn_light *light, uint32_t k, float eps,
-                 pn_threads *threads, pn_masks *out, float *vis, char *err, size_t err_size)
+                 float cull_tol, float cross_tol, pn_threads *threads, pn_masks *out, float *vis, char *err,
+                 size_t err_size)
 {
     pn_hbvh bvh;
     pn_mask_task tk;
@@ -309,8 +311,7 @@ int pn_our_masks(const pn_mesh *mesh, const pn_gbuf *g, const pn_light *light, u
     tk.g = g;
     tk.out = out;
     tk.vis = vis;
-    /* Any slack far above float rounding keeps the cull conservative (pn_reference.h). */
-    pn_bench_klight(light, k, eps, 1e-5f * pn_mesh_diag(mesh), &tk.light);
+    pn_bench_klight(light, k, eps, cull_tol, cross_tol, &tk.light);
     pn_threads_parallel_for(threads, g->height, pn_mask_rows, &tk);
     pn_hbvh_free(&bvh);
     if (tk.depth_overflow) {

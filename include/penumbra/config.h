@@ -105,6 +105,21 @@
 #define PN_BVH_STACK 64u
 #endif
 
+/* ---- Shadow-ray tolerances ----------------------------------------------------------- */
+
+/* The predicate's crossing tolerance, as a fraction of the scene's diagonal: a sample
+ * counts as blocked only if float rounding cannot have moved its segment's crossing point
+ * more than this far off the triangle (kernels/pn_predicate.h, pn_tri_graze). Every cull
+ * (BVH frustum tests, GEARS' per-pixel test, GEARS' shadow-volume boxes) is widened by it,
+ * which is what makes them conservative for the float predicate and not only for exact
+ * geometry. Larger: culls pass more triangles, fewer samples at the edges of triangles
+ * whose plane their segment nearly lies in are dropped; smaller: the reverse. 0: no
+ * certainty test (such samples are decided by their rounded values, and GEARS can then
+ * miss a triangle the predicate counts: the inputs in fuzz/corpus/gears/crash-grazing-*). */
+#ifndef PN_CROSS_TOL
+#define PN_CROSS_TOL 1e-4f
+#endif
+
 /* ---- Debugging ------------------------------------------------------------------------ */
 
 /* 1: memory rewound to an arena mark is filled with 0xA5 and mark order is checked, as

@@ -251,6 +251,10 @@ typedef struct pn_stats {
     uint64_t shadow_blocking;    /* ...of which blocked at least one sample (per pixel;
                                     PN_ALGO_RAYTRACE: blocked rays) */
     uint32_t lit_pixels;         /* pixels that see a triangle facing the light */
+    float cull_tol;              /* last frame, scene units: slack of the conservative culls */
+    float cross_tol;             /* ...and the predicate's crossing tolerance: a sample is
+                                    blocked only if its segment's crossing point is certain,
+                                    despite rounding, to lie within this of the triangle */
     /* GEARS (paper Tables 5 and 6), last frame */
     uint64_t gears_pairs;        /* (triangle, cell) pairs generated, over all tiles */
     uint64_t gears_assignments;  /* triangle-to-pixel assignments: sum over cells of

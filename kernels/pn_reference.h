@@ -28,7 +28,10 @@ typedef struct pn_frustum {
 PN_KFN void pn_frustum_make(pn_v3 O, const pn_klight *L, pn_frustum *fr)
 {
     pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]);
-    fr->tol = L->cull_tol;
+    /* cull_tol, plus 1e-5 of this origin's distance to the light for the rounding of the
+     * planes through O, which grows with that distance, not with the scene. */
+    fr->tol = L->cull_tol + 1e-5f * (pn_v3_l1(pn_v3_sub(c, O)) + pn_v3_l1(pn_v3_make(L->U[0], L->U[1], L->U[2])) +
+                                     pn_v3_l1(pn_v3_make(L->V[0], L->V[1], L->V[2])));
     fr->is_point = L->is_point;
     fr->seg_o = O;
     fr->seg_d = pn_v3_sub(c, O);
@@ -49,8 +52,12 @@ PN_KFN void pn_frustum_make(pn_v3 O, const pn_klight *L, pn_frustum *fr)
         corner[2] = pn_v3_add(pn_v3_add(c, U), V);
         corner[3] = pn_v3_add(pn_v3_sub(c, U), V);
         for (q = 0; q < 4; q++) {
-            pn_v3 a = pn_v3_sub(corner[q], O), b = pn_v3_sub(corner[(q + 1u) & 3u], O);
-            pn_v3 n = pn_v3_normalize(pn_v3_cross(a, b));
+            /* (corner_q - O) x (corner_q+1 - corner_q): the plane through O and the light
+             * edge. Not (corner_q - O) x (corner_q+1 - O), which cancels when the light is
+             * small and far: its normal was off by 7e-4 rad for a 5e-3 light 12 units
+             * away, and the cull dropped a triangle that blocks (fuzz_gears found it). */
+            pn_v3 a = pn_v3_sub(corner[q], O), e = pn_v3_sub(corner[(q + 1u) & 3u], corner[q]);
+            pn_v3 n = pn_v3_normalize(pn_v3_cross(a, e));
             /* Outward: the light centre is inside, n.(c - O) <= 0. */
             if (pn_v3_dot(n, fr->seg_d) > 0.0f) n = pn_v3_scale(n, -1.0f);
             fr->n[q] = n;

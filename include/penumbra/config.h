@@ -114,8 +114,9 @@
  * which is what makes them conservative for the float predicate and not only for exact
  * geometry. Larger: culls pass more triangles, fewer samples at the edges of triangles
  * whose plane their segment nearly lies in are dropped; smaller: the reverse. 0: no
- * certainty test (such samples are decided by their rounded values, and GEARS can then
- * miss a triangle the predicate counts: the inputs in fuzz/corpus/gears/crash-grazing-*). */
+ * certainty test (such samples are decided by their rounded values, and a cull can then
+ * drop a triangle the predicate counts: fuzz/corpus/gears/crash-grazing-point-light-
+ * coplanar-2.bin fails in such a build). */
 #ifndef PN_CROSS_TOL
 #define PN_CROSS_TOL 1e-4f
 #endif

@@ -233,10 +233,10 @@ PN_KFN int pn_tri_plane(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, 
  * predicate and not only for exact geometry.
  *
  * Each computed edge value errs from the exact (S - O).((P1 - O) x (P2 - P1)) by at most
- * E_q = 11.01 u (|c - O|inf + |U|inf + |V|inf) |a - O|1 |b - a|1 over its canonical edge
- * ab (cross product 4.01u, three dots 3u, c - O 1u, evaluation 3u); e_err[q] is 12 u
- * times that. A sample whose three values are all >= e_err (or all <= -e_err), and whose
- * plane values pass the rigorous plane thresholds, is certainly blocked: its exact segment
+ * E_q (pn_edge_err: cross product 4.01u, three dots 3u, c - O 1u, evaluation 3u, each
+ * component weighted by its own magnitudes); e_err[q] is that bound with 12u for 11.01u.
+ * A sample whose three values are all >= e_err (or all <= -e_err), and whose plane
+ * values pass the rigorous plane thresholds, is certainly blocked: its exact segment
  * crosses the closed triangle. The others that pass have some value within an edge's
  * rounding band, where watertightness needs zero to count as inside. There the crossing
  * point can be off the triangle: the edge forms sum to the crossing size X = (S - O).n
@@ -246,8 +246,28 @@ PN_KFN int pn_tri_plane(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, 
  * err_d) when its plane value exceeds graze_thr = G + err_p + err_d - |d0|. What this
  * drops is a sample at an edge of a triangle whose plane its segment nearly lies in: the
  * crossing point is then rounding noise (fuzz/ found GEARS disagreeing with the reference
- * on exactly such samples before). Both pn_tri_mask() and pn_tri_sample() call this.
+ * on exactly such samples before); and, because a barycentric error of a sliver moves the
+ * point along its length, some samples inside slivers whose long edges' rounding bands
+ * cover most of their width (docs/bench/RESULTS.md: the thin scene against Embree). Both pn_tri_mask() and pn_tri_sample() call this.
  * cross_tol <= 0 switches the test off (every band sample counts). */
+PN_KFN pn_v3 pn_v3_abs(pn_v3 a)
+{
+    return pn_v3_make(a.x < 0.0f ? -a.x : a.x, a.y < 0.0f ? -a.y : a.y, a.z < 0.0f ? -a.z : a.z);
+}
+
+/* Rounding bound of edge P1P2's value at any sample, componentwise: with p = a - O and
+ * e = b - a over the canonical endpoints (as pn_edge_form takes them), each component of
+ * the cross product errs by at most 4.01 u M_i, M = (|p_y||e_z| + |p_z||e_y|, ...), and
+ * the dots and the evaluation by 7 u sum_i W_i |m_i| <= 7 u W.M, W = |c - O| + |U| + |V|
+ * componentwise: 11.01 u W.M in all; 12 u W.M returned. */
+PN_KFN float pn_edge_err(pn_v3 P1, pn_v3 P2, pn_v3 O, pn_v3 W)
+{
+    int flip = pn_v3_less(P2, P1);
+    pn_v3 p = pn_v3_abs(pn_v3_sub(flip ? P2 : P1, O)), e = pn_v3_abs(pn_v3_sub(P2, P1));
+    pn_v3 M = pn_v3_make(p.y * e.z + p.z * e.y, p.z * e.x + p.x * e.z, p.x * e.y + p.y * e.x);
+    return 12.0f * PN_KU * pn_v3_dot(W, M);
+}
+
 PN_KFN void pn_tri_graze(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, pn_tri_forms *F)
 {
     float tol = L->cross_tol;
@@ -257,13 +277,12 @@ PN_KFN void pn_tri_graze(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L,
         pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]);
         pn_v3 V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
         pn_v3 cO = pn_v3_sub(pn_v3_make(L->c[0], L->c[1], L->c[2]), O);
-        float lam = 12.0f * PN_KU * (pn_v3_linf(cO) + pn_v3_linf(U) + pn_v3_linf(V));
-        float dA = pn_v3_l1(pn_v3_sub(A, O)), dB = pn_v3_l1(pn_v3_sub(B, O)), dC = pn_v3_l1(pn_v3_sub(C, O));
-        float eAB = pn_v3_l1(pn_v3_sub(B, A)), eBC = pn_v3_l1(pn_v3_sub(C, B)), eCA = pn_v3_l1(pn_v3_sub(A, C));
-        float diam = pn_kmaxf(eAB, pn_kmaxf(eBC, eCA)), g;
-        F->e_err[0] = lam * (pn_kmaxf(dA, dB) * eAB);
-        F->e_err[1] = lam * (pn_kmaxf(dB, dC) * eBC);
-        F->e_err[2] = lam * (pn_kmaxf(dC, dA) * eCA);
+        pn_v3 W = pn_v3_add(pn_v3_add(pn_v3_abs(cO), pn_v3_abs(U)), pn_v3_abs(V));
+        float diam = pn_kmaxf(pn_v3_l1(pn_v3_sub(B, A)), pn_kmaxf(pn_v3_l1(pn_v3_sub(C, B)), pn_v3_l1(pn_v3_sub(A, C))));
+        float g;
+        F->e_err[0] = pn_edge_err(A, B, O, W);
+        F->e_err[1] = pn_edge_err(B, C, O, W);
+        F->e_err[2] = pn_edge_err(C, A, O, W);
         g = (F->e_err[0] + F->e_err[1] + F->e_err[2]) * diam / tol;
         F->graze_thr = pn_kmaxf(F->plane_thr, ((g + F->err_p) + F->err_d) - F->d0_abs);
     }

@@ -54,8 +54,9 @@ PN_KFN void pn_frustum_make(pn_v3 O, const pn_klight *L, pn_frustum *fr)
         for (q = 0; q < 4; q++) {
             /* (corner_q - O) x (corner_q+1 - corner_q): the plane through O and the light
              * edge. Not (corner_q - O) x (corner_q+1 - O), which cancels when the light is
-             * small and far: its normal was off by 7e-4 rad for a 5e-3 light 12 units
-             * away, and the cull dropped a triangle that blocks (fuzz_gears found it). */
+             * small and far: for a 5e-3 light 14 units away the cull put a blocking
+             * triangle's box 1.4e-5 beyond a plane already moved out by 1.8e-3
+             * (fuzz/corpus/gears/crash-frustum-small-far-light.bin). */
             pn_v3 a = pn_v3_sub(corner[q], O), e = pn_v3_sub(corner[(q + 1u) & 3u], corner[q]);
             pn_v3 n = pn_v3_normalize(pn_v3_cross(a, e));
             /* Outward: the light centre is inside, n.(c - O) <= 0. */

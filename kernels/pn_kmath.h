@@ -47,6 +47,17 @@ PN_KFN float pn_v3_l1(pn_v3 a)
 }
 PN_KFN float pn_kminf(float a, float b) { return a < b ? a : b; }
 PN_KFN float pn_kmaxf(float a, float b) { return a > b ? a : b; }
+
+/* Componentwise |a|, and max(|x|, |y|, |z|): for rounding bounds (pn_predicate.h). */
+PN_KFN pn_v3 pn_v3_abs(pn_v3 a)
+{
+    return pn_v3_make(a.x < 0.0f ? -a.x : a.x, a.y < 0.0f ? -a.y : a.y, a.z < 0.0f ? -a.z : a.z);
+}
+PN_KFN float pn_v3_linf(pn_v3 a)
+{
+    pn_v3 b = pn_v3_abs(a);
+    return pn_kmaxf(b.x, pn_kmaxf(b.y, b.z));
+}
 PN_KFN int32_t pn_kmini(int32_t a, int32_t b) { return a < b ? a : b; }
 PN_KFN int32_t pn_kmaxi(int32_t a, int32_t b) { return a > b ? a : b; }
 

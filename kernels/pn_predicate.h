@@ -172,12 +172,6 @@ PN_KFN void pn_mask_set_run(uint32_t *m, uint32_t k, int32_t j, int32_t lo, int3
 /* Unit roundoff of float, 2^-24. */
 #define PN_KU 5.9604645e-8f
 
-PN_KFN float pn_v3_linf(pn_v3 a)
-{
-    float x = a.x < 0.0f ? -a.x : a.x, y = a.y < 0.0f ? -a.y : a.y, z = a.z < 0.0f ? -a.z : a.z;
-    return pn_kmaxf(x, pn_kmaxf(y, z));
-}
-
 /* The four linear forms of triangle ABC seen from O: the plane form (oriented so that a
  * sample passes when its value is > plane_thr) and the three edge forms. pn_tri_mask() and
  * pn_tri_sample() both evaluate exactly these floats in exactly the same order, so the
@@ -228,6 +222,19 @@ PN_KFN int pn_tri_plane(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, 
     return 1;
 }
 
+/* Rounding bound of edge P1P2's value at any sample, componentwise: with p = a - O and
+ * e = b - a over the canonical endpoints (as pn_edge_form takes them), each component of
+ * the cross product errs by at most 4.01 u M_i, M = (|p_y||e_z| + |p_z||e_y|, ...), and
+ * the dots and the evaluation by 7 u sum_i W_i |m_i| <= 7 u W.M, W = |c - O| + |U| + |V|
+ * componentwise: 11.01 u W.M in all; 12 u W.M returned. */
+PN_KFN float pn_edge_err(pn_v3 P1, pn_v3 P2, pn_v3 O, pn_v3 W)
+{
+    int flip = pn_v3_less(P2, P1);
+    pn_v3 p = pn_v3_abs(pn_v3_sub(flip ? P2 : P1, O)), e = pn_v3_abs(pn_v3_sub(P2, P1));
+    pn_v3 M = pn_v3_make(p.y * e.z + p.z * e.y, p.z * e.x + p.x * e.z, p.x * e.y + p.y * e.x);
+    return 12.0f * PN_KU * pn_v3_dot(W, M);
+}
+
 /* Certainty of a blocked sample, which is what lets every cull widened by L->cross_tol
  * (GEARS' boxes, the frustum tests of all algorithms) be conservative for this float
  * predicate and not only for exact geometry.
@@ -248,26 +255,9 @@ PN_KFN int pn_tri_plane(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, 
  * crossing point is then rounding noise (fuzz/ found GEARS disagreeing with the reference
  * on exactly such samples before); and, because a barycentric error of a sliver moves the
  * point along its length, some samples inside slivers whose long edges' rounding bands
- * cover most of their width (docs/bench/RESULTS.md: the thin scene against Embree). Both pn_tri_mask() and pn_tri_sample() call this.
- * cross_tol <= 0 switches the test off (every band sample counts). */
-PN_KFN pn_v3 pn_v3_abs(pn_v3 a)
-{
-    return pn_v3_make(a.x < 0.0f ? -a.x : a.x, a.y < 0.0f ? -a.y : a.y, a.z < 0.0f ? -a.z : a.z);
-}
-
-/* Rounding bound of edge P1P2's value at any sample, componentwise: with p = a - O and
- * e = b - a over the canonical endpoints (as pn_edge_form takes them), each component of
- * the cross product errs by at most 4.01 u M_i, M = (|p_y||e_z| + |p_z||e_y|, ...), and
- * the dots and the evaluation by 7 u sum_i W_i |m_i| <= 7 u W.M, W = |c - O| + |U| + |V|
- * componentwise: 11.01 u W.M in all; 12 u W.M returned. */
-PN_KFN float pn_edge_err(pn_v3 P1, pn_v3 P2, pn_v3 O, pn_v3 W)
-{
-    int flip = pn_v3_less(P2, P1);
-    pn_v3 p = pn_v3_abs(pn_v3_sub(flip ? P2 : P1, O)), e = pn_v3_abs(pn_v3_sub(P2, P1));
-    pn_v3 M = pn_v3_make(p.y * e.z + p.z * e.y, p.z * e.x + p.x * e.z, p.x * e.y + p.y * e.x);
-    return 12.0f * PN_KU * pn_v3_dot(W, M);
-}
-
+ * cover most of their width (docs/bench/RESULTS.md: the thin scene against Embree). Both
+ * pn_tri_mask() and pn_tri_sample() call this. cross_tol <= 0 switches the test off
+ * (every band sample counts). */
 PN_KFN void pn_tri_graze(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, pn_tri_forms *F)
 {
     float tol = L->cross_tol;
@@ -433,13 +423,12 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
          * vectorizes): the same value and comparisons as pn_tri_sample().
          * a_i = (2i+1)*(1/k) - 1 equals pn_sample_coord() exactly: k is a power of two. */
         float rk = 1.0f / (float)k, av[32]; /* k <= 32 */
-        uint32_t keep = k >= 32u ? 0xFFFFFFFFu : ((1u << k) - 1u), pw[32];
+        uint32_t keep = k >= 32u ? 0xFFFFFFFFu : ((1u << k) - 1u), pw[32], rows[32], bits, bit;
         int32_t n4 = ((int32_t)k + 3) & ~3, i;
         for (i = 0; i < n4; i++) {
             av[i] = (float)(2 * i + 1) * rk - 1.0f;
             pw[i] = 1u << (uint32_t)i;
         }
-        uint32_t rows[32], bits, bit;
         for (j = row_lo; j <= row_hi; j++) {
             float b = av[j];
             float pb = plane.h0 + b * plane.hv;

@@ -19,6 +19,7 @@
 
 #include "fuzz_check.h"
 #include "penumbra/opencl.h"
+#include "pn_cl_host.h"
 #include "penumbra/penumbra.h"
 
 #define MAX_V 34u
@@ -59,7 +60,7 @@ static rig *get_rig(uint32_t pool_sel)
         FUZZ_CHECK(pn_arena_size(&lim, &bytes) == PN_OK, "arena size");
         r->mem = malloc(bytes);
         FUZZ_CHECK(r->mem && pn_init(&r->ctx, r->mem, bytes, &lim) == PN_OK, "pn_init");
-        st = pn_opencl_create(r->ctx, NULL, &r->cl);
+        st = pn_cl_open(r->ctx, NULL, &r->cl);
         FUZZ_CHECK(st == PN_OK, "pn_opencl_create: %s: %s", pn_status_str(st), pn_last_error(r->ctx));
     }
     return r;

@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "fuzz_check.h"
-#include "pn_gears_host.h"
+#include "pn_gears_frame.h"
 
 typedef struct pn_bytes {
     const uint8_t *p;

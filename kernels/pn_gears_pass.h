@@ -1,7 +1,6 @@
-/* pn_gears_pass.h - the work items of a GEARS frame (paper §3-4), shared by both ports:
- * the scalar port loops over them (ports/scalar/pn_scalar_gears.c), the OpenCL port runs
- * them as kernels (kernels/pn_gears.cl). The host steps between them (grid cameras, tile
- * plan, statistics) are src/pn_gears.c.
+/* pn_gears_pass.h - the work items of a GEARS frame (paper §3-4), behind the GEARS entries
+ * of kernels/pn_passes.h that both ports run. The frame that sequences them with its host
+ * steps (grid cameras, tile plan, statistics) is src/pn_gears.c.
  *
  *   per row       origins (visibility start, lit count, box of origins), projected box
  *   per pixel     grid cell of the pixel's origin, and the cell's pixel count
@@ -16,6 +15,7 @@
 #define PN_GEARS_PASS_H
 
 #include "pn_gears.h"
+#include "pn_kpools.h"
 #include "pn_reference.h"
 
 /* The grid cameras of a frame: n faces (1 area light, 6 point light) of res x res cells. */
@@ -23,11 +23,6 @@ typedef struct pn_kfaces {
     pn_kgrid f[6];
     uint32_t n, res, pad0, pad1;
 } pn_kfaces;
-
-/* A tile of cells: grid rows [r0, r1] and columns [x0, x1] of one face. */
-typedef struct pn_ktile {
-    uint32_t face, r0, r1, x0, x1, pad0, pad1, pad2;
-} pn_ktile;
 
 /* Shadow-ray origin of a pixel, or 0 when the pixel has no triangle or cannot see the
  * light (its visibility is then final: 1 or 0). */
@@ -83,11 +78,12 @@ PN_KFN void pn_gears_project_row(const pn_klight *L, const pn_kgrid *g, uint32_t
 
 /* Pixel pix: its global cell (face * res^2 + cell) or PN_CELL_NONE, and one more pixel in
  * that cell's count (cell_pix zeroed beforehand). */
-PN_KFN void pn_gears_pixel_cell(const pn_klight *L, const pn_kfaces *F, PN_CONST uint32_t *tri_id,
+PN_KFN void pn_gears_pixel_cell(const pn_klight *L, PN_CONST pn_kfaces *F, PN_CONST uint32_t *tri_id,
                                 PN_CONST float *pos, PN_CONST float *nrm, size_t pix, PN_GLOBAL uint32_t *pix_cell,
                                 PN_GLOBAL uint32_t *cell_pix)
 {
     pn_v3 O;
+    pn_kgrid g;
     float px, py;
     uint32_t f, cell;
     if (!pn_gears_origin(L, tri_id, pos, nrm, pix, &O)) {
@@ -95,15 +91,16 @@ PN_KFN void pn_gears_pixel_cell(const pn_klight *L, const pn_kfaces *F, PN_CONST
         return;
     }
     f = pn_gears_origin_face(L, O);
-    pn_grid_project(&F->f[f], O, &px, &py);
-    cell = f * F->res * F->res + pn_grid_cell(&F->f[f], px, py);
+    g = F->f[f]; /* the faces live in the arena: a private copy for the helpers */
+    pn_grid_project(&g, O, &px, &py);
+    cell = f * F->res * F->res + pn_grid_cell(&g, px, py);
     pix_cell[pix] = cell;
     pn_katomic_add(&cell_pix[cell], 1u);
 }
 
 /* Triangle t: its rectangle of cells on every face (A.3), rects[t * 6 + face]. */
-PN_KFN void pn_gears_tri_rects(const pn_kfaces *F, const pn_klight *L, PN_CONST float *tris, PN_CONST uint8_t *flags,
-                               uint32_t t, PN_GLOBAL pn_cellrect *rects)
+PN_KFN void pn_gears_tri_rects(PN_CONST pn_kfaces *F, const pn_klight *L, PN_CONST float *tris,
+                               PN_CONST uint8_t *flags, uint32_t t, PN_GLOBAL pn_cellrect *rects)
 {
     uint32_t f;
     pn_v3 A, B, C;
@@ -112,7 +109,10 @@ PN_KFN void pn_gears_tri_rects(const pn_kfaces *F, const pn_klight *L, PN_CONST 
         return;
     }
     pn_tri_load(tris, t, &A, &B, &C);
-    for (f = 0; f < F->n; f++) rects[(size_t)t * 6u + f] = pn_gears_tri_cells(&F->f[f], L, A, B, C);
+    for (f = 0; f < F->n; f++) {
+        pn_kgrid g = F->f[f];
+        rects[(size_t)t * 6u + f] = pn_gears_tri_cells(&g, L, A, B, C);
+    }
 }
 
 /* Pairs are made only for cells that hold pixels (paper §5.4: cells where no pixel
@@ -129,7 +129,7 @@ PN_KFN uint32_t pn_gears_row_count(PN_CONST uint32_t *cell_pix, uint32_t res, ui
 /* Triangle t: its pairs added to each global grid row (face * res + row) it covers, as a
  * 64-bit count in two words (low, high) per row: row_pairs[2 r], row_pairs[2 r + 1].
  * The carry goes with the add that wrapped the low word, so the sum is exact in any order. */
-PN_KFN void pn_gears_tri_row_pairs(const pn_kfaces *F, PN_CONST pn_cellrect *rects, PN_CONST uint32_t *cell_pix,
+PN_KFN void pn_gears_tri_row_pairs(PN_CONST pn_kfaces *F, PN_CONST pn_cellrect *rects, PN_CONST uint32_t *cell_pix,
                                    uint32_t t, PN_GLOBAL uint32_t *row_pairs)
 {
     uint32_t f, y;

@@ -32,12 +32,18 @@ typedef ulong uint64_t;
 #define pn_katomic_add(p, v) atomic_add((p), (v))
 /* The OpenCL port passes the host's configuration as build options (-D...), so both
  * ports size their private arrays alike. */
-#if !defined(PN_MASK_WORDS_MAX) || !defined(PN_BVH_STACK)
-#error "OpenCL build options must define PN_MASK_WORDS_MAX and PN_BVH_STACK (ports/opencl does)"
+#if !defined(PN_MASK_WORDS_MAX) || !defined(PN_BVH_STACK) || !defined(PN_ENABLE_REFERENCE) || \
+    !defined(PN_ENABLE_RAYTRACE) || !defined(PN_ENABLE_GEARS)
+#error "OpenCL build options must define PN_MASK_WORDS_MAX, PN_BVH_STACK and PN_ENABLE_* (ports/opencl does)"
 #endif
 #else
 #include <stdint.h>
 #include "penumbra/config.h"
+/* The configuration values kernels/ reads: a device port hands each to its compiler as
+ * -D<name>=<value>u, so both ports size private arrays and select passes alike. A new
+ * option the kernels read is added here (and to the #error list above). */
+#define PN_KERNEL_CONFIG(X) \
+    X(PN_MASK_WORDS_MAX) X(PN_BVH_STACK) X(PN_ENABLE_REFERENCE) X(PN_ENABLE_RAYTRACE) X(PN_ENABLE_GEARS)
 #define PN_KFN static inline
 #define PN_GLOBAL
 #define PN_CONST const

@@ -1,24 +1,42 @@
-/* pn_kpools.h - where the arena's pools sit, as byte offsets from its 64-byte aligned
- * base, for a port that holds the whole arena as one buffer (the OpenCL port mirrors it
- * on the device: the same pools at the same offsets). One struct instead of one kernel
- * argument per pool; 0 for a pool the frame does not carve. */
+/* pn_kpools.h - what every pass entry (kernels/pn_passes.h) receives besides its item
+ * index: where the arena's pools sit, as byte offsets from its 64-byte aligned base, and
+ * the frame's parameter block. A port holds the arena as one buffer (the scalar port: the
+ * caller's memory itself; the OpenCL port: a device buffer mirroring it, the same pools at
+ * the same offsets), so one struct of offsets replaces one argument per pool; 0 for a pool
+ * the frame does not carve. Fixed-width fields only: C and OpenCL C lay both structs out
+ * alike, and the OpenCL port passes them as kernel arguments verbatim. */
 #ifndef PN_KPOOLS_H
 #define PN_KPOOLS_H
 
-#include "pn_kernel.h"
+#include "pn_ktypes.h"
 
 typedef struct pn_kpools {
     /* persistent: the scene */
     uint64_t tris, flags, nodes, index;
     /* frame: G-buffer, outputs, scratch */
     uint64_t depth, tri_id, pos, nrm, vis, rgba, rows, counters;
-    /* frame: GEARS (pn_gears_frame in src/pn_gears_host.h) */
-    uint64_t rects, tri_off, pix_cell, row_box, cell_off, cell_pix, cell_cur, row_pairs, pairs, sorted;
+    /* frame: GEARS (src/pn_gears.c) */
+    uint64_t faces, rects, tri_off, pix_cell, row_box, cell_off, cell_pix, cell_cur, row_pairs, pairs, sorted;
 } pn_kpools;
 
-#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
-/* Typed pointer to pool `name` of arena A (kernel arguments A and P). */
-#define PN_POOL(type, name) ((__global type *)(A + P.name))
-#endif
+/* A tile of GEARS grid cells: grid rows [r0, r1] and columns [x0, x1] of one face. */
+typedef struct pn_ktile {
+    uint32_t face, r0, r1, x0, x1, pad0, pad1, pad2;
+} pn_ktile;
+
+/* The parameters of one launch: the frame's camera, light and shading constants, and the
+ * few per-launch values some passes read. Written by src/ before each launch. */
+typedef struct pn_kparams {
+    pn_kview view;
+    pn_klight light;
+    pn_kshade shade;
+    pn_ktile tile;        /* GEARS: the tile a pass works on (grid row r0 for a row count) */
+    uint32_t tri_count;   /* scene triangles */
+    uint32_t exact_stats; /* GEARS masks: 1 = do not stop at a full mask (exact counters) */
+    uint32_t pad0, pad1;
+} pn_kparams;
+
+/* Typed pointer to pool `name` of arena A (the entries' arguments A and P). */
+#define PN_POOL(type, name) ((PN_GLOBAL type *)(A + P->name))
 
 #endif

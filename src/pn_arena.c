@@ -5,6 +5,9 @@
 
 #include "pn_internal.h"
 #include "pn_reference.h" /* pn_shadow_counters */
+#if PN_ENABLE_GEARS
+#include "pn_gears_pass.h" /* pn_kfaces */
+#endif
 
 /* Appends a pool of count * elem bytes at the next 64-byte boundary. Sizes are checked in
  * 64-bit arithmetic, then against SIZE_MAX (a 32-bit target must not wrap). */
@@ -37,9 +40,10 @@ static int pn_frame_pools(const pn_limits *l, uint64_t *off)
         return 0;
 #if PN_ENABLE_GEARS
     {
-        /* pn_gears_pools() in ports/ allocates exactly these, in this order. */
+        /* pn_gears_begin() in src/pn_gears.c allocates exactly these, in this order. */
         uint64_t g = pn_gears_grid_max(l), cells = 6u * g * g;
-        return pn_bump(off, l->max_triangles, 6u * 8u, &dummy) &&         /* cell rects */
+        return pn_bump(off, 1u, sizeof(pn_kfaces), &dummy) &&              /* grid cameras */
+               pn_bump(off, l->max_triangles, 6u * 8u, &dummy) &&         /* cell rects */
                pn_bump(off, (uint64_t)l->max_triangles + 1u, 4u, &dummy) && /* pair offsets */
                pn_bump(off, px, 4u, &dummy) &&                            /* pixel cells */
                pn_bump(off, l->max_height, 32u, &dummy) &&                /* row boxes */
@@ -68,6 +72,7 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
         !pn_bump(&off, l->max_triangles, 1u, &lay.flags) ||
         !pn_bump(&off, 2u * (uint64_t)l->max_triangles, sizeof(pn_kbvh_node), &lay.nodes) ||
         !pn_bump(&off, l->max_triangles, sizeof(uint32_t), &lay.index) ||
+        !pn_bump(&off, PN_PORT_SCRATCH_WORDS, sizeof(uint32_t), &lay.scratch) ||
         !pn_bump(&off, 0u, 1u, &lay.frame))
         return PN_E_LIMIT;
     frame_start = off;
@@ -165,6 +170,7 @@ pn_status pn_init(pn_context **out_ctx, void *memory, size_t bytes, const pn_lim
     ctx->flags = base + lay.flags;
     ctx->nodes = (pn_kbvh_node *)(void *)(base + lay.nodes);
     ctx->tri_index = (uint32_t *)(void *)(base + lay.index);
+    ctx->scratch = (uint32_t *)(void *)(base + lay.scratch);
     ctx->frame = base + lay.frame;
     *out_ctx = ctx;
     return PN_OK;

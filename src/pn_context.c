@@ -2,6 +2,7 @@
 #include <stdarg.h>
 #include <string.h>
 
+#include "pn_device.h"
 #include "pn_internal.h"
 
 const char *pn_status_str(pn_status status)
@@ -99,6 +100,11 @@ pn_status pn_set_clock(pn_context *ctx, pn_clock_fn clock, void *user)
 }
 
 uint64_t pn_now(const pn_context *ctx) { return ctx->clock ? ctx->clock(ctx->clock_user) : 0u; }
+
+pn_status pn_dev_exec(const pn_port *port, pn_context *ctx, const pn_devcmd *cmd)
+{
+    return port->exec(port->self, ctx, cmd);
+}
 
 void pn_run(pn_context *ctx, uint32_t count, pn_task_fn fn, void *task)
 {

@@ -1,10 +1,12 @@
-/* pn_frame.c - per-frame validation, derivation of the kernel parameters, pass
- * sequencing. Ports supply the passes; this file decides what runs and with what. */
+/* pn_frame.c - per-frame validation, derivation of the kernel parameters, and the frame:
+ * the G-buffer, the chosen algorithm's shadow sequence, shading, each a sequence of port
+ * commands (pn_device.h) written once for every port. */
 #include <string.h>
 
-#include "pn_internal.h"
+#include "pn_device.h"
+#include "pn_gears_frame.h"
 #include "pn_kmath.h"
-#include "pn_reference.h"
+#include "pn_passes.h"
 
 void pn_frame_options_default(pn_frame_options *opt)
 {
@@ -165,6 +167,93 @@ static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
     return pn_fail(ctx, PN_E_INVALID_ARG, "unknown algorithm %u", (uint32_t)o->algo);
 }
 
+/* The scene's pools on the port (only when pn_scene_set changed them since). */
+static pn_status pn_scene_to_device(pn_frame_state *fs)
+{
+    pn_context *ctx = fs->ctx;
+    pn_port_scene *sc = fs->port->scene;
+    pn_status st;
+    if (fs->port->host_memory || (sc->valid && sc->version == ctx->scene_version)) return PN_OK;
+    sc->valid = 0;
+    if ((st = pn_dev_to_device(fs, ctx->tris, (size_t)ctx->tri_count * 9u * sizeof(float))) != PN_OK ||
+        (st = pn_dev_to_device(fs, ctx->flags, ctx->tri_count)) != PN_OK ||
+        (st = pn_dev_to_device(fs, ctx->nodes, (size_t)ctx->bvh_nodes * sizeof(pn_kbvh_node))) != PN_OK ||
+        (st = pn_dev_to_device(fs, ctx->tri_index, (size_t)ctx->bvh_tris * sizeof(uint32_t))) != PN_OK)
+        return st;
+    sc->version = ctx->scene_version;
+    sc->valid = 1;
+    sc->uploads++;
+    return PN_OK;
+}
+
+/* Primary visibility: clear, per-triangle row ranges, bands, per-pixel resolve. */
+static pn_status pn_gbuffer(pn_frame_state *fs)
+{
+    uint32_t npix = fs->width * fs->height;
+    size_t px = npix;
+    pn_status st;
+    if ((st = pn_scene_to_device(fs)) != PN_OK || (st = pn_dev_run(fs, PN_K_GBUFFER_CLEAR, npix)) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_RASTER_ROWS, fs->ctx->tri_count)) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_RASTER_BAND, (fs->height + PN_RASTER_BAND - 1u) / PN_RASTER_BAND)) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_GBUFFER_RESOLVE, npix)) != PN_OK ||
+        (st = pn_dev_to_host(fs, fs->depth, px * sizeof(float))) != PN_OK ||
+        (st = pn_dev_to_host(fs, fs->tri_id, px * sizeof(uint32_t))) != PN_OK ||
+        (st = pn_dev_to_host(fs, fs->pos, px * 3u * sizeof(float))) != PN_OK)
+        return st;
+    return pn_dev_to_host(fs, fs->nrm, px * 3u * sizeof(float));
+}
+
+/* The shadow pass of the frame's algorithm. Every algorithm leaves the visibility buffer
+ * and one pn_shadow_counters per row (zeroed here first) for the host. */
+static pn_status pn_shadow(pn_frame_state *fs)
+{
+    uint32_t npix = fs->width * fs->height;
+    pn_status st;
+    if ((st = pn_dev_fill(fs, fs->counters, fs->height * (uint32_t)(sizeof(pn_shadow_counters) / 4u), 0u)) != PN_OK)
+        return st;
+    switch (fs->algo) {
+#if PN_ENABLE_REFERENCE
+    case PN_ALGO_REFERENCE: st = pn_dev_run(fs, PN_K_REFERENCE, npix); break;
+#endif
+#if PN_ENABLE_RAYTRACE
+    case PN_ALGO_RAYTRACE: st = pn_dev_run(fs, PN_K_RAYTRACE, npix); break;
+#endif
+#if PN_ENABLE_GEARS
+    case PN_ALGO_GEARS: st = pn_gears_frame(fs); break;
+#endif
+    default: return pn_fail(fs->ctx, PN_E_UNSUPPORTED, "algorithm %u not available", fs->algo);
+    }
+    if (st != PN_OK || (st = pn_dev_to_host(fs, fs->vis, (size_t)npix * sizeof(float))) != PN_OK) return st;
+    return pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_shadow_counters));
+}
+
+static pn_status pn_shade(pn_frame_state *fs)
+{
+    uint32_t npix = fs->width * fs->height;
+    pn_status st;
+    if ((st = pn_dev_run(fs, PN_K_SHADE, npix)) != PN_OK) return st;
+    return pn_dev_to_host(fs, fs->rgba, (size_t)npix * 4u);
+}
+
+static void pn_frame_pool_offsets(pn_frame_state *fs)
+{
+    const pn_context *ctx = fs->ctx;
+    pn_kpools *P = &fs->P;
+    memset(P, 0, sizeof(*P));
+    P->tris = pn_dev_off(ctx, ctx->tris);
+    P->flags = pn_dev_off(ctx, ctx->flags);
+    P->nodes = pn_dev_off(ctx, ctx->nodes);
+    P->index = pn_dev_off(ctx, ctx->tri_index);
+    P->depth = pn_dev_off(ctx, fs->depth);
+    P->tri_id = pn_dev_off(ctx, fs->tri_id);
+    P->pos = pn_dev_off(ctx, fs->pos);
+    P->nrm = pn_dev_off(ctx, fs->nrm);
+    P->vis = pn_dev_off(ctx, fs->vis);
+    P->rgba = pn_dev_off(ctx, fs->rgba);
+    P->rows = pn_dev_off(ctx, fs->rows);
+    P->counters = pn_dev_off(ctx, fs->counters);
+}
+
 pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *camera,
                          const pn_light *light, const pn_frame_options *opt, pn_frame *out)
 {
@@ -178,18 +267,20 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     if (!ctx->has_scene) return pn_fail(ctx, PN_E_NO_SCENE, "pn_render: no scene (call pn_scene_set first)");
     if ((st = pn_check_options(ctx, opt)) != PN_OK) return st;
     memset(&fs, 0, sizeof(fs));
-    if ((st = pn_setup_view(ctx, camera, opt->width, opt->height, &fs.view)) != PN_OK) return st;
-    if ((st = pn_setup_light(ctx, light, opt->k, opt->eps, &fs.light)) != PN_OK) return st;
-    fs.shade.albedo = opt->albedo;
-    fs.shade.ambient = opt->ambient;
-    fs.shade.background = (uint32_t)opt->background[0] | ((uint32_t)opt->background[1] << 8) |
-                          ((uint32_t)opt->background[2] << 16) | ((uint32_t)opt->background[3] << 24);
+    fs.ctx = ctx;
+    fs.port = port;
+    if ((st = pn_setup_view(ctx, camera, opt->width, opt->height, &fs.K.view)) != PN_OK) return st;
+    if ((st = pn_setup_light(ctx, light, opt->k, opt->eps, &fs.K.light)) != PN_OK) return st;
+    fs.K.shade.albedo = opt->albedo;
+    fs.K.shade.ambient = opt->ambient;
+    fs.K.shade.background = (uint32_t)opt->background[0] | ((uint32_t)opt->background[1] << 8) |
+                            ((uint32_t)opt->background[2] << 16) | ((uint32_t)opt->background[3] << 24);
+    fs.K.tri_count = ctx->tri_count;
+    fs.K.exact_stats = opt->exact_stats;
     fs.algo = (uint32_t)opt->algo;
     fs.width = opt->width;
     fs.height = opt->height;
     fs.gears_grid = opt->gears_grid;
-    fs.exact_stats = opt->exact_stats;
-    fs.self = port->self;
 
     px = (size_t)opt->width * opt->height;
     pn_frame_reset(ctx);
@@ -203,15 +294,16 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
         !(fs.rows = (uint32_t *)pn_frame_alloc(ctx, ctx->tri_count, sizeof(uint32_t), "raster rows")) ||
         !(fs.counters = pn_frame_alloc(ctx, opt->height, sizeof(pn_shadow_counters), "shadow counters")))
         return PN_E_POOL_EXHAUSTED;
+    pn_frame_pool_offsets(&fs);
 
-    t0 = pn_now(ctx);
-    if ((st = port->gbuffer(ctx, &fs)) != PN_OK) return st;
-    ctx->pass_ns[PN_PASS_GBUFFER] = pn_now(ctx) - t0;
-    t0 = pn_now(ctx);
-    if ((st = port->shadow(ctx, &fs)) != PN_OK) return st;
-    ctx->pass_ns[PN_PASS_SHADOW] = pn_now(ctx) - t0;
+    t0 = pn_dev_timestamp(&fs);
+    if ((st = pn_gbuffer(&fs)) != PN_OK) return st;
+    ctx->pass_ns[PN_PASS_GBUFFER] = pn_dev_timestamp(&fs) - t0;
+    t0 = pn_dev_timestamp(&fs);
+    if ((st = pn_shadow(&fs)) != PN_OK) return st;
+    ctx->pass_ns[PN_PASS_SHADOW] = pn_dev_timestamp(&fs) - t0;
     {
-        /* Every port leaves one pn_shadow_counters per row; integer sums, any port alike. */
+        /* Integer sums of the rows' counters: any port, any schedule alike. */
         const pn_shadow_counters *cnt = (const pn_shadow_counters *)fs.counters;
         uint32_t y;
         for (y = 0; y < fs.height; y++) {
@@ -223,14 +315,14 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     }
     if (fs.overflow)
         return pn_fail(ctx, PN_E_INTERNAL, "BVH traversal stack overflowed %u times", fs.overflow);
-    t0 = pn_now(ctx);
-    if ((st = port->shade(ctx, &fs)) != PN_OK) return st;
-    ctx->pass_ns[PN_PASS_SHADE] = pn_now(ctx) - t0;
+    t0 = pn_dev_timestamp(&fs);
+    if ((st = pn_shade(&fs)) != PN_OK) return st;
+    ctx->pass_ns[PN_PASS_SHADE] = pn_dev_timestamp(&fs) - t0;
     ctx->shadow_candidates = fs.candidates;
     ctx->shadow_blocking = fs.blocking;
     ctx->lit_pixels = fs.lit;
-    ctx->cull_tol = fs.light.cull_tol;
-    ctx->cross_tol = fs.light.cross_tol;
+    ctx->cull_tol = fs.K.light.cull_tol;
+    ctx->cross_tol = fs.K.light.cross_tol;
 
     out->width = opt->width;
     out->height = opt->height;

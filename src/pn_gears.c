@@ -1,12 +1,43 @@
-/* pn_gears.c - host side of GEARS: the grid cameras (paper §4 A.1), grid bounds, and the
- * plan that splits a frame's (triangle, cell) pairs into tiles the pair pool can hold.
- * Port-independent: a port runs the per-pixel and per-triangle kernels of
- * kernels/pn_gears.h between these steps. */
+/* pn_gears.c - GEARS' whole frame (sequence in pn_gears_frame.h): the grid cameras (paper
+ * §4 A.1), grid bounds, the plan that splits a frame's (triangle, cell) pairs into tiles
+ * the pair pool can hold, and the passes of kernels/pn_passes.h between them, run on the
+ * frame's port. Written once: both ports run this sequence. */
 #include <string.h>
 
-#include "pn_gears_host.h"
+#include "pn_device.h"
+#include "pn_gears_frame.h"
+#include "pn_passes.h"
 
 #if PN_ENABLE_GEARS
+
+/* One frame's pools (addresses in the arena, carved in the order of pn_frame_pools() in
+ * pn_arena.c), grid, tile plan and statistics. */
+typedef struct pn_gears_frame {
+    pn_kfaces *faces;    /* [1]: the grid cameras, written by the host, read by passes */
+    pn_cellrect *rects;  /* [max_triangles * 6]: rectangle of triangle t on face f at t * 6 + f */
+    uint32_t *tri_off;   /* [max_triangles + 1]: pairs per triangle, then their prefix sum */
+    uint32_t *pix_cell;  /* [pixels]: global cell or PN_CELL_NONE */
+    float *row_box;      /* [height * 8]: box of a row's origins (3-D, then projected 2-D) */
+    uint32_t *cell_off;  /* [cells + 1]: a tile's pairs per cell, prefix-summed */
+    uint32_t *cell_pix;  /* [cells]: pixels per cell */
+    uint32_t *cell_cur;  /* [cells]: sort scratch; the counts of a grid row being split */
+    uint32_t *row_pairs; /* [rows * 2]: pairs per global grid row, low and high word */
+    uint32_t *pairs;     /* [pool * 2]: (global cell, triangle) */
+    uint32_t *sorted;    /* [pool]: triangles by cell, ascending within a cell */
+    uint32_t cells_max;  /* capacity of the per-cell pools */
+    uint32_t cells;      /* faces * res^2 */
+    uint32_t rows;       /* faces * res: global grid rows */
+    uint32_t pool;       /* pairs one tile may hold */
+    uint64_t lit;
+    /* tile plan: runs of global rows [start, end) handed out face by face from s0; a row
+     * too big for the pool (split) handed out as runs of cells from xs */
+    uint32_t plan_start, plan_end, plan_s0, plan_split, plan_xs, plan_counted;
+    /* statistics over all tiles */
+    uint64_t total_pairs, assignments, sum_tris_cell;
+    uint32_t tiles, pairs_high, max_tris_cell;
+} pn_gears_frame_pools;
+
+enum { PN_GEARS_PLAN_DONE = 0, PN_GEARS_PLAN_TILE = 1, PN_GEARS_PLAN_COUNT_ROW = 2 };
 
 static void pn_set3(float *d, pn_v3 v)
 {
@@ -104,17 +135,19 @@ static float pn_u64_to_f32(uint64_t v)
     return (float)(uint32_t)(v >> 32) * 4294967296.0f + (float)(uint32_t)v;
 }
 
-pn_status pn_gears_begin(pn_context *ctx, const pn_frame_state *fs, pn_gears_frame *g)
+static pn_status pn_gears_begin(pn_frame_state *fs, pn_gears_frame_pools *g)
 {
+    pn_context *ctx = fs->ctx;
+    pn_kpools *P = &fs->P;
     size_t px = (size_t)fs->width * fs->height;
     uint32_t gmax = pn_gears_grid_max(&ctx->limits);
     size_t cmax = 6u * (size_t)gmax * gmax;
     memset(g, 0, sizeof(*g));
     g->pool = pn_gears_pairs_max(&ctx->limits);
     g->cells_max = (uint32_t)cmax;
-    g->faces.res = fs->gears_grid;
     /* Same pools, same order as pn_frame_pools() in src/pn_arena.c. */
-    if (!(g->rects = (pn_cellrect *)pn_frame_alloc(ctx, ctx->limits.max_triangles, 6u * 8u, "gears cell rects")) ||
+    if (!(g->faces = (pn_kfaces *)pn_frame_alloc(ctx, 1u, sizeof(pn_kfaces), "gears grid cameras")) ||
+        !(g->rects = (pn_cellrect *)pn_frame_alloc(ctx, ctx->limits.max_triangles, 6u * 8u, "gears cell rects")) ||
         !(g->tri_off = (uint32_t *)pn_frame_alloc(ctx, (size_t)ctx->limits.max_triangles + 1u, 4u, "gears pair offsets")) ||
         !(g->pix_cell = (uint32_t *)pn_frame_alloc(ctx, px, 4u, "gears pixel cells")) ||
         !(g->row_box = (float *)pn_frame_alloc(ctx, fs->height, 32u, "gears row boxes")) ||
@@ -125,38 +158,55 @@ pn_status pn_gears_begin(pn_context *ctx, const pn_frame_state *fs, pn_gears_fra
         !(g->pairs = (uint32_t *)pn_frame_alloc(ctx, g->pool, 8u, "gears pairs")) ||
         !(g->sorted = (uint32_t *)pn_frame_alloc(ctx, g->pool, 4u, "gears sorted pairs")))
         return PN_E_POOL_EXHAUSTED;
+    memset(g->faces, 0, sizeof(*g->faces));
+    g->faces->res = fs->gears_grid;
+    P->faces = pn_dev_off(ctx, g->faces);
+    P->rects = pn_dev_off(ctx, g->rects);
+    P->tri_off = pn_dev_off(ctx, g->tri_off);
+    P->pix_cell = pn_dev_off(ctx, g->pix_cell);
+    P->row_box = pn_dev_off(ctx, g->row_box);
+    P->cell_off = pn_dev_off(ctx, g->cell_off);
+    P->cell_pix = pn_dev_off(ctx, g->cell_pix);
+    P->cell_cur = pn_dev_off(ctx, g->cell_cur);
+    P->row_pairs = pn_dev_off(ctx, g->row_pairs);
+    P->pairs = pn_dev_off(ctx, g->pairs);
+    P->sorted = pn_dev_off(ctx, g->sorted);
     memset(&ctx->gears, 0, sizeof(ctx->gears));
     return PN_OK;
 }
 
-uint32_t pn_gears_cameras(pn_context *ctx, const pn_frame_state *fs, pn_gears_frame *g)
+/* Joins the row boxes and lit counts of the origins pass; returns 0 when no pixel is lit
+ * (nothing can be shadowed: the frame is done), else sets up the grid cameras (and, for a
+ * point light, their bounds) and returns 1. */
+static uint32_t pn_gears_cameras(pn_context *ctx, const pn_frame_state *fs, pn_gears_frame_pools *g)
 {
     float obox[6];
-    uint32_t y, f, G = g->faces.res;
+    uint32_t y, f, G = g->faces->res;
     pn_box3_empty(obox);
     for (y = 0; y < fs->height; y++) {
         g->lit += ((const pn_shadow_counters *)fs->counters)[y].lit;
         pn_box_join_n(obox, g->row_box + (size_t)y * 8u, 6u);
     }
     if (g->lit == 0u) return 0;
-    g->faces.n = pn_gears_faces(&fs->light, obox, ctx->scene_diag, g->faces.f);
-    g->cells = g->faces.n * G * G;
-    g->rows = g->faces.n * G;
-    if (fs->light.is_point)
-        for (f = 0; f < 6; f++) pn_gears_bounds(&g->faces.f[f], -1.0f, -1.0f, 1.0f, 1.0f, G);
+    g->faces->n = pn_gears_faces(&fs->K.light, obox, ctx->scene_diag, g->faces->f);
+    g->cells = g->faces->n * G * G;
+    g->rows = g->faces->n * G;
+    if (fs->K.light.is_point)
+        for (f = 0; f < 6; f++) pn_gears_bounds(&g->faces->f[f], -1.0f, -1.0f, 1.0f, 1.0f, G);
     return 1;
 }
 
-void pn_gears_grid(const pn_frame_state *fs, pn_gears_frame *g)
+/* Area light: the grid bounds from the projected row boxes. */
+static void pn_gears_grid(const pn_frame_state *fs, pn_gears_frame_pools *g)
 {
     float pb[4];
     uint32_t y;
     pn_box2_empty(pb);
     for (y = 0; y < fs->height; y++) pn_box_join_n(pb, g->row_box + (size_t)y * 8u, 4u);
-    pn_gears_bounds(&g->faces.f[0], pb[0], pb[1], pb[2], pb[3], g->faces.res);
+    pn_gears_bounds(&g->faces->f[0], pb[0], pb[1], pb[2], pb[3], g->faces->res);
 }
 
-static uint64_t pn_row_pairs_at(const pn_gears_frame *g, uint32_t r)
+static uint64_t pn_row_pairs_at(const pn_gears_frame_pools *g, uint32_t r)
 {
     return (uint64_t)g->row_pairs[2u * r] | ((uint64_t)g->row_pairs[2u * r + 1u] << 32);
 }
@@ -175,9 +225,9 @@ static void pn_tile_set(pn_ktile *t, uint32_t face, uint32_t r0, uint32_t r1, ui
  * boundaries (a tile never spans two faces); a row that alone exceeds the pool goes as
  * runs of consecutive cells, its per-cell counts taken afresh before each run (the tile
  * before it used cell_cur). */
-pn_status pn_gears_plan_next(pn_context *ctx, pn_gears_frame *g, pn_ktile *tile, uint32_t *action)
+static pn_status pn_gears_plan_next(pn_context *ctx, pn_gears_frame_pools *g, pn_ktile *tile, uint32_t *action)
 {
-    uint32_t G = g->faces.res;
+    uint32_t G = g->faces->res;
     for (;;) {
         if (g->plan_split) {
             uint32_t row = g->plan_start, face = row / G, ry = row % G, x, xe;
@@ -234,7 +284,7 @@ pn_status pn_gears_plan_next(pn_context *ctx, pn_gears_frame *g, pn_ktile *tile,
     }
 }
 
-pn_status pn_gears_tile_pairs(pn_context *ctx, pn_gears_frame *g, uint64_t need)
+static pn_status pn_gears_tile_pairs(pn_context *ctx, pn_gears_frame_pools *g, uint64_t need)
 {
     if (need > g->pool) return pn_fail(ctx, PN_E_INTERNAL, "GEARS tile plan exceeded the pair pool");
     g->tiles++;
@@ -243,7 +293,7 @@ pn_status pn_gears_tile_pairs(pn_context *ctx, pn_gears_frame *g, uint64_t need)
     return PN_OK;
 }
 
-void pn_gears_tile_cells(pn_gears_frame *g)
+static void pn_gears_tile_cells(pn_gears_frame_pools *g)
 {
     uint32_t c;
     for (c = 0; c < g->cells; c++) {
@@ -256,7 +306,7 @@ void pn_gears_tile_cells(pn_gears_frame *g)
     }
 }
 
-void pn_gears_end(pn_context *ctx, const pn_gears_frame *g)
+static void pn_gears_end(pn_context *ctx, const pn_gears_frame_pools *g)
 {
     uint32_t c, used = 0, max_pix = 0;
     for (c = 0; c < g->cells; c++)
@@ -267,13 +317,83 @@ void pn_gears_end(pn_context *ctx, const pn_gears_frame *g)
     ctx->gears.pairs = g->total_pairs;
     ctx->gears.assignments = g->assignments;
     ctx->gears.tiles = g->tiles;
-    ctx->gears.faces = g->faces.n;
+    ctx->gears.faces = g->faces->n;
     ctx->gears.cells_used = used;
     ctx->gears.max_tris = g->max_tris_cell;
     ctx->gears.max_pix = max_pix;
     ctx->gears.mean_tris = used ? pn_u64_to_f32(g->sum_tris_cell) / (float)used : 0.0f;
     ctx->gears.mean_pix = used ? pn_u64_to_f32(g->lit) / (float)used : 0.0f;
     ctx->gears.pairs_high = g->pairs_high;
+}
+
+/* One tile: count -> exclusive prefix sum -> scatter -> sort by cell -> masks. */
+static pn_status pn_gears_tile(pn_frame_state *fs, pn_gears_frame_pools *g)
+{
+    uint32_t T = fs->ctx->tri_count;
+    pn_status st;
+    if ((st = pn_dev_run(fs, PN_K_GEARS_COUNT, T)) != PN_OK || (st = pn_dev_scan(fs, g->tri_off, T)) != PN_OK ||
+        (st = pn_dev_to_host(fs, g->tri_off + T, sizeof(uint32_t))) != PN_OK ||
+        (st = pn_gears_tile_pairs(fs->ctx, g, g->tri_off[T])) != PN_OK)
+        return st;
+    /* Pairs are scattered in triangle order, so each cell's triangles ascend: the sort by
+     * cell is the one stable order on every port. */
+    if ((st = pn_dev_run(fs, PN_K_GEARS_SCATTER, T)) != PN_OK ||
+        (st = pn_dev_sort_pairs(fs, g->pairs, g->tri_off[T], g->cells, g->sorted, g->cell_off, g->cell_cur)) != PN_OK ||
+        (st = pn_dev_to_host(fs, g->cell_off, ((size_t)g->cells + 1u) * 4u)) != PN_OK)
+        return st;
+    pn_gears_tile_cells(g);
+    return pn_dev_run(fs, PN_K_GEARS_MASKS, fs->width * fs->height);
+}
+
+pn_status pn_gears_frame(pn_frame_state *fs)
+{
+    pn_context *ctx = fs->ctx;
+    pn_gears_frame_pools g;
+    uint32_t T = ctx->tri_count, H = fs->height, action = PN_GEARS_PLAN_DONE;
+    pn_status st;
+
+    if ((st = pn_gears_begin(fs, &g)) != PN_OK) return st;
+
+    /* A.1/A.2: origins, cameras, grid bounds, pixel cells. */
+    if ((st = pn_dev_run(fs, PN_K_GEARS_ORIGINS, H)) != PN_OK ||
+        (st = pn_dev_to_host(fs, g.row_box, (size_t)H * 32u)) != PN_OK ||
+        (st = pn_dev_to_host(fs, fs->counters, (size_t)H * sizeof(pn_shadow_counters))) != PN_OK)
+        return st;
+    if (!pn_gears_cameras(ctx, fs, &g)) return PN_OK;
+    if ((st = pn_dev_to_device(fs, g.faces, sizeof(pn_kfaces))) != PN_OK) return st;
+    if (!fs->K.light.is_point) {
+        if ((st = pn_dev_run(fs, PN_K_GEARS_PROJECT, H)) != PN_OK ||
+            (st = pn_dev_to_host(fs, g.row_box, (size_t)H * 32u)) != PN_OK)
+            return st;
+        pn_gears_grid(fs, &g);
+        if ((st = pn_dev_to_device(fs, g.faces, sizeof(pn_kfaces))) != PN_OK) return st;
+    }
+    if ((st = pn_dev_fill(fs, g.cell_pix, g.cells, 0u)) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_GEARS_PIXEL_CELLS, fs->width * H)) != PN_OK ||
+        (st = pn_dev_to_host(fs, g.cell_pix, (size_t)g.cells * 4u)) != PN_OK)
+        return st;
+
+    /* A.3: every triangle's rectangle of cells on every face; pairs per grid row. */
+    if ((st = pn_dev_run(fs, PN_K_GEARS_TRI_RECTS, T)) != PN_OK ||
+        (st = pn_dev_fill(fs, g.row_pairs, g.rows * 2u, 0u)) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_GEARS_ROW_PAIRS, T)) != PN_OK ||
+        (st = pn_dev_to_host(fs, g.row_pairs, (size_t)g.rows * 8u)) != PN_OK)
+        return st;
+
+    for (;;) {
+        if ((st = pn_gears_plan_next(ctx, &g, &fs->K.tile, &action)) != PN_OK) return st;
+        if (action == PN_GEARS_PLAN_DONE) break;
+        if (action == PN_GEARS_PLAN_COUNT_ROW) {
+            if ((st = pn_dev_fill(fs, g.cell_cur, g.faces->res, 0u)) != PN_OK ||
+                (st = pn_dev_run(fs, PN_K_GEARS_ROW_CELLS, T)) != PN_OK ||
+                (st = pn_dev_to_host(fs, g.cell_cur, (size_t)g.faces->res * 4u)) != PN_OK)
+                return st;
+        } else if ((st = pn_gears_tile(fs, &g)) != PN_OK) {
+            return st;
+        }
+    }
+    pn_gears_end(ctx, &g);
+    return PN_OK;
 }
 
 #endif

@@ -6,7 +6,7 @@
 #include <stdint.h>
 
 #include "penumbra/penumbra.h"
-#include "pn_ktypes.h"
+#include "pn_kpools.h"
 
 /* Coordinates must satisfy |x| <= PN_MAX_COORD: the predicate's triple products are cubic
  * in coordinate differences and must stay far from float overflow ((2*2^40)^3 ~ 1e37). */
@@ -20,20 +20,24 @@ typedef struct pn_layout {
     size_t flags;     /* max_triangles bytes */
     size_t nodes;     /* 2 * max_triangles BVH nodes */
     size_t index;     /* max_triangles uint32: BVH leaf order */
+    size_t scratch;   /* PN_PORT_SCRATCH_WORDS uint32: port scratch */
     size_t frame;     /* start of the per-frame region */
     size_t frame_cap; /* its size: the sum of the largest frame pools */
     size_t end;       /* frame + frame_cap */
 } pn_layout;
 
-/* Everything one pn_render hands to the port's passes. */
+typedef struct pn_port pn_port; /* pn_device.h */
+
+/* One frame as the algorithms' sequences see it: the port that runs it, the pool offsets
+ * and launch parameters its passes get, and the pools' host addresses. */
 typedef struct pn_frame_state {
-    pn_kview view;
-    pn_klight light;
-    pn_kshade shade;
+    pn_context *ctx;
+    const pn_port *port;
+    pn_kpools P;
+    pn_kparams K;       /* K.view, K.light, K.shade: the frame's; K.tile per launch */
     uint32_t algo;
     uint32_t width, height;
     uint32_t gears_grid;
-    uint32_t exact_stats;
     float *depth;
     uint32_t *tri_id;
     float *pos;
@@ -41,19 +45,14 @@ typedef struct pn_frame_state {
     float *vis;
     uint8_t *rgba;      /* 4 bytes per pixel, r g b a */
     uint32_t *rows;     /* rasterizer set-up: pixel-row range per triangle */
-    void *counters;     /* per-work-item shadow counters (pn_shadow_counters[height]) */
+    void *counters;     /* per-row shadow counters (pn_shadow_counters[height]) */
     uint64_t candidates, blocking;
     uint32_t lit, overflow;
-    void *self;         /* the port's own state (pn_port.self) */
 } pn_frame_state;
 
-typedef struct pn_port {
-    const char *name;
-    pn_status (*gbuffer)(pn_context *ctx, pn_frame_state *fs);
-    pn_status (*shadow)(pn_context *ctx, pn_frame_state *fs);
-    pn_status (*shade)(pn_context *ctx, pn_frame_state *fs);
-    void *self; /* handed to the passes as pn_frame_state.self (the OpenCL port's device) */
-} pn_port;
+/* Words of port scratch (a persistent pool): a device port's prefix sum keeps its block
+ * partials there. */
+#define PN_PORT_SCRATCH_WORDS 256u
 
 struct pn_context {
     pn_limits limits;
@@ -65,6 +64,7 @@ struct pn_context {
     uint8_t *flags;
     pn_kbvh_node *nodes;
     uint32_t *tri_index;
+    uint32_t *scratch;
     /* frame region: a bump allocator rewound at every frame */
     uint8_t *frame;
     size_t frame_top;
@@ -112,8 +112,8 @@ void pn_run(pn_context *ctx, uint32_t count, pn_task_fn fn, void *task);
 /* pn_bvh_build.c */
 pn_status pn_bvh_build(pn_context *ctx);
 
-/* pn_frame.c: validates and derives the per-frame kernel parameters, then runs the
- * port's passes. */
+/* pn_frame.c: validates and derives the frame's parameters, carves its pools, and runs
+ * the G-buffer, the chosen algorithm's sequence and shading on the port. */
 pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *camera,
                          const pn_light *light, const pn_frame_options *opt, pn_frame *out);
 

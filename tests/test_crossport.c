@@ -21,6 +21,7 @@
 #include <CL/cl.h>
 
 #include "penumbra/opencl.h"
+#include "pn_cl_host.h"
 #include "penumbra/penumbra.h"
 #include "pn_scenes.h"
 #include "pn_setup.h"
@@ -189,14 +190,14 @@ static int rig_open(pn_xrig *r, const pn_limits *lim, const pn_opencl_options *o
     if (!r->h.memory || pn_init(&r->h.ctx, r->h.memory, bytes, lim) != PN_OK) return 1;
     r->h.threads.count = pn_threads_cores();
     pn_set_parallel_for(r->h.ctx, pn_threads_parallel_for, &r->h.threads);
-    st = pn_opencl_create(r->h.ctx, opt, &r->cl);
+    st = pn_cl_open(r->h.ctx, opt, &r->cl);
     if (st != PN_OK) fprintf(stderr, "pn_opencl_create: %s: %s\n", pn_status_str(st), pn_last_error(r->h.ctx));
     return st != PN_OK;
 }
 
 static void rig_close(pn_xrig *r)
 {
-    pn_opencl_destroy(r->cl);
+    pn_cl_close(r->cl);
     xframe_free(&r->a);
     xframe_free(&r->b);
     pn_host_close(&r->h);
@@ -406,31 +407,55 @@ static void test_api(void)
     char saved_env[256] = "";
     if (env) snprintf(saved_env, sizeof(saved_env), "%s", env);
 
-    CHECK(pn_opencl_create(NULL, NULL, &cl) == PN_E_INVALID_ARG);
-    CHECK(pn_opencl_create(g_rig.h.ctx, NULL, NULL) == PN_E_INVALID_ARG);
+    CHECK(pn_cl_open(NULL, NULL, &cl) == PN_E_INVALID_ARG);
+    CHECK(pn_cl_open(g_rig.h.ctx, NULL, NULL) == PN_E_INVALID_ARG);
     CHECK(pn_opencl_render(NULL, NULL, NULL, NULL, NULL) == PN_E_INVALID_ARG);
     CHECK(pn_opencl_get_info(NULL, &info) == PN_E_INVALID_ARG);
     CHECK(pn_opencl_get_info(g_rig.cl, NULL) == PN_E_INVALID_ARG);
     CHECK(strcmp(pn_opencl_device_name(NULL), "") == 0);
-    pn_opencl_destroy(NULL);
+    pn_cl_close(NULL);
     CHECK(strlen(pn_opencl_device_name(g_rig.cl)) > 0);
     fprintf(stderr, "device: %s\n", pn_opencl_device_name(g_rig.cl));
+
+    /* The port's state lives in caller memory: NULL and short blocks are refused before
+     * anything is written; a static block of PN_OPENCL_BYTES at any alignment works, and
+     * destroy hands the block back. */
+    {
+        static unsigned char block[PN_OPENCL_BYTES + 64u];
+        size_t need = pn_opencl_size(), mis;
+        CHECK(need > 0u && need <= PN_OPENCL_BYTES);
+        CHECK(pn_opencl_create(g_rig.h.ctx, NULL, NULL, need, &cl) == PN_E_INVALID_ARG);
+        memset(block, 0x5A, sizeof(block));
+        cl = NULL;
+        CHECK(pn_opencl_create(g_rig.h.ctx, NULL, block, need - 1u, &cl) == PN_E_ARENA_TOO_SMALL && cl == NULL);
+        CHECK(strstr(pn_last_error(g_rig.h.ctx), "needs") != NULL);
+        for (mis = 0; mis < sizeof(block) && block[mis] == 0x5A; mis++) {
+        }
+        CHECK(mis == sizeof(block));
+        for (mis = 0; mis < 64u; mis += 21u) {
+            st = pn_opencl_create(g_rig.h.ctx, NULL, block + mis, PN_OPENCL_BYTES, &cl);
+            CHECK_MSG(st == PN_OK, "block at +%zu: %s", mis, pn_last_error(g_rig.h.ctx));
+            if (st == PN_OK) CHECK(pn_opencl_destroy(cl) == (void *)(block + mis));
+        }
+        CHECK(pn_opencl_destroy(NULL) == NULL);
+        cl = NULL;
+    }
 
     /* Device strings: an option, then the environment; no match is PN_E_DEVICE. */
     pn_opencl_options_default(&o);
     o.device = "no-such-opencl-device";
     cl = NULL;
-    CHECK(pn_opencl_create(g_rig.h.ctx, &o, &cl) == PN_E_DEVICE && cl == NULL);
+    CHECK(pn_cl_open(g_rig.h.ctx, &o, &cl) == PN_E_DEVICE && cl == NULL);
     CHECK(strstr(pn_last_error(g_rig.h.ctx), "no-such-opencl-device") != NULL);
     o.device = "0:999";
-    CHECK(pn_opencl_create(g_rig.h.ctx, &o, &cl) == PN_E_DEVICE && cl == NULL);
+    CHECK(pn_cl_open(g_rig.h.ctx, &o, &cl) == PN_E_DEVICE && cl == NULL);
     setenv("PN_OPENCL_DEVICE", "no-such-opencl-device", 1);
-    CHECK(pn_opencl_create(g_rig.h.ctx, NULL, &cl) == PN_E_DEVICE && cl == NULL);
+    CHECK(pn_cl_open(g_rig.h.ctx, NULL, &cl) == PN_E_DEVICE && cl == NULL);
     o.device = "portable computing language"; /* the option wins over the environment */
-    st = pn_opencl_create(g_rig.h.ctx, &o, &other);
+    st = pn_cl_open(g_rig.h.ctx, &o, &other);
     CHECK_MSG(st == PN_OK, "%s", pn_last_error(g_rig.h.ctx));
     setenv("PN_OPENCL_DEVICE", "0:0", 1);
-    st = pn_opencl_create(g_rig.h.ctx, NULL, &cl);
+    st = pn_cl_open(g_rig.h.ctx, NULL, &cl);
     CHECK_MSG(st == PN_OK, "%s", pn_last_error(g_rig.h.ctx));
     if (env) setenv("PN_OPENCL_DEVICE", saved_env, 1);
     else unsetenv("PN_OPENCL_DEVICE");
@@ -493,8 +518,8 @@ static void test_api(void)
         fprintf(stderr, "kernel build %.1f ms, first launches %.1f ms, %u kernels, buffer %llu bytes\n", info.build_ms,
                 info.warmup_ms, info.kernels, (unsigned long long)info.buffer_bytes);
     }
-    pn_opencl_destroy(cl);
-    pn_opencl_destroy(other);
+    pn_cl_close(cl);
+    pn_cl_close(other);
     pn_setup_free(&s);
 }
 
@@ -528,7 +553,7 @@ static void test_buffer_failure(void)
     mem = mmap(NULL, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
     REQUIRE(mem != MAP_FAILED);
     REQUIRE(pn_init(&ctx, mem, bytes, &lim) == PN_OK);
-    st = pn_opencl_create(ctx, NULL, &cl);
+    st = pn_cl_open(ctx, NULL, &cl);
     msg = pn_last_error(ctx);
     fprintf(stderr, "arena %zu bytes, device buffers up to %llu: %s %s\n", bytes, (unsigned long long)max_alloc,
             pn_status_str(st), msg);
@@ -537,7 +562,7 @@ static void test_buffer_failure(void)
         CHECK(strstr(msg, "clCreateBuffer") != NULL && strstr(msg, "CL_") != NULL && strstr(msg, "(-") != NULL);
     } else { /* a device with buffers above 3 GiB: the arena fits, so creation works */
         CHECK(st == PN_OK);
-        pn_opencl_destroy(cl);
+        pn_cl_close(cl);
     }
     /* The scalar port still works on the context the failed creation was given. */
     {

@@ -24,6 +24,7 @@
 #include <unistd.h>
 
 #include "penumbra/opencl.h"
+#include "pn_cl_host.h"
 #include "penumbra/penumbra.h"
 #include "pn_setup.h"
 
@@ -68,7 +69,7 @@ static int build_time(const char *dir, double *build_ms, double *warmup_ms)
         setenv("POCL_CACHE_DIR", dir, 1);
         if (pn_arena_size(&lim, &bytes) == PN_OK && (mem = malloc(bytes)) != NULL &&
             pn_init(&ctx, mem, bytes, &lim) == PN_OK) {
-            if (pn_opencl_create(ctx, NULL, &cl) == PN_OK && pn_opencl_get_info(cl, &info) == PN_OK) {
+            if (pn_cl_open(ctx, NULL, &cl) == PN_OK && pn_opencl_get_info(cl, &info) == PN_OK) {
                 v[0] = info.build_ms;
                 v[1] = info.warmup_ms;
             } else {
@@ -124,7 +125,7 @@ static int bench_scene(const char *path, uint32_t w, uint32_t h, uint32_t k, int
     *tris = s.mesh.triangle_count;
     if (pn_host_open(&host, s.mesh.triangle_count, w, h, 2, err, sizeof(err)) != 0 ||
         pn_scene_set(host.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) != PN_OK ||
-        pn_opencl_create(host.ctx, NULL, &cl) != PN_OK) {
+        pn_cl_open(host.ctx, NULL, &cl) != PN_OK) {
         fprintf(stderr, "bench_ports: %s: %s\n", path, host.ctx ? pn_last_error(host.ctx) : err);
         pn_setup_free(&s);
         free(keep);
@@ -170,7 +171,7 @@ static int bench_scene(const char *path, uint32_t w, uint32_t h, uint32_t k, int
             rows[0].ms[p] = median(g[p], ng[p]);
             for (a = 0; a < 2; a++) rows[1 + a].ms[p] = median(sh[a][p], reps);
         }
-    pn_opencl_destroy(cl);
+    pn_cl_close(cl);
     pn_host_close(&host);
     pn_setup_free(&s);
     free(keep);

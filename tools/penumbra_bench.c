@@ -24,6 +24,7 @@
 #include "penumbra/penumbra.h"
 #if PN_BENCH_OPENCL
 #include "penumbra/opencl.h"
+#include "pn_cl_host.h"
 #endif
 #include "pn_bench.h"
 #include "pn_image.h"
@@ -86,7 +87,7 @@ static char port_devices[256];
 static int opencl_attach(pn_host *h, void **state, char *err, size_t err_size)
 {
     pn_opencl *cl;
-    pn_status st = pn_opencl_create(h->ctx, NULL, &cl);
+    pn_status st = pn_cl_open(h->ctx, NULL, &cl);
     if (st != PN_OK) {
         pn_tools_err(err, err_size, "pn_opencl_create: %s (%s)", pn_last_error(h->ctx), pn_status_str(st));
         return 1;
@@ -103,7 +104,7 @@ static pn_status opencl_render(pn_host *h, void *state, const pn_camera *cam, co
     return pn_opencl_render((pn_opencl *)state, cam, light, opt, out);
 }
 
-static void opencl_detach(void *state) { pn_opencl_destroy((pn_opencl *)state); }
+static void opencl_detach(void *state) { pn_cl_close((pn_opencl *)state); }
 #endif
 
 /* make bench measures the first two (--ports 3 adds the scalar port on one thread). */

@@ -10,6 +10,7 @@
 #include "penumbra/penumbra.h"
 #if PN_HAVE_OPENCL
 #include "penumbra/opencl.h"
+#include "pn_cl_host.h"
 #endif
 #include "pn_image.h"
 #include "pn_scenes.h"
@@ -105,7 +106,7 @@ static int cli_port_open(cli_port *p, const char *name, const char *device, pn_c
         pn_opencl_info info;
         pn_opencl_options_default(&o);
         o.device = device;
-        if ((st = pn_opencl_create(ctx, &o, &p->cl)) != PN_OK) {
+        if ((st = pn_cl_open(ctx, &o, &p->cl)) != PN_OK) {
             fprintf(stderr, "penumbra: OpenCL port: %s (%s)\n", pn_last_error(ctx), pn_status_str(st));
             return 1;
         }
@@ -132,7 +133,7 @@ static pn_status cli_port_render(cli_port *p, pn_context *ctx, const pn_camera *
 static void cli_port_close(cli_port *p)
 {
 #if PN_HAVE_OPENCL
-    pn_opencl_destroy(p->cl);
+    pn_cl_close(p->cl);
 #endif
     memset(p, 0, sizeof(*p));
 }

@@ -26,8 +26,10 @@
  *   them) or text matched, ignoring case, against "<platform name> / <device name>".
  *
  * MEMORY
- *   The host side allocates with malloc only for the port object; device memory is one
- *   buffer of the arena's size. PoCL caches compiled kernels on disk (POCL_CACHE_DIR).
+ *   The port's state lives in a block the caller hands to pn_opencl_create (size query:
+ *   pn_opencl_size, or PN_OPENCL_BYTES for a static block); the port calls no allocator
+ *   (the OpenCL runtime's own allocations are its business). Device memory is one buffer
+ *   of the arena's size. PoCL caches compiled kernels on disk (POCL_CACHE_DIR).
  *
  * THREADS
  *   As for pn_context: one call at a time per context, and the port counts as a user of
@@ -50,25 +52,36 @@ typedef struct pn_opencl_options {
 /* No device string: PN_OPENCL_DEVICE or the default device. */
 void pn_opencl_options_default(pn_opencl_options *opt);
 
+/* Bytes of caller memory the port's own state needs, at any alignment (the port calls no
+ * allocator: like the core, it lives in memory the caller owns). PN_OPENCL_BYTES is a
+ * compile-time bound of it, for a static block. */
+#define PN_OPENCL_BYTES 4096u
+size_t pn_opencl_size(void);
+
 /* Picks the device, checks it, builds the kernels (and runs each once on an empty range so
  * that implementations that compile per launch, like PoCL, have compiled everything) and
- * creates the device buffer. opt may be NULL (defaults). On PN_OK *out is a new port bound
- * to ctx, which must outlive it. Statuses: PN_E_INVALID_ARG (NULL ctx or out),
+ * creates the device buffer. The port's state goes into `memory` (bytes >= pn_opencl_size(),
+ * any alignment, caller-owned, must outlive the port; its contents are the port's until
+ * pn_opencl_destroy and unspecified after a failure). opt may be NULL (defaults). On PN_OK
+ * *out is a new port bound to ctx, which must outlive it. Statuses: PN_E_INVALID_ARG (NULL
+ * ctx, memory or out), PN_E_ARENA_TOO_SMALL (bytes < pn_opencl_size()),
  * PN_E_DEVICE (no platform or device, no device matching the device string, a failing
  * OpenCL call: the message names the call, the OpenCL error and its code, e.g.
  * "clCreateBuffer(arena, 123456 bytes): CL_MEM_OBJECT_ALLOCATION_FAILURE (-4)"; a kernel
  * build error: the message starts the build log), PN_E_UNSUPPORTED (the device lacks a
  * capability listed under NUMERICS, or the arena exceeds its largest buffer).
  * Messages are in pn_last_error(ctx). *out is written only on PN_OK. */
-pn_status pn_opencl_create(pn_context *ctx, const pn_opencl_options *opt, pn_opencl **out);
+pn_status pn_opencl_create(pn_context *ctx, const pn_opencl_options *opt, void *memory, size_t bytes,
+                           pn_opencl **out);
 
 /* pn_render() on the device: the same validation, statuses and results (byte for byte),
  * plus PN_E_INVALID_ARG for a NULL port and PN_E_DEVICE when an OpenCL call fails. */
 pn_status pn_opencl_render(pn_opencl *cl, const pn_camera *camera, const pn_light *light,
                            const pn_frame_options *opt, pn_frame *out);
 
-/* Releases the device objects and the port. NULL is allowed. */
-void pn_opencl_destroy(pn_opencl *cl);
+/* Releases the device objects. Returns the block given to pn_opencl_create (the caller's
+ * to reuse or free), or NULL for NULL. */
+void *pn_opencl_destroy(pn_opencl *cl);
 
 /* "<device name> (<platform name>)"; "" for NULL. Valid until pn_opencl_destroy. */
 const char *pn_opencl_device_name(const pn_opencl *cl);

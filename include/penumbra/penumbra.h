@@ -117,14 +117,14 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
  * static declaration: static uint8_t arena[PN_ARENA_BYTES_MAX(PN_MAX_TRIANGLES,
  * PN_MAX_WIDTH, PN_MAX_HEIGHT)]. A test checks it never falls below pn_arena_size. */
 #define PN_ARENA_BYTES_MAX(t, w, h)                                                         \
-    ((size_t)(16u * 1024u) + (size_t)(t) * 112u + (size_t)(w) * (size_t)(h) * 40u +          \
+    ((size_t)(17u * 1024u) + (size_t)(t) * 112u + (size_t)(w) * (size_t)(h) * 40u +          \
      (size_t)(h) * 16u + 32u * (size_t)PN_ARENA_ALIGN + PN_GEARS_BYTES_MAX(t, w, h))
 #if PN_ENABLE_GEARS
-/* GEARS frame pools at the default pair pool and grid maximum: per triangle 6 cell
- * rectangles (48) and a pair offset (4); per pixel its cell (4); per row an origin box (32);
- * per cell (6 faces) offsets and counts (12); per pair 12. */
+/* GEARS frame pools at the default pair pool and grid maximum: the grid cameras (1 KB);
+ * per triangle 6 cell rectangles (48) and a pair offset (4); per pixel its cell (4); per
+ * row an origin box (32); per cell (6 faces) offsets and counts (12); per pair 12. */
 #define PN_GEARS_BYTES_MAX(t, w, h)                                                         \
-    ((size_t)(t) * 52u + 4u + (size_t)(w) * (size_t)(h) * 4u + (size_t)(h) * 32u +           \
+    (1024u + (size_t)(t) * 52u + 4u + (size_t)(w) * (size_t)(h) * 4u + (size_t)(h) * 32u +           \
      6u * (size_t)PN_GEARS_GRID_MAX * (size_t)PN_GEARS_GRID_MAX * 12u + 4u +                  \
      6u * (size_t)PN_GEARS_GRID_MAX * 8u + (size_t)PN_GEARS_PAIRS * 12u)
 #else

@@ -4,31 +4,34 @@
 #define _POSIX_C_SOURCE 200809L
 #include <ctype.h>
 #include <stdio.h>
-#include <stdlib.h>
+#include <stdlib.h> /* getenv */
 #include <string.h>
 #include <time.h>
 
 #include "pn_cl_sources.h"
-#include "pn_gears_pass.h"
 #include "pn_opencl_internal.h"
 
 #define PN_CL_MAX_PLATFORMS 16u
 #define PN_CL_MAX_DEVICES 64u
 
-static const char *const pn_cl_kernel_names[PN_CLK_COUNT] = {
-#define PN_CL_NAME(id, name, local, args) #name,
-    PN_CL_KERNELS(PN_CL_NAME)
-#undef PN_CL_NAME
+const char *const pn_cl_kernel_names[PN_CL_KERNEL_COUNT] = {
+#define PN_CL_PASS_NAME(id, name, local, grain) "pn_k_" #name,
+#define PN_CL_PRIM_NAME(id, name, local, args) #name,
+    PN_PASSES(PN_CL_PASS_NAME) PN_CL_PRIMS(PN_CL_PRIM_NAME)
+#undef PN_CL_PASS_NAME
+#undef PN_CL_PRIM_NAME
 };
-static const size_t pn_cl_local[PN_CLK_COUNT] = {
-#define PN_CL_LOCAL(id, name, local, args) local,
-    PN_CL_KERNELS(PN_CL_LOCAL)
-#undef PN_CL_LOCAL
+const size_t pn_cl_local[PN_CL_KERNEL_COUNT] = {
+#define PN_CL_PASS_LOCAL(id, name, local, grain) local,
+#define PN_CL_PRIM_LOCAL(id, name, local, args) local,
+    PN_PASSES(PN_CL_PASS_LOCAL) PN_CL_PRIMS(PN_CL_PRIM_LOCAL)
+#undef PN_CL_PASS_LOCAL
+#undef PN_CL_PRIM_LOCAL
 };
-static const char *const pn_cl_args[PN_CLK_COUNT] = {
-#define PN_CL_ARGS(id, name, local, args) args,
-    PN_CL_KERNELS(PN_CL_ARGS)
-#undef PN_CL_ARGS
+const char *const pn_cl_prim_args[PN_CLP_COUNT] = {
+#define PN_CL_PRIM_ARGS(id, name, local, args) args,
+    PN_CL_PRIMS(PN_CL_PRIM_ARGS)
+#undef PN_CL_PRIM_ARGS
 };
 
 /* ---- Errors -------------------------------------------------------------------------- */
@@ -138,8 +141,11 @@ static int pn_cl_contains_nocase(const char *hay, const char *needle)
     return n == 0;
 }
 
-/* Every device of every platform, in clinfo order. */
-static pn_status pn_cl_list(pn_context *ctx, pn_cl_dev *list, unsigned cap, unsigned *count)
+/* Every device of every platform, in clinfo order: calls visit(e, arg) for each until it
+ * returns non-zero, which stops the walk. No list is kept (no heap). */
+typedef int (*pn_cl_visit_fn)(const pn_cl_dev *e, void *arg);
+
+static pn_status pn_cl_each(pn_context *ctx, pn_cl_visit_fn visit, void *arg, unsigned *count)
 {
     cl_platform_id plats[PN_CL_MAX_PLATFORMS];
     cl_uint np = 0, p;
@@ -154,56 +160,64 @@ static pn_status pn_cl_list(pn_context *ctx, pn_cl_dev *list, unsigned cap, unsi
         char pname[160] = "";
         clGetPlatformInfo(plats[p], CL_PLATFORM_NAME, sizeof(pname) - 1, pname, NULL);
         if (clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, PN_CL_MAX_DEVICES, devs, &nd) != CL_SUCCESS) continue;
-        for (d = 0; d < nd && d < PN_CL_MAX_DEVICES && *count < cap; d++) {
-            pn_cl_dev *e = list + (*count)++;
+        for (d = 0; d < nd && d < PN_CL_MAX_DEVICES; d++) {
+            pn_cl_dev e;
             char dname[200] = "";
+            memset(&e, 0, sizeof(e));
             clGetDeviceInfo(devs[d], CL_DEVICE_NAME, sizeof(dname) - 1, dname, NULL);
-            clGetDeviceInfo(devs[d], CL_DEVICE_TYPE, sizeof(e->type), &e->type, NULL);
-            e->platform = plats[p];
-            e->device = devs[d];
-            e->pi = p;
-            e->di = d;
-            e->pocl = pn_cl_contains_nocase(pname, "Portable Computing Language") || pn_cl_contains_nocase(pname, "pocl");
-            snprintf(e->label, sizeof(e->label), "%s / %s", pname, dname);
+            clGetDeviceInfo(devs[d], CL_DEVICE_TYPE, sizeof(e.type), &e.type, NULL);
+            e.platform = plats[p];
+            e.device = devs[d];
+            e.pi = p;
+            e.di = d;
+            e.pocl = pn_cl_contains_nocase(pname, "Portable Computing Language") || pn_cl_contains_nocase(pname, "pocl");
+            snprintf(e.label, sizeof(e.label), "%s / %s", pname, dname);
+            (*count)++;
+            if (visit(&e, arg)) return PN_OK;
         }
     }
     if (*count == 0) return pn_cl_fail(ctx, "no OpenCL device on any platform; clGetDeviceIDs", CL_DEVICE_NOT_FOUND);
     return PN_OK;
 }
 
+typedef struct pn_cl_pick_state {
+    const char *spec;
+    unsigned pi, di;
+    int by_index, found, first_set;
+    pn_cl_dev pick, first;
+} pn_cl_pick_state;
+
+static int pn_cl_pick_visit(const pn_cl_dev *e, void *arg)
+{
+    pn_cl_pick_state *s = (pn_cl_pick_state *)arg;
+    int match;
+    if (!s->first_set) {
+        s->first = *e;
+        s->first_set = 1;
+    }
+    if (s->spec) match = s->by_index ? (e->pi == s->pi && e->di == s->di) : pn_cl_contains_nocase(e->label, s->spec);
+    else match = e->pocl && (e->type & CL_DEVICE_TYPE_CPU);
+    if (match) {
+        s->pick = *e;
+        s->found = 1;
+    }
+    return match;
+}
+
 static pn_status pn_cl_pick(pn_context *ctx, const char *spec, pn_cl_dev *out)
 {
-    pn_cl_dev *list = (pn_cl_dev *)malloc(PN_CL_MAX_PLATFORMS * 4u * sizeof(pn_cl_dev));
-    unsigned n = 0, i, pi, di;
-    int pick = -1;
+    pn_cl_pick_state s;
+    unsigned n = 0;
     char tail;
     pn_status st;
-    if (!list) return pn_fail(ctx, PN_E_DEVICE, "OpenCL port: out of host memory");
-    if ((st = pn_cl_list(ctx, list, PN_CL_MAX_PLATFORMS * 4u, &n)) != PN_OK) {
-        free(list);
-        return st;
-    }
-    if (spec && spec[0]) {
-        if (sscanf(spec, "%u:%u%c", &pi, &di, &tail) == 2) {
-            for (i = 0; i < n && pick < 0; i++)
-                if (list[i].pi == pi && list[i].di == di) pick = (int)i;
-        } else {
-            for (i = 0; i < n && pick < 0; i++)
-                if (pn_cl_contains_nocase(list[i].label, spec)) pick = (int)i;
-        }
-        if (pick < 0) {
-            pn_fail(ctx, PN_E_DEVICE, "no OpenCL device matches '%s' (give \"P:D\" or part of \"%s\")", spec,
-                    list[0].label);
-            free(list);
-            return PN_E_DEVICE;
-        }
-    } else {
-        for (i = 0; i < n && pick < 0; i++)
-            if (list[i].pocl && (list[i].type & CL_DEVICE_TYPE_CPU)) pick = (int)i;
-        if (pick < 0) pick = 0;
-    }
-    *out = list[pick];
-    free(list);
+    memset(&s, 0, sizeof(s));
+    s.spec = spec && spec[0] ? spec : NULL;
+    if (s.spec && sscanf(s.spec, "%u:%u%c", &s.pi, &s.di, &tail) == 2) s.by_index = 1;
+    if ((st = pn_cl_each(ctx, pn_cl_pick_visit, &s, &n)) != PN_OK) return st;
+    if (!s.found && s.spec)
+        return pn_fail(ctx, PN_E_DEVICE, "no OpenCL device matches '%s' (give \"P:D\" or part of \"%s\")", s.spec,
+                       s.first.label);
+    *out = s.found ? s.pick : s.first;
     return PN_OK;
 }
 
@@ -244,17 +258,12 @@ static pn_status pn_cl_check_device(pn_context *ctx, cl_device_id dev, const cha
 
 /* ---- Program ---------------------------------------------------------------------------- */
 
-static size_t pn_cl_arg_size(char kind)
+size_t pn_cl_arg_size(char kind)
 {
     switch (kind) {
     case 'A': return sizeof(cl_mem);
     case 'P': return sizeof(pn_kpools);
-    case 'V': return sizeof(pn_kview);
-    case 'L': return sizeof(pn_klight);
-    case 'S': return sizeof(pn_kshade);
-    case 'F': return sizeof(pn_kfaces);
-    case 'G': return sizeof(pn_kgrid);
-    case 'T': return sizeof(pn_ktile);
+    case 'K': return sizeof(pn_kparams);
     case 'u': return sizeof(cl_uint);
     case 'l': return sizeof(cl_ulong);
     }
@@ -263,13 +272,27 @@ static size_t pn_cl_arg_size(char kind)
 
 static pn_status pn_cl_build(pn_opencl *cl)
 {
-    char opts[256], what[128];
+    char opts[320], what[128];
     cl_int err;
     struct timespec t0;
     int k;
-    snprintf(opts, sizeof(opts),
-             "-cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt -DPN_MASK_WORDS_MAX=%uu -DPN_BVH_STACK=%uu",
-             (unsigned)PN_MASK_WORDS_MAX, (unsigned)PN_BVH_STACK);
+    {
+        /* The kernels' configuration, as the host compiled it (PN_KERNEL_CONFIG). */
+        static const struct {
+            const char *name;
+            unsigned value;
+        } cfg[] = {
+#define PN_CL_CFG(m) {#m, (unsigned)(m)},
+            PN_KERNEL_CONFIG(PN_CL_CFG)
+#undef PN_CL_CFG
+        };
+        size_t i, len;
+        snprintf(opts, sizeof(opts), "-cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt");
+        for (i = 0; i < sizeof(cfg) / sizeof(cfg[0]); i++) {
+            len = strlen(opts);
+            snprintf(opts + len, sizeof(opts) - len, " -D%s=%uu", cfg[i].name, cfg[i].value);
+        }
+    }
     cl->program = clCreateProgramWithSource(cl->clctx, PN_CL_SOURCE_COUNT, (const char **)pn_cl_sources, NULL, &err);
     if (err != CL_SUCCESS) return pn_cl_fail(cl->ctx, "clCreateProgramWithSource", err);
     clock_gettime(CLOCK_MONOTONIC, &t0);
@@ -284,7 +307,7 @@ static pn_status pn_cl_build(pn_opencl *cl)
         snprintf(what, sizeof(what), "clBuildProgram (log: %.90s)", log);
         return pn_cl_fail(cl->ctx, what, err);
     }
-    for (k = 0; k < PN_CLK_COUNT; k++) {
+    for (k = 0; k < PN_CL_KERNEL_COUNT; k++) {
         cl->kernels[k] = clCreateKernel(cl->program, pn_cl_kernel_names[k], &err);
         if (err != CL_SUCCESS) {
             snprintf(what, sizeof(what), "clCreateKernel(%s)", pn_cl_kernel_names[k]);
@@ -304,10 +327,10 @@ static pn_status pn_cl_warm_up(pn_opencl *cl)
     int k;
     cl_int err;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    for (k = 0; k < PN_CLK_COUNT; k++) {
+    for (k = 0; k < PN_CL_KERNEL_COUNT; k++) {
         const char *a;
         cl_uint i = 0;
-        for (a = pn_cl_args[k]; *a; a++, i++) {
+        for (a = k < PN_K_PASSES ? "APKu" : pn_cl_prim_args[k - PN_K_PASSES]; *a; a++, i++) {
             err = *a == 'A' ? clSetKernelArg(cl->kernels[k], i, sizeof(cl_mem), &cl->arena)
                             : clSetKernelArg(cl->kernels[k], i, pn_cl_arg_size(*a), zero);
             if (err != CL_SUCCESS) {
@@ -325,115 +348,6 @@ static pn_status pn_cl_warm_up(pn_opencl *cl)
     return PN_OK;
 }
 
-/* ---- Launches and transfers ------------------------------------------------------------ */
-
-cl_ulong pn_cl_off(const pn_opencl *cl, const void *p)
-{
-    return (cl_ulong)((const uint8_t *)p - cl->ctx->base);
-}
-
-pn_status pn_cl_run(pn_opencl *cl, int kernel, size_t n, const void *const *args)
-{
-    const char *a;
-    cl_uint i = 0;
-    size_t global;
-    cl_int err = CL_SUCCESS;
-    if (n == 0u) return PN_OK;
-    for (a = pn_cl_args[kernel]; *a && err == CL_SUCCESS; a++, i++)
-        err = clSetKernelArg(cl->kernels[kernel], i, pn_cl_arg_size(*a), args[i]);
-    if (err == CL_SUCCESS) {
-        global = (n + pn_cl_local[kernel] - 1u) / pn_cl_local[kernel] * pn_cl_local[kernel];
-        err = clEnqueueNDRangeKernel(cl->queue, cl->kernels[kernel], 1, NULL, &global, &pn_cl_local[kernel], 0, NULL,
-                                     NULL);
-    }
-    if (err != CL_SUCCESS) {
-        char what[96];
-        snprintf(what, sizeof(what), "running %s", pn_cl_kernel_names[kernel]);
-        return pn_cl_fail(cl->ctx, what, err);
-    }
-    return PN_OK;
-}
-
-static pn_status pn_cl_transfer(pn_opencl *cl, int write, const void *host, size_t bytes, const char *what)
-{
-    cl_int err;
-    char msg[96];
-    if (bytes == 0u) return PN_OK;
-    err = write ? clEnqueueWriteBuffer(cl->queue, cl->arena, CL_TRUE, (size_t)pn_cl_off(cl, host), bytes, host, 0,
-                                       NULL, NULL)
-                : clEnqueueReadBuffer(cl->queue, cl->arena, CL_TRUE, (size_t)pn_cl_off(cl, host), bytes,
-                                      (void *)(uintptr_t)host, 0, NULL, NULL);
-    if (err == CL_SUCCESS) return PN_OK;
-    snprintf(msg, sizeof(msg), "%s %s", write ? "uploading" : "reading back", what);
-    return pn_cl_fail(cl->ctx, msg, err);
-}
-
-pn_status pn_cl_read(pn_opencl *cl, const void *host, size_t bytes, const char *what)
-{
-    return pn_cl_transfer(cl, 0, host, bytes, what);
-}
-
-pn_status pn_cl_write(pn_opencl *cl, const void *host, size_t bytes, const char *what)
-{
-    return pn_cl_transfer(cl, 1, host, bytes, what);
-}
-
-pn_status pn_cl_fill_u32(pn_opencl *cl, const void *host, size_t count, uint32_t value, const char *what)
-{
-    cl_int err;
-    if (count == 0u) return PN_OK;
-    err = clEnqueueFillBuffer(cl->queue, cl->arena, &value, sizeof(value), (size_t)pn_cl_off(cl, host), count * 4u, 0,
-                              NULL, NULL);
-    if (err == CL_SUCCESS) return PN_OK;
-    return pn_cl_fail(cl->ctx, what, err);
-}
-
-pn_status pn_cl_copy(pn_opencl *cl, const void *dst, const void *src, size_t bytes, const char *what)
-{
-    cl_int err;
-    if (bytes == 0u) return PN_OK;
-    err = clEnqueueCopyBuffer(cl->queue, cl->arena, cl->arena, (size_t)pn_cl_off(cl, src), (size_t)pn_cl_off(cl, dst),
-                              bytes, 0, NULL, NULL);
-    if (err == CL_SUCCESS) return PN_OK;
-    return pn_cl_fail(cl->ctx, what, err);
-}
-
-pn_status pn_cl_scan(pn_opencl *cl, const uint32_t *a, uint32_t n, const uint32_t *scratch, uint32_t scratch_words)
-{
-    /* Enough blocks to spread over the device, few enough for one work item to scan the
-     * partials, never more than the scratch holds. */
-    cl_uint nb = n / 2048u + 1u, blk;
-    cl_ulong oa = pn_cl_off(cl, a), op = pn_cl_off(cl, scratch);
-    pn_status st;
-    if (nb > 256u) nb = 256u;
-    if (nb > scratch_words) nb = scratch_words;
-    if (nb == 0u) return pn_fail(cl->ctx, PN_E_INTERNAL, "prefix sum without scratch");
-    blk = (n + nb - 1u) / nb;
-    if (blk == 0u) blk = 1u;
-    if ((st = PN_CL_RUN(cl, PN_CLK_SCAN_SUM, nb, &cl->arena, &oa, &n, &blk, &op, &nb)) != PN_OK ||
-        (st = PN_CL_RUN(cl, PN_CLK_SCAN_PARTIALS, 1, &cl->arena, &oa, &n, &op, &nb)) != PN_OK)
-        return st;
-    return PN_CL_RUN(cl, PN_CLK_SCAN_APPLY, nb, &cl->arena, &oa, &n, &blk, &op, &nb);
-}
-
-void pn_cl_pools(const pn_opencl *cl, const pn_frame_state *fs, pn_kpools *P)
-{
-    const pn_context *ctx = cl->ctx;
-    memset(P, 0, sizeof(*P));
-    P->tris = pn_cl_off(cl, ctx->tris);
-    P->flags = pn_cl_off(cl, ctx->flags);
-    P->nodes = pn_cl_off(cl, ctx->nodes);
-    P->index = pn_cl_off(cl, ctx->tri_index);
-    P->depth = pn_cl_off(cl, fs->depth);
-    P->tri_id = pn_cl_off(cl, fs->tri_id);
-    P->pos = pn_cl_off(cl, fs->pos);
-    P->nrm = pn_cl_off(cl, fs->nrm);
-    P->vis = pn_cl_off(cl, fs->vis);
-    P->rgba = pn_cl_off(cl, fs->rgba);
-    P->rows = pn_cl_off(cl, fs->rows);
-    P->counters = pn_cl_off(cl, fs->counters);
-}
-
 /* ---- API --------------------------------------------------------------------------------- */
 
 void pn_opencl_options_default(pn_opencl_options *opt)
@@ -441,7 +355,13 @@ void pn_opencl_options_default(pn_opencl_options *opt)
     if (opt) memset(opt, 0, sizeof(*opt));
 }
 
-pn_status pn_opencl_create(pn_context *ctx, const pn_opencl_options *opt, pn_opencl **out)
+/* The state must fit the block PN_OPENCL_BYTES promises, at any alignment of it. */
+typedef char pn_cl_state_fits[(sizeof(struct pn_opencl) + 63u <= PN_OPENCL_BYTES) ? 1 : -1];
+
+size_t pn_opencl_size(void) { return sizeof(struct pn_opencl) + 63u; }
+
+pn_status pn_opencl_create(pn_context *ctx, const pn_opencl_options *opt, void *memory, size_t bytes,
+                           pn_opencl **out)
 {
     pn_opencl *cl;
     pn_cl_dev dev;
@@ -450,13 +370,17 @@ pn_status pn_opencl_create(pn_context *ctx, const pn_opencl_options *opt, pn_ope
     pn_status st;
     char what[128];
     if (!ctx) return PN_E_INVALID_ARG;
-    if (!out) return pn_fail(ctx, PN_E_INVALID_ARG, "pn_opencl_create: out must not be NULL");
+    if (!out || !memory) return pn_fail(ctx, PN_E_INVALID_ARG, "pn_opencl_create: memory and out must not be NULL");
+    if (bytes < pn_opencl_size())
+        return pn_fail(ctx, PN_E_ARENA_TOO_SMALL, "pn_opencl_create: the port's block is %z bytes, it needs %z",
+                       (unsigned long long)bytes, (unsigned long long)pn_opencl_size());
     if (opt && opt->device && opt->device[0]) spec = opt->device;
     else spec = getenv("PN_OPENCL_DEVICE");
     if ((st = pn_cl_pick(ctx, spec, &dev)) != PN_OK) return st;
     if ((st = pn_cl_check_device(ctx, dev.device, dev.label)) != PN_OK) return st;
-    cl = (pn_opencl *)calloc(1, sizeof(*cl));
-    if (!cl) return pn_fail(ctx, PN_E_DEVICE, "pn_opencl_create: out of host memory");
+    cl = (pn_opencl *)(void *)((uint8_t *)memory + ((64u - ((uintptr_t)memory & 63u)) & 63u));
+    memset(cl, 0, sizeof(*cl));
+    cl->memory = memory;
     cl->ctx = ctx;
     cl->platform = dev.platform;
     cl->device = dev.device;
@@ -495,7 +419,11 @@ pn_status pn_opencl_create(pn_context *ctx, const pn_opencl_options *opt, pn_ope
         goto fail;
     }
     if ((st = pn_cl_build(cl)) != PN_OK || (st = pn_cl_warm_up(cl)) != PN_OK) goto fail;
-    pn_cl_port_init(cl);
+    cl->port.name = "opencl";
+    cl->port.host_memory = 0;
+    cl->port.exec = pn_cl_exec;
+    cl->port.self = cl;
+    cl->port.scene = &cl->scene;
     *out = cl;
     return PN_OK;
 fail:
@@ -510,17 +438,17 @@ pn_status pn_opencl_render(pn_opencl *cl, const pn_camera *camera, const pn_ligh
     return pn_render_with(cl->ctx, &cl->port, camera, light, opt, out);
 }
 
-void pn_opencl_destroy(pn_opencl *cl)
+void *pn_opencl_destroy(pn_opencl *cl)
 {
     int k;
-    if (!cl) return;
-    for (k = 0; k < PN_CLK_COUNT; k++)
+    if (!cl) return NULL;
+    for (k = 0; k < PN_CL_KERNEL_COUNT; k++)
         if (cl->kernels[k]) clReleaseKernel(cl->kernels[k]);
     if (cl->program) clReleaseProgram(cl->program);
     if (cl->arena) clReleaseMemObject(cl->arena);
     if (cl->queue) clReleaseCommandQueue(cl->queue);
     if (cl->clctx) clReleaseContext(cl->clctx);
-    free(cl);
+    return cl->memory;
 }
 
 const char *pn_opencl_device_name(const pn_opencl *cl) { return cl ? cl->name : ""; }
@@ -532,7 +460,7 @@ pn_status pn_opencl_get_info(const pn_opencl *cl, pn_opencl_info *out)
     out->build_ms = cl->build_ms;
     out->warmup_ms = cl->warmup_ms;
     out->buffer_bytes = cl->arena_bytes;
-    out->scene_uploads = cl->scene_uploads;
-    out->kernels = PN_CLK_COUNT;
+    out->scene_uploads = cl->scene.uploads;
+    out->kernels = PN_CL_KERNEL_COUNT;
     return PN_OK;
 }

@@ -1,150 +1,100 @@
-/* pn_scalar.c - the scalar port: every pass is a loop over work items calling the
- * kernels/ functions compiled as C, handed to the caller's parallel-for if there is one.
- * Work items write disjoint memory (rows, bands, per-row counters), so the result does
- * not depend on how they are scheduled. */
+/* pn_scalar.c - the scalar port: the device queue of src/pn_device.h in C, on the arena
+ * itself. A pass is a loop over its work items calling the kernels/ entry function
+ * compiled as C, in tasks of `grain` items (kernels/pn_passes.h) handed to the caller's
+ * parallel-for if there is one; the prefix sum and the sort by key run on the calling
+ * thread. Items write disjoint memory or add integers atomically, so the result does not
+ * depend on how tasks are scheduled. Knows no algorithm: the pass table is generated. */
 #include <string.h>
 
-#include "pn_raster.h"
-#include "pn_raytrace.h"
-#include "pn_scalar.h"
-#include "pn_shade.h"
+#include "pn_device.h"
+#include "pn_passes.h"
 
-#define PN_SETUP_CHUNK 4096u
+typedef struct pn_sc_launch {
+    PN_GLOBAL uint8_t *A;
+    const pn_kpools *P;
+    const pn_kparams *K;
+    uint32_t n;
+} pn_sc_launch;
 
-typedef struct pn_scalar_task {
-    pn_context *ctx;
-    pn_frame_state *fs;
-} pn_scalar_task;
-
-static void pn_task_rows_setup(void *task, uint32_t begin, uint32_t end)
-{
-    pn_scalar_task *tk = (pn_scalar_task *)task;
-    uint32_t n = tk->ctx->tri_count, c;
-    for (c = begin; c < end; c++) {
-        uint32_t t, t1 = (c + 1u) * PN_SETUP_CHUNK < n ? (c + 1u) * PN_SETUP_CHUNK : n;
-        for (t = c * PN_SETUP_CHUNK; t < t1; t++)
-            tk->fs->rows[t] = pn_raster_rows(&tk->fs->view, tk->ctx->tris, tk->ctx->flags, t);
+/* One task function per pass: items [begin * grain, min(end * grain, n)). */
+#define PN_SC_TASK(id, name, local, grain)                                         \
+    static void pn_sc_##name(void *task, uint32_t begin, uint32_t end)             \
+    {                                                                              \
+        const pn_sc_launch *l = (const pn_sc_launch *)task;                        \
+        uint32_t i = begin * (uint32_t)(grain), e = end * (uint32_t)(grain);       \
+        if (e > l->n || e < i) e = l->n;                                           \
+        for (; i < e; i++) pn_e_##name(l->A, l->P, l->K, i);                       \
     }
-}
+PN_PASSES(PN_SC_TASK)
+#undef PN_SC_TASK
 
-static void pn_task_raster(void *task, uint32_t begin, uint32_t end)
+static pn_status pn_sc_run(pn_context *ctx, const pn_devcmd *c)
 {
-    pn_scalar_task *tk = (pn_scalar_task *)task;
-    pn_frame_state *fs = tk->fs;
-    uint32_t b;
-    for (b = begin; b < end; b++) {
-        uint32_t y0 = b * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND - 1u, x, y;
-        if (y1 >= fs->height) y1 = fs->height - 1u;
-        for (y = y0; y <= y1; y++)
-            for (x = 0; x < fs->width; x++) {
-                size_t pix = (size_t)y * fs->width + x;
-                fs->depth[pix] = PN_KINF;
-                fs->tri_id[pix] = PN_NO_TRIANGLE;
-            }
-        pn_raster_band(&fs->view, tk->ctx->tris, fs->rows, tk->ctx->tri_count, y0, y1,
-                       fs->depth, fs->tri_id);
-        for (y = y0; y <= y1; y++)
-            for (x = 0; x < fs->width; x++)
-                pn_gbuffer_resolve(&fs->view, tk->ctx->tris, x, y, fs->depth, fs->tri_id, fs->pos, fs->nrm);
+    pn_sc_launch l;
+    l.A = ctx->base;
+    l.P = c->P;
+    l.K = c->K;
+    l.n = c->n;
+    switch (c->pass) {
+#define PN_SC_CASE(id, name, local, grain)                                                  \
+    case PN_K_##id:                                                                         \
+        pn_run(ctx, (c->n + (uint32_t)(grain) - 1u) / (uint32_t)(grain), pn_sc_##name, &l); \
+        return PN_OK;
+        PN_PASSES(PN_SC_CASE)
+#undef PN_SC_CASE
     }
+    return pn_fail(ctx, PN_E_INTERNAL, "scalar port: no pass %u", c->pass);
 }
 
-static pn_status pn_scalar_gbuffer(pn_context *ctx, pn_frame_state *fs)
+/* Counting sort by key: stable, so values that ascend within each key stay so. */
+static void pn_sc_sort_pairs(const pn_devcmd *c)
 {
-    pn_scalar_task tk;
-    tk.ctx = ctx;
-    tk.fs = fs;
-    pn_run(ctx, (ctx->tri_count + PN_SETUP_CHUNK - 1u) / PN_SETUP_CHUNK, pn_task_rows_setup, &tk);
-    pn_run(ctx, (fs->height + PN_RASTER_BAND - 1u) / PN_RASTER_BAND, pn_task_raster, &tk);
-    return PN_OK;
+    const uint32_t *pairs = (const uint32_t *)c->a;
+    uint32_t *values = (uint32_t *)(uintptr_t)c->b, *off = (uint32_t *)(uintptr_t)c->c;
+    uint32_t *cur = (uint32_t *)(uintptr_t)c->d, p, k, acc = 0;
+    memset(cur, 0, (size_t)c->keys * 4u);
+    for (p = 0; p < c->n; p++) cur[pairs[(size_t)p * 2u]]++;
+    for (k = 0; k < c->keys; k++) {
+        uint32_t n = cur[k];
+        off[k] = acc;
+        cur[k] = acc;
+        acc += n;
+    }
+    off[c->keys] = acc;
+    for (p = 0; p < c->n; p++) values[cur[pairs[(size_t)p * 2u]]++] = pairs[(size_t)p * 2u + 1u];
 }
 
-static pn_v3 pn_px3(const float *a, size_t pix) { return pn_v3_make(a[pix * 3u], a[pix * 3u + 1u], a[pix * 3u + 2u]); }
-
-/* Rows [begin, end) of a per-pixel algorithm: PN_ALGO_REFERENCE or PN_ALGO_RAYTRACE. */
-static void pn_task_per_pixel(void *task, uint32_t begin, uint32_t end)
+static pn_status pn_sc_exec(void *self, pn_context *ctx, const pn_devcmd *c)
 {
-    pn_scalar_task *tk = (pn_scalar_task *)task;
-    pn_frame_state *fs = tk->fs;
-    pn_context *ctx = tk->ctx;
-    pn_shadow_counters *cnt = (pn_shadow_counters *)fs->counters;
-    uint32_t y, x;
-    for (y = begin; y < end; y++) {
-        pn_shadow_counters c;
-        memset(&c, 0, sizeof(c));
-        for (x = 0; x < fs->width; x++) {
-            size_t pix = (size_t)y * fs->width + x;
-            uint32_t id = fs->tri_id[pix];
-            pn_v3 P = pn_px3(fs->pos, pix), N = pn_px3(fs->nrm, pix);
-            if (id == PN_NO_TRIANGLE)
-                fs->vis[pix] = 1.0f;
-#if PN_ENABLE_RAYTRACE
-            else if (fs->algo == PN_ALGO_RAYTRACE)
-                fs->vis[pix] = pn_raytrace_pixel(P, N, id, ctx->tris, ctx->nodes, ctx->tri_index, &fs->light, &c);
-#endif
-            else
-                fs->vis[pix] = pn_reference_pixel(P, N, id, ctx->tris, ctx->nodes, ctx->tri_index, &fs->light, &c);
+    (void)self;
+    switch (c->op) {
+    case PN_DEV_RUN: return pn_sc_run(ctx, c);
+    case PN_DEV_FILL: {
+        uint32_t *a = (uint32_t *)(uintptr_t)c->a, i;
+        for (i = 0; i < c->n; i++) a[i] = c->value;
+        return PN_OK;
+    }
+    case PN_DEV_COPY: memcpy((void *)(uintptr_t)c->a, c->b, c->bytes); return PN_OK;
+    case PN_DEV_SCAN: {
+        uint32_t *a = (uint32_t *)(uintptr_t)c->a, i, run = 0;
+        for (i = 0; i < c->n; i++) {
+            uint32_t v = a[i];
+            a[i] = run;
+            run += v;
         }
-        cnt[y] = c;
+        a[c->n] = run;
+        return PN_OK;
     }
-}
-
-static pn_status pn_scalar_shadow(pn_context *ctx, pn_frame_state *fs)
-{
-    pn_scalar_task tk;
-    tk.ctx = ctx;
-    tk.fs = fs;
-    switch (fs->algo) {
-#if PN_ENABLE_REFERENCE
-    case PN_ALGO_REFERENCE:
-        pn_run(ctx, fs->height, pn_task_per_pixel, &tk);
-        break;
-#endif
-#if PN_ENABLE_RAYTRACE
-    case PN_ALGO_RAYTRACE:
-        pn_run(ctx, fs->height, pn_task_per_pixel, &tk);
-        break;
-#endif
-#if PN_ENABLE_GEARS
-    case PN_ALGO_GEARS: {
-        pn_status st = pn_scalar_gears(ctx, fs);
-        if (st != PN_OK) return st;
-        break;
+    case PN_DEV_SORT_PAIRS: pn_sc_sort_pairs(c); return PN_OK;
+    case PN_DEV_TO_HOST:
+    case PN_DEV_TO_DEVICE:
+    case PN_DEV_FINISH: return PN_OK; /* the arena is the device memory */
     }
-#endif
-    default:
-        return pn_fail(ctx, PN_E_UNSUPPORTED, "scalar port: algorithm %u not available", fs->algo);
-    }
-    return PN_OK;
+    return pn_fail(ctx, PN_E_INTERNAL, "scalar port: no command %u", c->op);
 }
 
-static void pn_task_shade(void *task, uint32_t begin, uint32_t end)
-{
-    pn_scalar_task *tk = (pn_scalar_task *)task;
-    pn_frame_state *fs = tk->fs;
-    uint32_t y, x;
-    for (y = begin; y < end; y++)
-        for (x = 0; x < fs->width; x++) {
-            size_t pix = (size_t)y * fs->width + x;
-            uint32_t c = pn_shade_pixel(&fs->view, &fs->light, &fs->shade, fs->tri_id[pix], pn_px3(fs->pos, pix),
-                                        pn_px3(fs->nrm, pix), fs->vis[pix]);
-            fs->rgba[pix * 4u + 0u] = (uint8_t)(c & 0xFFu);
-            fs->rgba[pix * 4u + 1u] = (uint8_t)((c >> 8) & 0xFFu);
-            fs->rgba[pix * 4u + 2u] = (uint8_t)((c >> 16) & 0xFFu);
-            fs->rgba[pix * 4u + 3u] = (uint8_t)(c >> 24);
-        }
-}
-
-static pn_status pn_scalar_shade(pn_context *ctx, pn_frame_state *fs)
-{
-    pn_scalar_task tk;
-    tk.ctx = ctx;
-    tk.fs = fs;
-    pn_run(ctx, fs->height, pn_task_shade, &tk);
-    return PN_OK;
-}
-
-static const pn_port pn_port_scalar = {"scalar", pn_scalar_gbuffer, pn_scalar_shadow, pn_scalar_shade, NULL};
+/* No state: one constant port serves every context. */
+static const pn_port pn_port_scalar = {"scalar", 1u, pn_sc_exec, NULL, NULL};
 
 pn_status pn_render(pn_context *ctx, const pn_camera *camera, const pn_light *light,
                     const pn_frame_options *opt, pn_frame *out)

@@ -1,0 +1,255 @@
+/* pn_passes.h - the pass table: every pass of every algorithm as one per-work-item entry
+ * function with the one signature both ports call,
+ *
+ *   void pn_e_<name>(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t item)
+ *
+ * (A the arena's aligned base, P the pool offsets, K the launch's parameters, item in
+ * [0, n) of the launch), and the one list of them, PN_PASSES. From the list come the
+ * pass ids src/ launches by (PN_K_<ID>), the OpenCL __kernel wrappers (kernels/pn_passes.cl)
+ * and the scalar port's dispatch (ports/scalar/pn_scalar.c). A new pass is an entry here
+ * and a line in the list; no port changes (docs/architecture.md).
+ *
+ * List columns: X(ID, name, local, grain)
+ *   local  the OpenCL work-group size it is launched with (small for items that loop over
+ *          a whole row or band, so that rows spread over the cores);
+ *   grain  items per task on the scalar port (the parallel-for hands out tasks): many for
+ *          cheap items, few for items that walk a BVH or a cell list.
+ *
+ * Items write disjoint memory or add integers atomically (pn_katomic_add), so no result
+ * depends on the order they run in. */
+#ifndef PN_PASSES_H
+#define PN_PASSES_H
+
+#include "pn_kpools.h"
+#include "pn_raster.h"
+#include "pn_raytrace.h"
+#include "pn_reference.h"
+#include "pn_shade.h"
+#if PN_ENABLE_GEARS
+#include "pn_gears_pass.h"
+#endif
+
+#define PN_NO_PIXEL_TRIANGLE 0xFFFFFFFFu
+
+/* A work item's counters into its row's: integer atomic adds, the same sums in any order. */
+PN_KFN void pn_counters_add(PN_GLOBAL pn_shadow_counters *row, const pn_shadow_counters *c)
+{
+    if (c->candidates) pn_katomic_add(&row->candidates, c->candidates);
+    if (c->blocking) pn_katomic_add(&row->blocking, c->blocking);
+    if (c->lit) pn_katomic_add(&row->lit, c->lit);
+    if (c->overflow) pn_katomic_add(&row->overflow, c->overflow);
+}
+
+/* ---- G-buffer (pn_raster.h) ------------------------------------------------------------ */
+
+/* Pixel: empty (depth +inf, no triangle). */
+PN_KFN void pn_e_gbuffer_clear(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    (void)K;
+    PN_POOL(float, depth)[pix] = PN_KINF;
+    PN_POOL(uint32_t, tri_id)[pix] = PN_NO_PIXEL_TRIANGLE;
+}
+
+/* Triangle: the pixel rows it may cover. */
+PN_KFN void pn_e_raster_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+{
+    PN_POOL(uint32_t, rows)[t] = pn_raster_rows(&K->view, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), t);
+}
+
+/* Band of PN_RASTER_BAND rows: owns its pixels and walks every triangle in id order. */
+PN_KFN void pn_e_raster_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
+{
+    uint32_t y0 = band * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND - 1u;
+    if (y1 >= K->view.height) y1 = K->view.height - 1u;
+    pn_raster_band(&K->view, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows), K->tri_count, y0, y1,
+                   PN_POOL(float, depth), PN_POOL(uint32_t, tri_id));
+}
+
+/* Pixel: position and normal from its depth and triangle. */
+PN_KFN void pn_e_gbuffer_resolve(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    pn_gbuffer_resolve(&K->view, PN_POOL(const float, tris), pix % K->view.width, pix / K->view.width,
+                       PN_POOL(const float, depth), PN_POOL(const uint32_t, tri_id), PN_POOL(float, pos),
+                       PN_POOL(float, nrm));
+}
+
+/* ---- Shadow passes of one item per pixel: the reference and per-sample ray tracing ----- */
+
+/* Pixel: its mask through the BVH (pn_reference.h), or with `rays` its k^2 single shadow
+ * rays (pn_raytrace.h); its counters into its row's. */
+PN_KFN void pn_pixel_shadow(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix, int rays)
+{
+    pn_shadow_counters c = {0u, 0u, 0u, 0u};
+    uint32_t id = PN_POOL(const uint32_t, tri_id)[pix];
+    pn_v3 pos, nrm;
+    float v;
+    if (id == PN_NO_PIXEL_TRIANGLE) {
+        PN_POOL(float, vis)[pix] = 1.0f;
+        return;
+    }
+    pos = pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u);
+    nrm = pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u);
+#if PN_ENABLE_RAYTRACE
+    if (rays)
+        v = pn_raytrace_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
+                              PN_POOL(const uint32_t, index), &K->light, &c);
+    else
+#endif
+        v = pn_reference_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
+                               PN_POOL(const uint32_t, index), &K->light, &c);
+    (void)rays;
+    PN_POOL(float, vis)[pix] = v;
+    pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
+}
+
+#if PN_ENABLE_REFERENCE
+PN_KFN void pn_e_reference(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    pn_pixel_shadow(A, P, K, pix, 0);
+}
+#endif
+#if PN_ENABLE_RAYTRACE
+PN_KFN void pn_e_raytrace(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    pn_pixel_shadow(A, P, K, pix, 1);
+}
+#endif
+
+/* ---- GEARS (pn_gears_pass.h; the frame is src/pn_gears.c) ------------------------------- */
+
+#if PN_ENABLE_GEARS
+/* Row: final visibility of pixels that need no mask, lit count, box of origins. */
+PN_KFN void pn_e_gears_origins(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
+{
+    pn_gears_origins_row(&K->light, K->view.width, y, PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos),
+                         PN_POOL(const float, nrm), PN_POOL(float, vis), PN_POOL(float, row_box),
+                         PN_POOL(pn_shadow_counters, counters));
+}
+
+/* Row: the box of its origins projected by the area light's grid camera (face 0). */
+PN_KFN void pn_e_gears_project(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
+{
+    pn_kgrid g = PN_POOL(const pn_kfaces, faces)->f[0];
+    pn_gears_project_row(&K->light, &g, K->view.width, y, PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos),
+                         PN_POOL(const float, nrm), PN_POOL(float, row_box));
+}
+
+/* Pixel: its global cell, and one more pixel in that cell (cell_pix zeroed first). */
+PN_KFN void pn_e_gears_pixel_cells(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    pn_gears_pixel_cell(&K->light, PN_POOL(const pn_kfaces, faces), PN_POOL(const uint32_t, tri_id),
+                        PN_POOL(const float, pos), PN_POOL(const float, nrm), pix, PN_POOL(uint32_t, pix_cell),
+                        PN_POOL(uint32_t, cell_pix));
+}
+
+/* Triangle: its rectangle of cells on every face. */
+PN_KFN void pn_e_gears_tri_rects(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+{
+    pn_gears_tri_rects(PN_POOL(const pn_kfaces, faces), &K->light, PN_POOL(const float, tris),
+                       PN_POOL(const uint8_t, flags), t, PN_POOL(pn_cellrect, rects));
+}
+
+/* Triangle: its pairs added to every global grid row it covers (row_pairs zeroed first). */
+PN_KFN void pn_e_gears_row_pairs(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+{
+    (void)K;
+    pn_gears_tri_row_pairs(PN_POOL(const pn_kfaces, faces), PN_POOL(const pn_cellrect, rects),
+                           PN_POOL(const uint32_t, cell_pix), t, PN_POOL(uint32_t, row_pairs));
+}
+
+/* Triangle: its pairs per cell of grid row (tile.face, tile.r0), into cell_cur[0 .. res). */
+PN_KFN void pn_e_gears_row_cells(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+{
+    pn_gears_tri_row_cells(PN_POOL(const pn_cellrect, rects), PN_POOL(const uint32_t, cell_pix),
+                           PN_POOL(const pn_kfaces, faces)->res, K->tile.face, K->tile.r0, t,
+                           PN_POOL(uint32_t, cell_cur));
+}
+
+/* Triangle: how many pairs it makes in the tile, into tri_off[t]. */
+PN_KFN void pn_e_gears_count(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+{
+    PN_POOL(uint32_t, tri_off)[t] = pn_gears_tri_count(PN_POOL(const pn_cellrect, rects),
+                                                       PN_POOL(const uint32_t, cell_pix),
+                                                       PN_POOL(const pn_kfaces, faces)->res, &K->tile, t);
+}
+
+/* Triangle: its pairs (cell, t) from tri_off[t] (the prefix-summed counts) on. */
+PN_KFN void pn_e_gears_scatter(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+{
+    pn_gears_tri_scatter(PN_POOL(const pn_cellrect, rects), PN_POOL(const uint32_t, cell_pix),
+                         PN_POOL(const pn_kfaces, faces)->res, &K->tile, t, PN_POOL(const uint32_t, tri_off)[t],
+                         PN_POOL(uint32_t, pairs));
+}
+
+/* Pixel whose cell is in the tile: the mask of the cell's triangles. */
+PN_KFN void pn_e_gears_masks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    pn_shadow_counters c = {0u, 0u, 0u, 0u};
+    float v;
+    if (!pn_gears_pixel_mask(&K->light, K->exact_stats, &K->tile, PN_POOL(const pn_kfaces, faces)->res,
+                             PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos), PN_POOL(const float, nrm),
+                             PN_POOL(const uint32_t, pix_cell), PN_POOL(const uint32_t, cell_off),
+                             PN_POOL(const uint32_t, sorted), PN_POOL(const float, tris), pix, &c, &v))
+        return;
+    PN_POOL(float, vis)[pix] = v;
+    pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
+}
+#endif
+
+/* ---- Shading (pn_shade.h) --------------------------------------------------------------- */
+
+/* Pixel: RGBA8 bytes r g b a, whatever the device's endianness. */
+PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    uint32_t c = pn_shade_pixel(&K->view, &K->light, &K->shade, PN_POOL(const uint32_t, tri_id)[pix],
+                                pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u),
+                                pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u), PN_POOL(const float, vis)[pix]);
+    PN_GLOBAL uint8_t *o = PN_POOL(uint8_t, rgba) + (size_t)pix * 4u;
+    o[0] = (uint8_t)(c & 0xFFu);
+    o[1] = (uint8_t)((c >> 8) & 0xFFu);
+    o[2] = (uint8_t)((c >> 16) & 0xFFu);
+    o[3] = (uint8_t)(c >> 24);
+}
+
+/* ---- The list ------------------------------------------------------------------------------ */
+
+#if PN_ENABLE_REFERENCE
+#define PN_PASSES_REFERENCE(X) X(REFERENCE, reference, 16, 64)
+#else
+#define PN_PASSES_REFERENCE(X)
+#endif
+#if PN_ENABLE_RAYTRACE
+#define PN_PASSES_RAYTRACE(X) X(RAYTRACE, raytrace, 16, 64)
+#else
+#define PN_PASSES_RAYTRACE(X)
+#endif
+#if PN_ENABLE_GEARS
+#define PN_PASSES_GEARS(X)                          \
+    X(GEARS_ORIGINS, gears_origins, 1, 1)           \
+    X(GEARS_PROJECT, gears_project, 1, 1)           \
+    X(GEARS_PIXEL_CELLS, gears_pixel_cells, 64, 1024) \
+    X(GEARS_TRI_RECTS, gears_tri_rects, 64, 4096)   \
+    X(GEARS_ROW_PAIRS, gears_row_pairs, 64, 4096)   \
+    X(GEARS_ROW_CELLS, gears_row_cells, 64, 4096)   \
+    X(GEARS_COUNT, gears_count, 64, 4096)           \
+    X(GEARS_SCATTER, gears_scatter, 64, 4096)       \
+    X(GEARS_MASKS, gears_masks, 16, 64)
+#else
+#define PN_PASSES_GEARS(X)
+#endif
+
+#define PN_PASSES(X)                                \
+    X(GBUFFER_CLEAR, gbuffer_clear, 64, 4096)       \
+    X(RASTER_ROWS, raster_rows, 64, 4096)           \
+    X(RASTER_BAND, raster_band, 1, 1)               \
+    X(GBUFFER_RESOLVE, gbuffer_resolve, 64, 1024)   \
+    PN_PASSES_REFERENCE(X)                          \
+    PN_PASSES_RAYTRACE(X)                           \
+    PN_PASSES_GEARS(X)                              \
+    X(SHADE, shade, 64, 1024)
+
+#define PN_PASS_ENUM(id, name, local, grain) PN_K_##id,
+enum { PN_PASSES(PN_PASS_ENUM) PN_K_PASSES };
+#undef PN_PASS_ENUM
+
+#endif

@@ -4,6 +4,9 @@
  * __OPENCL_C_VERSION__, so either selects the OpenCL branch.
  *
  *   PN_KFN      a kernel helper function (static inline in C, plain inline-able in CL)
+ *   PN_KFN_HOT  a small helper of an inner loop that must be inlined wherever it is used
+ *               (GCC's inliner otherwise decides by the size of the caller, so the same
+ *               loop costs more or less depending on what a pass wraps around it)
  *   PN_GLOBAL   pointer into the arena (device global memory in OpenCL)
  *   PN_CONST    read-only pointer into the arena
  *   pn_katomic_add(p, v)   32-bit unsigned atomic add into the arena, returns the old value:
@@ -20,6 +23,7 @@
 #if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
 #pragma OPENCL FP_CONTRACT OFF
 #define PN_KFN static inline
+#define PN_KFN_HOT static inline
 #define PN_GLOBAL __global
 #define PN_CONST __global const
 typedef uint uint32_t;
@@ -45,6 +49,7 @@ typedef ulong uint64_t;
 #define PN_KERNEL_CONFIG(X) \
     X(PN_MASK_WORDS_MAX) X(PN_BVH_STACK) X(PN_ENABLE_REFERENCE) X(PN_ENABLE_RAYTRACE) X(PN_ENABLE_GEARS)
 #define PN_KFN static inline
+#define PN_KFN_HOT static inline __attribute__((always_inline))
 #define PN_GLOBAL
 #define PN_CONST const
 /* __builtin_sqrtf is correctly rounded and needs no libm symbol on bare metal when built

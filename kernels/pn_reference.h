@@ -73,7 +73,7 @@ PN_KFN void pn_frustum_make(pn_v3 O, const pn_klight *L, pn_frustum *fr)
     }
 }
 
-PN_KFN int pn_slab(float o, float d, float lo, float hi, float *t0, float *t1)
+PN_KFN_HOT int pn_slab(float o, float d, float lo, float hi, float *t0, float *t1)
 {
     if (d == 0.0f) return o >= lo && o <= hi;
     {
@@ -88,7 +88,7 @@ PN_KFN int pn_slab(float o, float d, float lo, float hi, float *t0, float *t1)
 /* 0 when the box [lo, hi] certainly holds nothing the frustum's segments can cross. The
  * box comes by value so that a box in private memory (GEARS' per-triangle box) and a BVH
  * node in the arena take the same test (OpenCL C 1.2 has no generic address space). */
-PN_KFN int pn_frustum_aabb(const pn_frustum *fr, pn_v3 lo, pn_v3 hi)
+PN_KFN_HOT int pn_frustum_aabb(const pn_frustum *fr, pn_v3 lo, pn_v3 hi)
 {
     if (fr->is_point) {
         float t0 = 0.0f, t1 = 1.0f, tol = fr->tol;

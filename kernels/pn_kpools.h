@@ -17,6 +17,8 @@ typedef struct pn_kpools {
     uint64_t depth, tri_id, pos, nrm, vis, rgba, rows, counters;
     /* frame: GEARS (src/pn_gears.c) */
     uint64_t faces, rects, tri_off, pix_cell, row_box, cell_off, cell_pix, cell_cur, row_pairs, pairs, sorted;
+    /* frame: selective ray tracing (src/pn_srt.c) */
+    uint64_t srt_box, lmap_depth, lmap_id, lmap_cons, srt_tile_w, srt_tile_h, srt_tile_mask, srt_max, pip_off, pip_list;
 } pn_kpools;
 
 /* A tile of GEARS grid cells: grid rows [r0, r1] and columns [x0, x1] of one face. */
@@ -33,7 +35,11 @@ typedef struct pn_kparams {
     pn_ktile tile;        /* GEARS: the tile a pass works on (grid row r0 for a row count) */
     uint32_t tri_count;   /* scene triangles */
     uint32_t exact_stats; /* GEARS masks: 1 = do not stop at a full mask (exact counters) */
-    uint32_t pad0, pad1;
+    /* selective ray tracing: the light view and the classification's constants */
+    pn_kview lview;
+    float srt_delta, srt_alpha, srt_reach_u, srt_reach_v; /* reach: texels per unit splat weight */
+    float srt_wmax; /* largest splat weight 1/z of the map's edge texels */
+    uint32_t srt_flags, srt_tiles, srt_pad0;
 } pn_kparams;
 
 /* Typed pointer to pool `name` of arena A (the entries' arguments A and P). */

@@ -28,6 +28,9 @@
 #if PN_ENABLE_GEARS
 #include "pn_gears_pass.h"
 #endif
+#if PN_ENABLE_SRT
+#include "pn_srt.h"
+#endif
 
 #define PN_NO_PIXEL_TRIANGLE 0xFFFFFFFFu
 
@@ -196,6 +199,117 @@ PN_KFN void pn_e_gears_masks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
 }
 #endif
 
+/* ---- Selective ray tracing (pn_srt.h; the frame is src/pn_srt.c) ------------------------- */
+
+#if PN_ENABLE_SRT
+/* Row: the light-frame extent of its lit origins. */
+PN_KFN void pn_e_srt_bounds(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
+{
+    pn_srt_bounds_row(&K->lview, &K->light, K->view.width, y, PN_POOL(const uint32_t, tri_id),
+                      PN_POOL(const float, pos), PN_POOL(const float, nrm), PN_POOL(float, srt_box));
+}
+
+/* Texel: empty map (depth +inf, no triangle, no thin triangle). */
+PN_KFN void pn_e_lmap_clear(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+{
+    (void)K;
+    PN_POOL(float, lmap_depth)[t] = PN_KINF;
+    PN_POOL(uint32_t, lmap_id)[t] = PN_NO_PIXEL_TRIANGLE;
+    PN_POOL(uint32_t, lmap_cons)[t] = 0u;
+}
+
+/* Triangle: the map rows it may cover (the G-buffer's set-up on the light view). */
+PN_KFN void pn_e_lmap_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+{
+    PN_POOL(uint32_t, rows)[t] = pn_raster_rows(&K->lview, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), t);
+}
+
+/* Band of map rows: the G-buffer's rasterizer on the light view. */
+PN_KFN void pn_e_lmap_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
+{
+    uint32_t y0 = band * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND - 1u;
+    if (y1 >= K->lview.height) y1 = K->lview.height - 1u;
+    pn_raster_band(&K->lview, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows), K->tri_count, y0, y1,
+                   PN_POOL(float, lmap_depth), PN_POOL(uint32_t, lmap_id));
+}
+
+/* Triangle: conservative rasterization when thin. */
+PN_KFN void pn_e_srt_conservative(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+{
+    pn_srt_conservative(&K->lview, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), t,
+                        PN_POOL(uint32_t, lmap_cons), PN_POOL(uint32_t, srt_max) + 1);
+}
+
+/* Tile: the largest splat weight of its edge texels. */
+PN_KFN void pn_e_srt_tiles(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t tile)
+{
+    pn_srt_tile(&K->lview, K->srt_delta, PN_POOL(const float, lmap_depth), PN_POOL(const uint32_t, lmap_cons), tile,
+                K->srt_tiles, PN_POOL(uint32_t, srt_tile_w), PN_POOL(uint32_t, srt_max));
+}
+
+/* Tile row: the largest weight whose horizontal reach covers each tile (srt_tile_h). */
+PN_KFN void pn_e_srt_tile_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t row)
+{
+    pn_srt_sweep(PN_POOL(const uint32_t, srt_tile_w), PN_POOL(uint32_t, srt_tile_h), row * K->srt_tiles, 1u,
+                 K->srt_tiles, K->srt_reach_u);
+}
+
+/* Tile column: then vertically, into the penumbra mask (non-zero: covered). */
+PN_KFN void pn_e_srt_tile_cols(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t col)
+{
+    uint32_t y, n = 0u;
+    pn_srt_sweep(PN_POOL(const uint32_t, srt_tile_h), PN_POOL(uint32_t, srt_tile_mask), col, K->srt_tiles, K->srt_tiles,
+                 K->srt_reach_v);
+    for (y = 0; y < K->srt_tiles; y++) n += PN_POOL(const uint32_t, srt_tile_mask)[y * K->srt_tiles + col] != 0u;
+    if (n) pn_katomic_add(PN_POOL(uint32_t, srt_max) + 2, n);
+}
+
+/* Pixel: PIP flag into pip_off (scanned next), the map's answer into vis. */
+PN_KFN void pn_e_srt_classify(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    pn_srt_args a;
+    pn_shadow_counters c = {0u, 0u, 0u, 0u};
+    float v;
+    uint32_t lit;
+    a.delta = K->srt_delta;
+    a.alpha = K->srt_alpha;
+    a.reach_u = K->srt_reach_u;
+    a.reach_v = K->srt_reach_v;
+    a.wmax = K->srt_wmax;
+    a.flags = K->srt_flags;
+    a.tiles = K->srt_tiles;
+    PN_POOL(uint32_t, pip_off)[pix] =
+        pn_srt_classify(&K->lview, &K->light, &a, PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos),
+                        PN_POOL(const float, nrm), PN_POOL(const float, lmap_depth), PN_POOL(const uint32_t, lmap_id),
+                        PN_POOL(const uint32_t, lmap_cons), PN_POOL(const uint32_t, srt_tile_w),
+                        PN_POOL(const uint32_t, srt_tile_mask), pix, &v, &lit);
+    PN_POOL(float, vis)[pix] = v;
+    c.lit = lit;
+    pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
+}
+
+/* Pixel: its place in the dense PIP list (pip_off is the flags' exclusive prefix sum). */
+PN_KFN void pn_e_srt_pip_list(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    PN_CONST uint32_t *off = PN_POOL(const uint32_t, pip_off);
+    (void)K;
+    if (off[pix + 1u] != off[pix]) PN_POOL(uint32_t, pip_list)[off[pix]] = pix;
+}
+
+/* PIP item: the reference's exact mask for its pixel. */
+PN_KFN void pn_e_srt_exact(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
+{
+    uint32_t pix = PN_POOL(const uint32_t, pip_list)[i];
+    pn_shadow_counters c = {0u, 0u, 0u, 0u};
+    PN_POOL(float, vis)[pix] = pn_reference_pixel(
+        pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u), pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u),
+        PN_POOL(const uint32_t, tri_id)[pix], PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
+        PN_POOL(const uint32_t, index), &K->light, &c);
+    c.lit = 0u; /* counted by the classification */
+    pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
+}
+#endif
+
 /* ---- Shading (pn_shade.h) --------------------------------------------------------------- */
 
 /* Pixel: RGBA8 bytes r g b a, whatever the device's endianness. */
@@ -238,6 +352,23 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
 #define PN_PASSES_GEARS(X)
 #endif
 
+#if PN_ENABLE_SRT
+#define PN_PASSES_SRT(X)                                  \
+    X(SRT_BOUNDS, srt_bounds, 1, 1)                       \
+    X(LMAP_CLEAR, lmap_clear, 64, 4096)                   \
+    X(LMAP_ROWS, lmap_rows, 64, 4096)                     \
+    X(LMAP_BAND, lmap_band, 1, 1)                         \
+    X(SRT_CONSERVATIVE, srt_conservative, 64, 1024)       \
+    X(SRT_TILES, srt_tiles, 16, 64)                       \
+    X(SRT_TILE_ROWS, srt_tile_rows, 1, 1)                 \
+    X(SRT_TILE_COLS, srt_tile_cols, 1, 1)                 \
+    X(SRT_CLASSIFY, srt_classify, 64, 1024)               \
+    X(SRT_PIP_LIST, srt_pip_list, 64, 4096)               \
+    X(SRT_EXACT, srt_exact, 16, 16)
+#else
+#define PN_PASSES_SRT(X)
+#endif
+
 #define PN_PASSES(X)                                \
     X(GBUFFER_CLEAR, gbuffer_clear, 64, 4096)       \
     X(RASTER_ROWS, raster_rows, 64, 4096)           \
@@ -246,6 +377,7 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
     PN_PASSES_REFERENCE(X)                          \
     PN_PASSES_RAYTRACE(X)                           \
     PN_PASSES_GEARS(X)                              \
+    PN_PASSES_SRT(X)                                \
     X(SHADE, shade, 64, 1024)
 
 #define PN_PASS_ENUM(id, name, local, grain) PN_K_##id,

@@ -53,15 +53,24 @@ typedef struct pn_poly {
     uint32_t n;
 } pn_poly;
 
-/* Clips the camera-space triangle to z >= znear and projects it. n = 0 when nothing is
- * left or the projection has zero area. */
-PN_KFN void pn_poly_make(const pn_kview *v, pn_v3 A, pn_v3 B, pn_v3 C, pn_poly *poly)
+/* Continuous pixel coordinates of a camera-space point with z > 0: where the primary ray
+ * of pixel (x, y) pierces the image, pixel centres at (x + 0.5, y + 0.5). */
+PN_KFN void pn_project_camera(const pn_kview *v, pn_v3 c, float *px, float *py)
+{
+    float sxs = v->tan_half * v->aspect, sys = v->tan_half;
+    float hw = 0.5f * (float)v->width, hh = 0.5f * (float)v->height;
+    *px = (c.x / (c.z * sxs) + 1.0f) * hw;
+    *py = (1.0f - c.y / (c.z * sys)) * hh;
+}
+
+/* Clips the triangle (world space) to z >= znear in camera space and projects what is
+ * left into poly (n may be below 3: nothing left), in traversal order, whatever its area;
+ * *zmin: the smallest camera z of the clipped polygon. */
+PN_KFN void pn_poly_project(const pn_kview *v, pn_v3 A, pn_v3 B, pn_v3 C, pn_poly *poly, float *zmin)
 {
     pn_v3 in[3], out[4];
     uint32_t i, n = 0;
     float zn = v->znear;
-    float sxs = v->tan_half * v->aspect, sys = v->tan_half;
-    float hw = 0.5f * (float)v->width, hh = 0.5f * (float)v->height;
     in[0] = pn_to_camera(v, A);
     in[1] = pn_to_camera(v, B);
     in[2] = pn_to_camera(v, C);
@@ -78,12 +87,24 @@ PN_KFN void pn_poly_make(const pn_kview *v, pn_v3 A, pn_v3 B, pn_v3 C, pn_poly *
             out[n++] = x;
         }
     }
+    poly->n = n;
+    *zmin = PN_KINF;
+    for (i = 0; i < n; i++) {
+        pn_project_camera(v, out[i], &poly->x[i], &poly->y[i]);
+        *zmin = pn_kminf(*zmin, out[i].z);
+    }
+}
+
+/* Clips the camera-space triangle to z >= znear and projects it. n = 0 when nothing is
+ * left or the projection has zero area. */
+PN_KFN void pn_poly_make(const pn_kview *v, pn_v3 A, pn_v3 B, pn_v3 C, pn_poly *poly)
+{
+    uint32_t i, n;
+    float zmin;
+    pn_poly_project(v, A, B, C, poly, &zmin);
+    n = poly->n;
     poly->n = 0;
     if (n < 3) return;
-    for (i = 0; i < n; i++) {
-        poly->x[i] = (out[i].x / (out[i].z * sxs) + 1.0f) * hw;
-        poly->y[i] = (1.0f - out[i].y / (out[i].z * sys)) * hh;
-    }
     {
         float area = 0.0f;
         for (i = 0; i < n; i++) {

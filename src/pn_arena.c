@@ -25,7 +25,7 @@ static int pn_bump(uint64_t *off, uint64_t count, uint64_t elem, size_t *out)
 
 /* The frame pools, in allocation order; pn_frame.c allocates exactly these (any frame
  * within the limits fits, because each is at most its size here). */
-static int pn_frame_pools(const pn_limits *l, uint64_t *off)
+static int pn_frame_pools_common(const pn_limits *l, uint64_t *off)
 {
     uint64_t px = (uint64_t)l->max_width * l->max_height;
     size_t dummy;
@@ -38,7 +38,15 @@ static int pn_frame_pools(const pn_limits *l, uint64_t *off)
           pn_bump(off, l->max_triangles, sizeof(uint32_t), &dummy) && /* raster rows */
           pn_bump(off, l->max_height, sizeof(pn_shadow_counters), &dummy)))
         return 0;
+    return 1;
+}
+
+/* GEARS' frame pools, after the common ones. */
+static int pn_gears_pools(const pn_limits *l, uint64_t *off)
+{
 #if PN_ENABLE_GEARS
+    uint64_t px = (uint64_t)l->max_width * l->max_height;
+    size_t dummy;
     {
         /* pn_gears_begin() in src/pn_gears.c allocates exactly these, in this order. */
         uint64_t g = pn_gears_grid_max(l), cells = 6u * g * g;
@@ -55,6 +63,33 @@ static int pn_frame_pools(const pn_limits *l, uint64_t *off)
                pn_bump(off, pn_gears_pairs_max(l), 4u, &dummy);           /* cell-sorted */
     }
 #else
+    (void)l;
+    (void)off;
+    return 1;
+#endif
+}
+
+/* The SRT frame pools, after the GEARS ones (a frame carves one algorithm's pools, so the
+ * region holds the larger of the two sets; both are laid out to keep the query simple). */
+static int pn_srt_pools(const pn_limits *l, uint64_t *off)
+{
+#if PN_ENABLE_SRT
+    uint64_t px = (uint64_t)l->max_width * l->max_height, r = pn_srt_map_max(l), tl = r / 8u + 1u;
+    size_t dummy;
+    /* pn_srt_frame() in src/pn_srt.c allocates exactly these, in this order. */
+    return pn_bump(off, l->max_height, 16u, &dummy) &&    /* row bounds */
+           pn_bump(off, r * r, 4u, &dummy) &&              /* map depth */
+           pn_bump(off, r * r, 4u, &dummy) &&              /* map triangle ids */
+           pn_bump(off, r * r, 4u, &dummy) &&              /* thin-triangle marks */
+           pn_bump(off, tl * tl, 4u, &dummy) &&            /* tile weights */
+           pn_bump(off, tl * tl, 4u, &dummy) &&            /* tile row weights */
+           pn_bump(off, tl * tl, 4u, &dummy) &&            /* tile mask */
+           pn_bump(off, 4u, 4u, &dummy) &&                 /* largest weight, counters */
+           pn_bump(off, px + 1u, 4u, &dummy) &&            /* PIP offsets */
+           pn_bump(off, px, 4u, &dummy);                   /* PIP list */
+#else
+    (void)l;
+    (void)off;
     return 1;
 #endif
 }
@@ -65,7 +100,8 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
     pn_layout lay;
     if (l->max_triangles < 1u || l->max_triangles > PN_MAX_TRIANGLES || l->max_width < 1u ||
         l->max_width > PN_MAX_WIDTH || l->max_height < 1u || l->max_height > PN_MAX_HEIGHT ||
-        l->gears_pairs > (1u << 28) || l->gears_grid_max > 1024u)
+        l->gears_pairs > (1u << 28) || l->gears_grid_max > 1024u || l->srt_map_max > PN_SRT_MAP_MAX ||
+        (l->srt_map_max != 0u && l->srt_map_max < 8u))
         return PN_E_LIMIT;
     if (!pn_bump(&off, 1u, sizeof(pn_context), &lay.ctx) ||
         !pn_bump(&off, l->max_triangles, 9u * sizeof(float), &lay.tris) ||
@@ -76,7 +112,15 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
         !pn_bump(&off, 0u, 1u, &lay.frame))
         return PN_E_LIMIT;
     frame_start = off;
-    if (!pn_frame_pools(l, &off)) return PN_E_LIMIT;
+    {
+        /* The common pools, then the larger of GEARS' and SRT's (one algorithm a frame). */
+        uint64_t common = off, a, b;
+        if (!pn_frame_pools_common(l, &common)) return PN_E_LIMIT;
+        a = common;
+        b = common;
+        if (!pn_gears_pools(l, &a) || !pn_srt_pools(l, &b)) return PN_E_LIMIT;
+        off = a > b ? a : b;
+    }
     /* Round the end so the last pool's alignment padding is inside the region. */
     if (!pn_bump(&off, 0u, 1u, &lay.end)) return PN_E_LIMIT;
     lay.frame_cap = (size_t)(off - frame_start);
@@ -127,9 +171,11 @@ void pn_limits_max(pn_limits *limits)
     limits->max_height = PN_MAX_HEIGHT;
     limits->gears_pairs = 0;
     limits->gears_grid_max = 0;
+    limits->srt_map_max = 0;
 }
 
 uint32_t pn_gears_pairs_max(const pn_limits *l) { return l->gears_pairs ? l->gears_pairs : PN_GEARS_PAIRS; }
+uint32_t pn_srt_map_max(const pn_limits *l) { return l->srt_map_max ? l->srt_map_max : PN_SRT_MAP_MAX; }
 uint32_t pn_gears_grid_max(const pn_limits *l) { return l->gears_grid_max ? l->gears_grid_max : PN_GEARS_GRID_MAX; }
 
 pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes)

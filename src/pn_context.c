@@ -146,6 +146,10 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out)
     s.gears_mean_tris_per_cell = ctx->gears.mean_tris;
     s.gears_mean_pixels_per_cell = ctx->gears.mean_pix;
     s.gears_pairs_high_water = ctx->gears.pairs_high;
+    s.srt_map = ctx->srt.map;
+    s.srt_pip = ctx->srt.pip;
+    s.srt_thin = ctx->srt.thin;
+    s.srt_tiles_masked = ctx->srt.tiles_masked;
     *out = s;
     return PN_OK;
 }
@@ -161,6 +165,9 @@ uint32_t pn_build_info(void)
 #endif
 #if PN_ENABLE_RAYTRACE
     f |= PN_BUILD_RAYTRACE;
+#endif
+#if PN_ENABLE_SRT
+    f |= PN_BUILD_SRT;
 #endif
     return f;
 }

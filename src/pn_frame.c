@@ -5,6 +5,7 @@
 
 #include "pn_device.h"
 #include "pn_gears_frame.h"
+#include "pn_srt_frame.h"
 #include "pn_kmath.h"
 #include "pn_passes.h"
 
@@ -163,6 +164,19 @@ static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
 #else
         return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_RAYTRACE is not compiled in (PN_ENABLE_RAYTRACE 0)");
 #endif
+    case PN_ALGO_SRT:
+#if PN_ENABLE_SRT
+        if (o->srt_map != 0u && (o->srt_map < 8u || o->srt_map > pn_srt_map_max(&ctx->limits)))
+            return pn_fail(ctx, PN_E_INVALID_ARG, "srt_map = %u; it must be 0 or in 8 .. %u (pn_limits.srt_map_max)",
+                           o->srt_map, pn_srt_map_max(&ctx->limits));
+        if (o->srt_flags & ~(PN_SRT_NO_CONSERVATIVE | PN_SRT_FORCE_PIP))
+            return pn_fail(ctx, PN_E_INVALID_ARG, "srt_flags = %u has unknown bits", o->srt_flags);
+        if (!pn_finite(o->srt_delta) || !(o->srt_delta >= 0.0f) || o->srt_delta > 1.0f)
+            return pn_fail(ctx, PN_E_INVALID_ARG, "srt_delta must be in [0, 1] (0: the default 1e-3)");
+        return PN_OK;
+#else
+        return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_SRT is not compiled in (PN_ENABLE_SRT 0)");
+#endif
     }
     return pn_fail(ctx, PN_E_INVALID_ARG, "unknown algorithm %u", (uint32_t)o->algo);
 }
@@ -220,6 +234,9 @@ static pn_status pn_shadow(pn_frame_state *fs)
 #endif
 #if PN_ENABLE_GEARS
     case PN_ALGO_GEARS: st = pn_gears_frame(fs); break;
+#endif
+#if PN_ENABLE_SRT
+    case PN_ALGO_SRT: st = pn_srt_frame(fs); break;
 #endif
     default: return pn_fail(fs->ctx, PN_E_UNSUPPORTED, "algorithm %u not available", fs->algo);
     }
@@ -281,6 +298,12 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     fs.width = opt->width;
     fs.height = opt->height;
     fs.gears_grid = opt->gears_grid;
+#if PN_ENABLE_SRT
+    fs.srt_map = opt->srt_map ? opt->srt_map : pn_srt_map_max(&ctx->limits);
+    if (!opt->srt_map && fs.srt_map > 2048u) fs.srt_map = 2048u;
+    fs.K.srt_flags = opt->srt_flags;
+    fs.K.srt_delta = (opt->srt_delta > 0.0f ? opt->srt_delta : 1e-3f) * ctx->scene_diag;
+#endif
 
     px = (size_t)opt->width * opt->height;
     pn_frame_reset(ctx);

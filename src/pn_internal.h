@@ -38,6 +38,7 @@ typedef struct pn_frame_state {
     uint32_t algo;
     uint32_t width, height;
     uint32_t gears_grid;
+    uint32_t srt_map;
     float *depth;
     uint32_t *tri_id;
     float *pos;
@@ -91,12 +92,16 @@ struct pn_context {
         uint32_t tiles, faces, cells_used, max_tris, max_pix, pairs_high;
         float mean_tris, mean_pix;
     } gears;
+    struct {
+        uint32_t map, pip, thin, tiles_masked;
+    } srt;
     char message[256];
 };
 
 /* pn_arena.c */
 uint32_t pn_gears_pairs_max(const pn_limits *l);
 uint32_t pn_gears_grid_max(const pn_limits *l);
+uint32_t pn_srt_map_max(const pn_limits *l);
 pn_status pn_carve(const pn_limits *limits, pn_layout *out);
 void pn_frame_reset(pn_context *ctx);
 void *pn_frame_alloc(pn_context *ctx, size_t count, size_t elem, const char *pool);

@@ -32,6 +32,7 @@ static const pn_algo_name pn_algos[] = {
     {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE},
     {"gears", PN_ALGO_GEARS, PN_BUILD_GEARS},
     {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},
+    {"srt", PN_ALGO_SRT, PN_BUILD_SRT},
 };
 #define PN_ALGO_COUNT (sizeof(pn_algos) / sizeof(pn_algos[0]))
 /* The demo renders the first entries only: raytrace is a baseline with the reference's bits
@@ -188,6 +189,8 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
             st->gears_tiles, st->gears_faces, st->gears_cells_used, st->gears_max_tris_per_cell,
             st->gears_mean_tris_per_cell, st->gears_max_pixels_per_cell, st->gears_mean_pixels_per_cell,
             st->gears_pairs_high_water);
+    fprintf(f, "  \"srt_map\": %u,\n  \"srt_pip\": %u,\n  \"srt_thin\": %u,\n  \"srt_tiles_masked\": %u,\n",
+            st->srt_map, st->srt_pip, st->srt_thin, st->srt_tiles_masked);
     fprintf(f, "  \"mean_visibility\": %.9g\n}\n", mean);
     return fclose(f) != 0;
 }

@@ -15,6 +15,14 @@
 #error "PN_ENABLE_RAYTRACE must be 0 or 1"
 #endif
 
+#if PN_ENABLE_SRT != 0 && PN_ENABLE_SRT != 1
+#error "PN_ENABLE_SRT must be 0 or 1"
+#endif
+
+#if PN_SRT_MAP_MAX < 8 || PN_SRT_MAP_MAX > 8192
+#error "PN_SRT_MAP_MAX must be in 8 .. 8192"
+#endif
+
 #if PN_GEARS_GRID_MAX < 1 || PN_GEARS_GRID_MAX > 1024
 #error "PN_GEARS_GRID_MAX must be in 1 .. 1024"
 #endif

@@ -33,6 +33,23 @@
 #define PN_ENABLE_RAYTRACE 1
 #endif
 
+/* Selective ray tracing (Lauterbach et al. 2009): a shadow map from the light centre
+ * everywhere, the exact reference path only for the pixels the map may get wrong.
+ * Approximate (rare misses, measured against the reference in docs/bench/RESULTS.md).
+ * Costs the SRT frame pools below. */
+#ifndef PN_ENABLE_SRT
+#define PN_ENABLE_SRT 1
+#endif
+
+/* Largest SRT shadow-map resolution per axis (the frame option srt_map, default the
+ * smaller of 2048 and this, may be any value from 8 up to it; pn_limits.srt_map_max lowers
+ * it per context). Costs 12 bytes of frame arena per texel (depth 4, triangle id 4, thin-
+ * triangle mark 4; 48 MiB at 2048) plus 8 per 64 texels (penumbra tiles), plus 8 bytes per
+ * pixel (PIP list). Range 8 .. 8192. */
+#ifndef PN_SRT_MAP_MAX
+#define PN_SRT_MAP_MAX 2048u
+#endif
+
 /* ---- Limits (they size the arena; see pn_arena_size()). ------------------------------ */
 
 /* Largest triangle count a scene may have, including any ground plane the caller adds.

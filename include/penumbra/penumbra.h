@@ -32,7 +32,7 @@
  *   one call at a time per context.
  *
  * USAGE
- *   pn_limits lim = { 100000, 512, 512, 0, 0 };  // max triangles, width, height; GEARS pools default
+ *   pn_limits lim = { 100000, 512, 512, 0, 0, 0 };  // max triangles, width, height; GEARS, SRT pools default
  *   size_t bytes; pn_arena_size(&lim, &bytes);
  *   void *mem = my_alloc(bytes);             // or static uint8_t mem[PN_ARENA_BYTES_MAX(...)]
  *   pn_context *ctx; pn_init(&ctx, mem, bytes, &lim);
@@ -102,6 +102,7 @@ typedef struct pn_limits {
     uint32_t max_height;
     uint32_t gears_pairs;    /* GEARS (triangle, cell) pair pool; 0: PN_GEARS_PAIRS */
     uint32_t gears_grid_max; /* largest GEARS grid resolution; 0: PN_GEARS_GRID_MAX */
+    uint32_t srt_map_max;    /* largest SRT shadow map per axis; 0: PN_SRT_MAP_MAX */
 } pn_limits;
 
 /* Limits equal to the compile-time maxima. */
@@ -118,7 +119,18 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
  * PN_MAX_WIDTH, PN_MAX_HEIGHT)]. A test checks it never falls below pn_arena_size. */
 #define PN_ARENA_BYTES_MAX(t, w, h)                                                         \
     ((size_t)(17u * 1024u) + (size_t)(t) * 112u + (size_t)(w) * (size_t)(h) * 40u +          \
-     (size_t)(h) * 16u + 32u * (size_t)PN_ARENA_ALIGN + PN_GEARS_BYTES_MAX(t, w, h))
+     (size_t)(h) * 16u + 32u * (size_t)PN_ARENA_ALIGN + PN_GEARS_BYTES_MAX(t, w, h) +      \
+     PN_SRT_BYTES_MAX(t, w, h))
+#if PN_ENABLE_SRT
+/* SRT frame pools at the default map maximum: per texel 12; per 8x8 tile 12; per pixel 8
+ * (+4); per row 16; the rest 64. */
+#define PN_SRT_BYTES_MAX(t, w, h)                                                           \
+    ((size_t)PN_SRT_MAP_MAX * (size_t)PN_SRT_MAP_MAX * 12u +                                 \
+     ((size_t)PN_SRT_MAP_MAX / 8u + 1u) * ((size_t)PN_SRT_MAP_MAX / 8u + 1u) * 12u +          \
+     (size_t)(w) * (size_t)(h) * 8u + 4u + (size_t)(h) * 16u + 64u)
+#else
+#define PN_SRT_BYTES_MAX(t, w, h) ((size_t)0)
+#endif
 #if PN_ENABLE_GEARS
 /* GEARS frame pools at the default pair pool and grid maximum: the grid cameras (1 KB);
  * per triangle 6 cell rectangles (48) and a pair offset (4); per pixel its cell (4); per
@@ -185,7 +197,9 @@ typedef struct pn_light {
 typedef enum pn_algo {
     PN_ALGO_REFERENCE = 0,
     PN_ALGO_GEARS = 1,
-    PN_ALGO_RAYTRACE = 2 /* k^2 single shadow rays per pixel; same bits as the reference */
+    PN_ALGO_RAYTRACE = 2, /* k^2 single shadow rays per pixel; same bits as the reference */
+    PN_ALGO_SRT = 3       /* selective ray tracing: a shadow map, exact masks only for the
+                             potentially incorrect pixels (approximate) */
 } pn_algo;
 
 typedef struct pn_frame_options {
@@ -201,7 +215,17 @@ typedef struct pn_frame_options {
     uint32_t gears_grid;   /* GEARS grid cells per axis, 1 .. limits.gears_grid_max (128) */
     uint32_t exact_stats;  /* 1: no early exit on a full mask, so pn_stats counts every
                               candidate's predicate ("necessary" assignments, paper Table 6) */
+    /* PN_ALGO_SRT (0 everywhere is the recommended configuration) */
+    uint32_t srt_map;      /* shadow-map texels per axis, 8 .. limits.srt_map_max; 0: the
+                              smaller of 2048 and the limit */
+    uint32_t srt_flags;    /* PN_SRT_NO_CONSERVATIVE: no conservative rasterization of thin
+                              triangles; PN_SRT_FORCE_PIP: every pixel exact (= reference) */
+    float srt_delta;       /* depth-discontinuity threshold, fraction of the scene diagonal;
+                              0: 1e-3 */
 } pn_frame_options;
+
+#define PN_SRT_NO_CONSERVATIVE 0x1u
+#define PN_SRT_FORCE_PIP 0x2u
 
 /* 512x512, k = 16, reference, eps = 1e-4, albedo 0.8, ambient 0.1, dark blue background. */
 void pn_frame_options_default(pn_frame_options *opt);
@@ -265,6 +289,11 @@ typedef struct pn_stats {
     uint32_t gears_max_tris_per_cell, gears_max_pixels_per_cell;
     float gears_mean_tris_per_cell, gears_mean_pixels_per_cell; /* over cells with pixels */
     uint32_t gears_pairs_high_water; /* most pairs held at once */
+    /* Selective ray tracing, last frame */
+    uint32_t srt_map;            /* shadow-map texels per axis */
+    uint32_t srt_pip;            /* pixels in the PIP set (exact masks computed) */
+    uint32_t srt_thin;           /* thin triangles conservatively rasterized into the map */
+    uint32_t srt_tiles_masked;   /* penumbra-mask tiles (8x8 texels) set (area light) */
 } pn_stats;
 
 pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);
@@ -273,6 +302,7 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);
 #define PN_BUILD_REFERENCE 0x1u
 #define PN_BUILD_GEARS 0x2u
 #define PN_BUILD_RAYTRACE 0x4u
+#define PN_BUILD_SRT 0x8u
 #define PN_BUILD_PORT_SCALAR 0x100u
 uint32_t pn_build_info(void);
 

@@ -11,3 +11,4 @@
 #define PN_BVH_SAH_DEPTH 229u
 #define PN_BVH_STACK 256u
 #define PN_DEBUG_ARENA 1
+#define PN_SRT_MAP_MAX 8192u

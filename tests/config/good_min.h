@@ -11,3 +11,4 @@
 #define PN_BVH_SAH_DEPTH 0u
 #define PN_BVH_STACK 27u
 #define PN_DEBUG_ARENA 0
+#define PN_SRT_MAP_MAX 8u

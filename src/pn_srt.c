@@ -1,0 +1,177 @@
+/* pn_srt.c - selective ray tracing's whole frame (sequence in pn_srt_frame.h): the light
+ * view, the map window, and the passes of kernels/pn_srt.h between them, run on the
+ * frame's port. Written once: both ports run this sequence. */
+#include <string.h>
+
+#include "pn_device.h"
+#include "pn_passes.h"
+#include "pn_srt_frame.h"
+
+#if PN_ENABLE_SRT
+
+typedef struct pn_srt_pools {
+    float *box;          /* [height * 4]: per row max |x/z|, max |y/z|, min z, origins off the map */
+    float *depth;        /* [res^2]: map depth (distance from the light centre) */
+    uint32_t *id;        /* [res^2]: map triangle */
+    uint32_t *cons;      /* [res^2]: 1/z bits of the nearest thin triangle touching the texel */
+    uint32_t *tile_w;    /* [tiles^2]: largest splat weight of a tile's edge texels */
+    uint32_t *tile_h;    /* [tiles^2]: ...of those whose horizontal reach covers the tile */
+    uint32_t *tile_mask; /* [tiles^2]: non-zero = in the penumbra mask */
+    uint32_t *words;     /* [4]: largest weight bits, thin triangles, masked tiles */
+    uint32_t *pip_off;   /* [pixels + 1]: PIP flags, then their exclusive prefix sum */
+    uint32_t *pip_list;  /* [pixels]: the PIP pixels, dense */
+} pn_srt_pools;
+
+static void pn_set3(float *d, pn_v3 v)
+{
+    d[0] = v.x;
+    d[1] = v.y;
+    d[2] = v.z;
+}
+
+static pn_status pn_srt_begin(pn_frame_state *fs, pn_srt_pools *s, uint32_t res, uint32_t tiles)
+{
+    pn_context *ctx = fs->ctx;
+    pn_kpools *P = &fs->P;
+    size_t px = (size_t)fs->width * fs->height, texels = (size_t)res * res, tl = (size_t)tiles * tiles;
+    /* Same pools, same order as pn_srt_pools() in src/pn_arena.c. */
+    if (!(s->box = (float *)pn_frame_alloc(ctx, fs->height, 16u, "srt row bounds")) ||
+        !(s->depth = (float *)pn_frame_alloc(ctx, texels, 4u, "srt map depth")) ||
+        !(s->id = (uint32_t *)pn_frame_alloc(ctx, texels, 4u, "srt map triangle ids")) ||
+        !(s->cons = (uint32_t *)pn_frame_alloc(ctx, texels, 4u, "srt thin-triangle marks")) ||
+        !(s->tile_w = (uint32_t *)pn_frame_alloc(ctx, tl, 4u, "srt tile weights")) ||
+        !(s->tile_h = (uint32_t *)pn_frame_alloc(ctx, tl, 4u, "srt tile row weights")) ||
+        !(s->tile_mask = (uint32_t *)pn_frame_alloc(ctx, tl, 4u, "srt tile mask")) ||
+        !(s->words = (uint32_t *)pn_frame_alloc(ctx, 4u, 4u, "srt counters")) ||
+        !(s->pip_off = (uint32_t *)pn_frame_alloc(ctx, px + 1u, 4u, "srt PIP offsets")) ||
+        !(s->pip_list = (uint32_t *)pn_frame_alloc(ctx, px, 4u, "srt PIP list")))
+        return PN_E_POOL_EXHAUSTED;
+    P->srt_box = pn_dev_off(ctx, s->box);
+    P->lmap_depth = pn_dev_off(ctx, s->depth);
+    P->lmap_id = pn_dev_off(ctx, s->id);
+    P->lmap_cons = pn_dev_off(ctx, s->cons);
+    P->srt_tile_w = pn_dev_off(ctx, s->tile_w);
+    P->srt_tile_h = pn_dev_off(ctx, s->tile_h);
+    P->srt_tile_mask = pn_dev_off(ctx, s->tile_mask);
+    P->srt_max = pn_dev_off(ctx, s->words);
+    P->pip_off = pn_dev_off(ctx, s->pip_off);
+    P->pip_list = pn_dev_off(ctx, s->pip_list);
+    memset(&ctx->srt, 0, sizeof(ctx->srt));
+    return PN_OK;
+}
+
+/* The light view's frame: an area light looks along N with axes U^, V^; a point light
+ * looks at the scene's centre (any direction if it sits there). */
+static void pn_srt_axes(const pn_context *ctx, const pn_klight *L, uint32_t res, pn_kview *lv)
+{
+    pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]), f, r, u;
+    memset(lv, 0, sizeof(*lv));
+    pn_set3(lv->eye, c);
+    if (!L->is_point) {
+        f = pn_v3_make(L->N[0], L->N[1], L->N[2]);
+        r = pn_v3_normalize(pn_v3_make(L->U[0], L->U[1], L->U[2]));
+        u = pn_v3_normalize(pn_v3_make(L->V[0], L->V[1], L->V[2]));
+    } else {
+        pn_v3 mid = pn_v3_make(0.5f * (ctx->scene_min[0] + ctx->scene_max[0]), 0.5f * (ctx->scene_min[1] + ctx->scene_max[1]),
+                               0.5f * (ctx->scene_min[2] + ctx->scene_max[2]));
+        pn_v3 up = pn_v3_make(0.0f, 1.0f, 0.0f);
+        f = pn_v3_normalize(pn_v3_sub(mid, c));
+        if (!(pn_v3_dot(f, f) > 0.5f)) f = pn_v3_make(0.0f, -1.0f, 0.0f);
+        if (f.y > 0.9f || f.y < -0.9f) up = pn_v3_make(1.0f, 0.0f, 0.0f);
+        r = pn_v3_normalize(pn_v3_cross(f, up));
+        u = pn_v3_cross(r, f);
+    }
+    pn_set3(lv->f, f);
+    pn_set3(lv->r, r);
+    pn_set3(lv->u, u);
+    lv->tan_half = 1.0f;
+    lv->aspect = 1.0f;
+    lv->znear = 1e-5f * ctx->scene_diag;
+    if (!(lv->znear > 0.0f)) lv->znear = 1e-30f;
+    lv->width = res;
+    lv->height = res;
+}
+
+/* The map window from the row bounds: the lit origins' extent, widened for occluders off
+ * to the side (an occluder at depth z shifts by up to |U|/z in the map as seen from the
+ * light's points; occluders nearer than a quarter of the nearest receiver's depth are
+ * taken as covered by that margin), and by two texels for rounding. */
+static void pn_srt_window(pn_frame_state *fs, const pn_srt_pools *s, uint32_t res)
+{
+    const pn_klight *L = &fs->K.light;
+    float ext = 0.0f, zmin = PN_KINF, margin = 0.0f, t;
+    uint32_t y;
+    for (y = 0; y < fs->height; y++) {
+        ext = pn_kmaxf(ext, pn_kmaxf(s->box[(size_t)y * 4u], s->box[(size_t)y * 4u + 1u]));
+        zmin = pn_kminf(zmin, s->box[(size_t)y * 4u + 2u]);
+    }
+    if (!L->is_point && zmin < PN_KINF) {
+        pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]), V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
+        float rho = pn_kmaxf(pn_ksqrt(pn_v3_dot(U, U)), pn_ksqrt(pn_v3_dot(V, V)));
+        margin = rho / (0.25f * zmin);
+    }
+    t = (ext + margin) * (1.0f + 4.0f / (float)res);
+    if (!(t > 1e-6f)) t = 1e-6f;
+    if (!(t <= PN_SRT_TAN_MAX)) t = PN_SRT_TAN_MAX;
+    fs->K.lview.tan_half = t;
+    fs->K.srt_alpha = 2.0f * t / (float)res;
+}
+
+pn_status pn_srt_frame(pn_frame_state *fs)
+{
+    pn_context *ctx = fs->ctx;
+    pn_kparams *K = &fs->K;
+    pn_srt_pools s;
+    uint32_t res = fs->srt_map, tiles = (res + PN_SRT_TILE - 1u) / PN_SRT_TILE, T = ctx->tri_count;
+    uint32_t npix = fs->width * fs->height, npip;
+    pn_status st;
+
+    if ((st = pn_srt_begin(fs, &s, res, tiles)) != PN_OK) return st;
+    pn_srt_axes(ctx, &K->light, res, &K->lview);
+    K->srt_tiles = tiles;
+
+    /* The map window. */
+    if ((st = pn_dev_run(fs, PN_K_SRT_BOUNDS, fs->height)) != PN_OK ||
+        (st = pn_dev_to_host(fs, s.box, (size_t)fs->height * 16u)) != PN_OK)
+        return st;
+    pn_srt_window(fs, &s, res);
+
+    /* The shadow map: the G-buffer's rasterizer on the light view. */
+    if ((st = pn_dev_run(fs, PN_K_LMAP_CLEAR, res * res)) != PN_OK || (st = pn_dev_run(fs, PN_K_LMAP_ROWS, T)) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_LMAP_BAND, (res + PN_RASTER_BAND - 1u) / PN_RASTER_BAND)) != PN_OK ||
+        (st = pn_dev_fill(fs, s.words, 4u, 0u)) != PN_OK)
+        return st;
+    if (!(K->srt_flags & PN_SRT_NO_CONSERVATIVE) && (st = pn_dev_run(fs, PN_K_SRT_CONSERVATIVE, T)) != PN_OK) return st;
+
+    /* Area light: the penumbra mask, per tile: the union of every edge tile's splat, by
+     * rows then columns (the reach along both axes grows with the same weight). */
+    if (!K->light.is_point) {
+        pn_v3 U = pn_v3_make(K->light.U[0], K->light.U[1], K->light.U[2]);
+        pn_v3 V = pn_v3_make(K->light.V[0], K->light.V[1], K->light.V[2]);
+        K->srt_reach_u = pn_ksqrt(pn_v3_dot(U, U)) / K->srt_alpha;
+        K->srt_reach_v = pn_ksqrt(pn_v3_dot(V, V)) / K->srt_alpha;
+        if ((st = pn_dev_run(fs, PN_K_SRT_TILES, tiles * tiles)) != PN_OK ||
+            (st = pn_dev_to_host(fs, s.words, 4u)) != PN_OK)
+            return st;
+        K->srt_wmax = pn_srt_bitsf(s.words[0]);
+        if ((st = pn_dev_run(fs, PN_K_SRT_TILE_ROWS, tiles)) != PN_OK ||
+            (st = pn_dev_run(fs, PN_K_SRT_TILE_COLS, tiles)) != PN_OK)
+            return st;
+    }
+
+    /* Classification, the dense PIP list, and the exact masks. */
+    if ((st = pn_dev_run(fs, PN_K_SRT_CLASSIFY, npix)) != PN_OK || (st = pn_dev_scan(fs, s.pip_off, npix)) != PN_OK ||
+        (st = pn_dev_to_host(fs, s.pip_off + npix, 4u)) != PN_OK)
+        return st;
+    npip = s.pip_off[npix];
+    if ((st = pn_dev_run(fs, PN_K_SRT_PIP_LIST, npix)) != PN_OK || (st = pn_dev_run(fs, PN_K_SRT_EXACT, npip)) != PN_OK ||
+        (st = pn_dev_to_host(fs, s.words, 16u)) != PN_OK)
+        return st;
+    ctx->srt.map = res;
+    ctx->srt.pip = npip;
+    ctx->srt.thin = s.words[1];
+    ctx->srt.tiles_masked = s.words[2];
+    return PN_OK;
+}
+
+#endif

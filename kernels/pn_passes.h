@@ -59,13 +59,20 @@ PN_KFN void pn_e_raster_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
     PN_POOL(uint32_t, rows)[t] = pn_raster_rows(&K->view, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), t);
 }
 
-/* Band of PN_RASTER_BAND rows: owns its pixels and walks every triangle in id order. */
-PN_KFN void pn_e_raster_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
+/* Band `band` of PN_RASTER_BAND rows of view v: owns its pixels and walks every triangle in
+ * id order (the G-buffer and the light-space maps alike). */
+PN_KFN void pn_band(const pn_kview *v, PN_CONST float *tris, PN_CONST uint32_t *rows, uint32_t tri_count, uint32_t band,
+                    PN_GLOBAL float *depth, PN_GLOBAL uint32_t *ids)
 {
     uint32_t y0 = band * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND - 1u;
-    if (y1 >= K->view.height) y1 = K->view.height - 1u;
-    pn_raster_band(&K->view, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows), K->tri_count, y0, y1,
-                   PN_POOL(float, depth), PN_POOL(uint32_t, tri_id));
+    if (y1 >= v->height) y1 = v->height - 1u;
+    pn_raster_band(v, tris, rows, tri_count, y0, y1, depth, ids);
+}
+
+PN_KFN void pn_e_raster_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
+{
+    pn_band(&K->view, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows), K->tri_count, band,
+            PN_POOL(float, depth), PN_POOL(uint32_t, tri_id));
 }
 
 /* Pixel: position and normal from its depth and triangle. */
@@ -227,10 +234,8 @@ PN_KFN void pn_e_lmap_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kp
 /* Band of map rows: the G-buffer's rasterizer on the light view. */
 PN_KFN void pn_e_lmap_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
 {
-    uint32_t y0 = band * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND - 1u;
-    if (y1 >= K->lview.height) y1 = K->lview.height - 1u;
-    pn_raster_band(&K->lview, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows), K->tri_count, y0, y1,
-                   PN_POOL(float, lmap_depth), PN_POOL(uint32_t, lmap_id));
+    pn_band(&K->lview, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows), K->tri_count, band,
+            PN_POOL(float, lmap_depth), PN_POOL(uint32_t, lmap_id));
 }
 
 /* Triangle: conservative rasterization when thin. */

@@ -248,8 +248,9 @@ PN_KFN void pn_e_srt_conservative(PN_GLOBAL uint8_t *A, const pn_kpools *P, cons
 /* Tile: the largest splat weight of its edge texels. */
 PN_KFN void pn_e_srt_tiles(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t tile)
 {
-    pn_srt_tile(&K->lview, K->srt_delta, PN_POOL(const float, lmap_depth), PN_POOL(const uint32_t, lmap_cons), tile,
-                K->srt_tiles, PN_POOL(uint32_t, srt_tile_w), PN_POOL(uint32_t, srt_max));
+    pn_srt_tile(&K->lview, K->srt_delta, K->srt_alpha, PN_POOL(const float, lmap_depth), PN_POOL(const uint32_t, lmap_id),
+                PN_POOL(const float, tris), PN_POOL(const uint32_t, lmap_cons), tile, K->srt_tiles,
+                PN_POOL(uint32_t, srt_tile_w), PN_POOL(uint32_t, srt_max));
 }
 
 /* Tile row: the largest weight whose horizontal reach covers each tile (srt_tile_h). */

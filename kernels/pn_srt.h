@@ -13,7 +13,8 @@
  *   hard (point light): PIP when the 3x3 depth discontinuity D = max |s - s'| exceeds the
  *     threshold and the receiver, within one texel's angle alpha of O, can reach depths
  *     [d^, d + (d - d^)] (d^ = d sin(b) / sin(a + b), sin(b) = n.L) that overlap
- *     [s - D, s + D] or lie on both sides of s; or when a thin triangle was conservatively
+ *     [s - D, s + D] or lie on both sides of s; or when a thin triangle (narrower than a
+ *     texel, three times longer than wide) was conservatively
  *     rasterized into S;
  *   soft (area light): PIP when S lies in the penumbra mask: every edge texel (D above the
  *     threshold, or touched by a thin triangle) splatted with the light's footprint, which
@@ -154,8 +155,8 @@ PN_KFN int pn_srt_strip(const pn_poly *p, float y0, float y1, float *xlo, float 
     return hit;
 }
 
-/* Triangle t: when thin in the light view (it could slip between texel centres: its
- * smallest width below 1.5 texels while its longest edge spans at least one), every texel
+/* Triangle t: when thin in the light view (it could slip between texel centres: narrower
+ * than a texel, three times longer than wide, its longest edge at least a texel), every texel
  * it touches gets 1/zmin (zmin: its nearest depth along the light axis) by atomic max into
  * cons (widened by a texel for the rounding of the projection); *count: one more. */
 PN_KFN void pn_srt_conservative(const pn_kview *lv, PN_CONST float *tris, PN_CONST uint8_t *flags, uint32_t t,
@@ -183,7 +184,10 @@ PN_KFN void pn_srt_conservative(const pn_kview *lv, PN_CONST float *tris, PN_CON
     }
     area = 0.5f * (area < 0.0f ? -area : area);
     longest = pn_ksqrt(longest);
-    if (!(longest >= 1.0f) || !(area < 1.5f * longest) || !(zmin > 0.0f)) return;
+    /* Thin: narrower than a texel (2 area / longest edge) and at least three times longer
+     * than wide. Small but regular triangles (scanned meshes) are covered by their
+     * neighbours and skipped, as the paper does. */
+    if (!(longest >= 1.0f) || !(2.0f * area < longest) || !(6.0f * area < longest * longest) || !(zmin > 0.0f)) return;
     pn_katomic_add(count, 1u);
     w = 1.0f / zmin;
     y0 = pn_kfloor_clamp(ylo - 1.0f, 0, (int32_t)res - 1);
@@ -236,19 +240,42 @@ PN_KFN float pn_srt_delta(PN_CONST float *depth, uint32_t res, int32_t tx, int32
     return D;
 }
 
+/* How much a texel's depth may differ from its neighbours' on its own surface: three
+ * texels' worth of the depth change of its triangle's plane along the map (s alpha tan of
+ * the angle between the plane's normal and the texel's ray), so that sloped and gently
+ * curved surfaces are not taken for occluder edges; +inf for a plane edge-on to the ray. */
+PN_KFN float pn_srt_slope(const pn_kview *lv, float alpha, PN_CONST float *tris, uint32_t id, uint32_t tx, uint32_t ty,
+                          float s)
+{
+    PN_CONST float *p = tris + (size_t)id * 9u;
+    pn_v3 A = pn_v3_make(p[0], p[1], p[2]);
+    pn_v3 n = pn_v3_normalize(pn_v3_cross(pn_v3_sub(pn_v3_make(p[3], p[4], p[5]), A), pn_v3_sub(pn_v3_make(p[6], p[7], p[8]), A)));
+    pn_v3 d = pn_ray_dir(lv, tx, ty);
+    float cs = pn_v3_dot(n, d), sn;
+    cs = cs < 0.0f ? -cs : cs;
+    if (!(cs > 1e-3f)) return PN_KINF;
+    sn = pn_ksqrt(pn_kmaxf(0.0f, 1.0f - cs * cs));
+    return 3.0f * s * alpha * sn / cs;
+}
+
 /* Tile (bx, by) of the soft map: the largest splat weight 1/z of its edge texels (0: none),
- * into tile_w, and into *wmax by atomic max. */
-PN_KFN void pn_srt_tile(const pn_kview *lv, float delta, PN_CONST float *depth, PN_CONST uint32_t *cons,
-                        uint32_t tile, uint32_t tiles, PN_GLOBAL uint32_t *tile_w, PN_GLOBAL uint32_t *wmax)
+ * into tile_w, and into *wmax by atomic max. An edge texel's depth differs from a
+ * neighbour's by more than the threshold plus its surface's slope allowance. */
+PN_KFN void pn_srt_tile(const pn_kview *lv, float delta, float alpha, PN_CONST float *depth, PN_CONST uint32_t *ids,
+                        PN_CONST float *tris, PN_CONST uint32_t *cons, uint32_t tile, uint32_t tiles,
+                        PN_GLOBAL uint32_t *tile_w, PN_GLOBAL uint32_t *wmax)
 {
     uint32_t res = lv->width, bx = tile % tiles, by = tile / tiles, x, y;
     float w = 0.0f;
     for (y = by * PN_SRT_TILE; y < (by + 1u) * PN_SRT_TILE && y < res; y++)
         for (x = bx * PN_SRT_TILE; x < (bx + 1u) * PN_SRT_TILE && x < res; x++) {
+            size_t t = (size_t)y * res + x;
             float near, D = pn_srt_delta(depth, res, (int32_t)x, (int32_t)y, &near);
-            float wc = pn_srt_bitsf(cons[(size_t)y * res + x]);
-            if (D > delta && near < PN_KINF) w = pn_kmaxf(w, 1.0f / pn_srt_texel_z(lv, x, y, near));
-            w = pn_kmaxf(w, wc);
+            w = pn_kmaxf(w, pn_srt_bitsf(cons[t]));
+            if (!(D > delta) || !(near < PN_KINF)) continue;
+            if (D < PN_KINF && ids[t] != 0xFFFFFFFFu && !(D > delta + pn_srt_slope(lv, alpha, tris, ids[t], x, y, depth[t])))
+                continue;
+            w = pn_kmaxf(w, 1.0f / pn_srt_texel_z(lv, x, y, near));
         }
     tile_w[tile] = pn_srt_fbits(w);
     if (w > 0.0f) pn_srt_atomic_fmax(wmax, w);

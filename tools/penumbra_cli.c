@@ -31,13 +31,13 @@ typedef struct pn_algo_name {
 static const pn_algo_name pn_algos[] = {
     {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE},
     {"gears", PN_ALGO_GEARS, PN_BUILD_GEARS},
-    {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},
     {"srt", PN_ALGO_SRT, PN_BUILD_SRT},
+    {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},
 };
 #define PN_ALGO_COUNT (sizeof(pn_algos) / sizeof(pn_algos[0]))
 /* The demo renders the first entries only: raytrace is a baseline with the reference's bits
  * by construction and the slowest of all (k^2 rays per pixel); the benchmark measures it. */
-#define PN_DEMO_ALGO_COUNT 2u
+#define PN_DEMO_ALGO_COUNT 3u
 
 static void usage(FILE *f)
 {
@@ -50,6 +50,7 @@ static void usage(FILE *f)
             "                  [--eye x,y,z --target x,y,z --up x,y,z --fov DEG]\n"
             "                  [--light-center x,y,z --light-u x,y,z --light-v x,y,z]\n"
             "                  [--ground on|off] [--eps E] [--grid N] [--exact-stats] [--threads N]\n"
+            "                  [--srt-map N] [--srt-delta D] [--srt-no-conservative] [--srt-force-pip]\n"
             "                  --out image.png [--vis vis.pfm] [--ids ids.bin] [--stats stats.json]\n"
             "  penumbra demo [--out DIR] [--size WxH] [--k K] [--threads N]\n"
             "  penumbra info\n"
@@ -268,6 +269,10 @@ static int cmd_render(int argc, char **argv)
         } else if (strcmp(a, "--eps") == 0) { NEED_ARG; eps_rel = strtof(v, NULL); }
         else if (strcmp(a, "--grid") == 0) { NEED_ARG; opt.gears_grid = (uint32_t)strtoul(v, NULL, 10); }
         else if (strcmp(a, "--exact-stats") == 0) opt.exact_stats = 1;
+        else if (strcmp(a, "--srt-map") == 0) { NEED_ARG; opt.srt_map = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--srt-delta") == 0) { NEED_ARG; opt.srt_delta = strtof(v, NULL); }
+        else if (strcmp(a, "--srt-no-conservative") == 0) opt.srt_flags |= PN_SRT_NO_CONSERVATIVE;
+        else if (strcmp(a, "--srt-force-pip") == 0) opt.srt_flags |= PN_SRT_FORCE_PIP;
         else if (strcmp(a, "--threads") == 0) { NEED_ARG; threads = atoi(v); if (threads < 1) BAD(a); }
         else if (strcmp(a, "--out") == 0) { NEED_ARG; out = v; }
         else if (strcmp(a, "--vis") == 0) { NEED_ARG; vis = v; }

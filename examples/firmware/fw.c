@@ -230,6 +230,14 @@ int fw_run(fw_write_fn write)
                 put_hex(fnv1a(frame.visibility, sizeof(float) * FW_WIDTH * FW_HEIGHT));
                 put_str(" rgba=");
                 put_hex(fnv1a(frame.rgba, 4u * FW_WIDTH * FW_HEIGHT));
+                /* The G-buffer's floats too: visibility is a count of exactly decided
+                 * samples and rarely moves when a product is rounded differently; depth,
+                 * position and normal change in their last bits (FMA contraction shows
+                 * here first). */
+                put_str(" gbuffer=");
+                put_hex(fnv1a(frame.depth, sizeof(float) * FW_WIDTH * FW_HEIGHT) ^
+                        fnv1a(frame.position, 3u * sizeof(float) * FW_WIDTH * FW_HEIGHT) ^
+                        fnv1a(frame.normal, 3u * sizeof(float) * FW_WIDTH * FW_HEIGHT));
                 put_str(" umbra_pixels=");
                 put_u32(umbra);
                 end_line();

@@ -6,8 +6,11 @@
 #                                 for the plots and valgrind for its profile (make bench)
 set -eu
 # OpenCL port: headers, the ICD loader to link against, and PoCL as the CPU device.
+# Cortex-M7: the cross compiler and newlib's headers (ctest freestanding_arm, the cortex-m7
+# preset) and QEMU's mps2-an500 board that runs the firmware example (firmware_same_bytes).
+# pkg-config: ctest consumer_pkg_config builds against the installed penumbra.pc.
 PKGS="cmake make gcc g++ libtinygltf-dev libstb-dev gcc-arm-none-eabi libnewlib-arm-none-eabi
-      pocl-opencl-icd ocl-icd-opencl-dev opencl-headers"
+      qemu-system-arm pkg-config pocl-opencl-icd ocl-icd-opencl-dev opencl-headers"
 case "${1:-}" in
   "") ;;
   bench) PKGS="$PKGS libembree-dev gnuplot-nox valgrind" ;;

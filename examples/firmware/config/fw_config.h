@@ -1,0 +1,23 @@
+/* fw_config.h - the firmware example's penumbra configuration (PN_CONFIG_FILE).
+ *
+ * The library and every file that includes penumbra.h must see the same configuration:
+ * examples/firmware/CMakeLists.txt puts PN_CONFIG_FILE="fw_config.h" and this folder on
+ * the penumbra target's PUBLIC interface, so both get it.
+ *
+ * The defaults are sized for desktop scenes (GEARS alone reserves 4.5 MiB of grid and
+ * 48 MiB of pairs in PN_ARENA_BYTES_MAX). A firmware build states what it renders: a
+ * 32 x 32 image of at most 64 triangles, masks up to k = 8, a GEARS grid of at most 16
+ * cells per axis and 4096 (triangle, cell) pairs per pass (more pairs are tiled, so the
+ * result does not depend on it). */
+#ifndef FW_CONFIG_H
+#define FW_CONFIG_H
+
+#define PN_MAX_TRIANGLES 64u
+#define PN_MAX_VERTICES 256u
+#define PN_MAX_WIDTH 32u
+#define PN_MAX_HEIGHT 32u
+#define PN_MASK_K_MAX 8u
+#define PN_GEARS_GRID_MAX 16u
+#define PN_GEARS_PAIRS 4096u
+
+#endif

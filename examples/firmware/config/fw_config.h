@@ -8,7 +8,8 @@
  * 48 MiB of pairs in PN_ARENA_BYTES_MAX). A firmware build states what it renders: a
  * 32 x 32 image of at most 64 triangles, masks up to k = 8, a GEARS grid of at most 16
  * cells per axis and 4096 (triangle, cell) pairs per pass (more pairs are tiled, so the
- * result does not depend on it). */
+ * result does not depend on it), and a 64 x 64 shadow map for selective ray tracing
+ * (its default 2048 x 2048 alone would reserve 48 MiB). */
 #ifndef FW_CONFIG_H
 #define FW_CONFIG_H
 
@@ -19,5 +20,6 @@
 #define PN_MASK_K_MAX 8u
 #define PN_GEARS_GRID_MAX 16u
 #define PN_GEARS_PAIRS 4096u
+#define PN_SRT_MAP_MAX 64u
 
 #endif

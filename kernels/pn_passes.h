@@ -286,7 +286,7 @@ PN_KFN void pn_e_srt_classify(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn
     a.tiles = K->srt_tiles;
     PN_POOL(uint32_t, pip_off)[pix] =
         pn_srt_classify(&K->lview, &K->light, &a, PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos),
-                        PN_POOL(const float, nrm), PN_POOL(const float, lmap_depth), PN_POOL(const uint32_t, lmap_id),
+                        PN_POOL(const float, nrm), PN_POOL(const float, tris), PN_POOL(const float, lmap_depth), PN_POOL(const uint32_t, lmap_id),
                         PN_POOL(const uint32_t, lmap_cons), PN_POOL(const uint32_t, srt_tile_w),
                         PN_POOL(const uint32_t, srt_tile_mask), pix, &v, &lit);
     PN_POOL(float, vis)[pix] = v;

@@ -365,7 +365,7 @@ typedef struct pn_srt_args {
  * *vis (also for background and unlit pixels, which are final). *lit: 1 if it faces the
  * light. */
 PN_KFN uint32_t pn_srt_classify(const pn_kview *lv, const pn_klight *L, const pn_srt_args *a, PN_CONST uint32_t *tri_id,
-                                PN_CONST float *pos, PN_CONST float *nrm, PN_CONST float *depth,
+                                PN_CONST float *pos, PN_CONST float *nrm, PN_CONST float *tris, PN_CONST float *depth,
                                 PN_CONST uint32_t *lmap_id, PN_CONST uint32_t *cons, PN_CONST uint32_t *tile_w,
                                 PN_CONST uint32_t *tile_mask, size_t pix, float *vis, uint32_t *lit)
 {
@@ -423,6 +423,10 @@ PN_KFN uint32_t pn_srt_classify(const pn_kview *lv, const pn_klight *L, const pn
         float near, D;
         if (cons[(size_t)ty * res + (size_t)tx] != 0u) return 1u;
         D = pn_srt_delta(depth, res, tx, ty, &near);
+        if (D > a->delta && D < PN_KINF && lmap_id[(size_t)ty * res + (size_t)tx] != 0xFFFFFFFFu &&
+            !(D > a->delta + pn_srt_slope(lv, a->alpha, tris, lmap_id[(size_t)ty * res + (size_t)tx], (uint32_t)tx,
+                                          (uint32_t)ty, s)))
+            D = 0.0f; /* the texel's own surface's slope explains the difference */
         if (D > a->delta) {
             float lo = dhat, hi = d + (d - dhat);
             if (!(hi < s - D || lo > s + D)) return 1u;

@@ -299,6 +299,8 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     fs.height = opt->height;
     fs.gears_grid = opt->gears_grid;
 #if PN_ENABLE_SRT
+    /* Default map: the paper's 2048^2, at most the limit (a coarser map marks far more
+     * pixels: test_srt at 256^2 marks 61-100% of the lit pixels, at 2048^2 7-72%). */
     fs.srt_map = opt->srt_map ? opt->srt_map : pn_srt_map_max(&ctx->limits);
     if (!opt->srt_map && fs.srt_map > 2048u) fs.srt_map = 2048u;
     fs.K.srt_flags = opt->srt_flags;

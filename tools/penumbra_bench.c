@@ -49,6 +49,7 @@ static const bench_algo algos[] = {
 #ifdef PN_BUILD_RAYTRACE
     {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE, 1, 0},
 #endif
+    {"SRT", PN_ALGO_SRT, PN_BUILD_SRT, 0, 1},
 };
 #define NALGO ((int)(sizeof(algos) / sizeof(algos[0])))
 #define A_REF 0

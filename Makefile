@@ -5,13 +5,17 @@
 #   make bench        also installs Embree and gnuplot, runs every scene and sweep, and
 #                     regenerates docs/bench/ (RESULTS.md, plots, gallery) from scratch; slow
 #   make bench-quick  the same on a small subset, into build-bench/bench-quick/ (< 2 minutes)
+# Fuzzing (not part of make test; a clang ASan+UBSan build in build/fuzz-clang/):
+#   make fuzz         installs clang and its libFuzzer runtime, runs every libFuzzer target for
+#                     FUZZ_MINUTES (default 10) each and prints the table (tools/fuzz.sh,
+#                     docs/fuzz.md); FUZZ_TARGETS="scene gears" picks targets
 BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
 BENCH_BUILD ?= build-bench
 PN_SCENES_DIR ?= $(abspath ../shared/scenes)
 
-.PHONY: all deps configure build demo test clean bench bench-quick bench-build
+.PHONY: all deps configure build demo test clean bench bench-quick bench-build fuzz
 
 all: build
 
@@ -42,6 +46,11 @@ bench: bench-build
 
 bench-quick: bench-build
 	sh tools/bench.sh quick $(BENCH_BUILD)/tools/penumbra_bench $(BENCH_BUILD)/bench-quick $(PN_SCENES_DIR)
+
+# FUZZ_MINUTES, FUZZ_TARGETS, FUZZ_SCRATCH, FUZZ_BUILD pass through the environment.
+fuzz:
+	@sh tools/install-deps.sh fuzz
+	sh tools/fuzz.sh
 
 clean:
 	rm -rf $(BUILD) $(BENCH_BUILD) out

@@ -201,6 +201,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     must |= (zero3(cam.up) || eq3(cam.eye, cam.target)) ? BIT(PN_E_CAMERA) : 0u;
     s = len3((double[3]){f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]});
     may |= !(len3(f) > 1e-15 && len3(up) > 1e-15 && s > 1e-5 * len3(f) * len3(up)) ? BIT(PN_E_CAMERA) : 0u;
+    /* Frames that cannot be formed in float (issue 20): |f| or |up| below 1.1e-19 (f.f or
+     * (f x up).(f x up) subnormal), and a fov whose neighbouring pixels' rays coincide,
+     * 2 tan(fov/2) / h below 2^-23. A factor of 2 either side of each threshold may go
+     * either way. */
+    must |= len3(f) < 5e-20 || len3(up) < 5e-20 ? BIT(PN_E_CAMERA) : 0u;
+    if (isfinite(cam.fov_deg) && cam.fov_deg > 0.0f && cam.fov_deg < 180.0f && opt.height > 0u) {
+        double th = tan((double)cam.fov_deg * 3.14159265358979323846 / 360.0), need = opt.height * 0x1p-24;
+        must |= th < 0.5 * need ? BIT(PN_E_CAMERA) : 0u;
+        may |= th < 2.0 * need ? BIT(PN_E_CAMERA) : 0u;
+    }
     /* Light: both half-edges zero is a point light, one zero is degenerate, |u.v| above
      * 1e-4 |u||v| is not orthogonal; lengths below 1e-15 may underflow to zero. */
     lu = len3(u), lv = len3(v);
@@ -208,6 +218,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     maybe_point = lu < 1e-15 && lv < 1e-15;
     must |= (zero3(light.u) != zero3(light.v) && (lu >= 1e-15 || lv >= 1e-15)) ? BIT(PN_E_LIGHT_DEGENERATE) : 0u;
     may |= (lu < 1e-15 || lv < 1e-15) && !point ? BIT(PN_E_LIGHT_DEGENERATE) | BIT(PN_E_LIGHT_NOT_ORTHO) : 0u;
+    /* Only u = v = 0 exactly is a point light; a non-zero half-edge shorter than 1.1e-19
+     * cannot be normalized in float (issue 20). */
+    must |= (!zero3(light.u) && lu < 5e-20) || (!zero3(light.v) && lv < 5e-20) ? BIT(PN_E_LIGHT_DEGENERATE) : 0u;
     s = lu >= 1e-15 && lv >= 1e-15 ? fabs(u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) / (lu * lv) : 0.0;
     must |= s > 1e-3 ? BIT(PN_E_LIGHT_NOT_ORTHO) : 0u;
     may |= s > 1e-5 ? BIT(PN_E_LIGHT_NOT_ORTHO) : 0u;

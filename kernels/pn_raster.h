@@ -40,6 +40,25 @@ PN_KFN pn_v3 pn_ray_dir(const pn_kview *v, uint32_t x, uint32_t y)
 
 PN_KFN pn_v3 pn_view_eye(const pn_kview *v) { return pn_v3_make(v->eye[0], v->eye[1], v->eye[2]); }
 
+/* The plane normal of triangle ABC, unnormalized: (B - A) x (C - A). One expression for
+ * pn_scene_set's degenerate test, the depth and the G-buffer normal, so they cannot drift. */
+PN_KFN pn_v3 pn_tri_cross(pn_v3 A, pn_v3 B, pn_v3 C)
+{
+    return pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
+}
+
+/* FLT_MIN (2^-126), written out for OpenCL C and freestanding C alike. */
+#define PN_NORMAL_MIN 1.17549435e-38f
+
+/* Whether normal n can be normalized in float. pn_v3_normalize divides by the largest
+ * component m: 1/m overflows to inf for m < 2^-128 (issue 20: subnormal vertices gave a
+ * cross product of 1e-41 and the G-buffer a NaN normal), and a subnormal m has too few
+ * significant bits to give a direction at all. A triangle whose cross product has no
+ * component of at least FLT_MIN is degenerate like one of zero area (pn_scene_set flags
+ * it PN_TRI_DEGENERATE: counted, never drawn, never blocking). With m >= FLT_MIN, 1/m
+ * <= 2^126 and the scaled vector has a largest component of 1: the result is unit. */
+PN_KFN int pn_normal_ok(pn_v3 n) { return pn_v3_linf(n) >= PN_NORMAL_MIN; }
+
 PN_KFN pn_v3 pn_to_camera(const pn_kview *v, pn_v3 X)
 {
     pn_v3 rel = pn_v3_sub(X, pn_view_eye(v));
@@ -230,7 +249,7 @@ PN_KFN void pn_raster_band(const pn_kview *v, PN_CONST float *tris, PN_CONST uin
         }
         x0 = pn_kceil_clamp(xlo - 0.5f, 0, (int32_t)v->width);
         x1 = pn_kfloor_clamp(xhi - 0.5f, -1, (int32_t)v->width - 1);
-        n = pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
+        n = pn_tri_cross(A, B, C);
         nA = pn_v3_dot(n, pn_v3_sub(A, eye));
         for (y = y0; y <= y1; y++) {
             float py = (float)y + 0.5f;
@@ -271,7 +290,8 @@ PN_KFN void pn_gbuffer_resolve(const pn_kview *v, PN_CONST float *tris, uint32_t
         pn_v3 A = pn_v3_make(p[0], p[1], p[2]);
         pn_v3 B = pn_v3_make(p[3], p[4], p[5]);
         pn_v3 C = pn_v3_make(p[6], p[7], p[8]);
-        pn_v3 n = pn_v3_normalize(pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A)));
+        /* Unit: triangle t was drawn, so it is not degenerate and pn_normal_ok holds. */
+        pn_v3 n = pn_v3_normalize(pn_tri_cross(A, B, C));
         pn_v3 P = pn_v3_add(pn_view_eye(v), pn_v3_scale(pn_ray_dir(v, x, y), depth[pix]));
         pos[pix * 3u + 0u] = P.x;
         pos[pix * 3u + 1u] = P.y;

@@ -60,19 +60,42 @@ static pn_status pn_setup_view(pn_context *ctx, const pn_camera *cam, uint32_t w
     len = pn_ksqrt(pn_v3_dot(f, f));
     if (!(len > 0.0f) || !pn_finite(len))
         return pn_fail(ctx, PN_E_CAMERA, "camera eye and target coincide");
+    /* Issue 20: frames that cannot be formed in float. f.f below FLT_MIN (2^-126) is
+     * subnormal: its root has lost bits and f / len is not a unit vector. */
+    if (!(pn_v3_dot(f, f) >= 1.17549435e-38f))
+        return pn_fail(ctx, PN_E_CAMERA,
+                       "camera eye and target are too close (under 1.1e-19 apart) to form a view direction in float");
     f = pn_v3_scale(f, 1.0f / len);
     r = pn_v3_cross(f, pn_v3_arr(cam->up));
     len = pn_ksqrt(pn_v3_dot(r, r));
     /* |f x up| relative to |up|: below ~1e-6 the right vector is noise. */
     if (!(len > 1e-6f * pn_ksqrt(pn_v3_dot(pn_v3_arr(cam->up), pn_v3_arr(cam->up)))) || !(len > 0.0f))
         return pn_fail(ctx, PN_E_CAMERA, "camera up is zero or parallel to the view direction");
+    if (!(pn_v3_dot(r, r) >= 1.17549435e-38f)) /* the same for r = f x up */
+        return pn_fail(ctx, PN_E_CAMERA,
+                       "camera up is too short (|f x up| under 1.1e-19) to form the right vector in float");
     r = pn_v3_scale(r, 1.0f / len);
     u = pn_v3_cross(r, f);
+    {
+        /* Whatever the route: f, r and u must come out unit (to 1e-3, the tolerance the
+         * fuzz targets check normals with). */
+        float ef = pn_v3_dot(f, f) - 1.0f, er = pn_v3_dot(r, r) - 1.0f, eu = pn_v3_dot(u, u) - 1.0f;
+        if (!(ef * ef < 1e-6f && er * er < 1e-6f && eu * eu < 1e-6f))
+            return pn_fail(ctx, PN_E_CAMERA, "camera frame (view, right, up) is not orthonormal in float");
+    }
     memcpy(kv->eye, cam->eye, sizeof(kv->eye));
     kv->f[0] = f.x; kv->f[1] = f.y; kv->f[2] = f.z;
     kv->r[0] = r.x; kv->r[1] = r.y; kv->r[2] = r.z;
     kv->u[0] = u.x; kv->u[1] = u.y; kv->u[2] = u.z;
     kv->tan_half = pn_tan_half_deg(cam->fov_deg);
+    /* Neighbouring pixels' rays are 2 tan_half / h apart in the image plane, on both axes
+     * (square pixels). Below FLT_EPSILON (2^-23, the spacing of floats at |f| = 1) they
+     * round to the same direction; a subnormal or zero tan_half (fov under about 1e-36
+     * degrees) also makes the projection divide by zero. */
+    if (!(kv->tan_half * 2.0f >= 1.1920929e-7f * (float)h))
+        return pn_fail(ctx, PN_E_CAMERA,
+                       "camera fov is too small for %u image rows: neighbouring pixels' rays coincide in float "
+                       "(tan(fov/2) must be at least rows * 2^-24)", h);
     kv->aspect = (float)w / (float)h;
     /* Geometry nearer than this along f is clipped: far below any pixel footprint for a
      * camera outside the scene, and far above float noise. */
@@ -95,6 +118,16 @@ static pn_status pn_setup_light(pn_context *ctx, const pn_light *l, uint32_t k, 
     V = pn_v3_arr(l->v);
     lu = pn_ksqrt(pn_v3_dot(U, U));
     lv = pn_ksqrt(pn_v3_dot(V, V));
+    /* Issue 20: only u = v = 0 exactly is a point light. A non-zero half-edge whose square
+     * is below FLT_MIN (shorter than 1.1e-19) cannot be normalized in float. */
+    if ((U.x != 0.0f || U.y != 0.0f || U.z != 0.0f) && !(pn_v3_dot(U, U) >= 1.17549435e-38f))
+        return pn_fail(ctx, PN_E_LIGHT_DEGENERATE,
+                       "light half-edge u is too short (under 1.1e-19) to form the light's frame in float "
+                       "(u = v = 0 exactly is a point light)");
+    if ((V.x != 0.0f || V.y != 0.0f || V.z != 0.0f) && !(pn_v3_dot(V, V) >= 1.17549435e-38f))
+        return pn_fail(ctx, PN_E_LIGHT_DEGENERATE,
+                       "light half-edge v is too short (under 1.1e-19) to form the light's frame in float "
+                       "(u = v = 0 exactly is a point light)");
     memset(kl, 0, sizeof(*kl));
     memcpy(kl->c, l->center, sizeof(kl->c));
     kl->eps = eps;
@@ -115,6 +148,11 @@ static pn_status pn_setup_light(pn_context *ctx, const pn_light *l, uint32_t k, 
     if (dot > 1e-4f * lu * lv)
         return pn_fail(ctx, PN_E_LIGHT_NOT_ORTHO,
                        "light half-edges u and v must be orthogonal (|u.v| <= 1e-4 |u||v|)");
+    /* N: u x v must be normalizable (largest component at least FLT_MIN, as for triangle
+     * normals, pn_normal_ok in pn_raster.h), else normalizing it gives NaN. */
+    if (!(pn_v3_linf(pn_v3_cross(U, V)) >= 1.17549435e-38f))
+        return pn_fail(ctx, PN_E_LIGHT_DEGENERATE,
+                       "light u x v is too small (|u| |v| under about 2e-38) to form the light's normal in float");
     N = pn_v3_normalize(pn_v3_cross(U, V));
     memcpy(kl->U, l->u, sizeof(kl->U));
     memcpy(kl->V, l->v, sizeof(kl->V));

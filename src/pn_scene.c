@@ -5,6 +5,7 @@
 
 #include "pn_internal.h"
 #include "pn_kmath.h"
+#include "pn_raster.h"
 
 static int pn_coord_ok(float v) { return pn_finite(v) && v <= PN_MAX_COORD && v >= -PN_MAX_COORD; }
 
@@ -73,9 +74,11 @@ pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_
         A = pn_v3_make(dst[0], dst[1], dst[2]);
         B = pn_v3_make(dst[3], dst[4], dst[5]);
         C = pn_v3_make(dst[6], dst[7], dst[8]);
-        n = pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
-        /* Zero area in float: no plane, no edges; it can neither be seen nor block. */
-        ctx->flags[t] = (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) ? (uint8_t)PN_TRI_DEGENERATE : 0u;
+        n = pn_tri_cross(A, B, C);
+        /* Zero area in float, or a normal that cannot be normalized in float (largest
+         * component of the cross product below FLT_MIN: a triangle at subnormal scale,
+         * issue 20): no plane, no edges; it can neither be seen nor block. */
+        ctx->flags[t] = pn_normal_ok(n) ? 0u : (uint8_t)PN_TRI_DEGENERATE;
         degenerate += ctx->flags[t] & PN_TRI_DEGENERATE;
     }
     ctx->tri_count = triangle_count;

@@ -4,6 +4,7 @@
 #   tools/install-deps.sh         what `make demo` and `make test` need
 #   tools/install-deps.sh bench   also the benchmark's own: the Embree 3 baseline, gnuplot
 #                                 for the plots and valgrind for its profile (make bench)
+#   tools/install-deps.sh fuzz    also clang and its libFuzzer/sanitizer runtime (make fuzz)
 set -eu
 # OpenCL port: headers, the ICD loader to link against, and PoCL as the CPU device.
 # Cortex-M7: the cross compiler and newlib's headers (ctest freestanding_arm, the cortex-m7
@@ -14,7 +15,8 @@ PKGS="cmake make gcc g++ libtinygltf-dev libstb-dev gcc-arm-none-eabi libnewlib-
 case "${1:-}" in
   "") ;;
   bench) PKGS="$PKGS libembree-dev gnuplot-nox valgrind" ;;
-  *) echo "usage: $0 [bench]" >&2; exit 2 ;;
+  fuzz) PKGS="$PKGS clang libclang-rt-14-dev" ;;
+  *) echo "usage: $0 [bench|fuzz]" >&2; exit 2 ;;
 esac
 missing=""
 for p in $PKGS; do

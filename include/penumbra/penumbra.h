@@ -22,8 +22,13 @@
  *   float overflow). Bad input returns a
  *   specific pn_status, stores a message (pn_last_error), writes no out-parameter and
  *   modifies no caller memory. Scene data is *copied* into the arena by pn_scene_set, so
- *   the caller may free or change its arrays afterwards. Degenerate (zero-area) triangles
- *   are not errors: they are counted (pn_stats) and never rasterized or blocking.
+ *   the caller may free or change its arrays afterwards. Degenerate triangles are not
+ *   errors: they are counted (pn_stats) and never rasterized or blocking. A triangle is
+ *   degenerate when its normal (B - A) x (C - A) cannot be normalized in float: no
+ *   component of at least FLT_MIN (2^-126), which includes zero area and triangles at
+ *   subnormal scale. Cameras and lights whose frame cannot be formed in float (vectors
+ *   shorter than about 1.1e-19, a fov too narrow for the image) are rejected the same way
+ *   as exactly degenerate ones (PN_E_CAMERA, PN_E_LIGHT_DEGENERATE).
  *
  * THREADS
  *   The library starts no threads. Passes are split into work items; by default they run
@@ -50,7 +55,8 @@
  *   sy = 1 - 2(y+0.5)/H; fov is vertical, in degrees.
  *   Light: centre c, half-edges U and V (corners c +- U +- V), N = normalize(U x V); it
  *   emits toward +N only: a surface point P with (P - c).N <= 0 gets visibility 0.
- *   U = V = 0 is a point light at c, shining in every direction: one sample.
+ *   U = V = 0 (every component exactly 0) is a point light at c, shining in every
+ *   direction: one sample. A non-zero U or V must be at least about 1.1e-19 long.
  *   Light sample (i, j) of k x k is c + ((2i+1)/k - 1) U + ((2j+1)/k - 1) V, mask bit j*k + i.
  *   A sample is blocked when the open segment from O = P + eps*n (n the geometric normal
  *   turned toward c) to the sample meets a closed triangle other than P's own.
@@ -77,9 +83,14 @@ typedef enum pn_status {
     PN_E_LIMIT = 3,            /* a count or size exceeds pn_limits or a PN_MAX_* */
     PN_E_NONFINITE = 4,        /* NaN or infinite coordinate */
     PN_E_INDEX_RANGE = 5,      /* a triangle index >= vertex_count */
-    PN_E_LIGHT_DEGENERATE = 6, /* exactly one light half-edge is zero */
+    PN_E_LIGHT_DEGENERATE = 6, /* exactly one light half-edge is zero, or a non-zero one is
+                                  too short (under 1.1e-19) or U x V too small to be
+                                  normalized in float */
     PN_E_LIGHT_NOT_ORTHO = 7,  /* light half-edges are not orthogonal */
-    PN_E_CAMERA = 8,           /* eye == target, up parallel to view, or fov outside (0,180) */
+    PN_E_CAMERA = 8,           /* eye == target, up parallel to view, fov outside (0,180);
+                                  or a frame that cannot be formed in float: |target - eye|
+                                  or |f x up| under 1.1e-19, or tan(fov/2) below
+                                  height * 2^-24 (neighbouring pixels' rays coincide) */
     PN_E_IMAGE_SIZE = 9,       /* zero width or height */
     PN_E_NO_SCENE = 10,        /* pn_render before a successful pn_scene_set */
     PN_E_UNSUPPORTED = 11,     /* algorithm or port not compiled in */

@@ -10,7 +10,8 @@
  *     64 first render under the reversed schedule (the second always uses the other)
  *   7 algo: low 3 bits below 0xF0, else the raw byte   8..10 limits - 1 (% 64, % 24, % 24)
  *   GEARS builds: 11 gears_grid, 12..13 limits.gears_pairs (u16), 14 limits.gears_grid_max,
- *   15 bit 0 exact_stats (0 in a limit means the default)
+ *   15 bit 0 exact_stats (0 in a limit means the default); SRT builds: bits 1..7 the map limit
+ *   8 + n % 57
  *   then floats: eye[3] target[3] up[3] fov, light c[3] u[3] v[3], eps albedo ambient;
  *   4 background bytes; vertex count * 3 floats; triangle count * 3 uint32 indices.
  *
@@ -118,6 +119,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     lim.gears_grid_max = h[14];
     opt.gears_grid = h[11];
     opt.exact_stats = h[15] & 1u;
+#endif
+#ifdef PN_BUILD_SRT
+    /* SRT maps of 8 .. 64 texels a side: every SRT code path, at a fuzzing pace. */
+    lim.srt_map_max = 8u + (uint32_t)(h[15] >> 1) % 57u;
 #endif
     take(&r, &cam, sizeof cam);
     take(&r, &light, sizeof light);

@@ -6,6 +6,7 @@
 
 #include "pn_kmath.h"
 #include "pn_ktypes.h"
+#include "pn_raster.h" /* pn_normal_ok */
 
 PN_KFN uint32_t pn_to_byte(float v)
 {
@@ -26,7 +27,9 @@ PN_KFN uint32_t pn_shade_pixel(const pn_kview *v, const pn_klight *L, const pn_k
     c = pn_v3_make(L->c[0], L->c[1], L->c[2]);
     toE = pn_v3_sub(pn_v3_make(v->eye[0], v->eye[1], v->eye[2]), P);
     if (pn_v3_dot(nrm, toE) < 0.0f) nrm = pn_v3_scale(nrm, -1.0f);
-    toL = pn_v3_normalize(pn_v3_sub(c, P));
+    toL = pn_v3_sub(c, P);
+    /* A point within ~2^-126 of the light centre has no direction to it in float. */
+    toL = pn_normal_ok(toL) ? pn_v3_normalize(toL) : pn_v3_make(0.0f, 0.0f, 0.0f);
     cosl = pn_kmaxf(0.0f, pn_v3_dot(nrm, toL));
     rad = sh->albedo * (sh->ambient + vis * cosl);
     g = pn_to_byte(rad);

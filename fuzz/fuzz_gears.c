@@ -128,8 +128,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         for (t = 0; t < nt * 3u; t++) pn_box3_add(sb, pn_v3_make(tris[t * 3], tris[t * 3 + 1], tris[t * 3 + 2]));
         pn_box_join_n(sb, obox, 6u);
         d = pn_v3_make(sb[3] - sb[0], sb[4] - sb[1], sb[5] - sb[2]);
-        L.cross_tol = PN_CROSS_TOL * pn_ksqrt(pn_v3_dot(d, d));
-        L.cull_tol = L.cross_tol + 1e-5f * pn_ksqrt(pn_v3_dot(d, d));
+        L.cull_tol = 1e-5f * pn_ksqrt(pn_v3_dot(d, d));
     }
 
     /* The grid, as the ports build it. */

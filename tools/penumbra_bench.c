@@ -627,7 +627,7 @@ static void mask_agreement(report *r, scene_state *ss, const pn_frame_options *o
     snprintf(err, sizeof(err), "out of memory");
     progress("    masks: ours (kernels/ predicate, host BVH) and Embree's, bit by bit");
     ok = ok &&
-         pn_our_masks(&ss->s.mesh, &ss->g, &ss->s.light, opt->k, opt->eps, st.cull_tol, st.cross_tol, &ss->h.threads, &ours, our_vis, err,
+         pn_our_masks(&ss->s.mesh, &ss->g, &ss->s.light, opt->k, opt->eps, st.cull_tol, &ss->h.threads, &ours, our_vis, err,
                       sizeof(err)) == 0 &&
          pn_embree_shadow(ss->emb, PN_EMBREE_OCCLUDED1, &ss->g, &ss->s.light, opt->k, opt->eps, &ss->h.threads,
                           emb_vis, &theirs, &ms, err, sizeof(err)) == 0;

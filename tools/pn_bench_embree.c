@@ -249,7 +249,7 @@ int pn_embree_shadow(pn_embree *e, pn_embree_api api, const pn_gbuf *g, const pn
     /* The open segment (O, S): stop a relative 1e-6 short of the sample, the scale of the
      * predicate's own plane tolerance (pn_tri_mask). */
     tk.tfar = 1.0f - 1e-6f;
-    pn_bench_klight(light, k, eps, 0.0f, 0.0f, &tk.light);
+    pn_bench_klight(light, k, eps, 0.0f, &tk.light);
     t0 = pn_threads_now_ns(NULL);
     pn_threads_parallel_for(threads, g->height, pn_emb_rows, &tk);
     *ms = (double)(pn_threads_now_ns(NULL) - t0) / 1e6;

@@ -10,25 +10,27 @@
  * are eliminated.
  *
  * Range in which every result here is exact (Shewchuk's proofs assume neither overflow nor
- * underflow):
- *   - overflow: the predicate's values are degree-3 polynomials in coordinate differences.
- *     With every coordinate (vertices, O, c, U, V) at most 2^40 in magnitude (PN_MAX_COORD,
- *     src/pn_internal.h; O = P + eps n stays within a few ulps of it) a difference is below
- *     2^41, a cross-product component below 2^83, a component of S - A below 2^42 and a value
- *     below 3 * 2^125 < 2^127; Dekker's split multiplies by 4097 only operands below 2^84.
- *     Nothing overflows.
+ * underflow). pn_x_sign_dot first scales all its coordinates by one power of two (exact,
+ * and it leaves the sign of a degree-3 homogeneous value unchanged) so that the largest
+ * magnitude M among them lies in (2^38, 2^39] (or leaves them when M > 2^38 already).
+ *   - overflow: the values are degree-3 polynomials in coordinate differences. With every
+ *     coordinate at most 2^41 in magnitude (vertices and light within PN_MAX_COORD = 2^40,
+ *     src/pn_internal.h, and O = P + eps n with eps <= 2^40) a difference is below 2^42.6,
+ *     a cross-product component below 2^84.2, a component of S - Q below 2^42.4 and a
+ *     value below 3 * 2^42.4 * 2^84.2 < 2^128; Dekker's split multiplies by 4097 only
+ *     operands below 2^85. Nothing overflows.
  *   - underflow: two-sum is exact even among subnormals; two-product is exact when the
  *     exact product of its operands is a multiple of 2^-149 (its rounding error is then
- *     representable, subnormal or not). Every coordinate that is zero or a multiple of 2^-48
- *     (every float of magnitude >= 2^-25 is) gives products that are multiples of
- *     2^-48 * 2^-48 * 2^-48 * 2^-5 (a_i = (2i+1)/k - 1 is a multiple of 1/k >= 2^-5) = 2^-149:
- *     exact. With every nonzero coordinate at least 2^-14 in magnitude (a multiple of 2^-37)
- *     no subnormal is ever formed, so even a device that flushes subnormals gives the exact
- *     sign. Outside that range (a nonzero coordinate below 2^-25 in magnitude whose low bits
- *     are set), a product's last bits below 2^-149 can be lost, so a value within about
- *     2^-140 of zero (an exact degeneracy involving such a coordinate) can get the wrong
- *     sign; the result is still deterministic and the same on both ports (PoCL keeps
- *     subnormals, like the scalar port).
+ *     representable, subnormal or not). After the scaling, every nonzero coordinate of
+ *     magnitude >= 2^-25 is a multiple of 2^-48, so every product is a multiple of
+ *     2^-48 * 2^-48 * 2^-48 * 2^-5 (a_i = (2i+1)/k - 1 is a multiple of 1/k >= 2^-5) =
+ *     2^-149: exact. That holds whenever every nonzero coordinate entering the test is at
+ *     least 2^-63 times the largest one (M scaled above 2^38). Outside that range (say a
+ *     vertex coordinate of 1e-25 beside coordinates of 1) a product's last bits below
+ *     2^-149 can be lost, so a value within about 2^-140 M^3 of zero (an exact degeneracy
+ *     involving such a coordinate) could get the wrong sign; the result is still
+ *     deterministic and the same on both ports as long as the device keeps subnormals
+ *     (the scalar port and PoCL do; OpenCL lets single-precision devices flush them).
  * tests/test_exact.c checks the signs against an independent exact (big-integer) arbiter. */
 #ifndef PN_EXPANSION_H
 #define PN_EXPANSION_H
@@ -208,21 +210,35 @@ PN_KFN int32_t pn_x_sign_dot(pn_v3 P0, pn_v3 Q, pn_v3 U, pn_v3 V, float a, float
                              pn_v3 e2a, pn_v3 e2b)
 {
     float d1[3][2], d2[3][2], m[3][PN_XCROSS], acc[PN_XDOT], tmp[PN_XDOT], sc[2 * PN_XCROSS], D[6], t[6];
-    float p0[3], q0[3], u0[3], v0[3];
-    int32_t mn[3], c, r, na = 1, nd, ns, nt;
-    /* Components as arrays (no address-of on the vector's fields: OpenCL C 1.2 and C alike). */
-    float pa[3], pb[3], pc[3], pd[3];
-    pa[0] = e1a.x; pa[1] = e1a.y; pa[2] = e1a.z;
-    pb[0] = e1b.x; pb[1] = e1b.y; pb[2] = e1b.z;
-    pc[0] = e2a.x; pc[1] = e2a.y; pc[2] = e2a.z;
-    pd[0] = e2b.x; pd[1] = e2b.y; pd[2] = e2b.z;
-    p0[0] = P0.x; p0[1] = P0.y; p0[2] = P0.z;
-    q0[0] = Q.x; q0[1] = Q.y; q0[2] = Q.z;
-    u0[0] = U.x; u0[1] = U.y; u0[2] = U.z;
-    v0[0] = V.x; v0[1] = V.y; v0[2] = V.z;
+    float x8[8][3], M = 0.0f;
+    int32_t mn[3], c, r, na = 1, nd, ns, nt, i;
+    /* Components as arrays (no address-of on the vector's fields: OpenCL C 1.2 and C alike):
+     * 0 P0, 1 Q, 2 U, 3 V, 4 e1a, 5 e1b, 6 e2a, 7 e2b. */
+    x8[0][0] = P0.x; x8[0][1] = P0.y; x8[0][2] = P0.z;
+    x8[1][0] = Q.x; x8[1][1] = Q.y; x8[1][2] = Q.z;
+    x8[2][0] = U.x; x8[2][1] = U.y; x8[2][2] = U.z;
+    x8[3][0] = V.x; x8[3][1] = V.y; x8[3][2] = V.z;
+    x8[4][0] = e1a.x; x8[4][1] = e1a.y; x8[4][2] = e1a.z;
+    x8[5][0] = e1b.x; x8[5][1] = e1b.y; x8[5][2] = e1b.z;
+    x8[6][0] = e2a.x; x8[6][1] = e2a.y; x8[6][2] = e2a.z;
+    x8[7][0] = e2b.x; x8[7][1] = e2b.y; x8[7][2] = e2b.z;
+    for (i = 0; i < 8; i++)
+        for (c = 0; c < 3; c++) M = pn_kmaxf(M, x8[i][c] < 0.0f ? -x8[i][c] : x8[i][c]);
+    if (!(M > 0.0f)) return 0;
+    /* Scale by a power of two up to M in (2^38, 2^39] (see the range above): exact. */
+    while (M <= 1073741824.0f) { /* 2^30 */
+        for (i = 0; i < 8; i++)
+            for (c = 0; c < 3; c++) x8[i][c] *= 256.0f;
+        M *= 256.0f;
+    }
+    while (M <= 274877906944.0f) { /* 2^38 */
+        for (i = 0; i < 8; i++)
+            for (c = 0; c < 3; c++) x8[i][c] *= 2.0f;
+        M *= 2.0f;
+    }
     for (c = 0; c < 3; c++) {
-        pn_x_two_diff(pa[c], pb[c], &d1[c][1], &d1[c][0]);
-        pn_x_two_diff(pc[c], pd[c], &d2[c][1], &d2[c][0]);
+        pn_x_two_diff(x8[4][c], x8[5][c], &d1[c][1], &d1[c][0]);
+        pn_x_two_diff(x8[6][c], x8[7][c], &d2[c][1], &d2[c][0]);
     }
     for (c = 0; c < 3; c++) {
         int32_t c1 = c == 2 ? 0 : c + 1, c2 = c == 0 ? 2 : c - 1;
@@ -234,13 +250,12 @@ PN_KFN int32_t pn_x_sign_dot(pn_v3 P0, pn_v3 Q, pn_v3 U, pn_v3 V, float a, float
     for (c = 0; c < 3; c++) {
         float x[2], y[2], z[2];
         /* The first factor's component: (P0 - Q) + a U + b V, exact in 6 terms. */
-        pn_x_two_diff(p0[c], q0[c], &x[1], &x[0]);
-        pn_x_two_product(a, u0[c], &y[1], &y[0]);
-        pn_x_two_product(b, v0[c], &z[1], &z[0]);
+        pn_x_two_diff(x8[0][c], x8[1][c], &x[1], &x[0]);
+        pn_x_two_product(a, x8[2][c], &y[1], &y[0]);
+        pn_x_two_product(b, x8[3][c], &z[1], &z[0]);
         nt = pn_x_sum(2, x, 2, y, t);
         nd = pn_x_sum(nt, t, 2, z, D);
         for (r = 0; r < nd; r++) {
-            int32_t i;
             if (D[r] == 0.0f) continue;
             ns = pn_x_scale(mn[c], m[c], D[r], sc);
             nt = pn_x_sum(na, acc, ns, sc, tmp);

@@ -372,21 +372,19 @@ PN_KFN uint32_t pn_tri_sample(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_kligh
                           pn_lin_at(F.e[2], a, b));
 }
 
-/* Bits i < n4 (k rounded up to a multiple of 4) of one row that can pass, returned, and
- * that certainly pass, in *cert. With plane value vp = pb + a_i*phu (bound ep) and edge
- * values v_q = b_q + a_i*h_q (bounds r_q): a lane can pass when vp >= -ep and all v_q >=
- * -r_q or all v_q <= r_q; it certainly passes when vp >= ep and all v_q >= r_q or all
- * v_q <= -r_q (pn_filter's tests). No branches and no variable shifts (pw[i] = 1 << i), in
- * groups of four lanes: GCC 12 vectorizes the group loop at -O2 (SSE2) and the outer loop
- * at -O3; PoCL picks its own widths. The row is most of the predicate's cost (issue 5
+/* Bits i < n4 (k rounded up to a multiple of 4) of one row that can pass: with plane value
+ * vp = pb + a_i*phu (bound ep) and edge values v_q = b_q + a_i*h_q (bounds r_q), a lane can
+ * pass when vp >= -ep and all v_q >= -r_q or all v_q <= r_q (pn_filter's tests; a lane that
+ * fails them certainly does not pass). No branches and no variable shifts (pw[i] = 1 << i),
+ * in groups of four lanes: GCC 12 vectorizes the group loop at -O2 (SSE2) and the outer
+ * loop at -O3; PoCL picks its own widths. The row is most of the predicate's cost (issue 5
  * profile); an earlier measurement (callgrind, reference pass, bunny 64x64) found lanes
  * written out by hand with a shift per group stayed scalar (842 M instructions at -O3
  * against 489 M for this form). */
 PN_KFN uint32_t pn_row_bits(const float *av, const uint32_t *pw, int32_t n4, float pb, float phu, float ep, float b0,
-                            float h0, float b1, float h1, float b2, float h2, float r0, float r1, float r2,
-                            uint32_t *cert)
+                            float h0, float b1, float h1, float b2, float h2, float r0, float r1, float r2)
 {
-    uint32_t bits = 0u, sure = 0u;
+    uint32_t bits = 0u;
     int32_t i0, l;
     for (i0 = 0; i0 < n4; i0 += 4) {
         for (l = 0; l < 4; l++) {
@@ -394,15 +392,31 @@ PN_KFN uint32_t pn_row_bits(const float *av, const uint32_t *pw, int32_t n4, flo
             float vp = pb + a * phu, v0 = b0 + a * h0, v1 = b1 + a * h1, v2 = b2 + a * h2;
             int32_t pos = (v0 >= -r0) & (v1 >= -r1) & (v2 >= -r2);
             int32_t neg = (v0 <= r0) & (v1 <= r1) & (v2 <= r2);
-            int32_t cpos = (v0 >= r0) & (v1 >= r1) & (v2 >= r2);
-            int32_t cneg = (v0 <= -r0) & (v1 <= -r1) & (v2 <= -r2);
             int32_t ok = (vp >= -ep) & (pos | neg);
-            int32_t ck = (vp >= ep) & (cpos | cneg);
             bits |= (0u - (uint32_t)ok) & pw[i0 + l];
-            sure |= (0u - (uint32_t)ck) & pw[i0 + l];
         }
     }
-    *cert = sure;
+    return bits;
+}
+
+/* The lanes of a row that certainly pass: vp >= ep and all v_q >= r_q or all v_q <= -r_q.
+ * The same loop, run only for the rows where some lane can pass (a few percent of the
+ * rows pn_row_bits sees on scanned models), so that the hot loop carries none of it. */
+PN_KFN uint32_t pn_row_sure(const float *av, const uint32_t *pw, int32_t n4, float pb, float phu, float ep, float b0,
+                            float h0, float b1, float h1, float b2, float h2, float r0, float r1, float r2)
+{
+    uint32_t bits = 0u;
+    int32_t i0, l;
+    for (i0 = 0; i0 < n4; i0 += 4) {
+        for (l = 0; l < 4; l++) {
+            float a = av[i0 + l];
+            float vp = pb + a * phu, v0 = b0 + a * h0, v1 = b1 + a * h1, v2 = b2 + a * h2;
+            int32_t pos = (v0 >= r0) & (v1 >= r1) & (v2 >= r2);
+            int32_t neg = (v0 <= -r0) & (v1 <= -r1) & (v2 <= -r2);
+            int32_t ok = (vp >= ep) & (pos | neg);
+            bits |= (0u - (uint32_t)ok) & pw[i0 + l];
+        }
+    }
     return bits;
 }
 
@@ -470,10 +484,13 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
             bit = (uint32_t)j * k;
             have = (m[bit >> 5] >> (bit & 31u)) & keep;
             if (have == keep) continue; /* row already blocked */
-            bits = keep & pn_row_bits(av, pw, n4, pb, plane.hu, ep, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu, F.e_err[0],
-                                      F.e_err[1], F.e_err[2], &sure);
-            sure &= bits;
-            bits &= ~sure & ~have; /* band samples not already blocked */
+            bits = keep & ~have &
+                   pn_row_bits(av, pw, n4, pb, plane.hu, ep, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu, F.e_err[0], F.e_err[1],
+                               F.e_err[2]);
+            if (!bits) continue;
+            sure = bits & pn_row_sure(av, pw, n4, pb, plane.hu, ep, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu, F.e_err[0],
+                                      F.e_err[1], F.e_err[2]);
+            bits &= ~sure; /* band samples not already blocked */
             while (bits) {
                 uint32_t lane = pn_kctz(bits);
                 float a = av[lane];

@@ -28,7 +28,7 @@ typedef struct ab_int {
     uint32_t w[AB_N]; /* little-endian magnitude */
 } ab_int;
 
-static ab_int ab_zero(void)
+static inline ab_int ab_zero(void)
 {
     ab_int r;
     memset(&r, 0, sizeof(r));
@@ -36,7 +36,7 @@ static ab_int ab_zero(void)
 }
 
 /* f * 2^149, an integer for every finite float. */
-static ab_int ab_from_float(float f)
+static inline ab_int ab_from_float(float f)
 {
     ab_int r = ab_zero();
     uint32_t bits, e, m, s;
@@ -59,7 +59,7 @@ static ab_int ab_from_float(float f)
     return r;
 }
 
-static ab_int ab_from_int(int64_t v)
+static inline ab_int ab_from_int(int64_t v)
 {
     ab_int r = ab_zero();
     uint64_t a = v < 0 ? (uint64_t)(-v) : (uint64_t)v;
@@ -69,7 +69,7 @@ static ab_int ab_from_int(int64_t v)
     return r;
 }
 
-static int ab_is_zero(const ab_int *a)
+static inline int ab_is_zero(const ab_int *a)
 {
     int i;
     for (i = 0; i < AB_N; i++)
@@ -77,7 +77,7 @@ static int ab_is_zero(const ab_int *a)
     return 1;
 }
 
-static int ab_cmp_mag(const ab_int *a, const ab_int *b)
+static inline int ab_cmp_mag(const ab_int *a, const ab_int *b)
 {
     int i;
     for (i = AB_N - 1; i >= 0; i--)
@@ -85,7 +85,7 @@ static int ab_cmp_mag(const ab_int *a, const ab_int *b)
     return 0;
 }
 
-static ab_int ab_add(ab_int a, ab_int b)
+static inline ab_int ab_add(ab_int a, ab_int b)
 {
     ab_int r = ab_zero();
     int i;
@@ -116,15 +116,15 @@ static ab_int ab_add(ab_int a, ab_int b)
     return r;
 }
 
-static ab_int ab_neg(ab_int a)
+static inline ab_int ab_neg(ab_int a)
 {
     if (!ab_is_zero(&a)) a.neg = !a.neg;
     return a;
 }
 
-static ab_int ab_sub(ab_int a, ab_int b) { return ab_add(a, ab_neg(b)); }
+static inline ab_int ab_sub(ab_int a, ab_int b) { return ab_add(a, ab_neg(b)); }
 
-static ab_int ab_mul(ab_int a, ab_int b)
+static inline ab_int ab_mul(ab_int a, ab_int b)
 {
     uint32_t t[2 * AB_N];
     ab_int r = ab_zero();
@@ -147,55 +147,93 @@ static ab_int ab_mul(ab_int a, ab_int b)
     return r;
 }
 
-static int ab_sign(const ab_int *a) { return ab_is_zero(a) ? 0 : (a->neg ? -1 : 1); }
+static inline int ab_sign(const ab_int *a) { return ab_is_zero(a) ? 0 : (a->neg ? -1 : 1); }
 
 /* ---- The arbiter's one value --------------------------------------------------------------- */
 
 /* Calls that needed the big integers (for the test's report). */
 static unsigned long arb_exact_calls;
 
-/* Sign of (P0 - Q + (ai/k) U + (bi/k) V) . ((X1 - Y1) x (X2 - Y2)) for float inputs. */
-static int arb_sign_dot(const float P0[3], const float Q[3], const float U[3], const float V[3], int ai, int bi,
-                        int k, const float X1[3], const float Y1[3], const float X2[3], const float Y2[3])
+/* Exact sign of (P0 - Q + (ai/k) U + (bi/k) V) . ((X1 - Y1) x (X2 - Y2)), big integers only. */
+static inline int arb_sign_exact(const float P0[3], const float Q[3], const float U[3], const float V[3], int ai, int bi,
+                                 int k, const float X1[3], const float Y1[3], const float X2[3], const float Y2[3])
 {
-    double D[3], Dm[3], M[3], Mm[3], v = 0.0, mag = 0.0, a = (double)ai / k, b = (double)bi / k;
+    ab_int acc = ab_zero(), kk = ab_from_int(k), A = ab_from_int(ai), B = ab_from_int(bi);
+    int c;
+    arb_exact_calls++;
+    for (c = 0; c < 3; c++) {
+        int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+        /* k D_c, exactly, as an integer times 2^-149; the cross product times 2^-298 */
+        ab_int d = ab_add(ab_add(ab_mul(ab_sub(ab_from_float(P0[c]), ab_from_float(Q[c])), kk), ab_mul(A, ab_from_float(U[c]))),
+                          ab_mul(B, ab_from_float(V[c])));
+        ab_int m = ab_sub(ab_mul(ab_sub(ab_from_float(X1[c1]), ab_from_float(Y1[c1])),
+                                 ab_sub(ab_from_float(X2[c2]), ab_from_float(Y2[c2]))),
+                          ab_mul(ab_sub(ab_from_float(X1[c2]), ab_from_float(Y1[c2])),
+                                 ab_sub(ab_from_float(X2[c1]), ab_from_float(Y2[c1]))));
+        acc = ab_add(acc, ab_mul(d, m));
+    }
+    return ab_sign(&acc);
+}
+
+/* The second factor (X1 - Y1) x (X2 - Y2) in double and a bound on its magnitudes, for the
+ * filter; the float inputs kept for the exact fallback. */
+typedef struct arb_form {
+    double M[3], Mm[3];
+    const float *X1, *Y1, *X2, *Y2;
+} arb_form;
+
+static inline void arb_form_make(arb_form *f, const float X1[3], const float Y1[3], const float X2[3], const float Y2[3])
+{
     int c;
     for (c = 0; c < 3; c++) {
         int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
         double e1a = (double)X1[c1] - Y1[c1], e2b = (double)X2[c2] - Y2[c2];
         double e1b = (double)X1[c2] - Y1[c2], e2a = (double)X2[c1] - Y2[c1];
+        f->M[c] = e1a * e2b - e1b * e2a;
+        f->Mm[c] = (fabs(X1[c1]) + fabs(Y1[c1])) * (fabs(X2[c2]) + fabs(Y2[c2])) +
+                   (fabs(X1[c2]) + fabs(Y1[c2])) * (fabs(X2[c1]) + fabs(Y2[c1]));
+    }
+    f->X1 = X1;
+    f->Y1 = Y1;
+    f->X2 = X2;
+    f->Y2 = Y2;
+}
+
+/* The first factor P0 - Q + a U + b V in double (D) and its magnitudes (Dm). */
+static inline void arb_first(const float P0[3], const float Q[3], const float U[3], const float V[3], int ai, int bi,
+                             int k, double D[3], double Dm[3])
+{
+    double a = (double)ai / k, b = (double)bi / k;
+    int c;
+    for (c = 0; c < 3; c++) {
         D[c] = (((double)P0[c] - Q[c]) + a * U[c]) + b * V[c];
         Dm[c] = fabs(P0[c]) + fabs(Q[c]) + fabs(a * U[c]) + fabs(b * V[c]);
-        M[c] = e1a * e2b - e1b * e2a;
-        Mm[c] = (fabs(X1[c1]) + fabs(Y1[c1])) * (fabs(X2[c2]) + fabs(Y2[c2])) +
-                (fabs(X1[c2]) + fabs(Y1[c2])) * (fabs(X2[c1]) + fabs(Y2[c1]));
     }
-    for (c = 0; c < 3; c++) {
-        v += D[c] * M[c];
-        mag += Dm[c] * Mm[c];
-    }
-    /* At most 12 roundings along any path (each relative 2^-53, on magnitudes bounded by
-     * mag; no double here can underflow: products of three floats are >= 2^-447): 2^-48
-     * mag is a bound with room to spare. */
+}
+
+/* Sign of D . M: the double filter, then the big integers. Each double value passes through
+ * at most 12 roundings (each relative 2^-53, on magnitudes bounded by Dm . Mm; no double here
+ * can underflow, products of three floats being >= 2^-447): 2^-48 Dm . Mm bounds the error
+ * with room to spare. */
+static inline int arb_form_sign(const arb_form *f, const double D[3], const double Dm[3], const float P0[3],
+                                const float Q[3], const float U[3], const float V[3], int ai, int bi, int k)
+{
+    double v = D[0] * f->M[0] + D[1] * f->M[1] + D[2] * f->M[2];
+    double mag = Dm[0] * f->Mm[0] + Dm[1] * f->Mm[1] + Dm[2] * f->Mm[2];
     if (v > 0x1p-48 * mag) return 1;
     if (v < -0x1p-48 * mag) return -1;
-    arb_exact_calls++;
-    {
-        ab_int acc = ab_zero(), kk = ab_from_int(k), A = ab_from_int(ai), B = ab_from_int(bi);
-        for (c = 0; c < 3; c++) {
-            int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-            /* k D_c, exactly, as an integer times 2^-149; the cross product times 2^-298 */
-            ab_int d = ab_add(ab_add(ab_mul(ab_sub(ab_from_float(P0[c]), ab_from_float(Q[c])), kk),
-                                     ab_mul(A, ab_from_float(U[c]))),
-                              ab_mul(B, ab_from_float(V[c])));
-            ab_int m = ab_sub(ab_mul(ab_sub(ab_from_float(X1[c1]), ab_from_float(Y1[c1])),
-                                     ab_sub(ab_from_float(X2[c2]), ab_from_float(Y2[c2]))),
-                              ab_mul(ab_sub(ab_from_float(X1[c2]), ab_from_float(Y1[c2])),
-                                     ab_sub(ab_from_float(X2[c1]), ab_from_float(Y2[c1]))));
-            acc = ab_add(acc, ab_mul(d, m));
-        }
-        return ab_sign(&acc);
-    }
+    return arb_sign_exact(P0, Q, U, V, ai, bi, k, f->X1, f->Y1, f->X2, f->Y2);
+}
+
+/* Sign of (P0 - Q + (ai/k) U + (bi/k) V) . ((X1 - Y1) x (X2 - Y2)) for float inputs. */
+static inline int arb_sign_dot(const float P0[3], const float Q[3], const float U[3], const float V[3], int ai, int bi,
+                               int k, const float X1[3], const float Y1[3], const float X2[3], const float Y2[3])
+{
+    arb_form f;
+    double D[3], Dm[3];
+    arb_form_make(&f, X1, Y1, X2, Y2);
+    arb_first(P0, Q, U, V, ai, bi, k, D, Dm);
+    return arb_form_sign(&f, D, Dm, P0, Q, U, V, ai, bi, k);
 }
 
 /* ---- Blocking -------------------------------------------------------------------------- */
@@ -208,30 +246,47 @@ typedef struct arb_light {
 static const float arb_zero3[3] = {0.0f, 0.0f, 0.0f};
 
 /* Sign of O's side of triangle ABC's plane (0: in it). */
-static int arb_side_O(const float O[3], const float *A, const float *B, const float *C)
+static inline int arb_side_O(const float O[3], const float *A, const float *B, const float *C)
 {
     return arb_sign_dot(O, A, arb_zero3, arb_zero3, 0, 0, 1, B, A, C, A);
 }
 
-/* 1 if triangle ABC blocks sample (i, j) from O; s0 = arb_side_O(O, A, B, C). */
-static int arb_tri_blocks_s(const float O[3], const float *A, const float *B, const float *C, const arb_light *L,
-                            int i, int j, int s0)
+/* Triangle ABC seen from O, prepared: its plane and edge factors, O's side s0. */
+typedef struct arb_tri {
+    arb_form plane, e[3];
+    int s0;
+} arb_tri;
+
+static inline void arb_tri_make(arb_tri *T, const float O[3], const float *A, const float *B, const float *C)
+{
+    arb_form_make(&T->plane, B, A, C, A);
+    arb_form_make(&T->e[0], A, O, B, O);
+    arb_form_make(&T->e[1], B, O, C, O);
+    arb_form_make(&T->e[2], C, O, A, O);
+    T->s0 = arb_side_O(O, A, B, C);
+}
+
+/* 1 if prepared triangle T (vertex A) blocks sample (i, j) from O. */
+static inline int arb_tri_blocks_p(const arb_tri *T, const float O[3], const float *A, const arb_light *L, int i, int j)
 {
     int ai = 2 * i + 1 - L->k, bi = 2 * j + 1 - L->k, sp, e0, e1, e2;
-    if (s0 == 0) return 0;
-    sp = arb_sign_dot(L->c, A, L->U, L->V, ai, bi, L->k, B, A, C, A);
-    if (sp == 0 || sp == s0) return 0;
-    e0 = arb_sign_dot(L->c, O, L->U, L->V, ai, bi, L->k, A, O, B, O);
-    e1 = arb_sign_dot(L->c, O, L->U, L->V, ai, bi, L->k, B, O, C, O);
+    double DA[3], DAm[3], DO[3], DOm[3];
+    if (T->s0 == 0) return 0;
+    arb_first(L->c, A, L->U, L->V, ai, bi, L->k, DA, DAm);
+    sp = arb_form_sign(&T->plane, DA, DAm, L->c, A, L->U, L->V, ai, bi, L->k);
+    if (sp == 0 || sp == T->s0) return 0;
+    arb_first(L->c, O, L->U, L->V, ai, bi, L->k, DO, DOm);
+    e0 = arb_form_sign(&T->e[0], DO, DOm, L->c, O, L->U, L->V, ai, bi, L->k);
+    e1 = arb_form_sign(&T->e[1], DO, DOm, L->c, O, L->U, L->V, ai, bi, L->k);
     if (e0 * e1 < 0) return 0;
-    e2 = arb_sign_dot(L->c, O, L->U, L->V, ai, bi, L->k, C, O, A, O);
+    e2 = arb_form_sign(&T->e[2], DO, DOm, L->c, O, L->U, L->V, ai, bi, L->k);
     return (e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0);
 }
 
 /* Sign that orients own triangle ABC's normal (B - A) x (C - A) to P's front: the side of
  * the normal nrm turned toward c (the turn decided in float, as the library decides it:
  * part of the definition of O). */
-static int arb_front(const float P[3], const float nrm[3], const float *A, const float *B, const float *C,
+static inline int arb_front(const float P[3], const float nrm[3], const float *A, const float *B, const float *C,
                      const arb_light *L)
 {
     float t = nrm[0] * (L->c[0] - P[0]) + nrm[1] * (L->c[1] - P[1]) + nrm[2] * (L->c[2] - P[2]);
@@ -250,7 +305,7 @@ static int arb_front(const float P[3], const float nrm[3], const float *A, const
 }
 
 /* 1 if sample (i, j) is on or behind the plane of the own triangle ABC (front: sgn). */
-static int arb_horizon(const float *A, const float *B, const float *C, int sgn, const arb_light *L, int i, int j)
+static inline int arb_horizon(const float *A, const float *B, const float *C, int sgn, const arb_light *L, int i, int j)
 {
     return sgn * arb_sign_dot(L->c, A, L->U, L->V, 2 * i + 1 - L->k, 2 * j + 1 - L->k, L->k, B, A, C, A) <= 0;
 }
@@ -258,7 +313,7 @@ static int arb_horizon(const float *A, const float *B, const float *C, int sgn, 
 /* Could triangle ABC block any sample from O? A cheap exact-safe reject: O's side s0 != 0
  * and every light corner certainly on O's side (the samples lie in the rectangle, and the
  * plane value is affine in it). */
-static int arb_tri_may_block(const float *A, const float *B, const float *C, const arb_light *L, int s0)
+static inline int arb_tri_may_block(const float *A, const float *B, const float *C, const arb_light *L, int s0)
 {
     int q;
     if (s0 == 0) return 0;
@@ -273,7 +328,7 @@ static int arb_tri_may_block(const float *A, const float *B, const float *C, con
  * segment from O to a point of the light rectangle meets the convex hull of O and the
  * light's corners, so its box meets the hull's box (the corners in double, widened by far
  * more than their rounding). An exact-safe reject, independent of the library's culls. */
-static int arb_box_out(const float O[3], const float *a, const arb_light *L)
+static inline int arb_box_out(const float O[3], const float *a, const arb_light *L)
 {
     int q;
     for (q = 0; q < 3; q++) {
@@ -286,7 +341,7 @@ static int arb_box_out(const float O[3], const float *a, const arb_light *L)
 
 /* The exact mask of one pixel (bit j*k + i), every triangle of tris[0 .. nt) tried except
  * own, the horizon of own included. */
-static void arb_pixel_mask(const float P[3], const float nrm[3], const float O[3], uint32_t own, const float *tris,
+static inline void arb_pixel_mask(const float P[3], const float nrm[3], const float O[3], uint32_t own, const float *tris,
                            uint32_t nt, const arb_light *L, uint32_t *mask, uint32_t words)
 {
     const float *A = tris + 9u * own, *B = A + 3, *C = A + 6;
@@ -302,12 +357,16 @@ static void arb_pixel_mask(const float P[3], const float nrm[3], const float O[3
         if (t == own || arb_box_out(O, a, L)) continue;
         s0 = arb_side_O(O, a, a + 3, a + 6);
         if (!arb_tri_may_block(a, a + 3, a + 6, L, s0)) continue;
-        for (j = 0; j < L->k; j++)
-            for (i = 0; i < L->k; i++) {
-                uint32_t bit = (uint32_t)(j * L->k + i);
-                if (mask[bit >> 5] >> (bit & 31u) & 1u) continue;
-                if (arb_tri_blocks_s(O, a, a + 3, a + 6, L, i, j, s0)) mask[bit >> 5] |= 1u << (bit & 31u);
-            }
+        {
+            arb_tri T;
+            arb_tri_make(&T, O, a, a + 3, a + 6);
+            for (j = 0; j < L->k; j++)
+                for (i = 0; i < L->k; i++) {
+                    uint32_t bit = (uint32_t)(j * L->k + i);
+                    if (mask[bit >> 5] >> (bit & 31u) & 1u) continue;
+                    if (arb_tri_blocks_p(&T, O, a, L, i, j)) mask[bit >> 5] |= 1u << (bit & 31u);
+                }
+        }
     }
 }
 

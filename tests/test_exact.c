@@ -177,10 +177,11 @@ static void test_triangles(void)
         pn_mask_clear(m);
         pn_tri_mask(v3(O), v3(T), v3(T + 3), v3(T + 6), &kl, m);
         {
-            int s0 = arb_side_O(O, T, T + 3, T + 6);
+            arb_tri at;
+            arb_tri_make(&at, O, T, T + 3, T + 6);
             for (j = 0; j < kl.k; j++)
                 for (i = 0; i < kl.k; i++) {
-                    uint32_t bit = j * kl.k + i, a = (uint32_t)arb_tri_blocks_s(O, T, T + 3, T + 6, &L, (int)i, (int)j, s0);
+                    uint32_t bit = j * kl.k + i, a = (uint32_t)arb_tri_blocks_p(&at, O, T, &L, (int)i, (int)j);
                     uint32_t sb = pn_tri_sample(v3(O), v3(T), v3(T + 3), v3(T + 6), &kl, (int32_t)i, (int32_t)j);
                     checked++;
                     blocked += a;
@@ -389,8 +390,10 @@ static void test_scenes_random(void)
                     if (t == own) continue;
                     s0 = arb_side_O(Of, a, a + 3, a + 6);
                     if (!arb_tri_may_block(a, a + 3, a + 6, &L, s0)) continue;
+                    arb_tri at;
+                    arb_tri_make(&at, Of, a, a + 3, a + 6);
                     for (j = 0; j < L.k && !any; j++)
-                        for (i = 0; i < L.k && !any; i++) any = arb_tri_blocks_s(Of, a, a + 3, a + 6, &L, i, j, s0);
+                        for (i = 0; i < L.k && !any; i++) any = arb_tri_blocks_p(&at, Of, a, &L, i, j);
                     if (any && !pn_frustum_aabb(&fr,
                                                 pn_v3_make(fminf(a[0], fminf(a[3], a[6])), fminf(a[1], fminf(a[4], a[7])),
                                                            fminf(a[2], fminf(a[5], a[8]))),
@@ -537,8 +540,86 @@ static void test_frames(void)
     pn_setup_free(&s);
 }
 
-int main(void)
+/* ---- how often the exact arithmetic runs (a measurement, not a test) ---------------------
+ * PN_EXACT_COUNT=1 ./test_exact [scene.glb|builtin]...: for each scene at 64x64, k = 16,
+ * the reference's predicate calls (every triangle whose box passes the pixel's frustum, in
+ * BVH-free order, stopping at a full mask as the reference does) with the counts of values
+ * and of distinct (pixel, sample) pairs that reached the exact fallback. */
+static void count_scene(const char *src)
 {
+    pn_setup s;
+    pn_host h;
+    pn_frame fr;
+    char err[256];
+    uint32_t w = 64, hh = 64, k = 16, t, lit = 0;
+    size_t px;
+    unsigned long x0[4], samples_exact = 0, calls = 0;
+    float *tris;
+    int builtin = strchr(src, '/') == NULL;
+    arb_light L;
+    pn_klight kl;
+    REQUIRE(pn_setup_load(&s, src, builtin, -1, err, sizeof(err)) == 0);
+    tris = (float *)malloc((size_t)s.mesh.triangle_count * 36u);
+    REQUIRE(tris);
+    for (t = 0; t < s.mesh.triangle_count; t++) {
+        uint32_t c;
+        for (c = 0; c < 3u; c++) memcpy(tris + 9u * t + 3u * c, s.mesh.positions + 3u * s.mesh.indices[3u * t + c], 12);
+    }
+    memcpy(L.c, s.light.center, 12);
+    memcpy(L.U, s.light.u, 12);
+    memcpy(L.V, s.light.v, 12);
+    L.k = (int)k;
+    kl = klight_from(&L, s.eps);
+    REQUIRE(pn_host_open(&h, s.mesh.triangle_count, w, hh, 2, err, sizeof(err)) == 0);
+    REQUIRE(pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
+    REQUIRE(render_algo(&h, &s, &s.light, PN_ALGO_REFERENCE, w, hh, k, &fr) == 0);
+    {
+        pn_stats st;
+        REQUIRE(pn_get_stats(h.ctx, &st) == PN_OK);
+        kl.cull_tol = st.cull_tol;
+    }
+    memcpy(x0, exact_calls, sizeof(x0));
+    for (px = 0; px < (size_t)w * hh; px++) {
+        uint32_t own = fr.tri_id[px], m[PN_MASK_WORDS_MAX];
+        pn_v3 O, P = v3(fr.position + 3 * px), N = v3(fr.normal + 3 * px);
+        pn_horizon H;
+        pn_frustum fu;
+        unsigned long before;
+        if (own == PN_NO_TRIANGLE || !pn_shadow_origin(P, N, &kl, &O)) continue;
+        lit++;
+        pn_mask_clear(m);
+        before = exact_calls[1] + exact_calls[2] + exact_calls[3];
+        pn_horizon_of(P, N, own, tris, &kl, &H);
+        pn_horizon_mask(&H, &kl, m);
+        pn_frustum_make(O, &kl, &fu);
+        for (t = 0; t < s.mesh.triangle_count && !pn_mask_full(m, k); t++) {
+            const float *a = tris + 9 * t;
+            if (t == own ||
+                !pn_frustum_aabb(&fu, pn_v3_make(fminf(a[0], fminf(a[3], a[6])), fminf(a[1], fminf(a[4], a[7])), fminf(a[2], fminf(a[5], a[8]))),
+                                 pn_v3_make(fmaxf(a[0], fmaxf(a[3], a[6])), fmaxf(a[1], fmaxf(a[4], a[7])), fmaxf(a[2], fmaxf(a[5], a[8])))))
+                continue;
+            calls++;
+            pn_tri_mask(O, v3(a), v3(a + 3), v3(a + 6), &kl, m);
+        }
+        samples_exact += exact_calls[1] + exact_calls[2] + exact_calls[3] - before;
+    }
+    fprintf(stderr,
+            "count %s 64x64 k=16: %u lit pixels (%u samples), %lu predicate calls; exact fallbacks: %lu O sides, %lu "
+            "plane values, %lu edge values, %lu horizon values (%.2e exact values per light sample)\n",
+            s.name, lit, lit * k * k, calls, exact_calls[0] - x0[0], exact_calls[1] - x0[1], exact_calls[2] - x0[2],
+            exact_calls[3] - x0[3], (double)samples_exact / ((double)lit * k * k));
+    pn_host_close(&h);
+    free(tris);
+    pn_setup_free(&s);
+}
+
+int main(int argc, char **argv)
+{
+    if (getenv("PN_EXACT_COUNT")) {
+        int i;
+        for (i = 1; i < argc; i++) count_scene(argv[i]);
+        return 0;
+    }
     clock_t t0 = clock();
     RUN(test_triangles);
     fprintf(stderr, "  (%.1f s cpu)\n", (double)(clock() - t0) / CLOCKS_PER_SEC);

@@ -219,7 +219,10 @@ static void pn_emb_rows(void *task, uint32_t begin, uint32_t end)
                 continue;
             }
             pn_mask_clear(m);
-            ctx.own = g->tri[pix];
+            /* The receiver's own triangle is not excluded (issue 13): a sample behind its
+             * plane is blocked by it, as our horizon blocks it. The filter stays for the
+             * exclusion experiment; PN_NO_TRIANGLE matches no primID. */
+            ctx.own = PN_NO_TRIANGLE;
             if (tk->api == PN_EMBREE_OCCLUDED16) pn_emb_pixel16(tk, &ctx, O, m);
             else pn_emb_pixel1(tk, &ctx, O, m);
             tk->vis[pix] = pn_mask_visibility(m, k);

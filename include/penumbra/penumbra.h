@@ -57,8 +57,8 @@
  *   the open segment from O = P + eps*n to the sample meets a closed triangle other than
  *   P's own. Every sign in that is decided exactly for the float inputs (a float filter,
  *   then exact expansion arithmetic in float where rounding could decide it: the same
- *   bits on every port; exact for coordinates up to 2^40 that are 0 or at least 2^-25 in
- *   magnitude, kernels/pn_expansion.h).
+ *   bits on every port; exact whenever no nonzero coordinate of a test is below 2^-63
+ *   times its largest: kernels/pn_expansion.h).
  *   Visibility = unblocked samples / k^2. Background pixels: visibility 1, id PN_NO_TRIANGLE.
  */
 #ifndef PENUMBRA_H

@@ -12,13 +12,15 @@
  * Range in which every result here is exact (Shewchuk's proofs assume neither overflow nor
  * underflow). pn_x_sign_dot first scales all its coordinates by one power of two (exact,
  * and it leaves the sign of a degree-3 homogeneous value unchanged) so that the largest
- * magnitude M among them lies in (2^38, 2^39] (or leaves them when M > 2^38 already).
+ * magnitude M among them lies in (2^38, 2^39].
  *   - overflow: the values are degree-3 polynomials in coordinate differences. With every
- *     coordinate at most 2^41 in magnitude (vertices and light within PN_MAX_COORD = 2^40,
- *     src/pn_internal.h, and O = P + eps n with eps <= 2^40) a difference is below 2^42.6,
- *     a cross-product component below 2^84.2, a component of S - Q below 2^42.4 and a
- *     value below 3 * 2^42.4 * 2^84.2 < 2^128; Dekker's split multiplies by 4097 only
- *     operands below 2^85. Nothing overflows.
+ *     scaled coordinate at most 2^39 in magnitude, a difference is at most 2^40, a
+ *     cross-product component at most 2^81, a component of P0 - Q + a U + b V at most 2^41
+ *     and a value below 3 * 2^41 * 2^81 < 2^124; Dekker's split multiplies by 4097 only
+ *     operands below 2^82. Nothing overflows. (The inputs themselves stay within about
+ *     2^41: vertices and light within PN_MAX_COORD = 2^40, src/pn_internal.h, O = P +
+ *     eps n with eps <= 2^40; scaling those down by at most 4 is exact for every
+ *     coordinate in the range below.)
  *   - underflow: two-sum is exact even among subnormals; two-product is exact when the
  *     exact product of its operands is a multiple of 2^-149 (its rounding error is then
  *     representable, subnormal or not). After the scaling, every nonzero coordinate of
@@ -225,7 +227,12 @@ PN_KFN int32_t pn_x_sign_dot(pn_v3 P0, pn_v3 Q, pn_v3 U, pn_v3 V, float a, float
     for (i = 0; i < 8; i++)
         for (c = 0; c < 3; c++) M = pn_kmaxf(M, x8[i][c] < 0.0f ? -x8[i][c] : x8[i][c]);
     if (!(M > 0.0f)) return 0;
-    /* Scale by a power of two up to M in (2^38, 2^39] (see the range above): exact. */
+    /* Scale by a power of two to M in (2^38, 2^39] (see the range above): exact. */
+    while (M > 549755813888.0f) { /* 2^39 */
+        for (i = 0; i < 8; i++)
+            for (c = 0; c < 3; c++) x8[i][c] *= 0.5f;
+        M *= 0.5f;
+    }
     while (M <= 1073741824.0f) { /* 2^30 */
         for (i = 0; i < 8; i++)
             for (c = 0; c < 3; c++) x8[i][c] *= 256.0f;

@@ -7,7 +7,8 @@
  *   1. hostile single triangles: coordinates on a coarse dyadic grid (exact coplanarity of
  *      O with the triangle, segments exactly through vertices and edges, samples exactly in
  *      planes), slivers, O a few ulps off the plane, near-coplanar neighbours sharing an
- *      edge; pn_tri_mask() and pn_tri_sample() against the arbiter, k = 1 (point) to 32;
+ *      edge, some configurations scaled by 2^-40 or 2^30; pn_tri_mask() and pn_tri_sample()
+ *      against the arbiter, k = 1 (point) to 32;
  *   2. horizons: own triangles whose plane passes through (or within ulps of) the light,
  *      pn_horizon_mask() and pn_horizon_at() against the arbiter;
  *   3. hostile random scenes (a dyadic grid of shared edges, slivers, near-coplanar
@@ -173,6 +174,20 @@ static void test_triangles(void)
                 T[3 + q] = T[q] + rnds() * 0.5f;
                 T[6 + q] = O[q] + (t + 0.3f * rnds()) * (S[q] - O[q]) + rnds() * e;
             }
+        }
+        if (trial % 12u == 6u || trial % 12u == 11u) {
+            /* The whole configuration scaled by 2^-40 or 2^30 (exact): the same answer; at
+             * 2^-40 the float values underflow and every sign goes to the expansions, which
+             * scale their inputs back up (pn_expansion.h). */
+            float f = trial % 12u == 6u ? 0x1p-40f : 0x1p30f;
+            for (q = 0; q < 3; q++) {
+                O[q] *= f;
+                L.c[q] *= f;
+                L.U[q] *= f;
+                L.V[q] *= f;
+            }
+            for (q = 0; q < 9; q++) T[q] *= f;
+            kl = klight_from(&L, 0.0f);
         }
         pn_mask_clear(m);
         pn_tri_mask(v3(O), v3(T), v3(T + 3), v3(T + 6), &kl, m);

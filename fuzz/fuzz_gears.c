@@ -1,5 +1,8 @@
-/* fuzz_gears - GEARS is conservative: every triangle whose predicate mask is non-zero for a
- * shadow-ray origin has a cell rectangle that contains that origin's cell.
+/* fuzz_gears - the predicate is exact and GEARS and the reference's culls are conservative
+ * for it: for every shadow-ray origin and triangle, the predicate's mask equals the exact
+ * arbiter's bit for bit (tests/pn_test_exact.h: its own formulation, double filter, big
+ * integers), and every triangle the arbiter says blocks a sample passes the per-pixel
+ * frustum cull and has a cell rectangle that contains that origin's cell.
  *
  * The bytes make a small hostile configuration: a light of any orientation and aspect (or
  * a point light), up to 24 triangles at scales from 1e-4 to 1e4 with vertices snapped onto,
@@ -11,6 +14,7 @@
 
 #include "fuzz_check.h"
 #include "pn_gears_frame.h"
+#include "pn_test_exact.h"
 
 typedef struct pn_bytes {
     const uint8_t *p;
@@ -120,7 +124,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         pn_box3_add(obox, O);
     }
 
-    /* Tolerances as src/pn_frame.c sets them, from the diagonal of the box of the
+    /* The cull slack as src/pn_frame.c sets it, from the diagonal of the box of the
      * triangles (the library's scene box) and the origins (which a render puts on them). */
     {
         float sb[6] = {PN_KINF, PN_KINF, PN_KINF, -PN_KINF, -PN_KINF, -PN_KINF};
@@ -128,8 +132,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         for (t = 0; t < nt * 3u; t++) pn_box3_add(sb, pn_v3_make(tris[t * 3], tris[t * 3 + 1], tris[t * 3 + 2]));
         pn_box_join_n(sb, obox, 6u);
         d = pn_v3_make(sb[3] - sb[0], sb[4] - sb[1], sb[5] - sb[2]);
-        L.cross_tol = PN_CROSS_TOL * pn_ksqrt(pn_v3_dot(d, d));
-        L.cull_tol = L.cross_tol + 1e-5f * pn_ksqrt(pn_v3_dot(d, d));
+        L.cull_tol = 1e-5f * pn_ksqrt(pn_v3_dot(d, d));
     }
 
     /* The grid, as the ports build it. */
@@ -158,8 +161,30 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             pn_v3 C = pn_v3_make(tris[t * 9 + 6], tris[t * 9 + 7], tris[t * 9 + 8]);
             pn_cellrect r;
             pn_frustum fr;
+            arb_light al;
+            float Of[3] = {origins[o].x, origins[o].y, origins[o].z}, *T = tris + t * 9;
+            uint32_t i, j, words = pn_mask_words(L.k), w, ma[PN_MASK_WORDS_MAX];
+            int s0;
+            memcpy(al.c, L.c, sizeof(al.c));
+            memcpy(al.U, L.U, sizeof(al.U));
+            memcpy(al.V, L.V, sizeof(al.V));
+            al.k = (int)L.k;
+            memset(ma, 0, sizeof(ma));
+            s0 = arb_side_O(Of, T, T + 3, T + 6);
+            if (!arb_box_out(Of, T, &al) && arb_tri_may_block(T, T + 3, T + 6, &al, s0)) {
+                arb_tri at;
+                arb_tri_make(&at, Of, T, T + 3, T + 6);
+                for (j = 0; j < L.k; j++)
+                    for (i = 0; i < L.k; i++)
+                        if (arb_tri_blocks_p(&at, Of, T, &al, (int)i, (int)j))
+                            ma[(j * L.k + i) >> 5] |= 1u << ((j * L.k + i) & 31u);
+            }
             pn_mask_clear(m);
-            if (!pn_tri_mask(origins[o], A, B, C, &L, m)) continue;
+            pn_tri_mask(origins[o], A, B, C, &L, m);
+            for (w = 0; w < words; w++)
+                FUZZ_CHECK(m[w] == ma[w], "triangle %u, origin %u, k %u: mask word %u is %08x, the exact arbiter's %08x",
+                           t, o, L.k, w, m[w], ma[w]);
+            if (!pn_mask_count(ma, L.k)) continue;
             /* The per-pixel cull before the predicate (pn_gears_pixel_mask, the reference's
              * BVH walk) must pass it too. */
             pn_frustum_make(origins[o], &L, &fr);

@@ -12,18 +12,18 @@
  * the light and B on T, then O lies on the ray from S through B beyond B, so g(O) lies on
  * the segment from g(B) to the far-plane point F_B of line SB, which the proof shows is in
  * the 2-D AABB of g(B_i) and the 12 far-plane points F_ij of lines L_j B_i. Three things
- * make that hold for our float predicate too:
- *   - the predicate counts a sample only if its exact segment crosses the triangle's plane
- *     within L->cross_tol of the triangle (pn_tri_graze), so the box bounds the triangle
- *     grown by cross_tol: each vertex's projection and extrusions get a margin for a move
- *     of that size (pn_gears_pad_point and the extrusion bound below);
+ * make that hold for our predicate too:
+ *   - the predicate is exact (pn_predicate.h): it blocks a sample only if the exact segment
+ *     from O to the exact sample point meets the closed triangle, so the argument above
+ *     applies to the real triangle as it stands; no margin for a crossing tolerance;
  *   - a triangle with a vertex within a band of 1e-3 of the light-to-far-plane height of
- *     the light plane (plus cross_tol), on either side, or crossing it, has extrusions
- *     that run off toward infinity: it gets the whole grid (never dropped); only triangles
- *     wholly behind the band are skipped;
+ *     the light plane, on either side, or crossing it, has extrusions that run off toward
+ *     infinity: it gets the whole grid (never dropped); only triangles wholly behind the
+ *     band are skipped. The band covers the rounding of the float light normal N (the
+ *     exact light plane is spanned by U and V);
  *   - the box is widened by PN_GEARS_SLACK of the grid's extent, far above the relative
- *     rounding of the projections (~1e-6); fuzz/ checks the containment against the
- *     predicate itself.
+ *     rounding of the projections (~1e-6); fuzz/ checks the containment against the exact
+ *     predicate.
  * A point light (paper §5.2) has no extrusion: C sits at the light and the triangle's own
  * projection bounds its shadow. Pixels whose origins are behind C's image plane cannot be
  * seen by one planar camera; the host then uses the six faces of a cube around the light,
@@ -166,24 +166,12 @@ PN_KFN void pn_box_add(const pn_kgrid *g, pn_v3 X, float *b)
     pn_box2_add(b, px, py);
 }
 
-/* Projected-space margin of a point X at depth z with projection (px, py), for moves of X
- * by up to rho (any direction): each coordinate x/z moves by at most
- * (rho + |x/z| rho) / (z - rho). Requires z > rho. */
-PN_KFN float pn_gears_pad_point(float rho, float px, float py, float z)
-{
-    float ax = px < 0.0f ? -px : px, ay = py < 0.0f ? -py : py;
-    return rho * (1.0f + pn_kmaxf(ax, ay)) / (z - rho);
-}
-
 PN_KFN pn_cellrect pn_gears_tri_cells(const pn_kgrid *g, const pn_klight *L, pn_v3 A, pn_v3 B, pn_v3 C)
 {
     pn_v3 in[3];
-    float h[3], box[4], pad = 0.0f, px, py;
-    /* The predicate blocks a sample only if its exact segment crosses the triangle's plane
-     * within cross_tol of the triangle (pn_tri_graze): bound the shadow volume of the
-     * triangle grown by rho = cross_tol within its plane, the hull of its vertices each
-     * moved by up to rho; the rounding of this bound is PN_GEARS_SLACK's. */
-    float rho = L->cross_tol;
+    float h[3], box[4], px, py;
+    /* The box bounds the shadow volume of the triangle itself (the predicate is exact);
+     * the rounding of the bound is PN_GEARS_SLACK's. */
     uint32_t i;
     pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]);
     in[0] = A;
@@ -201,41 +189,32 @@ PN_KFN pn_cellrect pn_gears_tri_cells(const pn_kgrid *g, const pn_klight *L, pn_
             dmin = pn_kminf(dmin, h[i]);
             dmax = pn_kmaxf(dmax, h[i]);
         }
-        if (dmax < -g->near_depth - rho) return pn_cellrect_empty();
-        if (!(dmin >= g->near_depth + rho)) return pn_cellrect_all(g);
+        if (dmax < -g->near_depth) return pn_cellrect_empty();
+        if (!(dmin >= g->near_depth)) return pn_cellrect_all(g);
         for (i = 0; i < 3; i++) {
             pn_grid_project(g, in[i], &px, &py);
             pn_box2_add(box, px, py);
-            pad = pn_kmaxf(pad, pn_gears_pad_point(rho, px, py, h[i]));
         }
     } else {
         pn_v3 N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
         pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]);
         pn_v3 V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
         float hfar = g->far_depth - g->near_depth; /* far plane height above the light */
-        float band = 1e-3f * hfar, hmin = PN_KINF, hmax = -PN_KINF, luv = pn_v3_l1(U) + pn_v3_l1(V);
+        float band = 1e-3f * hfar, hmin = PN_KINF, hmax = -PN_KINF;
         uint32_t q;
         for (i = 0; i < 3; i++) {
             h[i] = pn_v3_dot(pn_v3_sub(in[i], c), N);
             hmin = pn_kminf(hmin, h[i]);
             hmax = pn_kmaxf(hmax, h[i]);
         }
-        /* Wholly behind the light (by more than the band and rho): no segment reaches it.
-         * Within the band on either side, or across the plane, the extrusions run off
-         * toward infinity and float rounding of the predicate near the samples matters
-         * (fuzz/ found a triangle 1e-4 behind the plane that the predicate counts as
-         * blocking): the whole grid. */
-        if (hmax < -band - rho) return pn_cellrect_empty();
-        if (!(hmin >= band + rho)) return pn_cellrect_all(g);
+        /* Wholly behind the light (by more than the band): no segment reaches it. Within
+         * the band on either side, or across the plane, the extrusions run off toward
+         * infinity and the float N's rounding matters: the whole grid. */
+        if (hmax < -band) return pn_cellrect_empty();
+        if (!(hmin >= band)) return pn_cellrect_all(g);
         for (i = 0; i < 3; i++) {
             pn_grid_project(g, in[i], &px, &py);
             pn_box2_add(box, px, py);
-            /* The vertex moved by rho, and its extrusions: F = L_q + (B - L_q) hfar / h
-             * moves by at most hfar rho / (h - rho) (1 + |B - L_q| / h) on the far plane,
-             * where projection divides by far_depth. */
-            pad = pn_kmaxf(pad, pn_gears_pad_point(rho, px, py, g->near_depth + h[i]));
-            pad = pn_kmaxf(pad, hfar * rho / (h[i] - rho) * (1.0f + (pn_v3_l1(pn_v3_sub(in[i], c)) + luv) / h[i]) /
-                                    g->far_depth);
             for (q = 0; q < 4; q++) {
                 /* Light corner L_q and the far-plane point of line L_q -> B:
                  * F = L_q + (B - L_q) * hfar / hb (h(L_q) = 0): the central projection of
@@ -247,8 +226,8 @@ PN_KFN pn_cellrect pn_gears_tri_cells(const pn_kgrid *g, const pn_klight *L, pn_
             }
         }
     }
-    if (!(box[0] <= box[2]) || !(box[1] <= box[3]) || !(pad >= 0.0f)) return pn_cellrect_all(g); /* NaN: stay conservative */
-    return pn_cellrect_of_box(g, box[0] - pad, box[1] - pad, box[2] + pad, box[3] + pad);
+    if (!(box[0] <= box[2]) || !(box[1] <= box[3])) return pn_cellrect_all(g); /* NaN: stay conservative */
+    return pn_cellrect_of_box(g, box[0], box[1], box[2], box[3]);
 }
 
 /* Face and projected point of a shadow-ray origin (point light: the cube face of its

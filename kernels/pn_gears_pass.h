@@ -217,11 +217,16 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
     uint32_t cell = pix_cell[pix], own = tri_id[pix], e, k = L->k;
     uint32_t m[PN_MASK_WORDS_MAX];
     pn_frustum fr;
+    pn_horizon H;
     pn_v3 O;
     /* A pixel has a cell only if it has an origin. */
     if (cell == PN_CELL_NONE || !pn_gears_in_tile(tl, res, cell) || !pn_gears_origin(L, tri_id, pos, nrm, pix, &O))
         return 0;
     pn_mask_clear(m);
+    /* The horizon first, as the reference does (a cell is in exactly one tile, so this runs
+     * once per pixel). */
+    pn_horizon_of(pn_v3_load(pos + pix * 3u), pn_v3_load(nrm + pix * 3u), own, tris, L, &H);
+    pn_horizon_mask(&H, L, m);
     pn_frustum_make(O, L, &fr);
     for (e = cell_off[cell]; e < cell_off[cell + 1u]; e++) {
         uint32_t t = sorted[e];

@@ -90,6 +90,9 @@ PN_KFN uint32_t pn_kpopcount(uint32_t v)
     return (v * 0x01010101u) >> 24;
 }
 
+/* Index of the lowest set bit of v != 0. */
+PN_KFN uint32_t pn_kctz(uint32_t v) { return pn_kpopcount((v & (0u - v)) - 1u); }
+
 /* Lexicographic "a < b" on (x, y, z): the canonical vertex order that makes a shared
  * edge evaluate identically in both triangles that use it. */
 PN_KFN int pn_v3_less(pn_v3 a, pn_v3 b)

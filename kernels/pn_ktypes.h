@@ -23,10 +23,8 @@ typedef struct pn_klight {
     float V[3];
     float N[3];     /* unit normal, U x V normalized; zero for a point light */
     float eps;      /* shadow-ray origin offset along the normal, scene units */
-    float cull_tol; /* slack of conservative frustum culling, scene units */
-    float cross_tol; /* a blocked sample's exact segment crosses the triangle's plane within
-                        this distance of the triangle (pn_predicate.h); 0: not checked.
-                        cull_tol must exceed it by the culls' own rounding */
+    float cull_tol; /* slack of conservative frustum culling, scene units: the culls' own
+                       rounding only, the predicate being exact (pn_predicate.h) */
     uint32_t k;     /* samples per light edge (1 for a point light) */
     uint32_t is_point;
 } pn_klight;

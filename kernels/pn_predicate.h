@@ -1,46 +1,55 @@
 /* pn_predicate.h - the one definition of "light sample blocked" (DESIGN.md invariant 6).
  *
- * Sample (i, j) of k x k sits at S = c + a_i U + b_j V with a_i = (2i+1)/k - 1 (exact in
- * float for k a power of two). It is blocked from the shadow-ray origin O by triangle
- * ABC when the open segment (O, S) meets the closed triangle:
+ * Sample (i, j) of k x k is the exact point S = c + a_i U + b_j V with a_i = (2i+1)/k - 1
+ * (exact in float for k a power of two). It is blocked from the shadow-ray origin O when
  *
+ *   horizon: S lies on or behind the plane of P's own triangle, on the side away from the
+ *           geometric normal turned toward the light centre (it cannot light the front
+ *           face; pn_horizon_*), or
+ *   a triangle ABC other than P's own meets the open segment (O, S):
  *   plane:  O and S lie strictly on opposite sides of the triangle's plane, i.e. the
- *           segment crosses it at some t in (0, 1); "strictly" means by more than a
- *           rigorous bound on the rounding of each side value. This is the "clip to the
- *           slab between O's plane and the light plane" of the issue, done per sample: a
- *           triangle part behind O or behind the sample can never be crossed by (O, S);
- *   edges:  the three triple products (S - O) . ((P1 - O) x (P2 - O)) over the edges
+ *           segment crosses it at some t in (0, 1). A triangle part behind O or behind the
+ *           sample can never be crossed by (O, S);
+ *   edges:  the three triple products (S - O) . ((P1 - O) x (P2 - P1)) over the edges
  *           P1P2 all have the same sign (zero counts as either). This is the edge-function
  *           test of the triangle projected from O onto the light plane, written without
- *           the division so that no vertex needs to be projected to infinity;
- *   certainty: a sample whose edge values are within rounding of zero counts only if
- *           its crossing (S - O).n is large enough that rounding cannot have put the
- *           crossing point more than L->cross_tol off the triangle (pn_tri_graze). Only
- *           segments at an edge and nearly in the triangle's plane, whose crossing point
- *           is rounding noise, are dropped; this is what makes every cull widened by
- *           cross_tol conservative for the float predicate.
+ *           the division so that no vertex needs to be projected to infinity.
  *
- * Every test is a linear form in (a_i, b_j): h(i, j) = (h0 + b_j*hv) + a_i*hu, always
- * evaluated in exactly that order. Consequences, relied on below and by GEARS:
- *   - watertight: an edge's form is computed from its endpoints in canonical
- *     (lexicographic) order, so the two triangles sharing it get the very same float h and
- *     see it with opposite signs; with zero counted as inside by both, a sample can never
- *     slip between them (unless its segment nearly lies in both triangles' planes, where
- *     the certainty test drops it from both);
- *   - monotone: IEEE multiply and add are monotone, so for a fixed row h is monotone in i,
- *     and for fixed i monotone in j. Each form passes on a prefix or suffix of a row,
- *     and the extreme value over the grid is at a corner. So the rows where every form
- *     can pass are found exactly by walking h itself along the best column (an
- *     estimate only picks the starting point); within them every sample is evaluated
- *     in one branch-free, vectorizable loop per row (pn_row_bits). The mask is the
- *     per-sample answer exactly: tests/test_raytrace.c compares every bit with
- *     pn_tri_sample().
+ * Every sign is the sign of the exact real value for the float inputs ("undecided" never
+ * means "lit"). Each value is first a linear form in (a_i, b_j), h(i, j) = (h0 + b_j*hv) +
+ * a_i*hu, evaluated in float in exactly that order, with a rigorous bound on its rounding
+ * (the filter); only where the float value lies within its bound is the sign computed
+ * again exactly from the float inputs (pn_expansion.h: Shewchuk's expansion arithmetic,
+ * float only). The bounds cover every sample of the grid at once, so the fast path is the
+ * old one: the rows where a form can pass are found by walking the float form itself, and
+ * every sample of them is classified in one branch-free, vectorizable loop (pn_row_bits)
+ * as certainly blocked, certainly not, or in a band; band samples are decided exactly one
+ * by one (pn_tri_resolve).
+ *
+ * Consequences, relied on below and by GEARS and the culls:
+ *   - watertight: an edge's value is formed from its endpoints in canonical
+ *     (lexicographic) order, so the two triangles sharing it see the very same real number
+ *     with opposite signs; its exact zero counts as inside for both, so a segment through
+ *     a shared edge can never slip between them;
+ *   - real geometry: a blocked sample's exact segment really crosses the closed triangle,
+ *     so every cull needs slack only for its own rounding (pn_reference.h, pn_gears.h);
+ *   - one answer: pn_tri_mask() (a whole pixel) and pn_tri_sample() (one ray) both return
+ *     the exact answer, so they agree bit for bit (tests/test_raytrace.c), and both agree
+ *     with an independent exact arbiter (tests/test_exact.c).
  * A point light is the case k = 1, U = V = 0. */
 #ifndef PN_PREDICATE_H
 #define PN_PREDICATE_H
 
+#include "pn_expansion.h"
 #include "pn_kmath.h"
 #include "pn_ktypes.h"
+
+/* Counting hook for tests and benchmarks: called once per value whose sign the filter
+ * leaves to the exact arithmetic (kind 0 O's side, 1 a sample's side, 2 an edge value,
+ * 3 the horizon). The library compiles it away. */
+#ifndef PN_EXACT_HOOK
+#define PN_EXACT_HOOK(kind) ((void)0)
+#endif
 
 /* ---- Linear forms over the sample grid ------------------------------------------------ */
 
@@ -56,7 +65,7 @@ PN_KFN float pn_sample_coord(int32_t i, uint32_t k)
 PN_KFN pn_lin pn_lin_neg(pn_lin a)
 {
     /* Round-to-nearest is symmetric, so evaluating the negated form gives exactly the
-     * negated value: orientation flips never change which samples are on an edge. */
+     * negated value. */
     pn_lin r;
     r.h0 = -a.h0;
     r.hu = -a.hu;
@@ -64,19 +73,26 @@ PN_KFN pn_lin pn_lin_neg(pn_lin a)
     return r;
 }
 
+/* Canonical (lexicographic) endpoints of edge P1P2: *a, *b, and 1 if they are swapped. */
+PN_KFN int pn_edge_canon(pn_v3 P1, pn_v3 P2, pn_v3 *a, pn_v3 *b)
+{
+    int flip = pn_v3_less(P2, P1);
+    *a = flip ? P2 : P1;
+    *b = flip ? P1 : P2;
+    return flip;
+}
+
 /* Edge form of edge P1P2 seen from O; positive on the left of P1 -> P2 as the caller
  * wound it. cO = light centre - O. */
 PN_KFN pn_lin pn_edge_form(pn_v3 P1, pn_v3 P2, pn_v3 O, pn_v3 cO, pn_v3 U, pn_v3 V)
 {
     pn_lin r;
-    int flip = pn_v3_less(P2, P1);
-    pn_v3 a = flip ? P2 : P1;
-    pn_v3 b = flip ? P1 : P2;
+    pn_v3 a, b;
+    int flip = pn_edge_canon(P1, P2, &a, &b);
     /* (a - O) x (b - O) written as (a - O) x (b - a): the same vector, but b - a of two
      * nearby floats is exact, so a small triangle far from O keeps an accurate edge plane
-     * (the first form cancels to noise when |a - O| / |b - a| is large, and then blocks
-     * samples its exact segment misses by a wide margin: found on the dragon). Both
-     * triangles sharing the edge still compute the same floats. */
+     * in float (fewer samples in the band). Both triangles sharing the edge compute the
+     * same floats. */
     pn_v3 m = pn_v3_cross(pn_v3_sub(a, O), pn_v3_sub(b, a));
     r.h0 = pn_v3_dot(cO, m);
     r.hu = pn_v3_dot(U, m);
@@ -84,7 +100,9 @@ PN_KFN pn_lin pn_edge_form(pn_v3 P1, pn_v3 P2, pn_v3 O, pn_v3 cO, pn_v3 U, pn_v3
     return flip ? pn_lin_neg(r) : r;
 }
 
-/* Largest value of the form over the k x k grid (at the corner its slopes point to). */
+/* Largest float value of the form over the k x k grid (at the corner its slopes point to:
+ * IEEE multiply and add are monotone, so the float form is monotone along rows and
+ * columns). */
 PN_KFN float pn_lin_max(pn_lin f, uint32_t k)
 {
     float lo = pn_sample_coord(0, k), hi = pn_sample_coord((int32_t)k - 1, k);
@@ -93,55 +111,52 @@ PN_KFN float pn_lin_max(pn_lin f, uint32_t k)
     return (f.h0 + b * f.hv) + a * f.hu;
 }
 
-/* Samples i of one row (row base rb = h0 + b_j*hv) where rb + a_i*hu >= 0 (> 0 if
- * strict), as [*lo, *hi] narrowed in place. */
-/* strict = 0: passes when v >= 0 (edges: zero counts as inside). strict = 1: passes when
- * v > thr, thr >= 0 (the plane: a crossing closer than float noise to the sample is not a
- * crossing of the open segment). Both are monotone in v, so in i and j. */
-PN_KFN int pn_pass_v(float v, int strict, float thr) { return strict ? v > thr : v >= 0.0f; }
+/* A float value v "can pass" a form when v >= thr, thr = -(its rounding bound): the exact
+ * value can then be >= 0. Monotone in v, so in i and j. */
+PN_KFN int pn_pass_v(float v, float thr) { return v >= thr; }
 
-PN_KFN int pn_row_pass(float rb, float hu, int32_t i, uint32_t k, int strict, float thr)
+PN_KFN int pn_row_pass(float rb, float hu, int32_t i, uint32_t k, float thr)
 {
-    return pn_pass_v(rb + pn_sample_coord(i, k) * hu, strict, thr);
+    return pn_pass_v(rb + pn_sample_coord(i, k) * hu, thr);
 }
 
 /* The same walk along a column: v(j) = (h0 + b_j*hv) + cst, the evaluation order of a
  * sample's value with the i term fixed (cst = a_i*hu). */
-PN_KFN int pn_col_pass(float h0, float hv, float cst, int32_t j, uint32_t k, int strict, float thr)
+PN_KFN int pn_col_pass(float h0, float hv, float cst, int32_t j, uint32_t k, float thr)
 {
-    return pn_pass_v((h0 + pn_sample_coord(j, k) * hv) + cst, strict, thr);
+    return pn_pass_v((h0 + pn_sample_coord(j, k) * hv) + cst, thr);
 }
 
-/* Narrows [*lo, *hi] to the indices n where rb + a_n*slope (+ cst, for columns) passes.
- * col = 0: a row, rb is the row base, cst unused; col = 1: a column, rb is h0. */
-PN_KFN int pn_pass_at(int col, float rb, float slope, float cst, int32_t n, uint32_t k, int strict, float thr)
+/* col = 0: a row, rb is the row base, cst unused; col = 1: a column, rb is h0. */
+PN_KFN int pn_pass_at(int col, float rb, float slope, float cst, int32_t n, uint32_t k, float thr)
 {
-    return col ? pn_col_pass(rb, slope, cst, n, k, strict, thr) : pn_row_pass(rb, slope, n, k, strict, thr);
+    return col ? pn_col_pass(rb, slope, cst, n, k, thr) : pn_row_pass(rb, slope, n, k, thr);
 }
 
-/* rs is 1/slope (any value when slope is 0): it only places the starting point of the
- * walk, so its rounding never matters; precomputing it saves a division per row. */
-PN_KFN void pn_narrow(int col, float rb, float slope, float cst, float rs, uint32_t k, int strict, float thr,
-                      int32_t *lo, int32_t *hi)
+/* Narrows [*lo, *hi] to the indices n where the form can pass. rs is 1/slope (any value
+ * when slope is 0): it only places the starting point of the walk, so its rounding never
+ * matters; precomputing it saves a division per row. */
+PN_KFN void pn_narrow(int col, float rb, float slope, float cst, float rs, uint32_t k, float thr, int32_t *lo,
+                      int32_t *hi)
 {
     int32_t kk = (int32_t)k;
     if (*lo > *hi) return;
     if (slope == 0.0f) {
-        if (!pn_pass_at(col, rb, slope, cst, 0, k, strict, thr)) *hi = *lo - 1;
+        if (!pn_pass_at(col, rb, slope, cst, 0, k, thr)) *hi = *lo - 1;
         return;
     }
     {
         /* Real root as a sample index; only a starting point for the exact walk. */
-        float est = ((-(rb + cst) * rs + 1.0f) * (float)k - 1.0f) * 0.5f;
+        float est = (((thr - (rb + cst)) * rs + 1.0f) * (float)k - 1.0f) * 0.5f;
         if (slope > 0.0f) { /* increasing: passes on [first, k-1] */
             int32_t i = pn_kceil_clamp(est, 0, kk);
-            while (i > 0 && pn_pass_at(col, rb, slope, cst, i - 1, k, strict, thr)) i--;
-            while (i < kk && !pn_pass_at(col, rb, slope, cst, i, k, strict, thr)) i++;
+            while (i > 0 && pn_pass_at(col, rb, slope, cst, i - 1, k, thr)) i--;
+            while (i < kk && !pn_pass_at(col, rb, slope, cst, i, k, thr)) i++;
             if (i > *lo) *lo = i;
         } else { /* decreasing: passes on [0, last] */
             int32_t i = pn_kfloor_clamp(est, -1, kk - 1);
-            while (i < kk - 1 && pn_pass_at(col, rb, slope, cst, i + 1, k, strict, thr)) i++;
-            while (i >= 0 && !pn_pass_at(col, rb, slope, cst, i, k, strict, thr)) i--;
+            while (i < kk - 1 && pn_pass_at(col, rb, slope, cst, i + 1, k, thr)) i++;
+            while (i >= 0 && !pn_pass_at(col, rb, slope, cst, i, k, thr)) i--;
             if (i < *hi) *hi = i;
         }
     }
@@ -149,13 +164,13 @@ PN_KFN void pn_narrow(int col, float rb, float slope, float cst, float rs, uint3
 
 PN_KFN float pn_recip(float v) { return v != 0.0f ? 1.0f / v : 0.0f; }
 
-/* Rows j that can hold a passing sample: where the form's largest value in the row (at
- * the end column its slope hu points to) passes. That value is monotone in j, so this is
- * exact as a necessary condition: rows outside the range have no passing sample. */
-PN_KFN void pn_rows_narrow(pn_lin f, uint32_t k, int strict, float thr, int32_t *lo, int32_t *hi)
+/* Rows j that can hold a passing sample: where the form's largest float value in the row
+ * (at the end column its slope hu points to) can pass. That value is monotone in j, so
+ * rows outside the range have no sample that can pass. */
+PN_KFN void pn_rows_narrow(pn_lin f, uint32_t k, float thr, int32_t *lo, int32_t *hi)
 {
     float a = pn_sample_coord(f.hu > 0.0f ? (int32_t)k - 1 : 0, k);
-    pn_narrow(1, f.h0, f.hv, a * f.hu, pn_recip(f.hv), k, strict, thr, lo, hi);
+    pn_narrow(1, f.h0, f.hv, a * f.hu, pn_recip(f.hv), k, thr, lo, hi);
 }
 
 PN_KFN void pn_mask_set_run(uint32_t *m, uint32_t k, int32_t j, int32_t lo, int32_t hi)
@@ -167,166 +182,207 @@ PN_KFN void pn_mask_set_run(uint32_t *m, uint32_t k, int32_t j, int32_t lo, int3
     m[bit >> 5] |= run << (bit & 31u);
 }
 
-/* ---- The predicate -------------------------------------------------------------------- */
+/* Value of a form at sample (a, b), in the one evaluation order (see the top). */
+PN_KFN float pn_lin_at(pn_lin f, float a, float b) { return (f.h0 + b * f.hv) + a * f.hu; }
+
+/* ---- Rounding bounds (the filter) ----------------------------------------------------- */
 
 /* Unit roundoff of float, 2^-24. */
 #define PN_KU 5.9604645e-8f
+/* Absolute slack added to every bound, 2^-96: the bounds below are derived in the standard
+ * model (every operation correctly rounded with relative error u, no underflow); a product
+ * that underflows errs instead by at most 2^-150 absolutely, which the later operations
+ * multiply by at most 2^42 (coordinates <= 2^40) and a few dozen of which enter one value:
+ * far below 2^-96. Values that small always go to the exact arithmetic. */
+#define PN_KTINY 1.2621774e-29f
 
-/* The four linear forms of triangle ABC seen from O: the plane form (oriented so that a
- * sample passes when its value is > plane_thr) and the three edge forms. pn_tri_mask() and
- * pn_tri_sample() both evaluate exactly these floats in exactly the same order, so the
- * mask of a whole pixel and a single ray agree bit for bit. err_p, err_d and d0_abs are
- * the plane's rounding bounds and |O's side value|, kept for pn_tri_graze(). */
-typedef struct pn_tri_forms {
-    pn_lin plane;
-    float plane_thr;
-    float err_p, err_d, d0_abs;
-    float graze_thr, e_err[3]; /* pn_tri_graze() */
-    pn_lin e[3];
-} pn_tri_forms;
-
-/* The plane form; returns 0 when O's side of the triangle's plane is within rounding (then
- * no sample is blocked).
+/* Plane form of triangle ABC over the sample grid, (S - A).n with n = (B - A) x (C - A),
+ * and its rounding bound for every sample (|a|, |b| <= 1).
  *
- * Rounding bounds (u = 2^-24; |x|1 and |x|inf the L1 and max norms; standard model, every
- * operation correctly rounded, no underflow). n = (B - A) x (C - A) computed is within
- * 4.01 u Pn of the exact normal in L1, Pn = |B - A|1 |C - A|1. O's side value
- * d0 = (O - A).n then errs by at most 8.01 u |O - A|inf Pn (dot 3u, O - A 1u, n 4.01u):
- * err_d = 12 u |O - A|inf Pn, the slack above paying for the rounding of pn_tri_graze().
- * A sample's plane value (h0 + b hv) + a hu, |a|, |b| <= 1, errs from the exact (S - A).n
- * by at most 11.01 u (|c - A|inf + |U|inf + |V|inf) Pn (evaluation 3u, the three dots
- * 3u, c - A 1u, n 4.01u): err_p, 12 u times that. With err_d and err_p as the thresholds,
- * "O and S strictly on opposite sides" holds of the exact geometry whenever it holds of
- * the floats. (Bounds of 1e-6 of |n|1 used before were not bounds for slivers, whose
- * n cancels: fuzz/known-failures/README.md.) */
-PN_KFN int pn_tri_plane(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, pn_tri_forms *F)
+ * Bounds (u = 2^-24; |x|1 and |x|inf the L1 and max norms). n computed is within 4.01 u Pn
+ * of the exact normal in L1, Pn = |B - A|1 |C - A|1. A sample's plane value (h0 + b hv) +
+ * a hu errs from the exact (S - A).n by at most 11.01 u (|c - A|inf + |U|inf + |V|inf) Pn
+ * (evaluation 3u, the three dots 3u, c - A 1u, n 4.01u): *err, 12 u times that (the slack
+ * pays for the rounding of the bound itself), plus PN_KTINY. (Bounds of 1e-6 of |n|1 used
+ * long ago were not bounds for slivers, whose n cancels: fuzz/known-failures/README.md.) */
+PN_KFN void pn_plane_form(pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, pn_lin *f, float *err, pn_v3 *nout,
+                          float *pn_out)
 {
     pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]);
     pn_v3 V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
     pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]);
     pn_v3 BA = pn_v3_sub(B, A), CA = pn_v3_sub(C, A);
     pn_v3 n = pn_v3_cross(BA, CA);
-    pn_v3 cA = pn_v3_sub(c, A), OA = pn_v3_sub(O, A);
+    pn_v3 cA = pn_v3_sub(c, A);
     float pn = pn_v3_l1(BA) * pn_v3_l1(CA);
-    float d0 = pn_v3_dot(OA, n);
-    float err_d = 12.0f * PN_KU * pn_v3_linf(OA) * pn;
-    if (!(d0 > err_d || d0 < -err_d)) return 0;
-    F->err_d = err_d;
-    F->d0_abs = d0 < 0.0f ? -d0 : d0;
-    F->plane.h0 = pn_v3_dot(cA, n);
-    F->plane.hu = pn_v3_dot(U, n);
-    F->plane.hv = pn_v3_dot(V, n);
-    F->err_p = 12.0f * PN_KU * (pn_v3_linf(cA) + pn_v3_linf(U) + pn_v3_linf(V)) * pn;
-    F->plane_thr = F->err_p;
-    if (d0 > 0.0f) F->plane = pn_lin_neg(F->plane); /* S must be on the other side: > thr */
-    return 1;
+    f->h0 = pn_v3_dot(cA, n);
+    f->hu = pn_v3_dot(U, n);
+    f->hv = pn_v3_dot(V, n);
+    *err = 12.0f * PN_KU * (pn_v3_linf(cA) + pn_v3_linf(U) + pn_v3_linf(V)) * pn + PN_KTINY;
+    *nout = n;
+    *pn_out = pn;
 }
 
 /* Rounding bound of edge P1P2's value at any sample, componentwise: with p = a - O and
  * e = b - a over the canonical endpoints (as pn_edge_form takes them), each component of
  * the cross product errs by at most 4.01 u M_i, M = (|p_y||e_z| + |p_z||e_y|, ...), and
  * the dots and the evaluation by 7 u sum_i W_i |m_i| <= 7 u W.M, W = |c - O| + |U| + |V|
- * componentwise: 11.01 u W.M in all; 12 u W.M returned. */
+ * componentwise: 11.01 u W.M in all; 12 u W.M + PN_KTINY returned. */
 PN_KFN float pn_edge_err(pn_v3 P1, pn_v3 P2, pn_v3 O, pn_v3 W)
 {
     int flip = pn_v3_less(P2, P1);
     pn_v3 p = pn_v3_abs(pn_v3_sub(flip ? P2 : P1, O)), e = pn_v3_abs(pn_v3_sub(P2, P1));
     pn_v3 M = pn_v3_make(p.y * e.z + p.z * e.y, p.z * e.x + p.x * e.z, p.x * e.y + p.y * e.x);
-    return 12.0f * PN_KU * pn_v3_dot(W, M);
+    return 12.0f * PN_KU * pn_v3_dot(W, M) + PN_KTINY;
 }
 
-/* Certainty of a blocked sample, which is what lets every cull widened by L->cross_tol
- * (GEARS' boxes, the frustum tests of all algorithms) be conservative for this float
- * predicate and not only for exact geometry.
- *
- * Each computed edge value errs from the exact (S - O).((P1 - O) x (P2 - P1)) by at most
- * E_q (pn_edge_err: cross product 4.01u, three dots 3u, c - O 1u, evaluation 3u, each
- * component weighted by its own magnitudes); e_err[q] is that bound with 12u for 11.01u.
- * A sample whose three values are all >= e_err (or all <= -e_err), and whose plane
- * values pass the rigorous plane thresholds, is certainly blocked: its exact segment
- * crosses the closed triangle. The others that pass have some value within an edge's
- * rounding band, where watertightness needs zero to count as inside. There the crossing
- * point can be off the triangle: the edge forms sum to the crossing size X = (S - O).n
- * exactly, X h_q / sum are the crossing's barycentric coordinates, each >= -E_q / X, so
- * the crossing lies within (sum E_q) diam(T) / X of the triangle. Such a sample counts
- * only when X > G = (sum E_q) diam / cross_tol, i.e. (X >= plane value - err_p + |d0| -
- * err_d) when its plane value exceeds graze_thr = G + err_p + err_d - |d0|. What this
- * drops is a sample at an edge of a triangle whose plane its segment nearly lies in: the
- * crossing point is then rounding noise (fuzz/ found GEARS disagreeing with the reference
- * on exactly such samples before); and, because a barycentric error of a sliver moves the
- * point along its length, some samples inside slivers whose long edges' rounding bands
- * cover most of their width (docs/bench/RESULTS.md: the thin scene against Embree). Both
- * pn_tri_mask() and pn_tri_sample() call this. cross_tol <= 0 switches the test off
- * (every band sample counts). */
-PN_KFN void pn_tri_graze(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, pn_tri_forms *F)
+/* ---- Exact signs (pn_expansion.h) ------------------------------------------------------ */
+
+PN_KFN pn_v3 pn_light_U(const pn_klight *L) { return pn_v3_make(L->U[0], L->U[1], L->U[2]); }
+PN_KFN pn_v3 pn_light_V(const pn_klight *L) { return pn_v3_make(L->V[0], L->V[1], L->V[2]); }
+PN_KFN pn_v3 pn_light_c(const pn_klight *L) { return pn_v3_make(L->c[0], L->c[1], L->c[2]); }
+
+/* Exact sign of (S - A) . ((B - A) x (C - A)), S the exact sample point (a, b). */
+PN_KFN int32_t pn_exact_plane(pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, float a, float b)
 {
-    float tol = L->cross_tol;
-    F->e_err[0] = F->e_err[1] = F->e_err[2] = 0.0f;
-    F->graze_thr = F->plane_thr;
-    if (tol > 0.0f) {
-        pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]);
-        pn_v3 V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
-        pn_v3 cO = pn_v3_sub(pn_v3_make(L->c[0], L->c[1], L->c[2]), O);
-        pn_v3 W = pn_v3_add(pn_v3_add(pn_v3_abs(cO), pn_v3_abs(U)), pn_v3_abs(V));
-        float diam = pn_kmaxf(pn_v3_l1(pn_v3_sub(B, A)), pn_kmaxf(pn_v3_l1(pn_v3_sub(C, B)), pn_v3_l1(pn_v3_sub(A, C))));
-        float g;
-        F->e_err[0] = pn_edge_err(A, B, O, W);
-        F->e_err[1] = pn_edge_err(B, C, O, W);
-        F->e_err[2] = pn_edge_err(C, A, O, W);
-        g = (F->e_err[0] + F->e_err[1] + F->e_err[2]) * diam / tol;
-        F->graze_thr = pn_kmaxf(F->plane_thr, ((g + F->err_p) + F->err_d) - F->d0_abs);
+    return pn_x_sign_dot(pn_light_c(L), A, pn_light_U(L), pn_light_V(L), a, b, B, A, C, A);
+}
+
+/* Exact sign of edge P1P2's value at sample (a, b): the sign of the float form's real
+ * counterpart, (S - O) . ((a - O) x (b - a)) over the canonical endpoints, negated when
+ * they were swapped (pn_edge_form). */
+PN_KFN int32_t pn_exact_edge(pn_v3 P1, pn_v3 P2, pn_v3 O, const pn_klight *L, float a, float b)
+{
+    pn_v3 ca, cb;
+    int flip = pn_edge_canon(P1, P2, &ca, &cb);
+    int32_t s = pn_x_sign_dot(pn_light_c(L), O, pn_light_U(L), pn_light_V(L), a, b, ca, O, cb, ca);
+    return flip ? -s : s;
+}
+
+/* ---- The predicate -------------------------------------------------------------------- */
+
+/* The four linear forms of triangle ABC seen from O and their rounding bounds: the plane
+ * form, oriented so that a sample passes when its exact value is > 0 (S on the side away
+ * from O), and the three edge forms (a sample passes when all three exact values are >= 0
+ * or all <= 0). pn_tri_mask() and pn_tri_sample() both evaluate exactly these floats in
+ * the same order and decide every sign exactly. */
+typedef struct pn_tri_forms {
+    pn_lin plane;
+    float err_p;     /* bound of every plane value's rounding */
+    int32_t dsign;   /* exact sign of O's side value (O - A).n, nonzero */
+    float e_err[3];  /* bounds of the edge values */
+    pn_lin e[3];
+} pn_tri_forms;
+
+/* The plane form; returns 0 when O lies exactly in the triangle's plane (then no open
+ * segment from O crosses it: no sample is blocked). O's side value d0 = (O - A).n errs by
+ * at most 8.01 u |O - A|inf Pn (dot 3u, O - A 1u, n 4.01u): err_d = 12 u |O - A|inf Pn +
+ * PN_KTINY; within it the sign is computed exactly. */
+PN_KFN int pn_tri_plane(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, pn_tri_forms *F)
+{
+    pn_v3 n, OA = pn_v3_sub(O, A);
+    float pn, d0, err_d;
+    int32_t sd;
+    pn_plane_form(A, B, C, L, &F->plane, &F->err_p, &n, &pn);
+    d0 = pn_v3_dot(OA, n);
+    err_d = 12.0f * PN_KU * pn_v3_linf(OA) * pn + PN_KTINY;
+    if (d0 > err_d) {
+        sd = 1;
+    } else if (d0 < -err_d) {
+        sd = -1;
+    } else {
+        PN_EXACT_HOOK(0);
+        sd = pn_x_sign_dot(O, A, pn_v3_make(0.0f, 0.0f, 0.0f), pn_v3_make(0.0f, 0.0f, 0.0f), 0.0f, 0.0f, B, A, C, A);
+        if (sd == 0) return 0;
     }
+    F->dsign = sd;
+    if (sd > 0) F->plane = pn_lin_neg(F->plane); /* S must be on the other side */
+    return 1;
 }
 
 PN_KFN void pn_tri_edges(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, pn_tri_forms *F)
 {
-    pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]);
-    pn_v3 V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
-    pn_v3 cO = pn_v3_sub(pn_v3_make(L->c[0], L->c[1], L->c[2]), O);
+    pn_v3 U = pn_light_U(L), V = pn_light_V(L);
+    pn_v3 cO = pn_v3_sub(pn_light_c(L), O);
+    pn_v3 W = pn_v3_add(pn_v3_add(pn_v3_abs(cO), pn_v3_abs(U)), pn_v3_abs(V));
     F->e[0] = pn_edge_form(A, B, O, cO, U, V);
     F->e[1] = pn_edge_form(B, C, O, cO, U, V);
     F->e[2] = pn_edge_form(C, A, O, cO, U, V);
+    F->e_err[0] = pn_edge_err(A, B, O, W);
+    F->e_err[1] = pn_edge_err(B, C, O, W);
+    F->e_err[2] = pn_edge_err(C, A, O, W);
 }
 
-/* Value of a form at sample (a, b), in the one evaluation order (see the top). */
-PN_KFN float pn_lin_at(pn_lin f, float a, float b) { return (f.h0 + b * f.hv) + a * f.hu; }
+/* Filter of one value against its bound r > 0: 1 or -1 when the float value v proves the
+ * exact sign (|exact - v| < r), 2 when it cannot. */
+PN_KFN int32_t pn_filter(float v, float r) { return v >= r ? 1 : (v <= -r ? -1 : 2); }
+
+/* Exact decision of sample (a, b) of triangle ABC from O, given its float plane value vp
+ * and edge values v0, v1, v2 (as pn_lin_at or pn_row_bits computes them): the filter
+ * where it decides, the exact sign where it does not. Cheap signs first: the exact
+ * arithmetic runs only for values whose sign can still change the answer. */
+PN_KFN uint32_t pn_tri_resolve(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, const pn_tri_forms *F, float a,
+                               float b, float vp, float v0, float v1, float v2)
+{
+    int32_t s0 = pn_filter(v0, F->e_err[0]), s1 = pn_filter(v1, F->e_err[1]), s2 = pn_filter(v2, F->e_err[2]), sp;
+    int pos = s0 != -1 && s1 != -1 && s2 != -1, neg = s0 != 1 && s1 != 1 && s2 != 1;
+    if (!pos && !neg) return 0u;
+    sp = pn_filter(vp, F->err_p);
+    if (sp == 2) {
+        PN_EXACT_HOOK(1);
+        sp = -F->dsign * pn_exact_plane(A, B, C, L, a, b);
+    }
+    if (sp <= 0) return 0u;
+    if (s0 == 2) {
+        PN_EXACT_HOOK(2);
+        s0 = pn_exact_edge(A, B, O, L, a, b);
+        if (s0 > 0) neg = 0;
+        if (s0 < 0) pos = 0;
+        if (!pos && !neg) return 0u;
+    }
+    if (s1 == 2) {
+        PN_EXACT_HOOK(2);
+        s1 = pn_exact_edge(B, C, O, L, a, b);
+        if (s1 > 0) neg = 0;
+        if (s1 < 0) pos = 0;
+        if (!pos && !neg) return 0u;
+    }
+    if (s2 == 2) {
+        PN_EXACT_HOOK(2);
+        s2 = pn_exact_edge(C, A, O, L, a, b);
+        if (s2 > 0) neg = 0;
+        if (s2 < 0) pos = 0;
+        if (!pos && !neg) return 0u;
+    }
+    return 1u;
+}
 
 /* Sample (i, j) alone: 1 if triangle ABC blocks it from O. The per-ray form of
- * pn_tri_mask(), for PN_ALGO_RAYTRACE: the same forms, the same value for each sample,
- * the same comparisons (an edge value v passes the negated orientation when -v >= 0,
- * and negation is exact). */
+ * pn_tri_mask(), for PN_ALGO_RAYTRACE: the same forms and the same float values, and the
+ * same exact decision. */
 PN_KFN uint32_t pn_tri_sample(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, int32_t i, int32_t j)
 {
     pn_tri_forms F;
-    float a = pn_sample_coord(i, L->k), b = pn_sample_coord(j, L->k), v0, v1, v2;
-    float vp;
+    float a = pn_sample_coord(i, L->k), b = pn_sample_coord(j, L->k), vp;
     if (!pn_tri_plane(O, A, B, C, L, &F)) return 0u;
     vp = pn_lin_at(F.plane, a, b);
-    if (!pn_pass_v(vp, 1, F.plane_thr)) return 0u;
+    if (vp <= -F.err_p) return 0u; /* certainly on O's side or in the plane */
     pn_tri_edges(O, A, B, C, L, &F);
-    v0 = pn_lin_at(F.e[0], a, b);
-    v1 = pn_lin_at(F.e[1], a, b);
-    v2 = pn_lin_at(F.e[2], a, b);
-    if (!((v0 >= 0.0f && v1 >= 0.0f && v2 >= 0.0f) || (-v0 >= 0.0f && -v1 >= 0.0f && -v2 >= 0.0f))) return 0u;
-    pn_tri_graze(O, A, B, C, L, &F);
-    /* Certain, or in a rounding band with a crossing large enough (pn_tri_graze). */
-    return (uint32_t)(vp > F.graze_thr || (v0 >= F.e_err[0] && v1 >= F.e_err[1] && v2 >= F.e_err[2]) ||
-                      (-v0 >= F.e_err[0] && -v1 >= F.e_err[1] && -v2 >= F.e_err[2]));
+    return pn_tri_resolve(O, A, B, C, L, &F, a, b, vp, pn_lin_at(F.e[0], a, b), pn_lin_at(F.e[1], a, b),
+                          pn_lin_at(F.e[2], a, b));
 }
 
-/* Bits i < n4 (k rounded up to a multiple of 4) of one row where the plane value
- * pb + a_i*phu passes (> thr) and the three edge values b_q + a_i*h_q are all >= 0 or all
- * <= 0 (-v >= 0 is v <= 0, so this is both orientations of pn_tri_sample()). No branches
- * and no variable shifts (pw[i] = 1 << i), in groups of four lanes: GCC 12 vectorizes the
- * group loop at -O2 (SSE2) and the outer loop at -O3; PoCL picks its own widths. The row is
- * most of the predicate's cost (issue 5 profile). Measured with callgrind (reference pass,
- * bunny 64x64): lanes written out by hand with a shift per group, as before, stayed scalar
- * (842 M instructions at -O3); one flat loop to n: 478 M at -O3, but GCC 12 -O2 left it
- * scalar (-fopt-info-vec on the loop alone); this form: 489 M at -O3, vectorized at -O2 too.
- * Building pw costs one store per lane per call; hoisting it and av out of the call would
- * change every caller's signature for about 1% (GEARS profile), so it stays here. */
-PN_KFN uint32_t pn_row_bits(const float *av, const uint32_t *pw, int32_t n4, float pb, float phu, float thr,
-                            float b0, float h0, float b1, float h1, float b2, float h2)
+/* Bits i < n4 (k rounded up to a multiple of 4) of one row that can pass: with plane value
+ * vp = pb + a_i*phu (bound ep) and edge values v_q = b_q + a_i*h_q (bounds r_q), a lane can
+ * pass when vp >= -ep and all v_q >= -r_q or all v_q <= r_q (pn_filter's tests; a lane that
+ * fails them certainly does not pass). No branches and no variable shifts (pw[i] = 1 << i),
+ * in groups of four lanes: GCC 12 vectorizes the group loop at -O2 (SSE2) and the outer
+ * loop at -O3; PoCL picks its own widths. The row is most of the predicate's cost (issue 5
+ * profile); an earlier measurement (callgrind, reference pass, bunny 64x64) found lanes
+ * written out by hand with a shift per group stayed scalar (842 M instructions at -O3
+ * against 489 M for this form). */
+PN_KFN uint32_t pn_row_bits(const float *av, const uint32_t *pw, int32_t n4, float pb, float phu, float ep, float b0,
+                            float h0, float b1, float h1, float b2, float h2, float r0, float r1, float r2)
 {
     uint32_t bits = 0u;
     int32_t i0, l;
@@ -334,24 +390,20 @@ PN_KFN uint32_t pn_row_bits(const float *av, const uint32_t *pw, int32_t n4, flo
         for (l = 0; l < 4; l++) {
             float a = av[i0 + l];
             float vp = pb + a * phu, v0 = b0 + a * h0, v1 = b1 + a * h1, v2 = b2 + a * h2;
-            int32_t pos = (v0 >= 0.0f) & (v1 >= 0.0f) & (v2 >= 0.0f);
-            int32_t neg = (v0 <= 0.0f) & (v1 <= 0.0f) & (v2 <= 0.0f);
-            int32_t ok = (vp > thr) & (pos | neg);
+            int32_t pos = (v0 >= -r0) & (v1 >= -r1) & (v2 >= -r2);
+            int32_t neg = (v0 <= r0) & (v1 <= r1) & (v2 <= r2);
+            int32_t ok = (vp >= -ep) & (pos | neg);
             bits |= (0u - (uint32_t)ok) & pw[i0 + l];
         }
     }
     return bits;
 }
 
-/* pn_row_bits() for a triangle some of whose samples can fall under the certainty test
- * (pn_tri_graze): a lane that passes the plane (> thr) and the edges (all >= 0 or all
- * <= 0) counts when its plane value also exceeds gthr or its edge values clear the
- * rounding bounds r_q (all >= r_q or all <= -r_q): pn_tri_sample()'s expression. A copy
- * of pn_row_bits()'s loop with three more tests, kept separate so that the hot loop
- * (every row of every candidate) carries none of them. */
-PN_KFN uint32_t pn_row_bits_band(const float *av, const uint32_t *pw, int32_t n4, float pb, float phu, float thr,
-                                 float gthr, float b0, float h0, float b1, float h1, float b2, float h2, float r0,
-                                 float r1, float r2)
+/* The lanes of a row that certainly pass: vp >= ep and all v_q >= r_q or all v_q <= -r_q.
+ * The same loop, run only for the rows where some lane can pass (a few percent of the
+ * rows pn_row_bits sees on scanned models), so that the hot loop carries none of it. */
+PN_KFN uint32_t pn_row_sure(const float *av, const uint32_t *pw, int32_t n4, float pb, float phu, float ep, float b0,
+                            float h0, float b1, float h1, float b2, float h2, float r0, float r1, float r2)
 {
     uint32_t bits = 0u;
     int32_t i0, l;
@@ -359,11 +411,9 @@ PN_KFN uint32_t pn_row_bits_band(const float *av, const uint32_t *pw, int32_t n4
         for (l = 0; l < 4; l++) {
             float a = av[i0 + l];
             float vp = pb + a * phu, v0 = b0 + a * h0, v1 = b1 + a * h1, v2 = b2 + a * h2;
-            int32_t pos = (v0 >= 0.0f) & (v1 >= 0.0f) & (v2 >= 0.0f);
-            int32_t neg = (v0 <= 0.0f) & (v1 <= 0.0f) & (v2 <= 0.0f);
-            int32_t cpos = (v0 >= r0) & (v1 >= r1) & (v2 >= r2);
-            int32_t cneg = (-v0 >= r0) & (-v1 >= r1) & (-v2 >= r2);
-            int32_t ok = (vp > thr) & (pos | neg) & ((vp > gthr) | cpos | cneg);
+            int32_t pos = (v0 >= r0) & (v1 >= r1) & (v2 >= r2);
+            int32_t neg = (v0 <= -r0) & (v1 <= -r1) & (v2 <= -r2);
+            int32_t ok = (vp >= ep) & (pos | neg);
             bits |= (0u - (uint32_t)ok) & pw[i0 + l];
         }
     }
@@ -377,15 +427,16 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
     uint32_t k = L->k;
     pn_tri_forms F;
     pn_lin plane, e[3], ne[3];
-    float plane_thr;
-    int pos_ok, neg_ok, band;
+    float ep;
+    int pos_ok, neg_ok;
     uint32_t any = 0;
     int32_t j, row_lo, row_hi;
 
     if (!pn_tri_plane(O, A, B, C, L, &F)) return 0;
     plane = F.plane;
-    plane_thr = F.plane_thr;
-    if (!(pn_lin_max(plane, k) > plane_thr)) return 0;
+    ep = F.err_p;
+    /* Every sample's exact plane value is below its float value + ep. */
+    if (!(pn_lin_max(plane, k) > -ep)) return 0;
 
     pn_tri_edges(O, A, B, C, L, &F);
     e[0] = F.e[0];
@@ -394,24 +445,21 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
     ne[0] = pn_lin_neg(e[0]);
     ne[1] = pn_lin_neg(e[1]);
     ne[2] = pn_lin_neg(e[2]);
-    pos_ok = pn_lin_max(e[0], k) >= 0.0f && pn_lin_max(e[1], k) >= 0.0f &&
-             pn_lin_max(e[2], k) >= 0.0f;
-    neg_ok = pn_lin_max(ne[0], k) >= 0.0f && pn_lin_max(ne[1], k) >= 0.0f &&
-             pn_lin_max(ne[2], k) >= 0.0f;
+    pos_ok = pn_lin_max(e[0], k) >= -F.e_err[0] && pn_lin_max(e[1], k) >= -F.e_err[1] &&
+             pn_lin_max(e[2], k) >= -F.e_err[2];
+    neg_ok = pn_lin_max(ne[0], k) >= -F.e_err[0] && pn_lin_max(ne[1], k) >= -F.e_err[1] &&
+             pn_lin_max(ne[2], k) >= -F.e_err[2];
     if (!pos_ok && !neg_ok) return 0;
 
     {
         /* Rows where the plane and, for some orientation, all three edges can pass. */
         int32_t plo = 0, phi = (int32_t)k - 1, jlo = (int32_t)k, jhi = -1, s, q;
-        pn_rows_narrow(plane, k, 1, plane_thr, &plo, &phi);
+        pn_rows_narrow(plane, k, -ep, &plo, &phi);
         for (s = 0; s < 2; s++) {
             int32_t lo = plo, hi = phi;
             if (!(s == 0 ? pos_ok : neg_ok)) continue;
-            for (q = 0; q < 3; q++) pn_rows_narrow(s == 0 ? e[q] : ne[q], k, 0, 0.0f, &lo, &hi);
-            if (lo > hi) {
-                if (s == 0) pos_ok = 0; else neg_ok = 0;
-                continue;
-            }
+            for (q = 0; q < 3; q++) pn_rows_narrow(s == 0 ? e[q] : ne[q], k, -F.e_err[q], &lo, &hi);
+            if (lo > hi) continue;
             jlo = pn_kmini(jlo, lo);
             jhi = pn_kmaxi(jhi, hi);
         }
@@ -419,11 +467,11 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
         row_hi = jhi;
     }
     {
-        /* Every sample of the candidate rows, evaluated branch-free (the row loop
-         * vectorizes): the same value and comparisons as pn_tri_sample().
+        /* Every sample of the candidate rows, classified branch-free (the row loop
+         * vectorizes); the few in a band decided one by one, exactly.
          * a_i = (2i+1)*(1/k) - 1 equals pn_sample_coord() exactly: k is a power of two. */
         float rk = 1.0f / (float)k, av[32]; /* k <= 32 */
-        uint32_t keep = k >= 32u ? 0xFFFFFFFFu : ((1u << k) - 1u), pw[32], rows[32], bits, bit;
+        uint32_t keep = k >= 32u ? 0xFFFFFFFFu : ((1u << k) - 1u), pw[32], bits, sure, bit, have;
         int32_t n4 = ((int32_t)k + 3) & ~3, i;
         for (i = 0; i < n4; i++) {
             av[i] = (float)(2 * i + 1) * rk - 1.0f;
@@ -434,36 +482,93 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
             float pb = plane.h0 + b * plane.hv;
             float b0 = e[0].h0 + b * e[0].hv, b1 = e[1].h0 + b * e[1].hv, b2 = e[2].h0 + b * e[2].hv;
             bit = (uint32_t)j * k;
-            rows[j] = 0u;
-            if (((m[bit >> 5] >> (bit & 31u)) & keep) == keep) continue; /* row already blocked */
-            rows[j] = keep & pn_row_bits(av, pw, n4, pb, plane.hu, plane_thr, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu);
-            any |= rows[j];
-        }
-        if (!any) return 0;
-        /* Samples that pass: the certainty test (pn_tri_graze) can only drop some of them,
-         * and only if graze_thr is above plane_thr and some sample's plane value is at
-         * most graze_thr (the smallest over the grid is at a corner). Computed only now,
-         * for the few triangles that block something. */
-        pn_tri_graze(O, A, B, C, L, &F);
-        band = F.graze_thr > plane_thr && !(-pn_lin_max(pn_lin_neg(plane), k) > F.graze_thr);
-        any = 0;
-        for (j = row_lo; j <= row_hi; j++) {
-            bits = rows[j];
-            if (bits && band) {
-                float b = av[j];
-                float pb = plane.h0 + b * plane.hv;
-                float b0 = e[0].h0 + b * e[0].hv, b1 = e[1].h0 + b * e[1].hv, b2 = e[2].h0 + b * e[2].hv;
-                bits &= pn_row_bits_band(av, pw, n4, pb, plane.hu, plane_thr, F.graze_thr, b0, e[0].hu, b1, e[1].hu,
-                                         b2, e[2].hu, F.e_err[0], F.e_err[1], F.e_err[2]);
+            have = (m[bit >> 5] >> (bit & 31u)) & keep;
+            if (have == keep) continue; /* row already blocked */
+            bits = keep & ~have &
+                   pn_row_bits(av, pw, n4, pb, plane.hu, ep, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu, F.e_err[0], F.e_err[1],
+                               F.e_err[2]);
+            if (!bits) continue;
+            sure = bits & pn_row_sure(av, pw, n4, pb, plane.hu, ep, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu, F.e_err[0],
+                                      F.e_err[1], F.e_err[2]);
+            bits &= ~sure; /* band samples not already blocked */
+            while (bits) {
+                uint32_t lane = pn_kctz(bits);
+                float a = av[lane];
+                bits &= bits - 1u;
+                if (pn_tri_resolve(O, A, B, C, L, &F, a, b, pb + a * plane.hu, b0 + a * e[0].hu, b1 + a * e[1].hu,
+                                   b2 + a * e[2].hu))
+                    sure |= 1u << lane;
             }
-            if (bits) {
-                bit = (uint32_t)j * k;
-                m[bit >> 5] |= bits << (bit & 31u);
+            if (sure) {
+                m[bit >> 5] |= sure << (bit & 31u);
                 any = 1;
             }
         }
     }
     return any;
+}
+
+/* ---- The horizon (invariant 6) ---------------------------------------------------------- */
+
+/* The plane of P's own triangle ABC as a form over the sample grid, oriented so that a
+ * sample is visible when its exact value is > 0 and blocked when it is <= 0 (on or behind
+ * the plane). The front is the side the geometric normal nrm points to once turned toward
+ * the light centre, as pn_shadow_origin() turns it; the G-buffer normal is the unit
+ * normal of (B - A) x (C - A) in winding order, so the sign of their dot product says
+ * which way the plane's normal must point. */
+typedef struct pn_horizon {
+    pn_lin f;
+    float err;
+    int32_t sgn; /* +1: the front is the side of (B - A) x (C - A); -1: the other */
+    pn_v3 A, B, C;
+} pn_horizon;
+
+PN_KFN void pn_horizon_make(pn_v3 P, pn_v3 nrm, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, pn_horizon *H)
+{
+    pn_v3 n;
+    float pn;
+    if (pn_v3_dot(nrm, pn_v3_sub(pn_light_c(L), P)) < 0.0f) nrm = pn_v3_scale(nrm, -1.0f);
+    pn_plane_form(A, B, C, L, &H->f, &H->err, &n, &pn);
+    H->sgn = pn_v3_dot(n, nrm) < 0.0f ? -1 : 1;
+    if (H->sgn < 0) H->f = pn_lin_neg(H->f);
+    H->A = A;
+    H->B = B;
+    H->C = C;
+}
+
+/* 1 if sample (a, b) is below the horizon. */
+PN_KFN uint32_t pn_horizon_at(const pn_horizon *H, const pn_klight *L, float a, float b)
+{
+    float v = pn_lin_at(H->f, a, b);
+    int32_t s = pn_filter(v, H->err);
+    if (s == 2) {
+        PN_EXACT_HOOK(3);
+        s = H->sgn * pn_exact_plane(H->A, H->B, H->C, L, a, b);
+    }
+    return (uint32_t)(s <= 0);
+}
+
+/* ORs the samples below the horizon into m. Most pixels see the whole light in front:
+ * the form's smallest float value over the grid (at a corner) above the bound. */
+PN_KFN void pn_horizon_mask(const pn_horizon *H, const pn_klight *L, uint32_t *m)
+{
+    uint32_t k = L->k, i, j;
+    if (-pn_lin_max(pn_lin_neg(H->f), k) >= H->err) return;
+    for (j = 0; j < k; j++)
+        for (i = 0; i < k; i++)
+            if (pn_horizon_at(H, L, pn_sample_coord((int32_t)i, k), pn_sample_coord((int32_t)j, k))) {
+                uint32_t bit = j * k + i;
+                m[bit >> 5] |= 1u << (bit & 31u);
+            }
+}
+
+/* The horizon of the pixel whose own triangle is `own` in tris (9 floats a triangle). */
+PN_KFN void pn_horizon_of(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris, const pn_klight *L,
+                          pn_horizon *H)
+{
+    PN_CONST float *p = tris + (size_t)own * 9u;
+    pn_horizon_make(P, nrm, pn_v3_make(p[0], p[1], p[2]), pn_v3_make(p[3], p[4], p[5]), pn_v3_make(p[6], p[7], p[8]),
+                    L, H);
 }
 
 /* ---- Per-pixel set-up shared by every exact algorithm --------------------------------- */

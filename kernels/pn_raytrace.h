@@ -3,12 +3,16 @@
  * first blocker. It is the per-sample ray tracer of the GEARS paper's comparison (their
  * OptiX baseline) and the single-ray query selective ray tracing needs.
  *
- * Every ray asks pn_tri_sample(), which evaluates the very forms pn_tri_mask() does, so
- * the result equals PN_ALGO_REFERENCE bit for bit (tests/test_raytrace.c). Culling uses
- * the same slack as the reference: a node is skipped only when the segment from O to the
- * float sample point misses its box grown by cull_tol, which exceeds the predicate's
- * crossing tolerance (pn_tri_graze) by far more than the rounding between that point and
- * the sample the forms describe. */
+ * A sample below the horizon of the pixel's own triangle is blocked without a ray
+ * (pn_horizon_at, the very decision pn_horizon_mask makes); every other ray asks
+ * pn_tri_sample(), which decides exactly what pn_tri_mask() decides, so the result equals
+ * PN_ALGO_REFERENCE bit for bit (tests/test_raytrace.c). Culling: a node is skipped only
+ * when the segment from O to the float sample point misses its box grown by cull_tol (1e-5
+ * of the scene diagonal). A blocked sample's exact segment meets the triangle (the
+ * predicate is exact); it differs from the float segment by the rounding of
+ * c + a U + b V (a few u of |c| + |U| + |V|) at the far end and the slab test rounds by a
+ * few u of the coordinates, both far below cull_tol for coordinates within 10^4 scene
+ * diagonals of the origin. */
 #ifndef PN_RAYTRACE_H
 #define PN_RAYTRACE_H
 
@@ -63,12 +67,15 @@ PN_KFN float pn_raytrace_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float 
 {
     uint32_t k = L->k, blocked = 0;
     int32_t i, j;
+    pn_horizon H;
     pn_v3 O;
     if (!pn_shadow_origin(P, nrm, L, &O)) return 0.0f;
     cnt->lit++;
+    pn_horizon_of(P, nrm, own, tris, L, &H);
     for (j = 0; j < (int32_t)k; j++)
         for (i = 0; i < (int32_t)k; i++)
-            blocked += pn_raytrace_sample(O, own, i, j, tris, nodes, tri_index, L, cnt);
+            blocked += pn_horizon_at(&H, L, pn_sample_coord(i, k), pn_sample_coord(j, k)) ||
+                       pn_raytrace_sample(O, own, i, j, tris, nodes, tri_index, L, cnt);
     /* The same quotient as pn_mask_visibility(). */
     return (float)(k * k - blocked) / (float)(k * k);
 }

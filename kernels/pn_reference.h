@@ -1,15 +1,19 @@
-/* pn_reference.h - PN_ALGO_REFERENCE: exact k x k visibility of one pixel, by ORing the
- * masks of every triangle the BVH cannot rule out.
+/* pn_reference.h - PN_ALGO_REFERENCE: exact k x k visibility of one pixel: the horizon of
+ * its own triangle ORed with the masks of every other triangle the BVH cannot rule out.
  *
- * Culling is conservative with slack L->cull_tol: a node is skipped only when its box is
- * farther than cull_tol outside the light frustum (the pyramid from O over the light
- * rectangle, or the segment O-c for a point light). Every sample segment lies inside that
- * frustum, and a triangle the predicate reports as blocking is crossed by such a segment
- * within L->cross_tol of the triangle (pn_tri_graze), so with cull_tol = cross_tol plus
- * 1e-5 of the scene diagonal for the frustum planes' own rounding, culling never changes
- * the mask. tests/test_reference.c checks this bit for bit against all-triangles brute
- * force; fuzz/fuzz_gears.c checks the frustum test against the predicate on hostile
- * configurations. */
+ * Culling is conservative: a node is skipped only when its box is farther than fr->tol
+ * outside the light frustum (the pyramid from O over the light rectangle, or the segment
+ * O-c for a point light). The predicate is exact (pn_predicate.h): a sample is blocked by
+ * a triangle only if its exact segment from O to the exact sample point meets the closed
+ * triangle, at a point X of the triangle, hence of its box. X lies in the exact frustum (the
+ * convex hull of O and the light rectangle), so a box holding X is outside the float
+ * frustum only by the rounding of the float planes: their normals from rounded corners
+ * and differences, each a few u of the magnitudes involved. The slack is cull_tol = 1e-5 of
+ * the scene diagonal (src/pn_frame.c pn_setup_light) plus 1e-5 of this origin's distance to
+ * the light, orders of magnitude above that rounding; no crossing tolerance is needed any
+ * more. tests/test_reference.c checks the reference bit for bit against all-triangles brute
+ * force, tests/test_exact.c against an exact arbiter, and fuzz/fuzz_gears.c checks the
+ * frustum test against the exact predicate on hostile configurations. */
 #ifndef PN_REFERENCE_H
 #define PN_REFERENCE_H
 
@@ -28,7 +32,8 @@ typedef struct pn_frustum {
 PN_KFN void pn_frustum_make(pn_v3 O, const pn_klight *L, pn_frustum *fr)
 {
     pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]);
-    /* cull_tol, plus 1e-5 of this origin's distance to the light for the rounding of the
+    /* cull_tol (1e-5 of the scene diagonal: the rounding of coordinates of the scene's
+     * size), plus 1e-5 of this origin's distance to the light for the rounding of the
      * planes through O, which grows with that distance, not with the scene. */
     fr->tol = L->cull_tol + 1e-5f * (pn_v3_l1(pn_v3_sub(c, O)) + pn_v3_l1(pn_v3_make(L->U[0], L->U[1], L->U[2])) +
                                      pn_v3_l1(pn_v3_make(L->V[0], L->V[1], L->V[2])));
@@ -177,11 +182,15 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
     uint32_t leaf, k = L->k;
     pn_bvh_walk w;
     pn_frustum fr;
+    pn_horizon H;
     pn_v3 O;
 
     if (!pn_shadow_origin(P, nrm, L, &O)) return 0.0f;
     cnt->lit++;
     pn_mask_clear(m);
+    pn_horizon_of(P, nrm, own, tris, L, &H);
+    pn_horizon_mask(&H, L, m);
+    if (pn_mask_full(m, k)) return 0.0f;
     pn_frustum_make(O, L, &fr);
     pn_bvh_walk_init(&w);
     while ((leaf = pn_bvh_next_leaf(&w, &fr, nodes, cnt)) != PN_BVH_DONE) {

@@ -413,7 +413,9 @@ PN_KFN uint32_t pn_srt_classify(const pn_kview *lv, const pn_klight *L, const pn
     s = depth[(size_t)ty * res + (size_t)tx];
     /* d^: the nearest depth the receiver's plane reaches within one texel's angle. */
     sinb = pn_v3_dot(n, toL) / d;
-    sinb = pn_kminf(1.0f, pn_kmaxf(0.0f, sinb));
+    /* A light centre on or near the receiver's plane: the horizon decides (invariant 6). */
+    if (!(sinb > 1e-4f)) return 1u;
+    sinb = pn_kminf(1.0f, sinb);
     cosb = pn_ksqrt(pn_kmaxf(0.0f, 1.0f - sinb * sinb));
     sina = a->alpha / pn_ksqrt(1.0f + a->alpha * a->alpha);
     cosa = 1.0f / pn_ksqrt(1.0f + a->alpha * a->alpha);

@@ -135,7 +135,6 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out)
     s.shadow_blocking = ctx->shadow_blocking;
     s.lit_pixels = ctx->lit_pixels;
     s.cull_tol = ctx->cull_tol;
-    s.cross_tol = ctx->cross_tol;
     s.gears_pairs = ctx->gears.pairs;
     s.gears_assignments = ctx->gears.assignments;
     s.gears_tiles = ctx->gears.tiles;

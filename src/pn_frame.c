@@ -131,9 +131,10 @@ static pn_status pn_setup_light(pn_context *ctx, const pn_light *l, uint32_t k, 
     memset(kl, 0, sizeof(*kl));
     memcpy(kl->c, l->center, sizeof(kl->c));
     kl->eps = eps;
-    /* Culls: the crossing tolerance plus 1e-5 of the diagonal for their own rounding. */
-    kl->cross_tol = PN_CROSS_TOL * ctx->scene_diag;
-    kl->cull_tol = kl->cross_tol + 1e-5f * ctx->scene_diag;
+    /* Culls: 1e-5 of the diagonal for their own rounding. The predicate is exact, so a
+     * blocked sample's segment really meets the triangle and no crossing tolerance is
+     * added (kernels/pn_reference.h, kernels/pn_gears.h). */
+    kl->cull_tol = 1e-5f * ctx->scene_diag;
     if (lu == 0.0f && lv == 0.0f) {
         kl->k = 1;
         kl->is_point = 1;
@@ -385,7 +386,6 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     ctx->shadow_blocking = fs.blocking;
     ctx->lit_pixels = fs.lit;
     ctx->cull_tol = fs.K.light.cull_tol;
-    ctx->cross_tol = fs.K.light.cross_tol;
 
     out->width = opt->width;
     out->height = opt->height;

@@ -86,7 +86,7 @@ struct pn_context {
     uint64_t pass_ns[PN_PASS_COUNT];
     uint64_t shadow_candidates, shadow_blocking;
     uint32_t lit_pixels;
-    float cull_tol, cross_tol;
+    float cull_tol;
     struct {
         uint64_t pairs, assignments;
         uint32_t tiles, faces, cells_used, max_tris, max_pix, pairs_high;

@@ -174,8 +174,9 @@ static inline double pn_test_point_tri(const double p[3], const float *A, const 
 }
 
 /* Double-precision distance by which the segment [o, s] misses triangle ABC, measured where
- * the guarantee of pn_tri_graze() (kernels/pn_predicate.h) measures it: from the point where
- * the segment's line crosses the triangle's plane, clamped to the segment. */
+ * the crossing is: from the point where the segment's line crosses the triangle's plane,
+ * clamped to the segment (the exact predicate blocks only segments that meet the triangle,
+ * so a blocked sample's miss is double rounding). */
 static inline double pn_test_seg_miss(const double o[3], const double s[3], const float *A, const float *B,
                                       const float *C)
 {

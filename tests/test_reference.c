@@ -98,8 +98,7 @@ static pn_klight klight_of(const pn_light *l, uint32_t k, float eps, float diag)
     memcpy(kl.U, l->u, sizeof(kl.U));
     memcpy(kl.V, l->v, sizeof(kl.V));
     kl.eps = eps;
-    kl.cross_tol = PN_CROSS_TOL * diag; /* as src/pn_frame.c sets them */
-    kl.cull_tol = kl.cross_tol + 1e-5f * diag;
+    kl.cull_tol = 1e-5f * diag; /* as src/pn_frame.c sets it */
     if (lu == 0.0f) {
         kl.k = 1;
         kl.is_point = 1;
@@ -126,9 +125,12 @@ static float brute_pixel(const pn_mesh *m, const pn_frame *fr, size_t px, const 
     pn_v3 P = pn_v3_make(fr->position[px * 3], fr->position[px * 3 + 1], fr->position[px * 3 + 2]);
     pn_v3 n = pn_v3_make(fr->normal[px * 3], fr->normal[px * 3 + 1], fr->normal[px * 3 + 2]);
     pn_v3 O;
+    pn_horizon H;
     if (fr->tri_id[px] == PN_NO_TRIANGLE) return 1.0f;
     if (!pn_shadow_origin(P, n, kl, &O)) return 0.0f;
     pn_mask_clear(mask);
+    pn_horizon_make(P, n, tri_v(m, fr->tri_id[px], 0), tri_v(m, fr->tri_id[px], 1), tri_v(m, fr->tri_id[px], 2), kl, &H);
+    pn_horizon_mask(&H, kl, mask);
     for (t = 0; t < m->triangle_count; t++) {
         pn_v3 A = tri_v(m, t, 0), B = tri_v(m, t, 1), C = tri_v(m, t, 2);
         pn_v3 cr = pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
@@ -150,11 +152,10 @@ static void brute_compare(const char *name, pn_setup *s, const pn_light *light, 
     REQUIRE(pn_scene_set(h.ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices, s->mesh.triangle_count) == PN_OK);
     REQUIRE(render(&h, s, &s->camera, light, w, hh, k, &fr) == 0);
     {
-        /* The brute force decides with the frame's own crossing tolerance; no culling. */
+        /* The brute force has no culling; the frame's slack is the culls' own rounding. */
         pn_stats st;
         REQUIRE(pn_get_stats(h.ctx, &st) == PN_OK);
-        CHECK(st.cross_tol >= 0.0f && st.cross_tol < st.cull_tol);
-        kl.cross_tol = st.cross_tol;
+        CHECK(st.cull_tol > 0.0f);
     }
     for (px = 0; px < (size_t)w * hh; px++) {
         float b = brute_pixel(&s->mesh, &fr, px, &kl);
@@ -311,14 +312,12 @@ static void test_watertight(void)
 
 /* ---- the predicate against double precision ----------------------------------------------
  * Random triangles of every scale, many tiny and far from O, many nearly edge-on (O close
- * to their plane): the configurations where float cancellation bites. A sample the float
+ * to their plane): the configurations where float cancellation bites. A sample the
  * predicate blocks must have a segment that, moved by at most 1e-4 light half-edges, hits
- * the triangle in double precision (no false blocks), and whose crossing lies within
- * cross_tol of the triangle in double precision (the guarantee GEARS and the culls rely
- * on: pn_tri_graze); a sample whose four moved segments all hit must be blocked, unless
- * its double-precision crossing size is below twice the grazing threshold the predicate
- * documents (those are counted and printed: segments that nearly lie in the triangle's
- * plane). The edge-plane formula this replaced failed it. */
+ * the triangle in double precision (no false blocks), and, the predicate being exact, a
+ * segment that misses the triangle in double precision by no more than double rounding;
+ * a sample whose four moved segments all hit must be blocked (there is no certainty test
+ * any more). tests/test_exact.c compares every bit with an exact arbiter. */
 static uint32_t rng_state = 12345u;
 static double rnd(void)
 {
@@ -336,7 +335,7 @@ static void test_predicate_vs_double(void)
 {
     pn_light l = {{0.0f, 1.0f, 0.0f}, {0.25f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.25f}};
     pn_klight kl = klight_of(&l, 16, 0.0f, 1.0f);
-    uint32_t trial, false_blocks = 0, misses = 0, blocked_total = 0, far_blocks = 0, grazing = 0;
+    uint32_t trial, false_blocks = 0, misses = 0, blocked_total = 0, far_blocks = 0;
     double worst = 0.0;
     static const double off[4][2] = {{1e-4, 0}, {-1e-4, 0}, {0, 1e-4}, {0, -1e-4}};
     kl.N[0] = 0.0f;
@@ -392,53 +391,29 @@ static void test_predicate_vs_double(void)
                     false_blocks++;
                 }
                 if (bit) {
+                    /* Exact: the exact segment meets the triangle, so the double one misses
+                     * it by no more than double rounding. */
                     double S[3], miss;
                     int c;
                     for (c = 0; c < 3; c++) S[c] = kl.c[c] + a * kl.U[c] + b * kl.V[c];
                     miss = pn_test_seg_miss(P, S, tri, tri + 3, tri + 6);
                     if (miss > worst) worst = miss;
-                    if (miss > kl.cross_tol) {
-                        if (far_blocks < 3) fprintf(stderr, "trial %u: sample %u,%u blocked, misses by %.3g > %.3g\n", trial, i, j, miss, kl.cross_tol);
+                    if (miss > 1e-9) {
+                        if (far_blocks < 3) fprintf(stderr, "trial %u: sample %u,%u blocked, misses by %.3g\n", trial, i, j, miss);
                         far_blocks++;
                     }
                 }
                 if (!bit && all) {
-                    /* Explained by the certainty test (pn_tri_graze) when the sample
-                     * passes without it and its double crossing size is below twice the
-                     * plane value threshold it failed plus |d0| and the rounding bounds;
-                     * or by the plane test when O is within twice err_d of the plane. */
-                    pn_tri_forms F;
-                    pn_klight k0 = kl;
-                    pn_v3 vA = pn_v3_make(tri[0], tri[1], tri[2]), vB = pn_v3_make(tri[3], tri[4], tri[5]);
-                    pn_v3 vC = pn_v3_make(tri[6], tri[7], tri[8]);
-                    double n[3], x = 0.0, d0 = 0.0, S[3];
-                    int c, explained = 0;
-                    k0.cross_tol = 0.0f;
-                    pn_test_tri_normal(tri, tri + 3, tri + 6, n);
-                    for (c = 0; c < 3; c++) {
-                        S[c] = kl.c[c] + a * kl.U[c] + b * kl.V[c];
-                        x += (S[c] - P[c]) * n[c];
-                        d0 += (P[c] - tri[c]) * n[c];
-                    }
-                    if (!pn_tri_plane(O, vA, vB, vC, &kl, &F)) {
-                        explained = fabs(d0) <= 2.0 * F.err_d;
-                    } else if (pn_tri_sample(O, vA, vB, vC, &k0, (int32_t)i, (int32_t)j)) {
-                        pn_tri_graze(O, vA, vB, vC, &kl, &F);
-                        explained = fabs(x) <= 2.0 * ((double)F.graze_thr + F.d0_abs + F.err_p + F.err_d);
-                    }
-                    if (explained) {
-                        grazing++;
-                    } else {
-                        if (misses < 3) fprintf(stderr, "trial %u: sample %u,%u hit in double, missed in float\n", trial, i, j);
-                        misses++;
-                    }
+                    /* No certainty test any more: a robust hit is always blocked. */
+                    if (misses < 3) fprintf(stderr, "trial %u: sample %u,%u hit in double, missed in float\n", trial, i, j);
+                    misses++;
                 }
             }
     }
     fprintf(stderr,
-            "predicate vs double: 20000 triangles, %u blocked samples, %u false blocks, %u misses, %u robust hits "
-            "discarded as grazing; %u blocked samples miss by more than cross_tol %.3g (largest miss %.3g)\n",
-            blocked_total, false_blocks, misses, grazing, far_blocks, kl.cross_tol, worst);
+            "predicate vs double: 20000 triangles, %u blocked samples, %u false blocks, %u misses; %u blocked "
+            "samples miss by more than 1e-9 (largest miss %.3g)\n",
+            blocked_total, false_blocks, misses, far_blocks, worst);
     CHECK(blocked_total > 1000u);
     CHECK(false_blocks == 0u);
     CHECK(misses == 0u);

@@ -629,7 +629,7 @@ static void mask_agreement(report *r, scene_state *ss, const pn_frame_options *o
     snprintf(err, sizeof(err), "out of memory");
     progress("    masks: ours (kernels/ predicate, host BVH) and Embree's, bit by bit");
     ok = ok &&
-         pn_our_masks(&ss->s.mesh, &ss->g, &ss->s.light, opt->k, opt->eps, st.cull_tol, st.cross_tol, &ss->h.threads, &ours, our_vis, err,
+         pn_our_masks(&ss->s.mesh, &ss->g, &ss->s.light, opt->k, opt->eps, st.cull_tol, &ss->h.threads, &ours, our_vis, err,
                       sizeof(err)) == 0 &&
          pn_embree_shadow(ss->emb, PN_EMBREE_OCCLUDED1, &ss->g, &ss->s.light, opt->k, opt->eps, &ss->h.threads,
                           emb_vis, &theirs, &ms, err, sizeof(err)) == 0;
@@ -1187,8 +1187,8 @@ static void print_report(report *r, const bench_opts *o, FILE *out, const char *
     fprintf(out, "- Shadow pass: `pn_get_stats` `pass_ns[PN_PASS_SHADOW]`; total: the wall time of `pn_render` "
                  "(G-buffer, shadow pass, shading). Embree's pass starts from the reference's G-buffer and computes "
                  "the same origins O (kernels/pn_predicate.h `pn_shadow_origin`) and the same k x k samples, traces "
-                 "k^2 occlusion rays per pixel (tnear 0, tfar 1 - 1e-6, direction S - O) and rejects the pixel's own "
-                 "triangle in an occlusion filter.\n");
+                 "k^2 occlusion rays per pixel (tnear 0, tfar 1 - 1e-6, direction S - O); the pixel's own triangle is "
+                 "not excluded (it blocks the samples behind its plane, as our horizon does).\n");
     fprintf(out, "- Defaults: %ux%u, k = %u, GEARS grid %u, eps = 1e-4 x scene diagonal, the CLI's automatic view and "
                  "light for glTF scenes (with the ground plane) and each built-in scene's own.\n\n",
             o->size, o->size, o->k, o->grid);

@@ -60,11 +60,11 @@ void pn_masks_compare(const pn_masks *a, const pn_masks *b, pn_mask_diff *d);
  * (pn_tri_mask) over the triangles a host-side BVH cannot rule out for the pixel's light
  * frustum (pn_frustum_box, the reference's conservative cull). This is what the reference
  * ORs per pixel; popcounts are checked against the reference's visibility by the caller.
- * vis (may be NULL) receives the visibility of each pixel. cull_tol and cross_tol are the
- * library's for the scene (pn_stats), so that the predicate is the same, grazing test
- * included. */
+ * vis (may be NULL) receives the visibility of each pixel, the horizon of the own triangle
+ * included. cull_tol is the library's for the scene (pn_stats), so that the culls are the
+ * same. */
 int pn_our_masks(const pn_mesh *mesh, const pn_gbuf *g, const pn_light *light, uint32_t k, float eps,
-                 float cull_tol, float cross_tol, pn_threads *threads, pn_masks *out, float *vis, char *err,
+                 float cull_tol, pn_threads *threads, pn_masks *out, float *vis, char *err,
                  size_t err_size);
 
 /* ---- Embree 3 baseline (tools/pn_bench_embree.c; a stub when Embree was not found) ------ */

@@ -219,7 +219,10 @@ static void pn_emb_rows(void *task, uint32_t begin, uint32_t end)
                 continue;
             }
             pn_mask_clear(m);
-            ctx.own = g->tri[pix];
+            /* The receiver's own triangle is not excluded (issue 13): a sample behind its
+             * plane is blocked by it, as our horizon blocks it. The filter stays for the
+             * exclusion experiment; PN_NO_TRIANGLE matches no primID. */
+            ctx.own = PN_NO_TRIANGLE;
             if (tk->api == PN_EMBREE_OCCLUDED16) pn_emb_pixel16(tk, &ctx, O, m);
             else pn_emb_pixel1(tk, &ctx, O, m);
             tk->vis[pix] = pn_mask_visibility(m, k);
@@ -249,7 +252,7 @@ int pn_embree_shadow(pn_embree *e, pn_embree_api api, const pn_gbuf *g, const pn
     /* The open segment (O, S): stop a relative 1e-6 short of the sample, the scale of the
      * predicate's own plane tolerance (pn_tri_mask). */
     tk.tfar = 1.0f - 1e-6f;
-    pn_bench_klight(light, k, eps, 0.0f, 0.0f, &tk.light);
+    pn_bench_klight(light, k, eps, 0.0f, &tk.light);
     t0 = pn_threads_now_ns(NULL);
     pn_threads_parallel_for(threads, g->height, pn_emb_rows, &tk);
     *ms = (double)(pn_threads_now_ns(NULL) - t0) / 1e6;

@@ -9,6 +9,6 @@
 
 /* Area light as the kernels see it: N = normalize(u x v), the frame's eps, a culling
  * slack, k samples per edge. */
-void pn_bench_klight(const pn_light *l, uint32_t k, float eps, float cull_tol, float cross_tol, pn_klight *kl);
+void pn_bench_klight(const pn_light *l, uint32_t k, float eps, float cull_tol, pn_klight *kl);
 
 #endif

@@ -82,7 +82,7 @@ void pn_masks_compare(const pn_masks *a, const pn_masks *b, pn_mask_diff *d)
     }
 }
 
-void pn_bench_klight(const pn_light *l, uint32_t k, float eps, float cull_tol, float cross_tol, pn_klight *kl)
+void pn_bench_klight(const pn_light *l, uint32_t k, float eps, float cull_tol, pn_klight *kl)
 {
     pn_v3 U = pn_v3_make(l->u[0], l->u[1], l->u[2]), V = pn_v3_make(l->v[0], l->v[1], l->v[2]);
     pn_v3 N = pn_v3_normalize(pn_v3_cross(U, V));
@@ -96,7 +96,6 @@ void pn_bench_klight(const pn_light *l, uint32_t k, float eps, float cull_tol, f
     kl->N[2] = N.z;
     kl->eps = eps;
     kl->cull_tol = cull_tol;
-    kl->cross_tol = cross_tol;
     kl->k = k;
     kl->is_point = 0;
 }
@@ -259,6 +258,12 @@ static void pn_mask_pixel(pn_mask_task *tk, size_t pix)
         if (tk->vis) tk->vis[pix] = 0.0f;
         return;
     }
+    {
+        /* The horizon of the own triangle, as every exact algorithm applies it. */
+        pn_horizon H;
+        pn_horizon_of(pn_v3_load(g->pos + pix * 3u), pn_v3_load(g->nrm + pix * 3u), own, b->tris, &tk->light, &H);
+        pn_horizon_mask(&H, &tk->light, m);
+    }
     pn_frustum_make(O, &tk->light, &fr);
     stack[sp++] = 0;
     while (sp > 0) {
@@ -296,7 +301,7 @@ static void pn_mask_rows(void *task, uint32_t begin, uint32_t end)
 }
 
 int pn_our_masks(const pn_mesh *mesh, const pn_gbuf *g, const pn_light *light, uint32_t k, float eps,
-                 float cull_tol, float cross_tol, pn_threads *threads, pn_masks *out, float *vis, char *err,
+                 float cull_tol, pn_threads *threads, pn_masks *out, float *vis, char *err,
                  size_t err_size)
 {
     pn_hbvh bvh;
@@ -311,7 +316,7 @@ int pn_our_masks(const pn_mesh *mesh, const pn_gbuf *g, const pn_light *light, u
     tk.g = g;
     tk.out = out;
     tk.vis = vis;
-    pn_bench_klight(light, k, eps, cull_tol, cross_tol, &tk.light);
+    pn_bench_klight(light, k, eps, cull_tol, &tk.light);
     pn_threads_parallel_for(threads, g->height, pn_mask_rows, &tk);
     pn_hbvh_free(&bvh);
     if (tk.depth_overflow) {

@@ -122,20 +122,15 @@
 #define PN_BVH_STACK 64u
 #endif
 
-/* ---- Shadow-ray tolerances ----------------------------------------------------------- */
+/* ---- Shadow-ray predicate --------------------------------------------------------------- */
 
-/* The predicate's crossing tolerance, as a fraction of the scene's diagonal: a sample
- * counts as blocked only if float rounding cannot have moved its segment's crossing point
- * more than this far off the triangle (kernels/pn_predicate.h, pn_tri_graze). Every cull
- * (BVH frustum tests, GEARS' per-pixel test, GEARS' shadow-volume boxes) is widened by it,
- * which is what makes them conservative for the float predicate and not only for exact
- * geometry. Larger: culls pass more triangles, fewer samples at the edges of triangles
- * whose plane their segment nearly lies in are dropped; smaller: the reverse. 0: no
- * certainty test (such samples are decided by their rounded values, and a cull can then
- * drop a triangle the predicate counts: fuzz/corpus/gears/crash-grazing-point-light-
- * coplanar-2.bin fails in such a build). */
-#ifndef PN_CROSS_TOL
-#define PN_CROSS_TOL 1e-4f
+/* There is no tolerance to configure: the predicate decides every sign exactly for the
+ * float inputs (kernels/pn_predicate.h, kernels/pn_expansion.h), and the culls' slack
+ * (1e-5 of the scene diagonal, pn_stats.cull_tol) covers only their own rounding.
+ * PN_CROSS_TOL, the crossing tolerance of the certainty test this replaced, is gone;
+ * defining it is an error so that a build configured for it does not silently differ. */
+#ifdef PN_CROSS_TOL
+#error "PN_CROSS_TOL was removed: the predicate is exact (kernels/pn_predicate.h), no crossing tolerance is used"
 #endif
 
 /* ---- Debugging ------------------------------------------------------------------------ */

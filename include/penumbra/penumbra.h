@@ -58,8 +58,13 @@
  *   U = V = 0 (every component exactly 0) is a point light at c, shining in every
  *   direction: one sample. A non-zero U or V must be at least about 1.1e-19 long.
  *   Light sample (i, j) of k x k is c + ((2i+1)/k - 1) U + ((2j+1)/k - 1) V, mask bit j*k + i.
- *   A sample is blocked when the open segment from O = P + eps*n (n the geometric normal
- *   turned toward c) to the sample meets a closed triangle other than P's own.
+ *   A sample is blocked when it lies on or behind the plane of P's own triangle (on the
+ *   side away from n, the geometric normal turned toward c: below P's horizon), or when
+ *   the open segment from O = P + eps*n to the sample meets a closed triangle other than
+ *   P's own. Every sign in that is decided exactly for the float inputs (a float filter,
+ *   then exact expansion arithmetic in float where rounding could decide it: the same
+ *   bits on every port; exact whenever no nonzero coordinate of a test is below 2^-63
+ *   times its largest: kernels/pn_expansion.h).
  *   Visibility = unblocked samples / k^2. Background pixels: visibility 1, id PN_NO_TRIANGLE.
  */
 #ifndef PENUMBRA_H
@@ -286,10 +291,8 @@ typedef struct pn_stats {
     uint64_t shadow_blocking;    /* ...of which blocked at least one sample (per pixel;
                                     PN_ALGO_RAYTRACE: blocked rays) */
     uint32_t lit_pixels;         /* pixels that see a triangle facing the light */
-    float cull_tol;              /* last frame, scene units: slack of the conservative culls */
-    float cross_tol;             /* ...and the predicate's crossing tolerance: a sample is
-                                    blocked only if its segment's crossing point is certain,
-                                    despite rounding, to lie within this of the triangle */
+    float cull_tol;              /* last frame, scene units: slack of the conservative culls
+                                    (their own rounding; the predicate is exact) */
     /* GEARS (paper Tables 5 and 6), last frame */
     uint64_t gears_pairs;        /* (triangle, cell) pairs generated, over all tiles */
     uint64_t gears_assignments;  /* triangle-to-pixel assignments: sum over cells of

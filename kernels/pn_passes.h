@@ -45,14 +45,6 @@ PN_KFN void pn_counters_add(PN_GLOBAL pn_shadow_counters *row, const pn_shadow_c
 
 /* ---- G-buffer (pn_raster.h) ------------------------------------------------------------ */
 
-/* Pixel: empty (depth +inf, no triangle). */
-PN_KFN void pn_e_gbuffer_clear(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
-{
-    (void)K;
-    PN_POOL(float, depth)[pix] = PN_KINF;
-    PN_POOL(uint32_t, tri_id)[pix] = PN_NO_PIXEL_TRIANGLE;
-}
-
 /* Triangle: the pixel rows it may cover. */
 PN_KFN void pn_e_raster_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
 {
@@ -60,7 +52,8 @@ PN_KFN void pn_e_raster_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
 }
 
 /* Band `band` of PN_RASTER_BAND rows of view v: owns its pixels and walks every triangle in
- * id order (the G-buffer and the light-space maps alike). */
+ * id order (the G-buffer and the light-space maps alike). depth/ids of its rows must be
+ * empty (+inf, no triangle) on entry. */
 PN_KFN void pn_band(const pn_kview *v, PN_CONST float *tris, PN_CONST uint32_t *rows, uint32_t tri_count, uint32_t band,
                     PN_GLOBAL float *depth, PN_GLOBAL uint32_t *ids)
 {
@@ -69,18 +62,24 @@ PN_KFN void pn_band(const pn_kview *v, PN_CONST float *tris, PN_CONST uint32_t *
     pn_raster_band(v, tris, rows, tri_count, y0, y1, depth, ids);
 }
 
+/* Band of the G-buffer: its rows cleared, rasterized, then resolved (position, normal),
+ * in one item so that they stay in cache. */
 PN_KFN void pn_e_raster_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
 {
-    pn_band(&K->view, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows), K->tri_count, band,
-            PN_POOL(float, depth), PN_POOL(uint32_t, tri_id));
-}
-
-/* Pixel: position and normal from its depth and triangle. */
-PN_KFN void pn_e_gbuffer_resolve(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
-{
-    pn_gbuffer_resolve(&K->view, PN_POOL(const float, tris), pix % K->view.width, pix / K->view.width,
-                       PN_POOL(const float, depth), PN_POOL(const uint32_t, tri_id), PN_POOL(float, pos),
-                       PN_POOL(float, nrm));
+    uint32_t y0 = band * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND, W = K->view.width, x, y;
+    PN_GLOBAL float *depth = PN_POOL(float, depth);
+    PN_GLOBAL uint32_t *ids = PN_POOL(uint32_t, tri_id);
+    if (y1 > K->view.height) y1 = K->view.height;
+    for (y = y0; y < y1; y++)
+        for (x = 0; x < W; x++) {
+            depth[(size_t)y * W + x] = PN_KINF;
+            ids[(size_t)y * W + x] = PN_NO_PIXEL_TRIANGLE;
+        }
+    pn_band(&K->view, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows), K->tri_count, band, depth, ids);
+    for (y = y0; y < y1; y++)
+        for (x = 0; x < W; x++)
+            pn_gbuffer_resolve(&K->view, PN_POOL(const float, tris), x, y, depth, ids, PN_POOL(float, pos),
+                               PN_POOL(float, nrm));
 }
 
 /* ---- Shadow passes of one item per pixel: the reference and per-sample ray tracing ----- */
@@ -376,10 +375,8 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
 #endif
 
 #define PN_PASSES(X)                                \
-    X(GBUFFER_CLEAR, gbuffer_clear, 64, 4096)       \
     X(RASTER_ROWS, raster_rows, 64, 4096)           \
     X(RASTER_BAND, raster_band, 1, 1)               \
-    X(GBUFFER_RESOLVE, gbuffer_resolve, 64, 1024)   \
     PN_PASSES_REFERENCE(X)                          \
     PN_PASSES_RAYTRACE(X)                           \
     PN_PASSES_GEARS(X)                              \

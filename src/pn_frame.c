@@ -239,16 +239,14 @@ static pn_status pn_scene_to_device(pn_frame_state *fs)
     return PN_OK;
 }
 
-/* Primary visibility: clear, per-triangle row ranges, bands, per-pixel resolve. */
+/* Primary visibility: per-triangle row ranges, then bands (clear, raster, resolve). */
 static pn_status pn_gbuffer(pn_frame_state *fs)
 {
     uint32_t npix = fs->width * fs->height;
     size_t px = npix;
     pn_status st;
-    if ((st = pn_scene_to_device(fs)) != PN_OK || (st = pn_dev_run(fs, PN_K_GBUFFER_CLEAR, npix)) != PN_OK ||
-        (st = pn_dev_run(fs, PN_K_RASTER_ROWS, fs->ctx->tri_count)) != PN_OK ||
+    if ((st = pn_scene_to_device(fs)) != PN_OK || (st = pn_dev_run(fs, PN_K_RASTER_ROWS, fs->ctx->tri_count)) != PN_OK ||
         (st = pn_dev_run(fs, PN_K_RASTER_BAND, (fs->height + PN_RASTER_BAND - 1u) / PN_RASTER_BAND)) != PN_OK ||
-        (st = pn_dev_run(fs, PN_K_GBUFFER_RESOLVE, npix)) != PN_OK ||
         (st = pn_dev_to_host(fs, fs->depth, px * sizeof(float))) != PN_OK ||
         (st = pn_dev_to_host(fs, fs->tri_id, px * sizeof(uint32_t))) != PN_OK ||
         (st = pn_dev_to_host(fs, fs->pos, px * 3u * sizeof(float))) != PN_OK)

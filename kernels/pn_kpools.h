@@ -18,7 +18,7 @@ typedef struct pn_kpools {
     /* frame: GEARS (src/pn_gears.c) */
     uint64_t faces, rects, tri_off, pix_cell, row_box, cell_off, cell_pix, cell_cur, row_pairs, pairs, sorted;
     /* frame: selective ray tracing (src/pn_srt.c) */
-    uint64_t srt_box, lmap_depth, lmap_id, lmap_cons, srt_tile_w, srt_tile_h, srt_tile_mask, srt_max, pip_off, pip_list;
+    uint64_t srt_box, lmap_depth, lmap_id, lmap_cons, srt_tile_w, srt_tile_h, srt_tile_mask, srt_words, pip_off, pip_list;
 } pn_kpools;
 
 /* A tile of GEARS grid cells: grid rows [r0, r1] and columns [x0, x1] of one face. */

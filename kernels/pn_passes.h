@@ -241,7 +241,7 @@ PN_KFN void pn_e_lmap_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kp
 PN_KFN void pn_e_srt_conservative(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
 {
     pn_srt_conservative(&K->lview, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), t,
-                        PN_POOL(uint32_t, lmap_cons), PN_POOL(uint32_t, srt_max) + 1);
+                        PN_POOL(uint32_t, lmap_cons), PN_POOL(uint32_t, srt_words) + PN_SRT_WORD_THIN);
 }
 
 /* Tile: the largest splat weight of its edge texels. */
@@ -249,7 +249,7 @@ PN_KFN void pn_e_srt_tiles(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kp
 {
     pn_srt_tile(&K->lview, K->srt_delta, K->srt_alpha, PN_POOL(const float, lmap_depth), PN_POOL(const uint32_t, lmap_id),
                 PN_POOL(const float, tris), PN_POOL(const uint32_t, lmap_cons), tile, K->srt_tiles,
-                PN_POOL(uint32_t, srt_tile_w), PN_POOL(uint32_t, srt_max));
+                PN_POOL(uint32_t, srt_tile_w), PN_POOL(uint32_t, srt_words) + PN_SRT_WORD_WMAX);
 }
 
 /* Tile row: the largest weight whose horizontal reach covers each tile (srt_tile_h). */
@@ -266,7 +266,7 @@ PN_KFN void pn_e_srt_tile_cols(PN_GLOBAL uint8_t *A, const pn_kpools *P, const p
     pn_srt_sweep(PN_POOL(const uint32_t, srt_tile_h), PN_POOL(uint32_t, srt_tile_mask), col, K->srt_tiles, K->srt_tiles,
                  K->srt_reach_v);
     for (y = 0; y < K->srt_tiles; y++) n += PN_POOL(const uint32_t, srt_tile_mask)[y * K->srt_tiles + col] != 0u;
-    if (n) pn_katomic_add(PN_POOL(uint32_t, srt_max) + 2, n);
+    if (n) pn_katomic_add(PN_POOL(uint32_t, srt_words) + PN_SRT_WORD_TILES, n);
 }
 
 /* Pixel: PIP flag into pip_off (scanned next), the map's answer into vis. */

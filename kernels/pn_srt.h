@@ -34,8 +34,13 @@
 #include "pn_reference.h"
 
 #define PN_SRT_TILE 8u
-#define PN_SRT_FLAG_NO_CONSERVATIVE 1u
+/* = PN_SRT_FORCE_PIP of penumbra.h (kernels do not see it; src/pn_srt.c checks they agree). */
 #define PN_SRT_FLAG_FORCE_PIP 2u
+/* The frame's counter words (pool srt_words): the largest splat weight's bits, thin
+ * triangles conservatively rasterized, penumbra-mask tiles set. */
+#define PN_SRT_WORD_WMAX 0u
+#define PN_SRT_WORD_THIN 1u
+#define PN_SRT_WORD_TILES 2u
 /* Largest map half-extent in tan units (76 degrees off the axis); beyond it: PIP. */
 #define PN_SRT_TAN_MAX 4.0f
 
@@ -357,7 +362,7 @@ typedef struct pn_srt_args {
     float delta;        /* depth-discontinuity threshold, scene units */
     float alpha;        /* a texel's size in tan units (2 tan_half / res) */
     float reach_u, reach_v, wmax; /* splat reach in texels per unit weight; largest weight */
-    uint32_t flags;     /* PN_SRT_FLAG_* */
+    uint32_t flags;     /* PN_SRT_NO_CONSERVATIVE, PN_SRT_FLAG_FORCE_PIP */
     uint32_t tiles;     /* tiles per map row */
 } pn_srt_args;
 

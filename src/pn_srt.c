@@ -9,6 +9,9 @@
 
 #if PN_ENABLE_SRT
 
+/* The kernels' copy of the public flag (kernels/ does not include penumbra.h). */
+typedef char pn_srt_flag_agrees[PN_SRT_FLAG_FORCE_PIP == PN_SRT_FORCE_PIP ? 1 : -1];
+
 typedef struct pn_srt_pools {
     float *box;          /* [height * 4]: per row max |x/z|, max |y/z|, min z, origins off the map */
     float *depth;        /* [res^2]: map depth (distance from the light centre) */
@@ -53,7 +56,7 @@ static pn_status pn_srt_begin(pn_frame_state *fs, pn_srt_pools *s, uint32_t res,
     P->srt_tile_w = pn_dev_off(ctx, s->tile_w);
     P->srt_tile_h = pn_dev_off(ctx, s->tile_h);
     P->srt_tile_mask = pn_dev_off(ctx, s->tile_mask);
-    P->srt_max = pn_dev_off(ctx, s->words);
+    P->srt_words = pn_dev_off(ctx, s->words);
     P->pip_off = pn_dev_off(ctx, s->pip_off);
     P->pip_list = pn_dev_off(ctx, s->pip_list);
     memset(&ctx->srt, 0, sizeof(ctx->srt));
@@ -153,7 +156,7 @@ pn_status pn_srt_frame(pn_frame_state *fs)
         if ((st = pn_dev_run(fs, PN_K_SRT_TILES, tiles * tiles)) != PN_OK ||
             (st = pn_dev_to_host(fs, s.words, 4u)) != PN_OK)
             return st;
-        K->srt_wmax = pn_srt_bitsf(s.words[0]);
+        K->srt_wmax = pn_srt_bitsf(s.words[PN_SRT_WORD_WMAX]);
         if ((st = pn_dev_run(fs, PN_K_SRT_TILE_ROWS, tiles)) != PN_OK ||
             (st = pn_dev_run(fs, PN_K_SRT_TILE_COLS, tiles)) != PN_OK)
             return st;
@@ -169,8 +172,8 @@ pn_status pn_srt_frame(pn_frame_state *fs)
         return st;
     ctx->srt.map = res;
     ctx->srt.pip = npip;
-    ctx->srt.thin = s.words[1];
-    ctx->srt.tiles_masked = s.words[2];
+    ctx->srt.thin = s.words[PN_SRT_WORD_THIN];
+    ctx->srt.tiles_masked = s.words[PN_SRT_WORD_TILES];
     return PN_OK;
 }
 

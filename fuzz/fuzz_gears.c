@@ -194,6 +194,44 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                                                   pn_kmaxf(A.z, pn_kmaxf(B.z, C.z)))),
                        "triangle %u blocks %u samples from origin %u but the frustum cull rejects its box", t,
                        pn_mask_count(m, L.k), o);
+            {
+                /* The footprints (pn_footprint.h) the reference's walk and GEARS' per-pixel
+                 * step skip by: of the triangle (its projected vertices, or its box), of
+                 * its box, and of a box around it grown by a hostile amount (a BVH node),
+                 * must hold every sample the arbiter finds blocked. */
+                pn_foot fp;
+                pn_rect rt, rb, rg;
+                float near, grow = (float)(t % 7u) * 0.37f * (float)(o + 1u);
+                pn_v3 lo = pn_v3_make(pn_kminf(A.x, pn_kminf(B.x, C.x)), pn_kminf(A.y, pn_kminf(B.y, C.y)),
+                                      pn_kminf(A.z, pn_kminf(B.z, C.z)));
+                pn_v3 hi = pn_v3_make(pn_kmaxf(A.x, pn_kmaxf(B.x, C.x)), pn_kmaxf(A.y, pn_kmaxf(B.y, C.y)),
+                                      pn_kmaxf(A.z, pn_kmaxf(B.z, C.z)));
+                pn_foot_make(origins[o], &L, &fp);
+                rt = pn_foot_tri(&fp, A, B, C);
+                rb = pn_foot_box(&fp, lo, hi, &near);
+                rg = pn_foot_box(&fp, pn_v3_sub(lo, pn_v3_make(grow, grow * 0.5f, grow * 0.25f)),
+                                 pn_v3_add(hi, pn_v3_make(grow * 0.25f, grow, grow * 0.5f)), &near);
+                for (j = 0; j < L.k; j++)
+                    for (i = 0; i < L.k; i++) {
+                        uint32_t b = j * L.k + i;
+                        if (!((ma[b >> 5] >> (b & 31u)) & 1u)) continue;
+                        FUZZ_CHECK((int32_t)i >= rt.i0 && (int32_t)i <= rt.i1 && (int32_t)j >= rt.j0 &&
+                                       (int32_t)j <= rt.j1,
+                                   "triangle %u blocks sample (%u, %u) from origin %u outside its footprint "
+                                   "[%d..%d] x [%d..%d]",
+                                   t, i, j, o, rt.i0, rt.i1, rt.j0, rt.j1);
+                        FUZZ_CHECK((int32_t)i >= rb.i0 && (int32_t)i <= rb.i1 && (int32_t)j >= rb.j0 &&
+                                       (int32_t)j <= rb.j1,
+                                   "triangle %u blocks sample (%u, %u) from origin %u outside its box's footprint "
+                                   "[%d..%d] x [%d..%d]",
+                                   t, i, j, o, rb.i0, rb.i1, rb.j0, rb.j1);
+                        FUZZ_CHECK((int32_t)i >= rg.i0 && (int32_t)i <= rg.i1 && (int32_t)j >= rg.j0 &&
+                                       (int32_t)j <= rg.j1,
+                                   "triangle %u blocks sample (%u, %u) from origin %u outside the footprint "
+                                   "[%d..%d] x [%d..%d] of a box grown by %g",
+                                   t, i, j, o, rg.i0, rg.i1, rg.j0, rg.j1, (double)grow);
+                    }
+            }
             r = pn_gears_tri_cells(&faces[face], &L, A, B, C);
             FUZZ_CHECK(!pn_cellrect_is_empty(r) && cx >= (r.lo & 0xFFFFu) && cx <= (r.hi & 0xFFFFu) &&
                            cy >= (r.lo >> 16) && cy <= (r.hi >> 16),

@@ -217,6 +217,7 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
     uint32_t cell = pix_cell[pix], own = tri_id[pix], e, k = L->k;
     uint32_t m[PN_MASK_WORDS_MAX];
     pn_frustum fr;
+    pn_foot fp;
     pn_horizon H;
     pn_v3 O;
     /* A pixel has a cell only if it has an origin. */
@@ -228,6 +229,7 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
     pn_horizon_of(pn_v3_load(pos + pix * 3u), pn_v3_load(nrm + pix * 3u), own, tris, L, &H);
     pn_horizon_mask(&H, L, m);
     pn_frustum_make(O, L, &fr);
+    pn_foot_make(O, L, &fp);
     for (e = cell_off[cell]; e < cell_off[cell + 1u]; e++) {
         uint32_t t = sorted[e];
         pn_v3 A, B, C;
@@ -240,6 +242,11 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
                              pn_v3_make(pn_kmaxf(A.x, pn_kmaxf(B.x, C.x)), pn_kmaxf(A.y, pn_kmaxf(B.y, C.y)),
                                         pn_kmaxf(A.z, pn_kmaxf(B.z, C.z)))))
             continue;
+        /* The triangle's footprint on the light against the samples still open
+         * (pn_footprint.h): nothing it could block is left (also between samples, so
+         * even before anything is blocked). Not with `exact`, which computes every
+         * assignment's whole mask for the paper's Table 6. */
+        if (!exact && !pn_rect_open(m, k, pn_foot_tri(&fp, A, B, C))) continue;
         cnt->candidates++;
         cnt->blocking += pn_tri_mask(O, A, B, C, L, m);
         if (!exact && pn_mask_full(m, k)) break;

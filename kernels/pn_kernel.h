@@ -32,6 +32,7 @@ typedef ushort uint16_t;
 typedef uchar uint8_t;
 typedef ulong uint64_t;
 #define pn_ksqrt(x) sqrt(x)
+#define pn_kfabs(x) fabs(x)
 #define PN_KINF INFINITY
 #define pn_katomic_add(p, v) atomic_add((p), (v))
 /* The OpenCL port passes the host's configuration as build options (-D...), so both
@@ -56,6 +57,7 @@ typedef ulong uint64_t;
 /* __builtin_sqrtf is correctly rounded and needs no libm symbol on bare metal when built
  * with -fno-math-errno (it becomes vsqrt.f32 on Cortex-M7, sqrtss on x86). */
 #define pn_ksqrt(x) __builtin_sqrtf(x)
+#define pn_kfabs(x) __builtin_fabsf(x)
 #define PN_KINF (__builtin_inff())
 /* GCC/Clang builtin (like the two above): inline on x86 and on ARMv7-M (ldrex/strex), no
  * library call, so it stays freestanding. Relaxed: only the sum matters, and the caller's

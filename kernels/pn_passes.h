@@ -41,6 +41,7 @@ PN_KFN void pn_counters_add(PN_GLOBAL pn_shadow_counters *row, const pn_shadow_c
     if (c->blocking) pn_katomic_add(&row->blocking, c->blocking);
     if (c->lit) pn_katomic_add(&row->lit, c->lit);
     if (c->overflow) pn_katomic_add(&row->overflow, c->overflow);
+    if (c->nodes) pn_katomic_add(&row->nodes, c->nodes);
 }
 
 /* ---- G-buffer (pn_raster.h) ------------------------------------------------------------ */
@@ -88,7 +89,7 @@ PN_KFN void pn_e_raster_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
  * rays (pn_raytrace.h); its counters into its row's. */
 PN_KFN void pn_pixel_shadow(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix, int rays)
 {
-    pn_shadow_counters c = {0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
     uint32_t id = PN_POOL(const uint32_t, tri_id)[pix];
     pn_v3 pos, nrm;
     float v;
@@ -193,7 +194,7 @@ PN_KFN void pn_e_gears_scatter(PN_GLOBAL uint8_t *A, const pn_kpools *P, const p
 /* Pixel whose cell is in the tile: the mask of the cell's triangles. */
 PN_KFN void pn_e_gears_masks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
-    pn_shadow_counters c = {0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
     float v;
     if (!pn_gears_pixel_mask(&K->light, K->exact_stats, &K->tile, PN_POOL(const pn_kfaces, faces)->res,
                              PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos), PN_POOL(const float, nrm),
@@ -273,7 +274,7 @@ PN_KFN void pn_e_srt_tile_cols(PN_GLOBAL uint8_t *A, const pn_kpools *P, const p
 PN_KFN void pn_e_srt_classify(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
     pn_srt_args a;
-    pn_shadow_counters c = {0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
     float v;
     uint32_t lit;
     a.delta = K->srt_delta;
@@ -305,7 +306,7 @@ PN_KFN void pn_e_srt_pip_list(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn
 PN_KFN void pn_e_srt_exact(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
 {
     uint32_t pix = PN_POOL(const uint32_t, pip_list)[i];
-    pn_shadow_counters c = {0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
     PN_POOL(float, vis)[pix] = pn_reference_pixel(
         pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u), pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u),
         PN_POOL(const uint32_t, tri_id)[pix], PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),

@@ -17,6 +17,7 @@
 #ifndef PN_REFERENCE_H
 #define PN_REFERENCE_H
 
+#include "pn_footprint.h"
 #include "pn_predicate.h"
 
 /* The light frustum of one shadow-ray origin: planes n.X <= d (already moved out by the
@@ -131,6 +132,7 @@ typedef struct pn_shadow_counters {
     uint32_t blocking;   /* ...that blocked at least one sample */
     uint32_t lit;        /* pixels in front of the light */
     uint32_t overflow;   /* traversal stack overflows (must stay 0) */
+    uint32_t nodes;      /* BVH nodes whose boxes were tested */
 } pn_shadow_counters;
 
 /* A stack traversal of the BVH, stepped from leaf to leaf: the leaves whose boxes the
@@ -173,17 +175,28 @@ PN_KFN uint32_t pn_bvh_next_leaf(pn_bvh_walk *w, const pn_frustum *fr, PN_CONST 
     return PN_BVH_DONE;
 }
 
-/* Visibility of one G-buffer pixel (P, unit geometric normal nrm, own triangle id). */
+/* Visibility of one G-buffer pixel (P, unit geometric normal nrm, own triangle id).
+ *
+ * The walk keeps the mask m of samples found blocked so far and visits a node only while
+ * its footprint on the light (pn_footprint.h) still holds a sample m has not blocked: the
+ * test runs when a child is pushed and again when it is popped, since m may have grown in
+ * between. Children go on the stack far first, so the child whose box comes nearer to O
+ * is walked first: near occluders have large footprints and fill the mask soonest. At a
+ * leaf, a triangle whose own box's footprint holds no open sample is skipped before any of
+ * the predicate's set-up. The result is the OR over every triangle that can block an open
+ * sample, so it is the same mask in any order; only the counters depend on the order. */
 PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris,
                                 PN_CONST pn_kbvh_node *nodes, PN_CONST uint32_t *tri_index,
                                 const pn_klight *L, pn_shadow_counters *cnt)
 {
-    uint32_t m[PN_MASK_WORDS_MAX];
-    uint32_t leaf, k = L->k;
-    pn_bvh_walk w;
+    uint32_t m[PN_MASK_WORDS_MAX], stack[PN_BVH_STACK], rects[PN_BVH_STACK];
+    uint32_t k = L->k, sp = 0u, any;
     pn_frustum fr;
+    pn_foot fp;
     pn_horizon H;
+    pn_rect r;
     pn_v3 O;
+    float near;
 
     if (!pn_shadow_origin(P, nrm, L, &O)) return 0.0f;
     cnt->lit++;
@@ -191,20 +204,77 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
     pn_horizon_of(P, nrm, own, tris, L, &H);
     pn_horizon_mask(&H, L, m);
     if (pn_mask_full(m, k)) return 0.0f;
+    any = pn_mask_count(m, k) != 0u;
     pn_frustum_make(O, L, &fr);
-    pn_bvh_walk_init(&w);
-    while ((leaf = pn_bvh_next_leaf(&w, &fr, nodes, cnt)) != PN_BVH_DONE) {
-        PN_CONST pn_kbvh_node *nd = nodes + leaf;
-        uint32_t e;
-        for (e = 0; e < nd->count; e++) {
-            uint32_t t = tri_index[nd->first + e];
-            pn_v3 A, B, C;
-            if (t == own) continue;
-            pn_tri_load(tris, t, &A, &B, &C);
-            cnt->candidates++;
-            cnt->blocking += pn_tri_mask(O, A, B, C, L, m);
+    pn_foot_make(O, L, &fp);
+    cnt->nodes++;
+    if (nodes[0].count != 0u || nodes[0].first != 0u) { /* not the empty tree */
+        if (pn_frustum_box(&fr, nodes) &&
+            pn_rect_open(m, k, r = pn_foot_box(&fp, pn_v3_load(nodes[0].bmin), pn_v3_load(nodes[0].bmax), &near))) {
+            stack[0] = 0u;
+            rects[0] = pn_rect_pack(r);
+            sp = 1u;
         }
-        if (pn_mask_full(m, k)) break;
+    }
+    while (sp > 0u) {
+        PN_CONST pn_kbvh_node *nd;
+        sp--;
+        if (!pn_rect_open(m, k, pn_rect_unpack(rects[sp]))) continue; /* blocked since the push */
+        nd = nodes + stack[sp];
+        if (nd->count == 0u) { /* interior: both children, near first */
+            uint32_t c, n_in = 0u, id[2], pk[2];
+            float key[2];
+            for (c = 0; c < 2u; c++) {
+                PN_CONST pn_kbvh_node *ch = nodes + nd->first + c;
+                cnt->nodes++;
+                if (!pn_frustum_box(&fr, ch)) continue;
+                /* While nothing is blocked, a box's footprint can only be empty between
+                 * samples, which a box large enough to be an interior node seldom is:
+                 * the whole light, and only the near-first key. */
+                if (any) {
+                    r = pn_foot_box(&fp, pn_v3_load(ch->bmin), pn_v3_load(ch->bmax), &near);
+                    if (!pn_rect_open(m, k, r)) continue;
+                } else {
+                    r = pn_rect_full(k);
+                    near = pn_foot_near(&fp, pn_v3_load(ch->bmin), pn_v3_load(ch->bmax));
+                }
+                id[n_in] = nd->first + c;
+                pk[n_in] = pn_rect_pack(r);
+                key[n_in] = near;
+                n_in++;
+            }
+            if (n_in == 2u && key[1] > key[0]) { /* the far one goes first, under the near */
+                uint32_t ti = id[0], tp = pk[0];
+                id[0] = id[1];
+                pk[0] = pk[1];
+                id[1] = ti;
+                pk[1] = tp;
+            }
+            for (c = 0; c < n_in; c++) {
+                if (sp < PN_BVH_STACK) {
+                    stack[sp] = id[c];
+                    rects[sp] = pk[c];
+                    sp++;
+                } else {
+                    cnt->overflow++;
+                }
+            }
+        } else {
+            uint32_t e;
+            for (e = 0; e < nd->count; e++) {
+                uint32_t t = tri_index[nd->first + e];
+                pn_v3 A, B, C;
+                if (t == own) continue;
+                pn_tri_load(tris, t, &A, &B, &C);
+                if (!pn_rect_open(m, k, pn_foot_tri(&fp, A, B, C))) continue;
+                cnt->candidates++;
+                if (pn_tri_mask(O, A, B, C, L, m)) {
+                    cnt->blocking++;
+                    any = 1u;
+                }
+            }
+            if (any && pn_mask_full(m, k)) break;
+        }
     }
     return pn_mask_visibility(m, k);
 }

@@ -133,6 +133,7 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out)
     for (i = 0; i < PN_PASS_COUNT; i++) s.pass_ns[i] = ctx->pass_ns[i];
     s.shadow_candidates = ctx->shadow_candidates;
     s.shadow_blocking = ctx->shadow_blocking;
+    s.shadow_nodes = ctx->shadow_nodes;
     s.lit_pixels = ctx->lit_pixels;
     s.cull_tol = ctx->cull_tol;
     s.gears_pairs = ctx->gears.pairs;

@@ -371,6 +371,7 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
         for (y = 0; y < fs.height; y++) {
             fs.candidates += cnt[y].candidates;
             fs.blocking += cnt[y].blocking;
+            fs.nodes += cnt[y].nodes;
             fs.lit += cnt[y].lit;
             fs.overflow += cnt[y].overflow;
         }
@@ -382,6 +383,7 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     ctx->pass_ns[PN_PASS_SHADE] = pn_dev_timestamp(&fs) - t0;
     ctx->shadow_candidates = fs.candidates;
     ctx->shadow_blocking = fs.blocking;
+    ctx->shadow_nodes = fs.nodes;
     ctx->lit_pixels = fs.lit;
     ctx->cull_tol = fs.K.light.cull_tol;
 

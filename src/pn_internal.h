@@ -47,7 +47,7 @@ typedef struct pn_frame_state {
     uint8_t *rgba;      /* 4 bytes per pixel, r g b a */
     uint32_t *rows;     /* rasterizer set-up: pixel-row range per triangle */
     void *counters;     /* per-row shadow counters (pn_shadow_counters[height]) */
-    uint64_t candidates, blocking;
+    uint64_t candidates, blocking, nodes;
     uint32_t lit, overflow;
 } pn_frame_state;
 
@@ -84,7 +84,7 @@ struct pn_context {
     void *clock_user;
     /* diagnostics */
     uint64_t pass_ns[PN_PASS_COUNT];
-    uint64_t shadow_candidates, shadow_blocking;
+    uint64_t shadow_candidates, shadow_blocking, shadow_nodes;
     uint32_t lit_pixels;
     float cull_tol;
     struct {

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "penumbra/penumbra.h"
+#include "pn_footprint.h"
 #include "pn_predicate.h" /* the kernel predicate itself, for brute force and mask checks */
 #include "pn_scenes.h"
 #include "pn_setup.h"
@@ -335,7 +336,7 @@ static void test_predicate_vs_double(void)
 {
     pn_light l = {{0.0f, 1.0f, 0.0f}, {0.25f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.25f}};
     pn_klight kl = klight_of(&l, 16, 0.0f, 1.0f);
-    uint32_t trial, false_blocks = 0, misses = 0, blocked_total = 0, far_blocks = 0;
+    uint32_t trial, false_blocks = 0, misses = 0, blocked_total = 0, far_blocks = 0, foot_out = 0, foot_area = 0;
     double worst = 0.0;
     static const double off[4][2] = {{1e-4, 0}, {-1e-4, 0}, {0, 1e-4}, {0, -1e-4}};
     kl.N[0] = 0.0f;
@@ -372,6 +373,36 @@ static void test_predicate_vs_double(void)
         pn_mask_clear(m);
         pn_tri_mask(O, pn_v3_make(tri[0], tri[1], tri[2]), pn_v3_make(tri[3], tri[4], tri[5]),
                     pn_v3_make(tri[6], tri[7], tri[8]), &kl, m);
+        {
+            /* The footprints the walks skip by (pn_footprint.h) hold every blocked sample:
+             * the triangle's own and its box's. */
+            pn_foot fp;
+            pn_rect rt, rb;
+            float near;
+            pn_v3 A = pn_v3_make(tri[0], tri[1], tri[2]), B = pn_v3_make(tri[3], tri[4], tri[5]),
+                  C = pn_v3_make(tri[6], tri[7], tri[8]);
+            pn_foot_make(O, &kl, &fp);
+            rt = pn_foot_tri(&fp, A, B, C);
+            rb = pn_foot_box(&fp,
+                             pn_v3_make(pn_kminf(A.x, pn_kminf(B.x, C.x)), pn_kminf(A.y, pn_kminf(B.y, C.y)),
+                                        pn_kminf(A.z, pn_kminf(B.z, C.z))),
+                             pn_v3_make(pn_kmaxf(A.x, pn_kmaxf(B.x, C.x)), pn_kmaxf(A.y, pn_kmaxf(B.y, C.y)),
+                                        pn_kmaxf(A.z, pn_kmaxf(B.z, C.z))),
+                             &near);
+            if (!pn_rect_empty(rt)) foot_area += (uint32_t)((rt.i1 - rt.i0 + 1) * (rt.j1 - rt.j0 + 1));
+            for (j = 0; j < 16; j++)
+                for (i = 0; i < 16; i++)
+                    if ((m[(j * 16 + i) >> 5] >> ((j * 16 + i) & 31u)) & 1u) {
+                        int in_t = (int)i >= rt.i0 && (int)i <= rt.i1 && (int)j >= rt.j0 && (int)j <= rt.j1;
+                        int in_b = (int)i >= rb.i0 && (int)i <= rb.i1 && (int)j >= rb.j0 && (int)j <= rb.j1;
+                        if (!in_t || !in_b) {
+                            if (foot_out < 3)
+                                fprintf(stderr, "trial %u: blocked sample %u,%u outside the footprint %s\n", trial, i, j,
+                                        in_t ? "of the box" : "of the triangle");
+                            foot_out++;
+                        }
+                    }
+        }
         for (j = 0; j < 16; j++)
             for (i = 0; i < 16; i++) {
                 int bit = (int)(m[(j * 16 + i) >> 5] >> ((j * 16 + i) & 31u) & 1u), any = 0, all = 1;
@@ -418,6 +449,10 @@ static void test_predicate_vs_double(void)
     CHECK(false_blocks == 0u);
     CHECK(misses == 0u);
     CHECK(far_blocks == 0u);
+    fprintf(stderr, "footprints: %u blocked samples outside them; %u samples inside the triangles' footprints in all\n",
+            foot_out, foot_area);
+    CHECK(foot_out == 0u);
+    CHECK(foot_area >= blocked_total);
 }
 
 /* ---- point light, one-sided light, determinism ------------------------------------------- */

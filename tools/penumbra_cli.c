@@ -179,8 +179,9 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
             st->pass_ns[PN_PASS_SCENE_COPY] / 1e6, st->pass_ns[PN_PASS_BVH_BUILD] / 1e6,
             st->pass_ns[PN_PASS_GBUFFER] / 1e6, st->pass_ns[PN_PASS_SHADOW] / 1e6, st->pass_ns[PN_PASS_SHADE] / 1e6,
             ms_total);
-    fprintf(f, "  \"shadow_candidates\": %llu,\n  \"shadow_blocking\": %llu,\n  \"lit_pixels\": %u,\n",
-            (unsigned long long)st->shadow_candidates, (unsigned long long)st->shadow_blocking, st->lit_pixels);
+    fprintf(f, "  \"shadow_candidates\": %llu,\n  \"shadow_blocking\": %llu,\n  \"shadow_nodes\": %llu,\n  \"lit_pixels\": %u,\n",
+            (unsigned long long)st->shadow_candidates, (unsigned long long)st->shadow_blocking,
+            (unsigned long long)st->shadow_nodes, st->lit_pixels);
     fprintf(f, "  \"gears_grid\": %u,\n  \"gears_pairs\": %llu,\n  \"gears_assignments\": %llu,\n"
                "  \"gears_tiles\": %u,\n  \"gears_faces\": %u,\n  \"gears_cells_used\": %u,\n"
                "  \"gears_max_tris_per_cell\": %u,\n  \"gears_mean_tris_per_cell\": %.3f,\n"

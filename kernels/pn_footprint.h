@@ -1,0 +1,281 @@
+/* pn_footprint.h - the footprint of a box on the light, as a rectangle of sample indices,
+ * and the test "does that rectangle still hold a sample the pixel has not found blocked".
+ *
+ * A sample S_ij is blocked by a triangle only if the exact segment from O to S_ij meets
+ * it (pn_predicate.h), at a point X = O + t (S_ij - O), t in (0, 1), of the triangle and so
+ * of any box that holds the triangle. Going back from X: S_ij is the central projection of
+ * X from O onto the light plane. With N the light's unit normal (pointing to O's side),
+ * w(X) = (O - X).N the height of X below O toward the light and D = (O - c).N the height of
+ * O above the light, t = w(X) / D, so X lies in the slab 0 < w(X) < D, and S_ij's light
+ * coordinates (S = c + a U + b V) are
+ *
+ *     a = a_O + D g_a(X) / w(X),   g_a(X) = (X - O).U*,   a_O = (O - c).U*,
+ *
+ * and the same for b with V*; (U*, V*) is the dual basis of (U, V) in the light plane
+ * (U* . U = 1, U* . V = 0; U and V are orthogonal to 1e-4, not exactly). Over a box, g and
+ * w are linear, so their ranges come from the box's corners componentwise; the ratio's
+ * range is interval arithmetic on g / w with w clipped to (0, min(w_max, D)]: for w > 0
+ * bounded below, the four corner quotients; a box reaching O's plane (w_min <= 0) leaves
+ * the side where g can change sign unbounded. The rectangle is then the sample indices
+ * whose a_i, b_j fall in the ranges. A rectangle that misses every sample not yet blocked
+ * can hold no new blocked sample: the box is skipped. A point light (k = 1) has no
+ * footprint: its rectangle is the one sample, which still makes a node worthless once that
+ * sample is blocked.
+ *
+ * Conservative in the real geometry, with every rounding bounded (u = 2^-24, standard
+ * model, |N_i| <= 1 and N within 4u of unit in each component):
+ *   - D, and every w over the box: a dot product with the float N of a vector d whose
+ *     components are differences rounded by u: error <= 16 u |d|_1 (dot 3u, differences
+ *     1u, N's own rounding against the exact normal of the plane spanned by U and V 4u,
+ *     doubled), with |d|_1 bounded over the box by the largest corner magnitudes;
+ *   - g and a_O: a dot product with the float dual vector, itself within 10 u of the exact
+ *     one relative to |U*|inf (two products, a difference, a division): error
+ *     <= 32 u |d|_1 |U*|inf;
+ *   - the inputs of the interval arithmetic are widened by those bounds first, so the
+ *     ranges it forms hold the exact quotients; its own divisions, products and the sum
+ *     with a_O round by a few u relative: 1e-6 relative (16 u) is added at the end, and
+ *     1e-5 of an index step before the rounding to indices (their own rounding is below
+ *     2 k u < 2e-6 for k <= 32);
+ *   - NaN anywhere (overflow of hostile coordinates) gives the whole light, and O within
+ *     its error of the light plane gives the whole light as well.
+ * fuzz/fuzz_gears.c checks on hostile configurations that every sample the exact arbiter
+ * finds blocked lies in the rectangle of the blocking triangle's box. */
+#ifndef PN_FOOTPRINT_H
+#define PN_FOOTPRINT_H
+
+#include "pn_predicate.h" /* PN_KU, PN_KTINY */
+
+/* Per shadow-ray origin. on = 0: every box gets the whole light. */
+typedef struct pn_foot {
+    pn_v3 O, Ua, Va, N;
+    float aO, bO, ea, eb; /* O's light coordinates and their error bounds */
+    float D, eD;          /* O's height above the light and its error bound */
+    float ua_inf, va_inf; /* |U*|inf, |V*|inf */
+    uint32_t k, on;
+} pn_foot;
+
+/* Sample indices [i0, i1] x [j0, j1] (columns i along U, rows j along V; the mask bit of
+ * sample (i, j) is j k + i). Empty when i0 > i1 or j0 > j1. */
+typedef struct pn_rect {
+    int32_t i0, i1, j0, j1;
+} pn_rect;
+
+PN_KFN pn_rect pn_rect_make(int32_t i0, int32_t i1, int32_t j0, int32_t j1)
+{
+    pn_rect r;
+    r.i0 = i0;
+    r.i1 = i1;
+    r.j0 = j0;
+    r.j1 = j1;
+    return r;
+}
+
+PN_KFN pn_rect pn_rect_full(uint32_t k) { return pn_rect_make(0, (int32_t)k - 1, 0, (int32_t)k - 1); }
+
+PN_KFN int pn_rect_empty(pn_rect r) { return r.i0 > r.i1 || r.j0 > r.j1; }
+
+/* Sample rectangles pack into one word for a traversal stack: 8 bits per bound (k <= 32). */
+PN_KFN uint32_t pn_rect_pack(pn_rect r)
+{
+    return (uint32_t)r.i0 | ((uint32_t)r.i1 << 8) | ((uint32_t)r.j0 << 16) | ((uint32_t)r.j1 << 24);
+}
+
+PN_KFN pn_rect pn_rect_unpack(uint32_t p)
+{
+    return pn_rect_make((int32_t)(p & 0xFFu), (int32_t)((p >> 8) & 0xFFu), (int32_t)((p >> 16) & 0xFFu),
+                        (int32_t)(p >> 24));
+}
+
+PN_KFN void pn_foot_make(pn_v3 O, const pn_klight *L, pn_foot *fp)
+{
+    pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]);
+    pn_v3 V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
+    pn_v3 dO = pn_v3_sub(O, pn_v3_make(L->c[0], L->c[1], L->c[2]));
+    float uu = pn_v3_dot(U, U), vv = pn_v3_dot(V, V), uv = pn_v3_dot(U, V), det = uu * vv - uv * uv, l1;
+    fp->k = L->k;
+    fp->O = O;
+    fp->on = 0u;
+    if (L->is_point || !(det > 0.0f)) return;
+    fp->N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
+    fp->Ua = pn_v3_scale(pn_v3_sub(pn_v3_scale(U, vv), pn_v3_scale(V, uv)), 1.0f / det);
+    fp->Va = pn_v3_scale(pn_v3_sub(pn_v3_scale(V, uu), pn_v3_scale(U, uv)), 1.0f / det);
+    fp->ua_inf = pn_v3_linf(fp->Ua);
+    fp->va_inf = pn_v3_linf(fp->Va);
+    l1 = pn_v3_l1(dO);
+    fp->aO = pn_v3_dot(dO, fp->Ua);
+    fp->bO = pn_v3_dot(dO, fp->Va);
+    fp->ea = 32.0f * PN_KU * l1 * fp->ua_inf + PN_KTINY;
+    fp->eb = 32.0f * PN_KU * l1 * fp->va_inf + PN_KTINY;
+    fp->D = pn_v3_dot(dO, fp->N);
+    fp->eD = 16.0f * PN_KU * l1 + PN_KTINY;
+    /* O within twice its error of the light plane (or NaN): no useful footprint. */
+    fp->on = fp->D > 2.0f * fp->eD && fp->aO == fp->aO && fp->bO == fp->bO;
+}
+
+/* Range of the linear function X -> (X - O).n over the box, with d = X - O given per
+ * component as [dl, dh]. */
+PN_KFN void pn_lin_range(pn_v3 n, pn_v3 dl, pn_v3 dh, float *lo, float *hi)
+{
+    float x0 = n.x * dl.x, x1 = n.x * dh.x, y0 = n.y * dl.y, y1 = n.y * dh.y, z0 = n.z * dl.z, z1 = n.z * dh.z;
+    *lo = (pn_kminf(x0, x1) + pn_kminf(y0, y1)) + pn_kminf(z0, z1);
+    *hi = (pn_kmaxf(x0, x1) + pn_kmaxf(y0, y1)) + pn_kmaxf(z0, z1);
+}
+
+/* Sample indices n whose coordinate (2n + 1) / k - 1 can lie in [lo, hi]; NaN: all. */
+PN_KFN void pn_foot_index(float lo, float hi, uint32_t k, int32_t *n0, int32_t *n1)
+{
+    float fk = (float)k;
+    if (!(lo == lo) || !(hi == hi)) {
+        *n0 = 0;
+        *n1 = (int32_t)k - 1;
+        return;
+    }
+    *n0 = pn_kceil_clamp(((lo + 1.0f) * fk - 1.0f) * 0.5f - 1e-5f, 0, (int32_t)k);
+    *n1 = pn_kfloor_clamp(((hi + 1.0f) * fk - 1.0f) * 0.5f + 1e-5f, -1, (int32_t)k - 1);
+}
+
+/* Sample indices n whose coordinate (2n + 1) / k - 1 can lie in [c + r_lo, c + r_hi],
+ * r = D g / w over g in [glo, ghi], w in [wlo, whi] (whi > 0, D in [dlo, dhi], dlo > 0),
+ * c within ec of O's coordinate. */
+PN_KFN void pn_foot_axis(float c, float ec, float glo, float ghi, float wlo, float whi, float dlo, float dhi,
+                         uint32_t k, int32_t *n0, int32_t *n1)
+{
+    float qlo, qhi, rlo, rhi, lo, hi;
+    if (wlo > 0.0f) {
+        qlo = pn_kminf(glo / wlo, glo / whi);
+        qhi = pn_kmaxf(ghi / wlo, ghi / whi);
+    } else {
+        qlo = glo >= 0.0f ? glo / whi : -PN_KINF;
+        qhi = ghi <= 0.0f ? ghi / whi : PN_KINF;
+    }
+    rlo = qlo * (qlo >= 0.0f ? dlo : dhi);
+    rhi = qhi * (qhi >= 0.0f ? dhi : dlo);
+    lo = (c + rlo) - (ec + 1e-6f * (pn_kfabs(c) + pn_kfabs(rlo)));
+    hi = (c + rhi) + (ec + 1e-6f * (pn_kfabs(c) + pn_kfabs(rhi)));
+    pn_foot_index(lo, hi, k, n0, n1);
+}
+
+/* The samples whose segments from O can meet the box [lo, hi]; *near gets a lower bound of
+ * the box's height w below O (0 when the box reaches O's plane), the key that orders a
+ * traversal near-first. */
+PN_KFN pn_rect pn_foot_box(const pn_foot *fp, pn_v3 lo, pn_v3 hi, float *near)
+{
+    pn_v3 dl, dh, da;
+    float mag, glo, ghi, hlo, hhi, wlo, whi, eg, ew, dlo, dhi;
+    pn_rect r;
+    *near = 0.0f;
+    if (!fp->on) return pn_rect_full(fp->k);
+    dl = pn_v3_sub(lo, fp->O);
+    dh = pn_v3_sub(hi, fp->O);
+    da = pn_v3_make(pn_kmaxf(pn_kfabs(dl.x), pn_kfabs(dh.x)), pn_kmaxf(pn_kfabs(dl.y), pn_kfabs(dh.y)),
+                    pn_kmaxf(pn_kfabs(dl.z), pn_kfabs(dh.z)));
+    mag = pn_v3_l1(da);
+    /* w = -(X - O).N */
+    pn_lin_range(fp->N, dl, dh, &hlo, &hhi);
+    ew = 16.0f * PN_KU * mag + PN_KTINY;
+    wlo = -hhi - ew;
+    whi = pn_kminf(-hlo + ew, fp->D + fp->eD);
+    /* Wholly behind O's plane or beyond the light plane: no segment reaches it. NaN falls
+     * through to the axes, which then give the whole light. */
+    if (whi <= 0.0f || wlo > fp->D + fp->eD) return pn_rect_make(0, -1, 0, -1);
+    *near = pn_kmaxf(wlo, 0.0f);
+    dlo = fp->D - fp->eD;
+    dhi = fp->D + fp->eD;
+    pn_lin_range(fp->Ua, dl, dh, &glo, &ghi);
+    eg = 32.0f * PN_KU * mag * fp->ua_inf + PN_KTINY;
+    pn_foot_axis(fp->aO, fp->ea, glo - eg, ghi + eg, wlo, whi, dlo, dhi, fp->k, &r.i0, &r.i1);
+    if (r.i0 > r.i1) return pn_rect_make(0, -1, 0, -1);
+    pn_lin_range(fp->Va, dl, dh, &glo, &ghi);
+    eg = 32.0f * PN_KU * mag * fp->va_inf + PN_KTINY;
+    pn_foot_axis(fp->bO, fp->eb, glo - eg, ghi + eg, wlo, whi, dlo, dhi, fp->k, &r.j0, &r.j1);
+    return r;
+}
+
+/* The near-first key of pn_foot_box() alone (no error bound: it only orders a walk). */
+PN_KFN float pn_foot_near(const pn_foot *fp, pn_v3 lo, pn_v3 hi)
+{
+    float hlo, hhi;
+    if (!fp->on) return 0.0f;
+    pn_lin_range(fp->N, pn_v3_sub(lo, fp->O), pn_v3_sub(hi, fp->O), &hlo, &hhi);
+    return pn_kmaxf(-hhi, 0.0f);
+}
+
+/* Light coordinate range [*lo, *hi] of the central projections from O of the points
+ * whose (g, w) are those of the vertices (g, w within eg, ew; w > ew for all three). The
+ * projection of a triangle wholly in front of O's plane is the triangle of its projected
+ * vertices (parts beyond the light plane project too, which only widens the range). With
+ * q = g / w rounded (u relative), the exact quotient is within (eg + |q| ew) / (w - ew)
+ * + u |q| of it. */
+PN_KFN void pn_foot_verts(float c, float ec, float D, float eD, const float *g, float eg, const float *w, float ew,
+                          float *lo, float *hi)
+{
+    float qlo = PN_KINF, qhi = -PN_KINF, rlo, rhi;
+    uint32_t v;
+    for (v = 0; v < 3u; v++) {
+        float q = g[v] / w[v], aq = pn_kfabs(q);
+        float e = (eg + aq * ew) / (w[v] - ew) + 2.0f * PN_KU * aq;
+        qlo = pn_kminf(qlo, q - e);
+        qhi = pn_kmaxf(qhi, q + e);
+    }
+    rlo = qlo * (qlo >= 0.0f ? D - eD : D + eD);
+    rhi = qhi * (qhi >= 0.0f ? D + eD : D - eD);
+    *lo = (c + rlo) - (ec + 1e-6f * (pn_kfabs(c) + pn_kfabs(rlo)));
+    *hi = (c + rhi) + (ec + 1e-6f * (pn_kfabs(c) + pn_kfabs(rhi)));
+}
+
+/* The samples whose segments from O can meet triangle ABC: from its projected vertices
+ * when all three are clearly in front of O's plane, else from its box. */
+PN_KFN pn_rect pn_foot_tri(const pn_foot *fp, pn_v3 A, pn_v3 B, pn_v3 C)
+{
+    float ga[3], gb[3], w[3], mag = 0.0f, ew, ega, egb, lo, hi, near;
+    pn_v3 d[3];
+    uint32_t v;
+    pn_rect r;
+    if (!fp->on) return pn_rect_full(fp->k);
+    d[0] = pn_v3_sub(A, fp->O);
+    d[1] = pn_v3_sub(B, fp->O);
+    d[2] = pn_v3_sub(C, fp->O);
+    for (v = 0; v < 3u; v++) {
+        mag = pn_kmaxf(mag, pn_v3_l1(d[v]));
+        w[v] = -pn_v3_dot(d[v], fp->N);
+        ga[v] = pn_v3_dot(d[v], fp->Ua);
+        gb[v] = pn_v3_dot(d[v], fp->Va);
+    }
+    ew = 16.0f * PN_KU * mag + PN_KTINY;
+    /* Every vertex behind O's plane or every vertex beyond the light plane: nothing to
+     * cross. A vertex near O's plane: the box's rule, which handles w -> 0. */
+    if (pn_kmaxf(w[0], pn_kmaxf(w[1], w[2])) + ew <= 0.0f ||
+        pn_kminf(w[0], pn_kminf(w[1], w[2])) - ew > fp->D + fp->eD)
+        return pn_rect_make(0, -1, 0, -1);
+    if (!(pn_kminf(w[0], pn_kminf(w[1], w[2])) > 2.0f * ew))
+        return pn_foot_box(fp,
+                           pn_v3_make(pn_kminf(A.x, pn_kminf(B.x, C.x)), pn_kminf(A.y, pn_kminf(B.y, C.y)),
+                                      pn_kminf(A.z, pn_kminf(B.z, C.z))),
+                           pn_v3_make(pn_kmaxf(A.x, pn_kmaxf(B.x, C.x)), pn_kmaxf(A.y, pn_kmaxf(B.y, C.y)),
+                                      pn_kmaxf(A.z, pn_kmaxf(B.z, C.z))),
+                           &near);
+    ega = 32.0f * PN_KU * mag * fp->ua_inf + PN_KTINY;
+    egb = 32.0f * PN_KU * mag * fp->va_inf + PN_KTINY;
+    pn_foot_verts(fp->aO, fp->ea, fp->D, fp->eD, ga, ega, w, ew, &lo, &hi);
+    pn_foot_index(lo, hi, fp->k, &r.i0, &r.i1);
+    if (r.i0 > r.i1) return pn_rect_make(0, -1, 0, -1);
+    pn_foot_verts(fp->bO, fp->eb, fp->D, fp->eD, gb, egb, w, ew, &lo, &hi);
+    pn_foot_index(lo, hi, fp->k, &r.j0, &r.j1);
+    return r;
+}
+
+/* 1 if rectangle r holds a sample that mask m (bit j k + i) has not blocked yet. */
+PN_KFN int pn_rect_open(const uint32_t *m, uint32_t k, pn_rect r)
+{
+    uint32_t n = (uint32_t)(r.i1 - r.i0 + 1), cols, bit;
+    int32_t j;
+    if (pn_rect_empty(r)) return 0;
+    cols = (n >= 32u ? 0xFFFFFFFFu : ((1u << n) - 1u)) << (uint32_t)r.i0;
+    for (j = r.j0; j <= r.j1; j++) {
+        bit = (uint32_t)j * k; /* a row never straddles two words (k divides 32 or is 32) */
+        if (~(m[bit >> 5] >> (bit & 31u)) & cols) return 1;
+    }
+    return 0;
+}
+
+#endif

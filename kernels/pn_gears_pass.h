@@ -218,6 +218,7 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
     uint32_t m[PN_MASK_WORDS_MAX];
     pn_frustum fr;
     pn_foot fp;
+    pn_rect r;
     pn_horizon H;
     pn_v3 O;
     /* A pixel has a cell only if it has an origin. */
@@ -246,9 +247,10 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
          * (pn_footprint.h): nothing it could block is left (also between samples, so
          * even before anything is blocked). Not with `exact`, which computes every
          * assignment's whole mask for the paper's Table 6. */
-        if (!exact && !pn_rect_open(m, k, pn_foot_tri(&fp, A, B, C))) continue;
+        r = exact ? pn_rect_full(k) : pn_foot_tri(&fp, A, B, C);
+        if (!pn_rect_open(m, k, r) && !exact) continue;
         cnt->candidates++;
-        cnt->blocking += pn_tri_mask(O, A, B, C, L, m);
+        cnt->blocking += pn_tri_mask_in(O, A, B, C, L, m, r.i0, r.i1, r.j0, r.j1);
         if (!exact && pn_mask_full(m, k)) break;
     }
     *vis_out = pn_mask_visibility(m, k);

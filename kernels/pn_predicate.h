@@ -372,7 +372,7 @@ PN_KFN uint32_t pn_tri_sample(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_kligh
                           pn_lin_at(F.e[2], a, b));
 }
 
-/* Bits i < n4 (k rounded up to a multiple of 4) of one row that can pass: with plane value
+/* Bits s4 <= i < n4 (multiples of 4, n4 <= k rounded up to one) of one row that can pass: with plane value
  * vp = pb + a_i*phu (bound ep) and edge values v_q = b_q + a_i*h_q (bounds r_q), a lane can
  * pass when vp >= -ep and all v_q >= -r_q or all v_q <= r_q (pn_filter's tests; a lane that
  * fails them certainly does not pass). No branches and no variable shifts (pw[i] = 1 << i),
@@ -381,12 +381,12 @@ PN_KFN uint32_t pn_tri_sample(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_kligh
  * profile); an earlier measurement (callgrind, reference pass, bunny 64x64) found lanes
  * written out by hand with a shift per group stayed scalar (842 M instructions at -O3
  * against 489 M for this form). */
-PN_KFN uint32_t pn_row_bits(const float *av, const uint32_t *pw, int32_t n4, float pb, float phu, float ep, float b0,
+PN_KFN uint32_t pn_row_bits(const float *av, const uint32_t *pw, int32_t s4, int32_t n4, float pb, float phu, float ep, float b0,
                             float h0, float b1, float h1, float b2, float h2, float r0, float r1, float r2)
 {
     uint32_t bits = 0u;
     int32_t i0, l;
-    for (i0 = 0; i0 < n4; i0 += 4) {
+    for (i0 = s4; i0 < n4; i0 += 4) {
         for (l = 0; l < 4; l++) {
             float a = av[i0 + l];
             float vp = pb + a * phu, v0 = b0 + a * h0, v1 = b1 + a * h1, v2 = b2 + a * h2;
@@ -402,12 +402,12 @@ PN_KFN uint32_t pn_row_bits(const float *av, const uint32_t *pw, int32_t n4, flo
 /* The lanes of a row that certainly pass: vp >= ep and all v_q >= r_q or all v_q <= -r_q.
  * The same loop, run only for the rows where some lane can pass (a few percent of the
  * rows pn_row_bits sees on scanned models), so that the hot loop carries none of it. */
-PN_KFN uint32_t pn_row_sure(const float *av, const uint32_t *pw, int32_t n4, float pb, float phu, float ep, float b0,
+PN_KFN uint32_t pn_row_sure(const float *av, const uint32_t *pw, int32_t s4, int32_t n4, float pb, float phu, float ep, float b0,
                             float h0, float b1, float h1, float b2, float h2, float r0, float r1, float r2)
 {
     uint32_t bits = 0u;
     int32_t i0, l;
-    for (i0 = 0; i0 < n4; i0 += 4) {
+    for (i0 = s4; i0 < n4; i0 += 4) {
         for (l = 0; l < 4; l++) {
             float a = av[i0 + l];
             float vp = pb + a * phu, v0 = b0 + a * h0, v1 = b1 + a * h1, v2 = b2 + a * h2;
@@ -421,8 +421,12 @@ PN_KFN uint32_t pn_row_sure(const float *av, const uint32_t *pw, int32_t n4, flo
 }
 
 /* ORs into m (PN_MASK_WORDS_MAX words, bit j*k + i) the samples of light L that triangle
- * ABC blocks from O. Returns 1 if it blocks at least one sample, else 0. */
-PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, uint32_t *m)
+ * ABC blocks from O, given that they all lie in columns [i_lo, i_hi] and rows
+ * [j_lo, j_hi] (its footprint, pn_footprint.h; the whole grid when nothing is known): only
+ * those rows, and the groups of four lanes that hold those columns, are evaluated. Returns
+ * 1 if it blocks at least one sample, else 0. */
+PN_KFN uint32_t pn_tri_mask_in(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, uint32_t *m, int32_t i_lo,
+                               int32_t i_hi, int32_t j_lo, int32_t j_hi)
 {
     uint32_t k = L->k;
     pn_tri_forms F;
@@ -463,8 +467,8 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
             jlo = pn_kmini(jlo, lo);
             jhi = pn_kmaxi(jhi, hi);
         }
-        row_lo = jlo;
-        row_hi = jhi;
+        row_lo = pn_kmaxi(jlo, j_lo);
+        row_hi = pn_kmini(jhi, j_hi);
     }
     {
         /* Every sample of the candidate rows, classified branch-free (the row loop
@@ -472,7 +476,7 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
          * a_i = (2i+1)*(1/k) - 1 equals pn_sample_coord() exactly: k is a power of two. */
         float rk = 1.0f / (float)k, av[32]; /* k <= 32 */
         uint32_t keep = k >= 32u ? 0xFFFFFFFFu : ((1u << k) - 1u), pw[32], bits, sure, bit, have;
-        int32_t n4 = ((int32_t)k + 3) & ~3, i;
+        int32_t n4 = ((int32_t)k + 3) & ~3, s4 = i_lo & ~3, e4 = pn_kmini(n4, (i_hi + 4) & ~3), i;
         for (i = 0; i < n4; i++) {
             av[i] = (float)(2 * i + 1) * rk - 1.0f;
             pw[i] = 1u << (uint32_t)i;
@@ -485,10 +489,10 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
             have = (m[bit >> 5] >> (bit & 31u)) & keep;
             if (have == keep) continue; /* row already blocked */
             bits = keep & ~have &
-                   pn_row_bits(av, pw, n4, pb, plane.hu, ep, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu, F.e_err[0], F.e_err[1],
+                   pn_row_bits(av, pw, s4, e4, pb, plane.hu, ep, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu, F.e_err[0], F.e_err[1],
                                F.e_err[2]);
             if (!bits) continue;
-            sure = bits & pn_row_sure(av, pw, n4, pb, plane.hu, ep, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu, F.e_err[0],
+            sure = bits & pn_row_sure(av, pw, s4, e4, pb, plane.hu, ep, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu, F.e_err[0],
                                       F.e_err[1], F.e_err[2]);
             bits &= ~sure; /* band samples not already blocked */
             while (bits) {
@@ -506,6 +510,12 @@ PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight 
         }
     }
     return any;
+}
+
+/* The whole grid: every sample of the light may be blocked. */
+PN_KFN uint32_t pn_tri_mask(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, uint32_t *m)
+{
+    return pn_tri_mask_in(O, A, B, C, L, m, 0, (int32_t)L->k - 1, 0, (int32_t)L->k - 1);
 }
 
 /* ---- The horizon (invariant 6) ---------------------------------------------------------- */

@@ -266,9 +266,10 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
                 pn_v3 A, B, C;
                 if (t == own) continue;
                 pn_tri_load(tris, t, &A, &B, &C);
-                if (!pn_rect_open(m, k, pn_foot_tri(&fp, A, B, C))) continue;
+                r = pn_foot_tri(&fp, A, B, C);
+                if (!pn_rect_open(m, k, r)) continue;
                 cnt->candidates++;
-                if (pn_tri_mask(O, A, B, C, L, m)) {
+                if (pn_tri_mask_in(O, A, B, C, L, m, r.i0, r.i1, r.j0, r.j1)) {
                     cnt->blocking++;
                     any = 1u;
                 }

@@ -232,12 +232,13 @@ typedef struct pn_xscene {
 
 #define PN_X_MAX_SCENES 32
 
-/* Built-ins (sizes and k chosen per scene: spheres and thin are dense in shadow rays),
+/* Built-ins (sizes and k chosen per scene: spheres, thin and room are dense in shadow rays),
  * then every .glb of the shared set in name order. */
 static int list_scenes(pn_xscene *out)
 {
-    static const pn_xscene builtins[] = {
-        {"square", 1, 96, 72, 32}, {"spheres", 1, 48, 40, 8}, {"elongated-cube", 1, 80, 64, 16}, {"thin", 1, 64, 48, 4}};
+    static const pn_xscene builtins[] = {{"square", 1, 96, 72, 32},        {"spheres", 1, 48, 40, 8},
+                                         {"elongated-cube", 1, 80, 64, 16}, {"thin", 1, 64, 48, 4},
+                                         {"room", 1, 48, 40, 8}};
     struct dirent **names;
     int n = 0, i, m;
     for (i = 0; i < (int)(sizeof(builtins) / sizeof(builtins[0])); i++) out[n++] = builtins[i];

@@ -54,6 +54,21 @@ static void vert(double d[3], const pn_mesh *m, uint32_t v)
     f2d(d, m->positions + (size_t)v * 3u);
 }
 
+/* Unnormalized geometric normal (b - a) x (c - a) of triangle t, and its centroid. */
+static void tri_normal(double n[3], double centroid[3], const pn_mesh *m, uint32_t t)
+{
+    double a[3], b[3], c[3], e1[3], e2[3];
+    const uint32_t *ix = m->indices + (size_t)t * 3u;
+    int k;
+    vert(a, m, ix[0]);
+    vert(b, m, ix[1]);
+    vert(c, m, ix[2]);
+    sub3(e1, b, a);
+    sub3(e2, c, a);
+    cross3(n, e1, e2);
+    for (k = 0; k < 3; k++) centroid[k] = (a[k] + b[k] + c[k]) / 3.0;
+}
+
 /* Open segment (o, o + dir*[0,1]) against a closed triangle, double precision
  * Moller-Trumbore. Only used away from edges (callers skip ambiguous cases). */
 static int seg_hits_tri(const double o[3], const double dir[3], const double a[3],
@@ -195,12 +210,19 @@ static uint32_t distinct_vertices(const pn_mesh *m, uint32_t t0, uint32_t t1)
 
 /* ---- per-scene generic checks ---- */
 
+/* room (the interior, pn_scenes.h): 142 boxes and 3 spheres of furniture, then the shell
+ * (ceiling and four walls on 8 shared corners), then the floor. */
+#define ROOM_BOXES 142u
+#define ROOM_SHELL_TRIS 10u
+#define ROOM_SHELL_VERTS 8u
+
 static uint32_t expected_triangles(const char *name)
 {
     if (strcmp(name, "square") == 0) return 4u;
     if (strcmp(name, "spheres") == 0) return 81u * 762u + 2u;
     if (strcmp(name, "elongated-cube") == 0) return 12u + 2u;
     if (strcmp(name, "thin") == 0) return 2000u + 2u;
+    if (strcmp(name, "room") == 0) return ROOM_BOXES * 12u + 3u * 762u + ROOM_SHELL_TRIS + 2u;
     return 0u;
 }
 
@@ -211,9 +233,13 @@ static void check_scene(const char *name)
     char err[256] = "";
     double lc[3], lu[3], lv[3], n[3], f[3], r[3], up[3], eye[3], target[3], centre[3];
     double tan_half, min_side = HUGE_VAL, lo[3], hi[3];
-    uint32_t i, ground_t0;
+    uint32_t i, ground_t0, framed_nv, behind = 0;
     int finite = 1, in_range = 1, framed = 1, ground_flat = 1, k;
     int shadow_seen = 0, lit_seen = 0;
+    /* The interior scene's ceiling and the top of its walls (the shell's 4 upper corners)
+     * lie behind its ceiling light, and its eye is inside the shell, which therefore
+     * cannot be in frame: the view frames the furniture (test_room checks the rest). */
+    int interior = strcmp(name, "room") == 0;
 
     REQUIRE(pn_builtin_scene(name, &m, &v, err, sizeof(err)) == 0);
     CHECK_MSG(m.triangle_count == expected_triangles(name), "%s: %u triangles", name,
@@ -257,13 +283,8 @@ static void check_scene(const char *name)
     }
     CHECK_MSG(ground_flat, "%s: last two triangles are not the ground", name);
     for (i = ground_t0; i < m.triangle_count; i++) {
-        double a[3], b[3], c[3], e1[3], e2[3], nn[3];
-        vert(a, &m, m.indices[i * 3u]);
-        vert(b, &m, m.indices[i * 3u + 1u]);
-        vert(c, &m, m.indices[i * 3u + 2u]);
-        sub3(e1, b, a);
-        sub3(e2, c, a);
-        cross3(nn, e1, e2);
+        double nn[3], cen[3];
+        tri_normal(nn, cen, &m, i);
         CHECK(nn[1] > 0.0);
     }
 
@@ -287,13 +308,24 @@ static void check_scene(const char *name)
         vert(p, &m, i);
         sub3(d, p, lc);
         if (!(dot3(d, n) > 0.0)) {
-            CHECK_MSG(0, "%s: vertex %u behind the light plane", name, (unsigned)i);
-            break;
+            behind++;
+            if (!interior || p[1] != hi[1]) {
+                CHECK_MSG(0, "%s: vertex %u behind the light plane", name, (unsigned)i);
+                break;
+            }
         }
     }
-    CHECK(lc[1] > hi[1]);
+    if (interior) {
+        CHECK_MSG(behind == 4u, "%s: %u vertices behind the light", name, (unsigned)behind);
+        CHECK(lc[1] < hi[1]);
+    } else {
+        CHECK(behind == 0u);
+        CHECK(lc[1] > hi[1]);
+    }
 
-    /* Camera: every vertex inside the frustum at aspect 1 (so at any wider aspect too). */
+    /* Camera: every vertex (interior: every furniture vertex, those before the shell's and
+     * the floor's) inside the frustum at aspect 1 (so at any wider aspect too). */
+    framed_nv = interior ? m.vertex_count - ROOM_SHELL_VERTS - 4u : m.vertex_count;
     f2d(eye, v.eye);
     f2d(target, v.target);
     f2d(up, v.up);
@@ -304,7 +336,7 @@ static void check_scene(const char *name)
     normalize3(r);
     cross3(up, r, f);
     tan_half = tan(0.5 * (double)v.fov_deg * 3.14159265358979323846 / 180.0);
-    for (i = 0; i < m.vertex_count; i++) {
+    for (i = 0; i < framed_nv; i++) {
         double p[3], d[3], z, sx, sy;
         vert(p, &m, i);
         sub3(d, p, eye);
@@ -367,7 +399,7 @@ static void test_all_scenes(void)
         check_scene(*names);
         count++;
     }
-    CHECK(count == 4);
+    CHECK(count == 5);
 }
 
 static void test_unknown_name(void)
@@ -588,6 +620,95 @@ static void test_thin_slivers(void)
     pn_mesh_free(&m);
 }
 
+/* The interior: the shell and the floor close the room (welded by position they form a
+ * closed manifold wound inward); the eye, the light and every furniture vertex are inside
+ * it, the furniture at least 1 cm off the walls and below the light; the boxes are closed
+ * and outward, the spheres closed. */
+static void test_room(void)
+{
+    pn_mesh m, welded;
+    pn_scene_view v;
+    uint32_t nt, nv, shell_t0, shell_v0, t, i, *idx;
+    double lo[3], hi[3], top = -HUGE_VAL;
+    int k, corners = 1, inward = 1, inside = 1, boxes = 1;
+    REQUIRE(pn_builtin_scene("room", &m, &v, NULL, 0) == 0);
+    nt = m.triangle_count;
+    nv = m.vertex_count;
+    REQUIRE(nt == expected_triangles("room"));
+    CHECK(nv == ROOM_BOXES * 8u + 3u * 383u + ROOM_SHELL_VERTS + 4u);
+    shell_t0 = nt - 2u - ROOM_SHELL_TRIS;
+    shell_v0 = nv - 4u - ROOM_SHELL_VERTS;
+    for (k = 0; k < 3; k++) {
+        lo[k] = m.bbox_min[k];
+        hi[k] = m.bbox_max[k];
+    }
+    /* Shell: its own 8 vertices, each a corner of the bounding box; normals inward. */
+    for (t = shell_t0; t < nt - 2u; t++) {
+        double nn[3], cen[3], toc[3];
+        const uint32_t *ix = m.indices + (size_t)t * 3u;
+        int c3;
+        for (c3 = 0; c3 < 3; c3++) {
+            const float *p = m.positions + (size_t)ix[c3] * 3u;
+            if (ix[c3] < shell_v0 || ix[c3] >= nv - 4u) corners = 0;
+            for (k = 0; k < 3; k++)
+                if (p[k] != m.bbox_min[k] && p[k] != m.bbox_max[k]) corners = 0;
+        }
+        tri_normal(nn, cen, &m, t);
+        for (k = 0; k < 3; k++) toc[k] = 0.5 * (lo[k] + hi[k]) - cen[k];
+        if (!(dot3(nn, toc) > 0.0)) inward = 0;
+    }
+    CHECK(corners);
+    CHECK(inward);
+    /* Closed: the floor's corners welded onto the shell's bottom ones. */
+    idx = (uint32_t *)malloc((size_t)nt * 3u * sizeof(uint32_t));
+    REQUIRE(idx != NULL);
+    memcpy(idx, m.indices, (size_t)nt * 3u * sizeof(uint32_t));
+    for (i = (nt - 2u) * 3u; i < nt * 3u; i++) {
+        uint32_t w;
+        for (w = shell_v0; w < nv - 4u; w++) {
+            const float *p = m.positions + (size_t)idx[i] * 3u, *q = m.positions + (size_t)w * 3u;
+            if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2]) idx[i] = w;
+        }
+    }
+    welded = m;
+    welded.indices = idx;
+    CHECK(closed_manifold(&welded, shell_t0, nt));
+    {
+        double room_volume = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+        CHECK(fabs(signed_volume(&welded, shell_t0, nt) + room_volume) < 1e-9); /* inward */
+    }
+    free(idx);
+    /* Furniture: inside, off the walls and the ceiling; each box closed and outward. */
+    for (i = 0; i < shell_v0; i++) {
+        const float *p = m.positions + (size_t)i * 3u;
+        for (k = 0; k < 3; k += 2)
+            if (!(p[k] >= lo[k] + 0.01 && p[k] <= hi[k] - 0.01)) inside = 0;
+        if (!(p[1] >= lo[1])) inside = 0;
+        if (p[1] > top) top = p[1];
+    }
+    CHECK(inside);
+    for (t = 0; t < ROOM_BOXES; t++) {
+        if (!closed_manifold(&m, t * 12u, t * 12u + 12u)) boxes = 0;
+        if (!(signed_volume(&m, t * 12u, t * 12u + 12u) > 0.0)) boxes = 0;
+    }
+    CHECK(boxes);
+    for (t = 0; t < 3u; t++) {
+        uint32_t t0 = ROOM_BOXES * 12u + t * 762u;
+        CHECK(closed_manifold(&m, t0, t0 + 762u));
+    }
+    /* Light: a panel inside the ceiling, below it and above all furniture. */
+    CHECK(v.light_center[1] > top && v.light_center[1] < hi[1]);
+    for (k = 0; k < 3; k += 2) {
+        double reach = fabs(v.light_u[k]) + fabs(v.light_v[k]);
+        CHECK(v.light_center[k] - reach > lo[k] && v.light_center[k] + reach < hi[k]);
+    }
+    /* Eye: inside the room, so every pixel sees the shell, the floor or furniture. */
+    for (k = 0; k < 3; k++) CHECK(v.eye[k] > lo[k] && v.eye[k] < hi[k]);
+    fprintf(stderr, "  room: furniture up to y = %.3f, light at %.4f, ceiling %.1f\n", top,
+            v.light_center[1], hi[1]);
+    pn_mesh_free(&m);
+}
+
 /* ---- the square scene and its closed form ---- */
 
 static uint32_t rng_state = 12345u;
@@ -769,6 +890,7 @@ int main(void)
     RUN(test_spheres_closed);
     RUN(test_box_closed);
     RUN(test_thin_slivers);
+    RUN(test_room);
     RUN(test_square_mesh_matches_params);
     RUN(test_square_closed_form_values);
     RUN(test_square_convergence);

@@ -5,9 +5,9 @@
  *
  * Determinism: all randomness comes from an integer hash (lowbias32) of (seed, counter);
  * positions are computed in double and rounded to float once. The sphere and sliver
- * builders call libm sin/cos, so bit-exact positions across different libms are not
- * promised (glibc's are correctly rounded in practice); the square and box scenes use
- * only exactly representable constants. */
+ * builders call libm sin/cos (spheres, thin, room), so bit-exact positions across
+ * different libms are not promised (glibc's are correctly rounded in practice); the square
+ * and box scenes use only exactly representable constants. */
 #include "pn_scenes.h"
 
 #include <math.h>
@@ -96,8 +96,12 @@ static void pn_sc_hsquare(pn_sc_builder *b, double cx, double y, double cz, doub
 }
 
 /* Closed axis-aligned box [lo, hi], 8 shared vertices, 12 triangles, outward normals.
- * Corner c has x = hi iff bit 0, y = hi iff bit 1, z = hi iff bit 2. */
-static void pn_sc_box(pn_sc_builder *b, const double lo[3], const double hi[3])
+ * Corner c has x = hi iff bit 0, y = hi iff bit 1, z = hi iff bit 2. rise != 0 shears it
+ * into a ramp: every corner's y is raised by rise * (hi[2] - z), i.e. the box climbs
+ * toward -z (a shear has determinant 1: the winding stays outward). inside != 0 builds a
+ * room's shell instead: the faces wound inward and no -y face (the ground is the floor). */
+static void pn_sc_box_ex(pn_sc_builder *b, const double lo[3], const double hi[3], double rise,
+                         int inside)
 {
     /* Each face's corners CCW seen from outside; checked by (p1-p0) x (p2-p0) = outward. */
     static const uint8_t faces[6][4] = {
@@ -111,13 +115,22 @@ static void pn_sc_box(pn_sc_builder *b, const double lo[3], const double hi[3])
     uint32_t base = b->nv;
     int c, f;
     for (c = 0; c < 8; c++) {
-        pn_sc_vertex(b, (c & 1) ? hi[0] : lo[0], (c & 2) ? hi[1] : lo[1],
-                     (c & 4) ? hi[2] : lo[2]);
+        double z = (c & 4) ? hi[2] : lo[2], y = (c & 2) ? hi[1] : lo[1];
+        pn_sc_vertex(b, (c & 1) ? hi[0] : lo[0], y + rise * (hi[2] - z), z);
     }
     for (f = 0; f < 6; f++) {
-        pn_sc_quad(b, base + faces[f][0], base + faces[f][1], base + faces[f][2],
-                   base + faces[f][3]);
+        const uint8_t *q = faces[f];
+        if (!inside) {
+            pn_sc_quad(b, base + q[0], base + q[1], base + q[2], base + q[3]);
+        } else if (f != 2) {
+            pn_sc_quad(b, base + q[0], base + q[3], base + q[2], base + q[1]);
+        }
     }
+}
+
+static void pn_sc_box(pn_sc_builder *b, const double lo[3], const double hi[3])
+{
+    pn_sc_box_ex(b, lo, hi, 0.0, 0);
 }
 
 /* ---- The 762-triangle sphere ---------------------------------------------------------- *
@@ -375,16 +388,131 @@ static int pn_sc_build_thin(pn_sc_builder *b, pn_scene_view *v)
     return 0;
 }
 
+/* Axis-aligned box [x0, x1] x [y0, y1] x [z0, z1]. */
+static void pn_sc_block(pn_sc_builder *b, double x0, double y0, double z0, double x1, double y1,
+                        double z1)
+{
+    const double lo[3] = {x0, y0, z0}, hi[3] = {x1, y1, z1};
+    pn_sc_box(b, lo, hi);
+}
+
+/* Chair at (cx, cz) whose back is toward the axis direction (ax, az) (one of them +-1, the
+ * other 0): seat, 4 legs, 2 back posts, back panel. Parts as {offset toward the back,
+ * offset across, half extent toward the back, half extent across, y0, y1}. */
+static void pn_sc_chair(pn_sc_builder *b, double cx, double cz, double ax, double az)
+{
+    static const double parts[8][6] = {
+        {0.0, 0.0, 0.21, 0.21, 0.43, 0.47},     {0.18, 0.18, 0.02, 0.02, 0.0, 0.43},
+        {0.18, -0.18, 0.02, 0.02, 0.0, 0.43},   {-0.18, 0.18, 0.02, 0.02, 0.0, 0.43},
+        {-0.18, -0.18, 0.02, 0.02, 0.0, 0.43},  {0.18, 0.18, 0.02, 0.02, 0.47, 0.95},
+        {0.18, -0.18, 0.02, 0.02, 0.47, 0.95},  {0.18, 0.0, 0.015, 0.16, 0.68, 0.92},
+    };
+    double px = -az, pz = ax; /* across */
+    int i;
+    for (i = 0; i < 8; i++) {
+        const double *q = parts[i];
+        double x = cx + q[0] * ax + q[1] * px, z = cz + q[0] * az + q[1] * pz;
+        double hx = fabs(ax) * q[2] + fabs(px) * q[3], hz = fabs(az) * q[2] + fabs(pz) * q[3];
+        pn_sc_block(b, x - hx, q[4], z - hz, x + hx, q[5], z + hz);
+    }
+}
+
+#define PN_SC_ROOM_BOOKS 14 /* per shelf, 4 shelves */
+#define PN_SC_ROOM_STEPS 8
+#define PN_SC_ROOM_SEED 0x600du
+/* table 5, chairs 6 x 8, bookcase 7, books, stair: treads, stringer, 2 balusters a tread,
+ * handrail */
+#define PN_SC_ROOM_BOXES (5u + 48u + 7u + 4u * PN_SC_ROOM_BOOKS + 3u * PN_SC_ROOM_STEPS + 2u)
+
+/* An interior: a closed 6 x 3 x 6 room (x, z in [-3, 3], y in [0, 3]) lit by a 1 x 1
+ * ceiling panel hanging 1/16 below the ceiling, so the ceiling and the walls' top strip
+ * lie behind the light (dark). Under the light a table with a globe lamp and six chairs;
+ * a bookcase of four shelves of books along the back wall (z = -3) with a vase on top; an
+ * open stair along the left wall (x = -3) with a stringer, a sloped handrail and two thin
+ * balusters a tread; a ball on the floor. The furniture stands on the floor, 2 cm off the
+ * walls (no face on a wall). Seen from the light and from the camera in the opposite
+ * corner, occluders stand behind one another: globe over table over chairs over floor,
+ * handrail and balusters over treads over treads, books between boards.
+ * Triangles: furniture (boxes, then the three spheres), the shell (ceiling and four walls,
+ * 10 triangles on 8 shared corners, wound inward), the floor (ground) last. */
+static int pn_sc_build_room(pn_sc_builder *b, pn_scene_view *v)
+{
+    static const double chairs[6][4] = {{0.4, 0.85, 0, 1}, {-0.4, 0.85, 0, 1},
+                                        {0.4, -0.85, 0, -1}, {-0.4, -0.85, 0, -1},
+                                        {1.15, 0, 1, 0}, {-1.15, 0, -1, 0}};
+    static const double shell_lo[3] = {-3.0, 0.0, -3.0}, shell_hi[3] = {3.0, 3.0, 3.0};
+    const double rise = 2.0 / 3.0; /* stair: 0.2 up per 0.3 toward -z */
+    int i, j;
+    if (pn_sc_builder_init(b, PN_SC_ROOM_BOXES * 8u + 3u * PN_SC_SPHERE_VERTS + 12u,
+                           PN_SC_ROOM_BOXES * 12u + 3u * PN_SC_SPHERE_TRIS + 12u) != 0) {
+        return 1;
+    }
+    pn_sc_block(b, -0.8, 0.72, -0.5, 0.8, 0.76, 0.5);
+    for (i = 0; i < 4; i++) {
+        double x = (i & 1) ? 0.71 : -0.71, z = (i & 2) ? 0.41 : -0.41;
+        pn_sc_block(b, x - 0.03, 0.0, z - 0.03, x + 0.03, 0.72, z + 0.03);
+    }
+    for (i = 0; i < 6; i++) {
+        pn_sc_chair(b, chairs[i][0], chairs[i][1], chairs[i][2], chairs[i][3]);
+    }
+    /* Bookcase: two sides, five boards; books of hashed size standing on the lower four. */
+    pn_sc_block(b, -1.6, 0.0, -2.98, -1.57, 2.09, -2.63);
+    pn_sc_block(b, 0.57, 0.0, -2.98, 0.6, 2.09, -2.63);
+    for (i = 0; i < 5; i++) {
+        pn_sc_block(b, -1.57, 0.06 + 0.5 * i, -2.98, 0.57, 0.09 + 0.5 * i, -2.63);
+    }
+    for (i = 0; i < 4; i++) {
+        double x = -1.55, y = 0.09 + 0.5 * i;
+        for (j = 0; j < PN_SC_ROOM_BOOKS; j++) {
+            uint32_t c = (uint32_t)(i * PN_SC_ROOM_BOOKS + j) * 4u;
+            double w = 0.04 + 0.05 * pn_sc_rand01(PN_SC_ROOM_SEED, c);
+            double h = 0.2 + 0.12 * pn_sc_rand01(PN_SC_ROOM_SEED, c + 1u);
+            double d = 0.2 + 0.1 * pn_sc_rand01(PN_SC_ROOM_SEED, c + 2u);
+            pn_sc_block(b, x, y, -2.96, x + w, y + h, -2.96 + d);
+            x += w + 0.008;
+        }
+    }
+    /* Stair from z = 0.6 up to z = -1.8: tread i's top at 0.2 (i + 1); stringer and handrail
+     * are ramps, the handrail 0.9 above the line through the treads' centres. */
+    for (i = 0; i < PN_SC_ROOM_STEPS; i++) {
+        double z1 = 0.6 - 0.3 * i, top = 0.2 * (i + 1);
+        pn_sc_block(b, -2.98, top - 0.04, z1 - 0.3, -2.1, top, z1);
+        for (j = 0; j < 2; j++) {
+            double z = z1 - 0.075 - 0.15 * j;
+            pn_sc_block(b, -2.16, top, z - 0.015, -2.13, rise * (0.6 - z) + 1.02, z + 0.015);
+        }
+    }
+    {
+        const double lo[3] = {-2.1, 0.0, -1.8}, hi[3] = {-2.06, 0.25, 0.6};
+        const double rlo[3] = {-2.165, rise * 0.075 + 1.0, -1.725};
+        const double rhi[3] = {-2.125, rise * 0.075 + 1.05, 0.525};
+        pn_sc_box_ex(b, lo, hi, rise, 0);
+        pn_sc_box_ex(b, rlo, rhi, rise, 0);
+    }
+    pn_sc_sphere(b, 0.35, 0.96, -0.1, 0.2);
+    pn_sc_sphere(b, -0.5, 2.24, -2.8, 0.15);
+    pn_sc_sphere(b, -1.5, 0.25, 0.9, 0.25);
+    pn_sc_box_ex(b, shell_lo, shell_hi, 0.0, 1);
+    pn_sc_hsquare(b, 0.0, 0.0, 0.0, 3.0);
+    /* From the front-right corner toward the back-left one: every furniture vertex in frame
+     * (not the shell, which surrounds the eye). */
+    pn_sc_view(v, 2.6f, 1.8f, 2.6f, 0.6f, 56.0f, 2.9375f, 0.5f);
+    pn_sc_set3(v->target, -0.85f, 0.6f, -0.95f);
+    return 0;
+}
+
 /* ---- Public entry points -------------------------------------------------------------- */
 
 typedef int (*pn_sc_build_fn)(pn_sc_builder *b, pn_scene_view *v);
 
-static const char *const pn_sc_names[] = {"square", "spheres", "elongated-cube", "thin", NULL};
+static const char *const pn_sc_names[] = {"square", "spheres", "elongated-cube", "thin", "room",
+                                           NULL};
 static const pn_sc_build_fn pn_sc_builders[] = {
     pn_sc_build_square,
     pn_sc_build_spheres,
     pn_sc_build_elongated_cube,
     pn_sc_build_thin,
+    pn_sc_build_room,
 };
 
 const char *const *pn_builtin_scene_names(void) { return pn_sc_names; }
@@ -413,7 +541,7 @@ int pn_builtin_scene(const char *name, pn_mesh *out, pn_scene_view *view, char *
     if (pn_sc_names[i] == NULL) {
         pn_tools_err(err, err_size,
                       "unknown built-in scene '%s' (known: square, spheres, elongated-cube, "
-                      "thin)",
+                      "thin, room)",
                       name);
         return 2;
     }

@@ -5,7 +5,9 @@
  * glTF scenes only. Conventions are those of penumbra.h: right-handed, Y up, light
  * centre c with half-edges u, v emitting toward N = normalize(u x v). Every built-in scene
  * puts the light above the geometry with N = -y, and every vertex strictly on the
- * emitting side of the light plane.
+ * emitting side of the light plane, except room's ceiling: an interior's light hangs below
+ * its ceiling, so the ceiling and the top 1/16 of the walls lie behind the light (dark,
+ * which the library defines: penumbra.h, "Light") and the walls cross the light plane.
  *
  * Scenes:
  *   square          axis-aligned square light over a parallel square occluder over a
@@ -18,10 +20,15 @@
  *                   closed box long along the light's axis, floating over a plane.
  *   thin            2000 slivers (length 2, width 0.002) over a plane: where shadow maps
  *                   lose.
+ *   room            an interior: a closed room under a ceiling light, with a table, six
+ *                   chairs, a bookcase of books, an open stair with thin balusters and
+ *                   three spheres (4002 triangles): many occluders behind one another, and
+ *                   no background (the camera is inside).
  *
  * Meshes: indexed, shared vertices wherever a surface is closed (spheres, box), CCW
- * winding with outward normals (open sheets face +y), bbox filled over all vertices
- * (ground included). Deterministic: the same name gives the same mesh on every run. */
+ * winding with outward normals (open sheets face +y; room's shell faces into the room),
+ * bbox filled over all vertices (ground included). Deterministic: the same name gives the
+ * same mesh on every run. */
 #ifndef PN_TOOLS_SCENES_H
 #define PN_TOOLS_SCENES_H
 
@@ -35,7 +42,8 @@ extern "C" {
 
 /* Default view and light for a built-in scene. Camera fields follow pn_camera (fov is
  * vertical, degrees); light fields follow pn_light. The view frames every vertex of the
- * scene at aspect ratio 1 (and therefore at any wider aspect). */
+ * scene at aspect ratio 1 (and therefore at any wider aspect); room's eye is inside the
+ * room, so there it frames every vertex of the furniture, and the shell fills the rest. */
 typedef struct pn_scene_view {
     float eye[3], target[3], up[3], fov_deg;
     float light_center[3], light_u[3], light_v[3]; /* half-edges; N = normalize(u x v)

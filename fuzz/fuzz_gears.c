@@ -201,16 +201,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                  * must hold every sample the arbiter finds blocked. */
                 pn_foot fp;
                 pn_rect rt, rb, rg;
-                float near, grow = (float)(t % 7u) * 0.37f * (float)(o + 1u);
+                float grow = (float)(t % 7u) * 0.37f * (float)(o + 1u);
                 pn_v3 lo = pn_v3_make(pn_kminf(A.x, pn_kminf(B.x, C.x)), pn_kminf(A.y, pn_kminf(B.y, C.y)),
                                       pn_kminf(A.z, pn_kminf(B.z, C.z)));
                 pn_v3 hi = pn_v3_make(pn_kmaxf(A.x, pn_kmaxf(B.x, C.x)), pn_kmaxf(A.y, pn_kmaxf(B.y, C.y)),
                                       pn_kmaxf(A.z, pn_kmaxf(B.z, C.z)));
                 pn_foot_make(origins[o], &L, &fp);
                 rt = pn_foot_tri(&fp, A, B, C);
-                rb = pn_foot_box(&fp, lo, hi, &near);
+                rb = pn_foot_box(&fp, lo, hi);
                 rg = pn_foot_box(&fp, pn_v3_sub(lo, pn_v3_make(grow, grow * 0.5f, grow * 0.25f)),
-                                 pn_v3_add(hi, pn_v3_make(grow * 0.25f, grow, grow * 0.5f)), &near);
+                                 pn_v3_add(hi, pn_v3_make(grow * 0.25f, grow, grow * 0.5f)));
                 for (j = 0; j < L.k; j++)
                     for (i = 0; i < L.k; i++) {
                         uint32_t b = j * L.k + i;

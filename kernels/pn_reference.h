@@ -180,8 +180,9 @@ PN_KFN uint32_t pn_bvh_next_leaf(pn_bvh_walk *w, const pn_frustum *fr, PN_CONST 
  * The walk keeps the mask m of samples found blocked so far and visits a node only while
  * its footprint on the light (pn_footprint.h) still holds a sample m has not blocked: the
  * test runs when a child is pushed and again when it is popped, since m may have grown in
- * between. Children go on the stack far first, so the child whose box comes nearer to O
- * is walked first: near occluders have large footprints and fill the mask soonest. At a
+ * between. Children go on the stack in pn_foot_order(): the child whose centre lies
+ * farther from the light toward O is walked first (near occluders have the large
+ * footprints that fill a mask soonest). At a
  * leaf, a triangle whose own box's footprint holds no open sample is skipped before any of
  * the predicate's set-up. The result is the OR over every triangle that can block an open
  * sample, so it is the same mask in any order; only the counters depend on the order. */
@@ -196,7 +197,6 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
     pn_horizon H;
     pn_rect r;
     pn_v3 O;
-    float near;
 
     if (!pn_shadow_origin(P, nrm, L, &O)) return 0.0f;
     cnt->lit++;
@@ -210,7 +210,7 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
     cnt->nodes++;
     if (nodes[0].count != 0u || nodes[0].first != 0u) { /* not the empty tree */
         if (pn_frustum_box(&fr, nodes) &&
-            pn_rect_open(m, k, r = pn_foot_box(&fp, pn_v3_load(nodes[0].bmin), pn_v3_load(nodes[0].bmax), &near))) {
+            pn_rect_open(m, k, r = pn_foot_box(&fp, pn_v3_load(nodes[0].bmin), pn_v3_load(nodes[0].bmax)))) {
             stack[0] = 0u;
             rects[0] = pn_rect_pack(r);
             sp = 1u;
@@ -221,7 +221,7 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
         sp--;
         if (!pn_rect_open(m, k, pn_rect_unpack(rects[sp]))) continue; /* blocked since the push */
         nd = nodes + stack[sp];
-        if (nd->count == 0u) { /* interior: both children, near first */
+        if (nd->count == 0u) { /* interior: both children, O's side first */
             uint32_t c, n_in = 0u, id[2], pk[2];
             float key[2];
             for (c = 0; c < 2u; c++) {
@@ -230,20 +230,19 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
                 if (!pn_frustum_box(&fr, ch)) continue;
                 /* While nothing is blocked, a box's footprint can only be empty between
                  * samples, which a box large enough to be an interior node seldom is:
-                 * the whole light, and only the near-first key. */
+                 * the whole light. */
                 if (any) {
-                    r = pn_foot_box(&fp, pn_v3_load(ch->bmin), pn_v3_load(ch->bmax), &near);
+                    r = pn_foot_box(&fp, pn_v3_load(ch->bmin), pn_v3_load(ch->bmax));
                     if (!pn_rect_open(m, k, r)) continue;
                 } else {
                     r = pn_rect_full(k);
-                    near = pn_foot_near(&fp, pn_v3_load(ch->bmin), pn_v3_load(ch->bmax));
                 }
                 id[n_in] = nd->first + c;
                 pk[n_in] = pn_rect_pack(r);
-                key[n_in] = near;
+                key[n_in] = pn_foot_order(&fp, pn_v3_load(ch->bmin), pn_v3_load(ch->bmax));
                 n_in++;
             }
-            if (n_in == 2u && key[1] > key[0]) { /* the far one goes first, under the near */
+            if (n_in == 2u && key[0] > key[1]) { /* the larger key goes on top */
                 uint32_t ti = id[0], tp = pk[0];
                 id[0] = id[1];
                 pk[0] = pk[1];

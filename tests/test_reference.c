@@ -378,7 +378,6 @@ static void test_predicate_vs_double(void)
              * the triangle's own and its box's. */
             pn_foot fp;
             pn_rect rt, rb;
-            float near;
             pn_v3 A = pn_v3_make(tri[0], tri[1], tri[2]), B = pn_v3_make(tri[3], tri[4], tri[5]),
                   C = pn_v3_make(tri[6], tri[7], tri[8]);
             pn_foot_make(O, &kl, &fp);
@@ -387,8 +386,7 @@ static void test_predicate_vs_double(void)
                              pn_v3_make(pn_kminf(A.x, pn_kminf(B.x, C.x)), pn_kminf(A.y, pn_kminf(B.y, C.y)),
                                         pn_kminf(A.z, pn_kminf(B.z, C.z))),
                              pn_v3_make(pn_kmaxf(A.x, pn_kmaxf(B.x, C.x)), pn_kmaxf(A.y, pn_kmaxf(B.y, C.y)),
-                                        pn_kmaxf(A.z, pn_kmaxf(B.z, C.z))),
-                             &near);
+                                        pn_kmaxf(A.z, pn_kmaxf(B.z, C.z))));
             if (!pn_rect_empty(rt)) foot_area += (uint32_t)((rt.i1 - rt.i0 + 1) * (rt.j1 - rt.j0 + 1));
             for (j = 0; j < 16; j++)
                 for (i = 0; i < 16; i++)

@@ -2,7 +2,10 @@
  * for it: for every shadow-ray origin and triangle, the predicate's mask equals the exact
  * arbiter's bit for bit (tests/pn_test_exact.h: its own formulation, double filter, big
  * integers), and every triangle the arbiter says blocks a sample passes the per-pixel
- * frustum cull and has a cell rectangle that contains that origin's cell.
+ * frustum cull and has a cell rectangle that contains that origin's cell. The per-ray
+ * ray tracer's filter (kernels/pn_raytrace.h) gives that mask's bit for every sample, with
+ * its bound from the triangle's own box, and its slab test passes the box of every
+ * triangle that blocks the ray's sample.
  *
  * The bytes make a small hostile configuration: a light of any orientation and aspect (or
  * a point light), up to 24 triangles at scales from 1e-4 to 1e4 with vertices snapped onto,
@@ -14,6 +17,7 @@
 
 #include "fuzz_check.h"
 #include "pn_gears_frame.h"
+#include "pn_raytrace.h"
 #include "pn_test_exact.h"
 
 typedef struct pn_bytes {
@@ -184,6 +188,31 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             for (w = 0; w < words; w++)
                 FUZZ_CHECK(m[w] == ma[w], "triangle %u, origin %u, k %u: mask word %u is %08x, the exact arbiter's %08x",
                            t, o, L.k, w, m[w], ma[w]);
+            {
+                /* The ray tracer's per-ray filter and slab test on the same pair. */
+                pn_ray_origin X;
+                pn_kbvh_node nd;
+                uint32_t q;
+                memset(&nd, 0, sizeof(nd));
+                for (q = 0; q < 3; q++) {
+                    nd.bmin[q] = pn_kminf(T[q], pn_kminf(T[3 + q], T[6 + q]));
+                    nd.bmax[q] = pn_kmaxf(T[q], pn_kmaxf(T[3 + q], T[6 + q]));
+                }
+                pn_ray_origin_make(origins[o], &L, &X);
+                for (j = 0; j < L.k; j++)
+                    for (i = 0; i < L.k; i++) {
+                        uint32_t bit = j * L.k + i, mb = (m[bit >> 5] >> (bit & 31u)) & 1u;
+                        pn_ray R;
+                        float tn;
+                        pn_ray_make(&X, &L, (int32_t)i, (int32_t)j, &R);
+                        FUZZ_CHECK(pn_ray_tri(&R, &L, T, pn_ray_bound(&R, nd.bmin, nd.bmax)) == mb,
+                                   "triangle %u, origin %u, k %u, sample %u,%u: the ray filter says %u, the mask %u", t,
+                                   o, L.k, i, j, 1u - mb, mb);
+                        FUZZ_CHECK(!mb || pn_ray_box(&R, &nd, &tn),
+                                   "triangle %u blocks sample %u,%u from origin %u but the ray's slab test rejects its box",
+                                   t, i, j, o);
+                    }
+            }
             if (!pn_mask_count(ma, L.k)) continue;
             /* The per-pixel cull before the predicate (pn_gears_pixel_mask, the reference's
              * BVH walk) must pass it too. */

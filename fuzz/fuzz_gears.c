@@ -66,6 +66,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     pn_kgrid faces[6];
     uint32_t nfaces;
     float obox[6] = {PN_KINF, PN_KINF, PN_KINF, -PN_KINF, -PN_KINF, -PN_KINF};
+    float tbox[6] = {PN_KINF, PN_KINF, PN_KINF, -PN_KINF, -PN_KINF, -PN_KINF}; /* the triangles' */
 
     memset(&L, 0, sizeof(L));
     c = coord3(&b, scale);
@@ -131,9 +132,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     /* The cull slack as src/pn_frame.c sets it, from the diagonal of the box of the
      * triangles (the library's scene box) and the origins (which a render puts on them). */
     {
-        float sb[6] = {PN_KINF, PN_KINF, PN_KINF, -PN_KINF, -PN_KINF, -PN_KINF};
+        float sb[6];
         pn_v3 d;
-        for (t = 0; t < nt * 3u; t++) pn_box3_add(sb, pn_v3_make(tris[t * 3], tris[t * 3 + 1], tris[t * 3 + 2]));
+        for (t = 0; t < nt * 3u; t++) pn_box3_add(tbox, pn_v3_make(tris[t * 3], tris[t * 3 + 1], tris[t * 3 + 2]));
+        memcpy(sb, tbox, sizeof(sb));
         pn_box_join_n(sb, obox, 6u);
         d = pn_v3_make(sb[3] - sb[0], sb[4] - sb[1], sb[5] - sb[2]);
         L.cull_tol = 1e-5f * pn_ksqrt(pn_v3_dot(d, d));
@@ -189,7 +191,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 FUZZ_CHECK(m[w] == ma[w], "triangle %u, origin %u, k %u: mask word %u is %08x, the exact arbiter's %08x",
                            t, o, L.k, w, m[w], ma[w]);
             {
-                /* The ray tracer's per-ray filter and slab test on the same pair. */
+                /* The ray tracer's per-ray filter (bounds from the triangle's box and from the
+                 * triangles' box, as the BVH's leaves and root give them) and slab test. */
                 pn_ray_origin X;
                 pn_kbvh_node nd;
                 uint32_t q;
@@ -198,16 +201,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                     nd.bmin[q] = pn_kminf(T[q], pn_kminf(T[3 + q], T[6 + q]));
                     nd.bmax[q] = pn_kmaxf(T[q], pn_kmaxf(T[3 + q], T[6 + q]));
                 }
-                pn_ray_origin_make(origins[o], &L, &X);
+                pn_ray_origin_make(origins[o], &L, tbox, tbox + 3, &X);
                 for (j = 0; j < L.k; j++)
                     for (i = 0; i < L.k; i++) {
                         uint32_t bit = j * L.k + i, mb = (m[bit >> 5] >> (bit & 31u)) & 1u;
                         pn_ray R;
                         float tn;
                         pn_ray_make(&X, &L, (int32_t)i, (int32_t)j, &R);
-                        FUZZ_CHECK(pn_ray_tri(&R, &L, T, pn_ray_bound(&R, nd.bmin, nd.bmax)) == mb,
-                                   "triangle %u, origin %u, k %u, sample %u,%u: the ray filter says %u, the mask %u", t,
-                                   o, L.k, i, j, 1u - mb, mb);
+                        FUZZ_CHECK(pn_ray_tri(&R, &L, T, pn_ray_bound(&R, nd.bmin, nd.bmax)) == mb &&
+                                       pn_ray_tri(&R, &L, T, R.ebr) == mb,
+                                   "triangle %u, origin %u, k %u, sample %u,%u: the ray filter disagrees with the mask's %u",
+                                   t, o, L.k, i, j, mb);
                         FUZZ_CHECK(!mb || pn_ray_box(&R, &nd, &tn),
                                    "triangle %u blocks sample %u,%u from origin %u but the ray's slab test rejects its box",
                                    t, i, j, o);

@@ -18,7 +18,7 @@
  * all <= 0 and the plane test holds (O off the plane, S strictly on its other side).
  *
  * ---- The filter (per ray, then per triangle) -------------------------------------------
- * Per ray: D = fl(fl(cO + fl(a U)) + fl(b V)), cO = fl(c - O); kz the axis of D's largest
+ * Per ray: D = fl(fl(cO + fl(b V)) + fl(a U)), cO = fl(c - O); kz the axis of D's largest
  * magnitude, (kx, ky, kz) the cyclic rotation ending in it (one orientation for every
  * edge), sx = fl(D_kx * fl(1 / D_kz)) and sy likewise. Per triangle, for each vertex P:
  * P~ = fl(P - O) in that frame, X = fl(P~x - fl(sx P~z)), Y = fl(P~y - fl(sy P~z)), and
@@ -26,7 +26,7 @@
  * For exact inputs and sx = D*x / D*z, sy = D*y / D*z they are det(D*, ., .) / D*z, one
  * factor for all three, so the signs the predicate needs are theirs. Bounds (standard
  * model, u = 2^-24, u' = u / (1 - u); |.| componentwise):
- *   - the direction: |D - D*| <= u (|c - O| + |aU| + |cO + aU| + |bV| + |D|)
+ *   - the direction: |D - D*| <= u (|c - O| + |bV| + |cO + bV| + |aU| + |D|)
  *     <= 3.0001 u W, W = |cO| + |U| + |V| (|a|, |b| <= 1): dl = 3.25 u W + PN_KTINY per
  *     origin (the slack pays for computing dl; PN_KTINY for an underflowing a U or b V);
  *   - the shear: |D_kx| <= |D_kz|, so |sx| <= 1 + 2.01 u, and with w = dl_z / |D_z| <= 1/2
@@ -85,6 +85,7 @@ typedef struct pn_ray_origin {
     pn_v3 O, cO; /* origin, fl(c - O) */
     float dl[3]; /* bound of |D - (S - O)| per component, any sample */
     float tol;   /* growth of the boxes the slab test uses */
+    float mroot; /* max |fl(P - O)| over the scene box (its corners: rounding is monotone) */
 } pn_ray_origin;
 
 /* One ray: the slab test's and the filter's per-ray constants. */
@@ -96,6 +97,7 @@ typedef struct pn_ray {
     float ox, oy, oz;    /* O in it */
     float sx, sy;        /* the shear */
     float ez;            /* eps = PN_RAY_EX max(M_x, M_y) + ez M_z */
+    float ebr;           /* eb of the scene box (for any triangle), PN_KINF when not filtered */
     uint32_t filt;       /* 0: every triangle goes to pn_tri_sample */
     pn_v3 O;
     float a, b;
@@ -104,10 +106,22 @@ typedef struct pn_ray {
 
 #define PN_RAY_EX (2.125f * PN_KU)
 
-PN_KFN void pn_ray_origin_make(pn_v3 O, const pn_klight *L, pn_ray_origin *X)
+PN_KFN float pn_ray_abs(float x) { return pn_kmaxf(x, -x); }
+
+/* eb from h and eps (see the top). */
+PN_KFN float pn_ray_eb(float h, float eps) { return 4.25f * PN_KU * h * h + eps * (4.25f * h + 2.125f * eps) + PN_KTINY; }
+
+/* lo, hi: the scene's box (the BVH root's), xyz. */
+PN_KFN void pn_ray_origin_make(pn_v3 O, const pn_klight *L, const float *lo, const float *hi, pn_ray_origin *X)
 {
     pn_v3 W;
-    float dmax;
+    float dmax, o[3];
+    uint32_t q;
+    o[0] = O.x;
+    o[1] = O.y;
+    o[2] = O.z;
+    X->mroot = 0.0f;
+    for (q = 0; q < 3u; q++) X->mroot = pn_kmaxf(X->mroot, pn_kmaxf(pn_ray_abs(lo[q] - o[q]), pn_ray_abs(hi[q] - o[q])));
     X->O = O;
     X->cO = pn_v3_sub(pn_light_c(L), O);
     W = pn_v3_add(pn_v3_add(pn_v3_abs(X->cO), pn_v3_abs(pn_light_U(L))), pn_v3_abs(pn_light_V(L)));
@@ -118,49 +132,83 @@ PN_KFN void pn_ray_origin_make(pn_v3 O, const pn_klight *L, pn_ray_origin *X)
     X->tol = 1.0625f * (L->cull_tol + dmax + 4.0f * PN_KU * (pn_v3_linf(O) + pn_v3_linf(W))) + 1e-29f;
 }
 
-PN_KFN void pn_ray_make(const pn_ray_origin *X, const pn_klight *L, int32_t i, int32_t j, pn_ray *R)
+/* Axis q of the slab test: the reciprocal of direction component d (of a component below
+ * PN_RAY_DIR_MIN in magnitude, zero included: of +-PN_RAY_DIR_MIN), the node offsets of the
+ * near and far bounds, and the origin moved to the grown box's near and far planes. */
+PN_KFN_HOT void pn_ray_axis(pn_ray *R, uint32_t q, float d, float o, float tol)
 {
-    float a = pn_sample_coord(i, L->k), b = pn_sample_coord(j, L->k);
-    pn_v3 D = pn_v3_add(pn_v3_add(X->cO, pn_v3_scale(pn_light_U(L), a)), pn_v3_scale(pn_light_V(L), b));
-    float d[3], o[3], ad[3], iz, w, sigma;
-    uint32_t q, kz, kx;
+    float inv = 1.0f / (pn_ray_abs(d) >= PN_RAY_DIR_MIN ? d : (d < 0.0f ? -PN_RAY_DIR_MIN : PN_RAY_DIR_MIN));
+    uint32_t neg = (uint32_t)(inv < 0.0f);
+    float st = neg ? -tol : tol;
+    R->inv[q] = inv;
+    R->bn[q] = q + 4u * neg;
+    R->bf[q] = q + 4u - 4u * neg;
+    R->on[q] = o + st;
+    R->of[q] = o - st;
+}
+
+/* The ray along D = fl(fl(cO + fl(b V)) + fl(a U)) to sample (i, j) = (a, b). */
+PN_KFN void pn_ray_set(const pn_ray_origin *X, pn_v3 D, float a, float b, int32_t i, int32_t j, pn_ray *R)
+{
+    float d[3], o[3], ax = pn_ray_abs(D.x), ay = pn_ray_abs(D.y), az = pn_ray_abs(D.z), adz, iz, w, sigma;
+    uint32_t kz, kx, ky;
+    pn_ray_axis(R, 0u, D.x, X->O.x, X->tol);
+    pn_ray_axis(R, 1u, D.y, X->O.y, X->tol);
+    pn_ray_axis(R, 2u, D.z, X->O.z, X->tol);
     d[0] = D.x;
     d[1] = D.y;
     d[2] = D.z;
     o[0] = X->O.x;
     o[1] = X->O.y;
     o[2] = X->O.z;
-    for (q = 0; q < 3u; q++) {
-        int neg;
-        ad[q] = d[q] < 0.0f ? -d[q] : d[q];
-        R->inv[q] = ad[q] >= PN_RAY_DIR_MIN ? 1.0f / d[q] : (d[q] < 0.0f ? -1.0f / PN_RAY_DIR_MIN : 1.0f / PN_RAY_DIR_MIN);
-        neg = R->inv[q] < 0.0f;
-        R->bn[q] = neg ? q + 4u : q;
-        R->bf[q] = neg ? q : q + 4u;
-        R->on[q] = neg ? o[q] - X->tol : o[q] + X->tol;
-        R->of[q] = neg ? o[q] + X->tol : o[q] - X->tol;
-    }
-    kz = ad[0] >= ad[1] ? (ad[0] >= ad[2] ? 0u : 2u) : (ad[1] >= ad[2] ? 1u : 2u);
+    kz = ax >= ay ? (ax >= az ? 0u : 2u) : (ay >= az ? 1u : 2u);
     kx = kz == 2u ? 0u : kz + 1u;
+    ky = kx == 2u ? 0u : kx + 1u;
+    adz = pn_kmaxf(ax, pn_kmaxf(ay, az));
     R->kz = kz;
     R->kx = kx;
-    R->ky = kx == 2u ? 0u : kx + 1u;
-    R->ox = o[R->kx];
-    R->oy = o[R->ky];
+    R->ky = ky;
+    R->ox = o[kx];
+    R->oy = o[ky];
     R->oz = o[kz];
     iz = R->inv[kz];
-    R->sx = d[R->kx] * iz;
-    R->sy = d[R->ky] * iz;
-    iz = iz < 0.0f ? -iz : iz;
+    R->sx = d[kx] * iz;
+    R->sy = d[ky] * iz;
+    iz = pn_ray_abs(iz);
     w = X->dl[kz] * iz;
-    R->filt = ad[kz] >= PN_RAY_DIR_MIN && w <= 0.25f;
-    sigma = 1.125f * (2.01f * PN_KU + (pn_kmaxf(X->dl[R->kx], X->dl[R->ky]) + X->dl[kz]) * (1.0f + 2.0f * w) * iz);
+    R->filt = adz >= PN_RAY_DIR_MIN && w <= 0.25f;
+    sigma = 1.125f * (2.01f * PN_KU + (pn_kmaxf(X->dl[kx], X->dl[ky]) + X->dl[kz]) * (1.0f + 2.0f * w) * iz);
     R->ez = 3.125f * PN_KU + 1.0625f * sigma;
+    /* The scene box's bound: |X|, |Y| <= (1 + (1 + 2.01 u)(1 + u)) mroot (1 + u) and eps
+     * <= (2.125 u + ez) mroot, coarser than a leaf's but free per triangle. */
+    R->ebr = R->filt ? pn_ray_eb(2.125f * X->mroot, (PN_RAY_EX + R->ez) * X->mroot) : PN_KINF;
     R->O = X->O;
     R->a = a;
     R->b = b;
     R->i = i;
     R->j = j;
+}
+
+/* fl(cO + fl(b V)): the part of D a row of samples shares. */
+PN_KFN pn_v3 pn_ray_row(const pn_ray_origin *X, const pn_klight *L, float b)
+{
+    return pn_v3_add(X->cO, pn_v3_scale(pn_light_V(L), b));
+}
+
+PN_KFN void pn_ray_make(const pn_ray_origin *X, const pn_klight *L, int32_t i, int32_t j, pn_ray *R)
+{
+    float a = pn_sample_coord(i, L->k), b = pn_sample_coord(j, L->k);
+    pn_ray_set(X, pn_v3_add(pn_ray_row(X, L, b), pn_v3_scale(pn_light_U(L), a)), a, b, i, j, R);
+}
+
+PN_KFN void pn_ray_node_box(PN_CONST pn_kbvh_node *nd, float *lo, float *hi)
+{
+    lo[0] = nd->bmin[0];
+    lo[1] = nd->bmin[1];
+    lo[2] = nd->bmin[2];
+    hi[0] = nd->bmax[0];
+    hi[1] = nd->bmax[1];
+    hi[2] = nd->bmax[2];
 }
 
 /* 1 when the segment may meet node nd's box grown by tol; *tn its entry parameter. */
@@ -182,23 +230,19 @@ PN_KFN float pn_ray_bound(const pn_ray *R, const float *lo, const float *hi)
     float lx = lo[R->kx] - R->ox, hx = hi[R->kx] - R->ox;
     float ly = lo[R->ky] - R->oy, hy = hi[R->ky] - R->oy;
     float lz = lo[R->kz] - R->oz, hz = hi[R->kz] - R->oz;
-    float mx = pn_kmaxf(lx < 0.0f ? -lx : lx, hx < 0.0f ? -hx : hx);
-    float my = pn_kmaxf(ly < 0.0f ? -ly : ly, hy < 0.0f ? -hy : hy);
-    float mz = pn_kmaxf(lz < 0.0f ? -lz : lz, hz < 0.0f ? -hz : hz);
+    float mx = pn_kmaxf(pn_ray_abs(lx), pn_ray_abs(hx));
+    float my = pn_kmaxf(pn_ray_abs(ly), pn_ray_abs(hy));
+    float mz = pn_kmaxf(pn_ray_abs(lz), pn_ray_abs(hz));
     /* The extremes of X and Y over the box, at the corners their monotonicity picks. */
     float x1 = hx - R->sx * (R->sx >= 0.0f ? lz : hz), x0 = lx - R->sx * (R->sx >= 0.0f ? hz : lz);
     float y1 = hy - R->sy * (R->sy >= 0.0f ? lz : hz), y0 = ly - R->sy * (R->sy >= 0.0f ? hz : lz);
-    float h = pn_kmaxf(pn_kmaxf(x1 < 0.0f ? -x1 : x1, x0 < 0.0f ? -x0 : x0),
-                       pn_kmaxf(y1 < 0.0f ? -y1 : y1, y0 < 0.0f ? -y0 : y0));
+    float h = pn_kmaxf(pn_kmaxf(pn_ray_abs(x1), pn_ray_abs(x0)), pn_kmaxf(pn_ray_abs(y1), pn_ray_abs(y0)));
     float eps = PN_RAY_EX * pn_kmaxf(mx, my) + R->ez * mz;
-    if (!R->filt) return PN_KINF;
-    return 4.25f * PN_KU * h * h + eps * (4.25f * h + 2.125f * eps) + PN_KTINY;
+    return R->filt ? pn_ray_eb(h, eps) : PN_KINF;
 }
 
-/* The filter on triangle p (9 floats, A B C): 0 when two exact edge values have opposite
- * strict signs (not blocked), 1 when all three have the same strict sign, 2 when some
- * value lies within eb. */
-PN_KFN_HOT int32_t pn_ray_edges(const pn_ray *R, PN_CONST float *p, float eb)
+/* The three edge functions of triangle p (9 floats, A B C) into e. */
+PN_KFN_HOT void pn_ray_edges(const pn_ray *R, PN_CONST float *p, float *e)
 {
     float ax = p[R->kx] - R->ox, ay = p[R->ky] - R->oy, az = p[R->kz] - R->oz;
     float bx = p[3u + R->kx] - R->ox, by = p[3u + R->ky] - R->oy, bz = p[3u + R->kz] - R->oz;
@@ -206,8 +250,17 @@ PN_KFN_HOT int32_t pn_ray_edges(const pn_ray *R, PN_CONST float *p, float eb)
     float Ax = ax - R->sx * az, Ay = ay - R->sy * az;
     float Bx = bx - R->sx * bz, By = by - R->sy * bz;
     float Cx = cx - R->sx * cz, Cy = cy - R->sy * cz;
-    float e0 = Bx * Cy - By * Cx, e1 = Cx * Ay - Cy * Ax, e2 = Ax * By - Ay * Bx;
-    float lo = pn_kminf(e0, pn_kminf(e1, e2)), hi = pn_kmaxf(e0, pn_kmaxf(e1, e2));
+    e[0] = Bx * Cy - By * Cx;
+    e[1] = Cx * Ay - Cy * Ax;
+    e[2] = Ax * By - Ay * Bx;
+}
+
+/* Their signs against the bound eb: 0 when two exact edge values have opposite strict
+ * signs (not blocked), 1 when all three have the same strict sign, 2 when some value lies
+ * within eb. */
+PN_KFN_HOT int32_t pn_ray_signs(const float *e, float eb)
+{
+    float lo = pn_kminf(e[0], pn_kminf(e[1], e[2])), hi = pn_kmaxf(e[0], pn_kmaxf(e[1], e[2]));
     if (hi >= eb && lo <= -eb) return 0;
     if (lo >= eb || hi <= -eb) return 1;
     return 2;
@@ -228,11 +281,10 @@ PN_KFN uint32_t pn_ray_plane(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight
     return (uint32_t)(sp > 0);
 }
 
-/* 1 if triangle p (9 floats) blocks the ray's sample: exactly pn_tri_sample()'s answer.
- * eb: pn_ray_bound() of a box holding the triangle. */
-PN_KFN uint32_t pn_ray_tri(const pn_ray *R, const pn_klight *L, PN_CONST float *p, float eb)
+/* The answer for triangle p from the filter's verdict s (pn_ray_signs): exactly
+ * pn_tri_sample()'s. */
+PN_KFN uint32_t pn_ray_decide(const pn_ray *R, const pn_klight *L, PN_CONST float *p, int32_t s)
 {
-    int32_t s = pn_ray_edges(R, p, eb);
     pn_v3 A, B, C;
     if (s == 0) return 0u;
     A = pn_v3_load(p);
@@ -243,11 +295,20 @@ PN_KFN uint32_t pn_ray_tri(const pn_ray *R, const pn_klight *L, PN_CONST float *
     return pn_tri_sample(R->O, A, B, C, L, R->i, R->j);
 }
 
+/* 1 if triangle p blocks the ray's sample, with the bound eb of a box holding it
+ * (pn_ray_bound, or R->ebr). */
+PN_KFN uint32_t pn_ray_tri(const pn_ray *R, const pn_klight *L, PN_CONST float *p, float eb)
+{
+    float e[3];
+    pn_ray_edges(R, p, e);
+    return pn_ray_decide(R, L, p, pn_ray_signs(e, eb));
+}
+
 /* 1 if some triangle other than `own` blocks the ray's sample. */
 PN_KFN uint32_t pn_raytrace_sample(const pn_ray *R, uint32_t own, PN_CONST float *tris, PN_CONST pn_kbvh_node *nodes,
                                    PN_CONST uint32_t *tri_index, const pn_klight *L, pn_shadow_counters *cnt)
 {
-    uint32_t stack[PN_BVH_STACK], sp = 0u, node = 0u;
+    uint32_t stack[PN_BVH_STACK], sp = 0u, node = 0u, tests = 0u;
     float tn, tl, tr;
     if (!pn_ray_box(R, nodes, &tn)) return 0u;
     for (;;) {
@@ -269,28 +330,37 @@ PN_KFN uint32_t pn_raytrace_sample(const pn_ray *R, uint32_t own, PN_CONST float
                 continue;
             }
         } else if (count != 0u) {
-            float lo[3], hi[3], eb;
-            uint32_t e;
-            lo[0] = nd->bmin[0];
-            lo[1] = nd->bmin[1];
-            lo[2] = nd->bmin[2];
-            hi[0] = nd->bmax[0];
-            hi[1] = nd->bmax[1];
-            hi[2] = nd->bmax[2];
-            eb = pn_ray_bound(R, lo, hi);
-            for (e = 0; e < count; e++) {
-                uint32_t t = tri_index[first + e];
+            /* The scene box's bound first; the leaf's, finer, computed once where needed. */
+            float eb = -1.0f, e[3];
+            uint32_t q;
+            for (q = 0; q < count; q++) {
+                uint32_t t = tri_index[first + q];
+                PN_CONST float *p = tris + (size_t)t * 9u;
+                int32_t s;
                 if (t == own) continue;
-                cnt->candidates++;
-                if (pn_ray_tri(R, L, tris + (size_t)t * 9u, eb)) {
+                tests++;
+                pn_ray_edges(R, p, e);
+                s = pn_ray_signs(e, R->ebr);
+                if (s == 2) {
+                    if (eb < 0.0f) {
+                        float lo[3], hi[3];
+                        pn_ray_node_box(nd, lo, hi);
+                        eb = pn_ray_bound(R, lo, hi);
+                    }
+                    s = pn_ray_signs(e, eb);
+                }
+                if (s != 0 && pn_ray_decide(R, L, p, s)) {
+                    cnt->candidates += tests;
                     cnt->blocking++;
                     return 1u;
                 }
             }
         }
-        if (sp == 0u) return 0u;
+        if (sp == 0u) break;
         node = stack[--sp];
     }
+    cnt->candidates += tests;
+    return 0u;
 }
 
 /* Visibility of one G-buffer pixel (P, unit geometric normal nrm, own triangle id).
@@ -304,20 +374,28 @@ PN_KFN float pn_raytrace_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float 
     pn_horizon H;
     pn_ray_origin X;
     pn_ray R;
-    pn_v3 O;
+    pn_v3 O, U = pn_light_U(L);
+    float av[32]; /* the sample coordinates, k <= 32 */
     if (!pn_shadow_origin(P, nrm, L, &O)) return 0.0f;
     cnt->lit++;
     pn_horizon_of(P, nrm, own, tris, L, &H);
-    pn_ray_origin_make(O, L, &X);
-    for (j = 0; j < (int32_t)k; j++)
+    {
+        float lo[3], hi[3];
+        pn_ray_node_box(nodes, lo, hi);
+        pn_ray_origin_make(O, L, lo, hi, &X);
+    }
+    for (i = 0; i < (int32_t)k; i++) av[i] = pn_sample_coord(i, k);
+    for (j = 0; j < (int32_t)k; j++) {
+        pn_v3 row = pn_ray_row(&X, L, av[j]);
         for (i = 0; i < (int32_t)k; i++) {
-            if (pn_horizon_at(&H, L, pn_sample_coord(i, k), pn_sample_coord(j, k))) {
+            if (pn_horizon_at(&H, L, av[i], av[j])) {
                 blocked++;
                 continue;
             }
-            pn_ray_make(&X, L, i, j, &R);
+            pn_ray_set(&X, pn_v3_add(row, pn_v3_scale(U, av[i])), av[i], av[j], i, j, &R);
             blocked += pn_raytrace_sample(&R, own, tris, nodes, tri_index, L, cnt);
         }
+    }
     /* The same quotient as pn_mask_visibility(). */
     return (float)(k * k - blocked) / (float)(k * k);
 }

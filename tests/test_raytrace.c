@@ -173,8 +173,9 @@ typedef struct ray_stats {
     unsigned long tests, blocked, disagree, cull_misses;
 } ray_stats;
 
-/* Every sample of triangle T seen from O: pn_ray_tri (bounds from T's box and from a box
- * `grow` times larger) against pn_tri_sample; the slab test against T's box. */
+/* Every sample of triangle T seen from O: pn_ray_tri (bounds from T's box, from a box
+ * `grow` times larger as a leaf's, and the scene bound from that box as the scene's)
+ * against pn_tri_sample; the slab test against T's box. */
 static void ray_check(pn_v3 O, const float *T, const pn_klight *L, float grow, ray_stats *st)
 {
     pn_ray_origin X;
@@ -187,23 +188,24 @@ static void ray_check(pn_v3 O, const float *T, const pn_klight *L, float grow, r
     memset(&nd, 0, sizeof(nd));
     memcpy(nd.bmin, lo, sizeof(lo));
     memcpy(nd.bmax, hi, sizeof(hi));
-    pn_ray_origin_make(O, L, &X);
+    pn_ray_origin_make(O, L, blo, bhi, &X);
     for (j = 0; j < L->k; j++)
         for (i = 0; i < L->k; i++) {
             pn_ray R;
             float tn;
-            uint32_t want = pn_tri_sample(O, A, B, C, L, (int32_t)i, (int32_t)j), got0, got1;
+            uint32_t want = pn_tri_sample(O, A, B, C, L, (int32_t)i, (int32_t)j), got0, got1, got2;
             pn_ray_make(&X, L, (int32_t)i, (int32_t)j, &R);
             got0 = pn_ray_tri(&R, L, T, pn_ray_bound(&R, lo, hi));
             got1 = pn_ray_tri(&R, L, T, pn_ray_bound(&R, blo, bhi));
-            st->tests += 2u;
+            got2 = pn_ray_tri(&R, L, T, R.ebr);
+            st->tests += 3u;
             st->blocked += want;
-            if (got0 != want || got1 != want) {
+            if (got0 != want || got1 != want || got2 != want) {
                 if (st->disagree < 5u)
                     fprintf(stderr, "ray filter: O (%a %a %a) T (%a %a %a, %a %a %a, %a %a %a) k %u sample %u,%u: "
-                                    "pn_tri_sample %u, pn_ray_tri %u (own box) %u (grown)\n",
+                                    "pn_tri_sample %u, pn_ray_tri %u (own box) %u (grown) %u (scene)\n",
                             O.x, O.y, O.z, T[0], T[1], T[2], T[3], T[4], T[5], T[6], T[7], T[8], L->k, i, j, want, got0,
-                            got1);
+                            got1, got2);
                 st->disagree++;
             }
             if (want && !pn_ray_box(&R, &nd, &tn)) st->cull_misses++;

@@ -85,12 +85,14 @@ typedef struct pn_ray_origin {
     pn_v3 O, cO; /* origin, fl(c - O) */
     float dl[3]; /* bound of |D - (S - O)| per component, any sample */
     float tol;   /* growth of the boxes the slab test uses */
+    float t0, t1; /* the segment's parameter range, 0 and 1 (see pn_ray_origin_make) */
     float mroot; /* max |fl(P - O)| over the scene box (its corners: rounding is monotone) */
 } pn_ray_origin;
 
 /* One ray: the slab test's and the filter's per-ray constants. */
 typedef struct pn_ray {
     float inv[3];        /* 1 / D */
+    float t0, t1;        /* the segment's parameter range [0, 1] */
     float on[3], of[3];  /* O moved by -+tol to the near and far planes of a grown box */
     uint32_t bn[3], bf[3]; /* float offsets of the near and far bounds in a node (bmin 0-2, bmax 4-6) */
     uint32_t kx, ky, kz; /* the shear frame */
@@ -130,6 +132,10 @@ PN_KFN void pn_ray_origin_make(pn_v3 O, const pn_klight *L, const float *lo, con
     X->dl[2] = 3.25f * PN_KU * W.z + PN_KTINY;
     dmax = pn_kmaxf(X->dl[0], pn_kmaxf(X->dl[1], X->dl[2]));
     X->tol = 1.0625f * (L->cull_tol + dmax + 4.0f * PN_KU * (pn_v3_linf(O) + pn_v3_linf(W))) + 1e-29f;
+    /* 0 and 1, but not constants the compiler can see (tol is finite and positive): the
+     * slab test's max with a constant 0 becomes a branch (GCC 12), with a variable a maxss. */
+    X->t0 = 0.0f * X->tol;
+    X->t1 = X->t0 + 1.0f;
 }
 
 /* Axis q of the slab test: the reciprocal of direction component d (of a component below
@@ -182,6 +188,8 @@ PN_KFN void pn_ray_set(const pn_ray_origin *X, pn_v3 D, float a, float b, int32_
     /* The scene box's bound: |X|, |Y| <= (1 + (1 + 2.01 u)(1 + u)) mroot (1 + u) and eps
      * <= (2.125 u + ez) mroot, coarser than a leaf's but free per triangle. */
     R->ebr = R->filt ? pn_ray_eb(2.125f * X->mroot, (PN_RAY_EX + R->ez) * X->mroot) : PN_KINF;
+    R->t0 = X->t0;
+    R->t1 = X->t1;
     R->O = X->O;
     R->a = a;
     R->b = b;
@@ -218,8 +226,8 @@ PN_KFN_HOT int pn_ray_box(const pn_ray *R, PN_CONST pn_kbvh_node *nd, float *tn)
     float nx = (f[R->bn[0]] - R->on[0]) * R->inv[0], fx = (f[R->bf[0]] - R->of[0]) * R->inv[0];
     float ny = (f[R->bn[1]] - R->on[1]) * R->inv[1], fy = (f[R->bf[1]] - R->of[1]) * R->inv[1];
     float nz = (f[R->bn[2]] - R->on[2]) * R->inv[2], fz = (f[R->bf[2]] - R->of[2]) * R->inv[2];
-    float t0 = pn_kmaxf(pn_kmaxf(nx, ny), pn_kmaxf(nz, 0.0f));
-    float t1 = pn_kminf(pn_kminf(fx, fy), pn_kminf(fz, 1.0f));
+    float t0 = pn_kmaxf(pn_kmaxf(nx, ny), pn_kmaxf(nz, R->t0));
+    float t1 = pn_kminf(pn_kminf(fx, fy), pn_kminf(fz, R->t1));
     *tn = t0;
     return t0 <= t1;
 }
@@ -281,12 +289,12 @@ PN_KFN uint32_t pn_ray_plane(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight
     return (uint32_t)(sp > 0);
 }
 
-/* The answer for triangle p from the filter's verdict s (pn_ray_signs): exactly
- * pn_tri_sample()'s. */
-PN_KFN uint32_t pn_ray_decide(const pn_ray *R, const pn_klight *L, PN_CONST float *p, int32_t s)
+/* The answer for triangle p from the filter's verdict s != 0 (pn_ray_signs): exactly
+ * pn_tri_sample()'s. Rare (a blocked ray's blocker, or a value within its bound): out of
+ * the traversal loop. */
+PN_KFN_COLD uint32_t pn_ray_decide(const pn_ray *R, const pn_klight *L, PN_CONST float *p, int32_t s)
 {
     pn_v3 A, B, C;
-    if (s == 0) return 0u;
     A = pn_v3_load(p);
     B = pn_v3_load(p + 3);
     C = pn_v3_load(p + 6);
@@ -300,8 +308,10 @@ PN_KFN uint32_t pn_ray_decide(const pn_ray *R, const pn_klight *L, PN_CONST floa
 PN_KFN uint32_t pn_ray_tri(const pn_ray *R, const pn_klight *L, PN_CONST float *p, float eb)
 {
     float e[3];
+    int32_t s;
     pn_ray_edges(R, p, e);
-    return pn_ray_decide(R, L, p, pn_ray_signs(e, eb));
+    s = pn_ray_signs(e, eb);
+    return s != 0 && pn_ray_decide(R, L, p, s);
 }
 
 /* 1 if some triangle other than `own` blocks the ray's sample. */

@@ -2,7 +2,10 @@
  * for it: for every shadow-ray origin and triangle, the predicate's mask equals the exact
  * arbiter's bit for bit (tests/pn_test_exact.h: its own formulation, double filter, big
  * integers), and every triangle the arbiter says blocks a sample passes the per-pixel
- * frustum cull and has a cell rectangle that contains that origin's cell.
+ * frustum cull and has a cell rectangle that contains that origin's cell. The per-ray
+ * ray tracer's filter (kernels/pn_raytrace.h) gives that mask's bit for every sample, with
+ * its bound from the triangle's own box, and its slab test passes the box of every
+ * triangle that blocks the ray's sample.
  *
  * The bytes make a small hostile configuration: a light of any orientation and aspect (or
  * a point light), up to 24 triangles at scales from 1e-4 to 1e4 with vertices snapped onto,
@@ -14,6 +17,7 @@
 
 #include "fuzz_check.h"
 #include "pn_gears_frame.h"
+#include "pn_raytrace.h"
 #include "pn_test_exact.h"
 
 typedef struct pn_bytes {
@@ -62,6 +66,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     pn_kgrid faces[6];
     uint32_t nfaces;
     float obox[6] = {PN_KINF, PN_KINF, PN_KINF, -PN_KINF, -PN_KINF, -PN_KINF};
+    float tbox[6] = {PN_KINF, PN_KINF, PN_KINF, -PN_KINF, -PN_KINF, -PN_KINF}; /* the triangles' */
 
     memset(&L, 0, sizeof(L));
     c = coord3(&b, scale);
@@ -127,9 +132,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     /* The cull slack as src/pn_frame.c sets it, from the diagonal of the box of the
      * triangles (the library's scene box) and the origins (which a render puts on them). */
     {
-        float sb[6] = {PN_KINF, PN_KINF, PN_KINF, -PN_KINF, -PN_KINF, -PN_KINF};
+        float sb[6];
         pn_v3 d;
-        for (t = 0; t < nt * 3u; t++) pn_box3_add(sb, pn_v3_make(tris[t * 3], tris[t * 3 + 1], tris[t * 3 + 2]));
+        for (t = 0; t < nt * 3u; t++) pn_box3_add(tbox, pn_v3_make(tris[t * 3], tris[t * 3 + 1], tris[t * 3 + 2]));
+        memcpy(sb, tbox, sizeof(sb));
         pn_box_join_n(sb, obox, 6u);
         d = pn_v3_make(sb[3] - sb[0], sb[4] - sb[1], sb[5] - sb[2]);
         L.cull_tol = 1e-5f * pn_ksqrt(pn_v3_dot(d, d));
@@ -184,6 +190,33 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             for (w = 0; w < words; w++)
                 FUZZ_CHECK(m[w] == ma[w], "triangle %u, origin %u, k %u: mask word %u is %08x, the exact arbiter's %08x",
                            t, o, L.k, w, m[w], ma[w]);
+            {
+                /* The ray tracer's per-ray filter (bounds from the triangle's box and from the
+                 * triangles' box, as the BVH's leaves and root give them) and slab test. */
+                pn_ray_origin X;
+                pn_kbvh_node nd;
+                uint32_t q;
+                memset(&nd, 0, sizeof(nd));
+                for (q = 0; q < 3; q++) {
+                    nd.bmin[q] = pn_kminf(T[q], pn_kminf(T[3 + q], T[6 + q]));
+                    nd.bmax[q] = pn_kmaxf(T[q], pn_kmaxf(T[3 + q], T[6 + q]));
+                }
+                pn_ray_origin_make(origins[o], &L, tbox, tbox + 3, &X);
+                for (j = 0; j < L.k; j++)
+                    for (i = 0; i < L.k; i++) {
+                        uint32_t bit = j * L.k + i, mb = (m[bit >> 5] >> (bit & 31u)) & 1u;
+                        pn_ray R;
+                        float tn;
+                        pn_ray_make(&X, &L, (int32_t)i, (int32_t)j, &R);
+                        FUZZ_CHECK(pn_ray_tri(&R, &L, T, pn_ray_bound(&R, nd.bmin, nd.bmax)) == mb &&
+                                       pn_ray_tri(&R, &L, T, R.ebr) == mb,
+                                   "triangle %u, origin %u, k %u, sample %u,%u: the ray filter disagrees with the mask's %u",
+                                   t, o, L.k, i, j, mb);
+                        FUZZ_CHECK(!mb || pn_ray_box(&R, &nd, &tn),
+                                   "triangle %u blocks sample %u,%u from origin %u but the ray's slab test rejects its box",
+                                   t, i, j, o);
+                    }
+            }
             if (!pn_mask_count(ma, L.k)) continue;
             /* The per-pixel cull before the predicate (pn_gears_pixel_mask, the reference's
              * BVH walk) must pass it too. */

@@ -7,6 +7,8 @@
  *   PN_KFN_HOT  a small helper of an inner loop that must be inlined wherever it is used
  *               (GCC's inliner otherwise decides by the size of the caller, so the same
  *               loop costs more or less depending on what a pass wraps around it)
+ *   PN_KFN_COLD a helper of a rare path that must stay out of the inner loop calling it
+ *               (inlined, it costs that loop registers: the ray tracer's exact fallback)
  *   PN_GLOBAL   pointer into the arena (device global memory in OpenCL)
  *   PN_CONST    read-only pointer into the arena
  *   pn_katomic_add(p, v)   32-bit unsigned atomic add into the arena, returns the old value:
@@ -24,6 +26,7 @@
 #pragma OPENCL FP_CONTRACT OFF
 #define PN_KFN static inline
 #define PN_KFN_HOT static inline
+#define PN_KFN_COLD static inline
 #define PN_GLOBAL __global
 #define PN_CONST __global const
 typedef uint uint32_t;
@@ -52,6 +55,7 @@ typedef ulong uint64_t;
     X(PN_ENABLE_SRT) X(PN_SRT_MAP_MAX)
 #define PN_KFN static inline
 #define PN_KFN_HOT static inline __attribute__((always_inline))
+#define PN_KFN_COLD static __attribute__((noinline, cold))
 #define PN_GLOBAL
 #define PN_CONST const
 /* __builtin_sqrtf is correctly rounded and needs no libm symbol on bare metal when built

@@ -4,58 +4,372 @@
  * OptiX baseline) and the single-ray query selective ray tracing needs.
  *
  * A sample below the horizon of the pixel's own triangle is blocked without a ray
- * (pn_horizon_at, the very decision pn_horizon_mask makes); every other ray asks
- * pn_tri_sample(), which decides exactly what pn_tri_mask() decides, so the result equals
- * PN_ALGO_REFERENCE bit for bit (tests/test_raytrace.c). Culling: a node is skipped only
- * when the segment from O to the float sample point misses its box grown by cull_tol (1e-5
- * of the scene diagonal). A blocked sample's exact segment meets the triangle (the
- * predicate is exact); it differs from the float segment by the rounding of
- * c + a U + b V (a few u of |c| + |U| + |V|) at the far end and the slab test rounds by a
- * few u of the coordinates, both far below cull_tol for coordinates within 10^4 scene
- * diagonals of the origin. */
+ * (pn_horizon_at, the very decision pn_horizon_mask makes). Every other ray decides each
+ * triangle exactly as pn_tri_sample() does (pn_predicate.h), so the result equals
+ * PN_ALGO_REFERENCE bit for bit (tests/test_raytrace.c), but at the cost of a ray/triangle
+ * test: a float filter in the watertight model of Woop, Benthin and Wald (2013) with a
+ * rigorous rounding bound, and pn_tri_sample() itself only where that filter cannot tell.
+ *
+ * ---- What is decided -------------------------------------------------------------------
+ * With D* = S - O for the exact sample point S = c + a U + b V and p = A - O, q = B - O,
+ * r = C - O (exact), pn_tri_sample's edge values are the triple products
+ * det(D*, p, q), det(D*, q, r), det(D*, r, p) (its canonical endpoint order changes its
+ * floats, not these reals), and triangle ABC blocks the sample iff all three are >= 0 or
+ * all <= 0 and the plane test holds (O off the plane, S strictly on its other side).
+ *
+ * ---- The filter (per ray, then per triangle) -------------------------------------------
+ * Per ray: D = fl(fl(cO + fl(b V)) + fl(a U)), cO = fl(c - O); kz the axis of D's largest
+ * magnitude, (kx, ky, kz) the cyclic rotation ending in it (one orientation for every
+ * edge), sx = fl(D_kx * fl(1 / D_kz)) and sy likewise. Per triangle, for each vertex P:
+ * P~ = fl(P - O) in that frame, X = fl(P~x - fl(sx P~z)), Y = fl(P~y - fl(sy P~z)), and
+ * the three 2-D edge functions e = fl(fl(X1 Y2) - fl(Y1 X2)) over (B, C), (C, A), (A, B).
+ * For exact inputs and sx = D*x / D*z, sy = D*y / D*z they are det(D*, ., .) / D*z, one
+ * factor for all three, so the signs the predicate needs are theirs. Bounds (standard
+ * model, u = 2^-24, u' = u / (1 - u); |.| componentwise):
+ *   - the direction: |D - D*| <= u (|c - O| + |bV| + |cO + bV| + |aU| + |D|)
+ *     <= 3.0001 u W, W = |cO| + |U| + |V| (|a|, |b| <= 1): dl = 3.25 u W + PN_KTINY per
+ *     origin (the slack pays for computing dl; PN_KTINY for an underflowing a U or b V);
+ *   - the shear: |D_kx| <= |D_kz|, so |sx| <= 1 + 2.01 u, and with w = dl_z / |D_z| <= 1/2
+ *     |sx - D*x / D*z| <= 2.0001 u + (dl_x + dl_z) / (|D_z| - dl_z)
+ *                     <= 2.0001 u + (dl_x + dl_z) (1 + 2 w) / |D_z| =: sigma;
+ *     computed as 1.125 times that from fl(1 / D_z) (w > 1/4: the ray is not filtered);
+ *   - a vertex in the box whose translated bounds are M_i = max |fl(box - O)|_i (rounding
+ *     is monotone, so |P~_i| <= M_i exactly): |X - X*| <= (u + u') M_x
+ *     + ((1 + 2.01 u)(2 u + u^2 + u') + sigma (1 + u')) M_z (+ an underflow of
+ *     fl(sx P~z), below 2^-150) for X* = p_x - (D*x / D*z) p_z (the subtraction, the
+ *     product, P~ - p and sx - D*x / D*z in turn): eps = 2.125 u max(M_x, M_y)
+ *     + (3.125 u + 1.0625 sigma) M_z;
+ *   - |X|, |Y| <= h, the largest magnitude fl(P~x - fl(sx P~z)) takes over the box: X is
+ *     nondecreasing in P~x and monotone in P~z, so h comes from the box corners exactly;
+ *   - an edge function: |e - e*| <= (4 u + 2 u^2) h^2 (two products and their
+ *     difference) + 4 eps h + 2 eps^2 (|X1 Y2 - X1* Y2*| <= eps (|X1| + |Y2|) + eps^2);
+ *     eb = 4.25 u h^2 + eps (4.25 h + 2.125 eps) + PN_KTINY, strictly above the error
+ *     (the slack pays for computing eb; PN_KTINY for underflows, as pn_predicate.h argues).
+ * eb comes from the box of the leaf holding the triangle (its vertices' box or larger:
+ * the BVH build's leaf boxes are the min/max of their triangles' vertices), once per
+ * leaf. Then: some e >= eb and some e <= -eb: two exact values of opposite strict signs,
+ * not blocked (the common answer). All e >= eb or all e <= -eb: the edges pass, and the
+ * plane decides, the very test pn_tri_sample makes (pn_tri_plane, the sample's float
+ * plane value against its bound, the exact sign within it). Otherwise some edge value
+ * lies within its bound (rays through or near a vertex or edge, shared edges, slivers
+ * seen edge-on, huge or far triangles): pn_tri_sample() decides, so every answer is the
+ * exact one (tests/test_raytrace.c counts these fallbacks on hostile triangles and checks
+ * every answer against pn_tri_sample; fuzz/fuzz_gears.c checks them on fuzzed scenes).
+ *
+ * ---- Traversal -------------------------------------------------------------------------
+ * Slab tests with per-ray reciprocals inv = 1 / D (a component below 1e-30 in magnitude,
+ * zero included, gets +-1e30: the segment it stands for moves by < 2e-30), both children
+ * of a node tested together, the nearer one (entry distance along the ray) visited first,
+ * the other pushed. A node is skipped only when the segment misses its box grown by tol.
+ * Rigorous: a blocked sample's exact segment meets the triangle at O + t D*, t in [0, 1],
+ * inside every box on the triangle's path; O + t D lies within dl of it; the computed
+ * entry fl(fl(lo - fl(O + tol)) * inv) errs by at most 3.01 u |D_i| in t |D_i| plus the
+ * u |O + tol| of the moved origin. tol = 1.0625 (cull_tol + max dl + 4 u (|O| + |W|)) +
+ * 1e-29 exceeds all of it, for any coordinates (not only near the origin). */
 #ifndef PN_RAYTRACE_H
 #define PN_RAYTRACE_H
 
 #include "pn_reference.h"
 
-/* 1 if some triangle other than `own` blocks sample (i, j) from O. */
-PN_KFN uint32_t pn_raytrace_sample(pn_v3 O, uint32_t own, int32_t i, int32_t j, PN_CONST float *tris,
-                                   PN_CONST pn_kbvh_node *nodes, PN_CONST uint32_t *tri_index,
-                                   const pn_klight *L, pn_shadow_counters *cnt)
+/* Counting hook for tests: called once per triangle the filter leaves to pn_tri_sample().
+ * The library compiles it away. */
+#ifndef PN_RAY_FALLBACK_HOOK
+#define PN_RAY_FALLBACK_HOOK() ((void)0)
+#endif
+
+/* Direction components smaller than this in magnitude get reciprocal +-1/PN_RAY_DIR_MIN. */
+#define PN_RAY_DIR_MIN 1e-30f
+
+/* What a shadow-ray origin shares with all its k^2 rays. */
+typedef struct pn_ray_origin {
+    pn_v3 O, cO; /* origin, fl(c - O) */
+    float dl[3]; /* bound of |D - (S - O)| per component, any sample */
+    float tol;   /* growth of the boxes the slab test uses */
+    float t0, t1; /* the segment's parameter range, 0 and 1 (see pn_ray_origin_make) */
+    float mroot; /* max |fl(P - O)| over the scene box (its corners: rounding is monotone) */
+} pn_ray_origin;
+
+/* One ray: the slab test's and the filter's per-ray constants. */
+typedef struct pn_ray {
+    float inv[3];        /* 1 / D */
+    float t0, t1;        /* the segment's parameter range [0, 1] */
+    float on[3], of[3];  /* O moved by -+tol to the near and far planes of a grown box */
+    uint32_t bn[3], bf[3]; /* float offsets of the near and far bounds in a node (bmin 0-2, bmax 4-6) */
+    uint32_t kx, ky, kz; /* the shear frame */
+    float ox, oy, oz;    /* O in it */
+    float sx, sy;        /* the shear */
+    float ez;            /* eps = PN_RAY_EX max(M_x, M_y) + ez M_z */
+    float ebr;           /* eb of the scene box (for any triangle), PN_KINF when not filtered */
+    uint32_t filt;       /* 0: every triangle goes to pn_tri_sample */
+    pn_v3 O;
+    float a, b;
+    int32_t i, j;
+} pn_ray;
+
+#define PN_RAY_EX (2.125f * PN_KU)
+
+PN_KFN float pn_ray_abs(float x) { return pn_kmaxf(x, -x); }
+
+/* eb from h and eps (see the top). */
+PN_KFN float pn_ray_eb(float h, float eps) { return 4.25f * PN_KU * h * h + eps * (4.25f * h + 2.125f * eps) + PN_KTINY; }
+
+/* lo, hi: the scene's box (the BVH root's), xyz. */
+PN_KFN void pn_ray_origin_make(pn_v3 O, const pn_klight *L, const float *lo, const float *hi, pn_ray_origin *X)
 {
-    pn_bvh_walk w;
-    pn_frustum seg;
-    pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]);
-    pn_v3 V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
-    pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]);
-    pn_v3 S = pn_v3_add(pn_v3_add(c, pn_v3_scale(U, pn_sample_coord(i, L->k))),
-                        pn_v3_scale(V, pn_sample_coord(j, L->k)));
-    uint32_t q, leaf;
-    /* A segment "frustum": the point-light form of pn_frustum with the end at S. */
-    for (q = 0; q < 6; q++) {
-        seg.n[q] = pn_v3_make(0.0f, 0.0f, 0.0f);
-        seg.d[q] = 0.0f;
+    pn_v3 W;
+    float dmax, o[3];
+    uint32_t q;
+    o[0] = O.x;
+    o[1] = O.y;
+    o[2] = O.z;
+    X->mroot = 0.0f;
+    for (q = 0; q < 3u; q++) X->mroot = pn_kmaxf(X->mroot, pn_kmaxf(pn_ray_abs(lo[q] - o[q]), pn_ray_abs(hi[q] - o[q])));
+    X->O = O;
+    X->cO = pn_v3_sub(pn_light_c(L), O);
+    W = pn_v3_add(pn_v3_add(pn_v3_abs(X->cO), pn_v3_abs(pn_light_U(L))), pn_v3_abs(pn_light_V(L)));
+    X->dl[0] = 3.25f * PN_KU * W.x + PN_KTINY;
+    X->dl[1] = 3.25f * PN_KU * W.y + PN_KTINY;
+    X->dl[2] = 3.25f * PN_KU * W.z + PN_KTINY;
+    dmax = pn_kmaxf(X->dl[0], pn_kmaxf(X->dl[1], X->dl[2]));
+    X->tol = 1.0625f * (L->cull_tol + dmax + 4.0f * PN_KU * (pn_v3_linf(O) + pn_v3_linf(W))) + 1e-29f;
+    /* 0 and 1, but not constants the compiler can see (tol is finite and positive): the
+     * slab test's max with a constant 0 becomes a branch (GCC 12), with a variable a maxss. */
+    X->t0 = 0.0f * X->tol;
+    X->t1 = X->t0 + 1.0f;
+}
+
+/* Axis q of the slab test: the reciprocal of direction component d (of a component below
+ * PN_RAY_DIR_MIN in magnitude, zero included: of +-PN_RAY_DIR_MIN), the node offsets of the
+ * near and far bounds, and the origin moved to the grown box's near and far planes. */
+PN_KFN_HOT void pn_ray_axis(pn_ray *R, uint32_t q, float d, float o, float tol)
+{
+    float inv = 1.0f / (pn_ray_abs(d) >= PN_RAY_DIR_MIN ? d : (d < 0.0f ? -PN_RAY_DIR_MIN : PN_RAY_DIR_MIN));
+    uint32_t neg = (uint32_t)(inv < 0.0f);
+    float st = neg ? -tol : tol;
+    R->inv[q] = inv;
+    R->bn[q] = q + 4u * neg;
+    R->bf[q] = q + 4u - 4u * neg;
+    R->on[q] = o + st;
+    R->of[q] = o - st;
+}
+
+/* The ray along D = fl(fl(cO + fl(b V)) + fl(a U)) to sample (i, j) = (a, b). */
+PN_KFN void pn_ray_set(const pn_ray_origin *X, pn_v3 D, float a, float b, int32_t i, int32_t j, pn_ray *R)
+{
+    float d[3], o[3], ax = pn_ray_abs(D.x), ay = pn_ray_abs(D.y), az = pn_ray_abs(D.z), adz, iz, w, sigma;
+    uint32_t kz, kx, ky;
+    pn_ray_axis(R, 0u, D.x, X->O.x, X->tol);
+    pn_ray_axis(R, 1u, D.y, X->O.y, X->tol);
+    pn_ray_axis(R, 2u, D.z, X->O.z, X->tol);
+    d[0] = D.x;
+    d[1] = D.y;
+    d[2] = D.z;
+    o[0] = X->O.x;
+    o[1] = X->O.y;
+    o[2] = X->O.z;
+    kz = ax >= ay ? (ax >= az ? 0u : 2u) : (ay >= az ? 1u : 2u);
+    kx = kz == 2u ? 0u : kz + 1u;
+    ky = kx == 2u ? 0u : kx + 1u;
+    adz = pn_kmaxf(ax, pn_kmaxf(ay, az));
+    R->kz = kz;
+    R->kx = kx;
+    R->ky = ky;
+    R->ox = o[kx];
+    R->oy = o[ky];
+    R->oz = o[kz];
+    iz = R->inv[kz];
+    R->sx = d[kx] * iz;
+    R->sy = d[ky] * iz;
+    iz = pn_ray_abs(iz);
+    w = X->dl[kz] * iz;
+    R->filt = adz >= PN_RAY_DIR_MIN && w <= 0.25f;
+    sigma = 1.125f * (2.01f * PN_KU + (pn_kmaxf(X->dl[kx], X->dl[ky]) + X->dl[kz]) * (1.0f + 2.0f * w) * iz);
+    R->ez = 3.125f * PN_KU + 1.0625f * sigma;
+    /* The scene box's bound: |X|, |Y| <= (1 + (1 + 2.01 u)(1 + u)) mroot (1 + u) and eps
+     * <= (2.125 u + ez) mroot, coarser than a leaf's but free per triangle. */
+    R->ebr = R->filt ? pn_ray_eb(2.125f * X->mroot, (PN_RAY_EX + R->ez) * X->mroot) : PN_KINF;
+    R->t0 = X->t0;
+    R->t1 = X->t1;
+    R->O = X->O;
+    R->a = a;
+    R->b = b;
+    R->i = i;
+    R->j = j;
+}
+
+/* fl(cO + fl(b V)): the part of D a row of samples shares. */
+PN_KFN pn_v3 pn_ray_row(const pn_ray_origin *X, const pn_klight *L, float b)
+{
+    return pn_v3_add(X->cO, pn_v3_scale(pn_light_V(L), b));
+}
+
+PN_KFN void pn_ray_make(const pn_ray_origin *X, const pn_klight *L, int32_t i, int32_t j, pn_ray *R)
+{
+    float a = pn_sample_coord(i, L->k), b = pn_sample_coord(j, L->k);
+    pn_ray_set(X, pn_v3_add(pn_ray_row(X, L, b), pn_v3_scale(pn_light_U(L), a)), a, b, i, j, R);
+}
+
+PN_KFN void pn_ray_node_box(PN_CONST pn_kbvh_node *nd, float *lo, float *hi)
+{
+    lo[0] = nd->bmin[0];
+    lo[1] = nd->bmin[1];
+    lo[2] = nd->bmin[2];
+    hi[0] = nd->bmax[0];
+    hi[1] = nd->bmax[1];
+    hi[2] = nd->bmax[2];
+}
+
+/* 1 when the segment may meet node nd's box grown by tol; *tn its entry parameter. */
+PN_KFN_HOT int pn_ray_box(const pn_ray *R, PN_CONST pn_kbvh_node *nd, float *tn)
+{
+    PN_CONST float *f = (PN_CONST float *)nd; /* bmin at 0-2, bmax at 4-6 */
+    float nx = (f[R->bn[0]] - R->on[0]) * R->inv[0], fx = (f[R->bf[0]] - R->of[0]) * R->inv[0];
+    float ny = (f[R->bn[1]] - R->on[1]) * R->inv[1], fy = (f[R->bf[1]] - R->of[1]) * R->inv[1];
+    float nz = (f[R->bn[2]] - R->on[2]) * R->inv[2], fz = (f[R->bf[2]] - R->of[2]) * R->inv[2];
+    float t0 = pn_kmaxf(pn_kmaxf(nx, ny), pn_kmaxf(nz, R->t0));
+    float t1 = pn_kminf(pn_kminf(fx, fy), pn_kminf(fz, R->t1));
+    *tn = t0;
+    return t0 <= t1;
+}
+
+/* The edge functions' bound eb for every triangle inside the box [lo, hi] (xyz). */
+PN_KFN float pn_ray_bound(const pn_ray *R, const float *lo, const float *hi)
+{
+    float lx = lo[R->kx] - R->ox, hx = hi[R->kx] - R->ox;
+    float ly = lo[R->ky] - R->oy, hy = hi[R->ky] - R->oy;
+    float lz = lo[R->kz] - R->oz, hz = hi[R->kz] - R->oz;
+    float mx = pn_kmaxf(pn_ray_abs(lx), pn_ray_abs(hx));
+    float my = pn_kmaxf(pn_ray_abs(ly), pn_ray_abs(hy));
+    float mz = pn_kmaxf(pn_ray_abs(lz), pn_ray_abs(hz));
+    /* The extremes of X and Y over the box, at the corners their monotonicity picks. */
+    float x1 = hx - R->sx * (R->sx >= 0.0f ? lz : hz), x0 = lx - R->sx * (R->sx >= 0.0f ? hz : lz);
+    float y1 = hy - R->sy * (R->sy >= 0.0f ? lz : hz), y0 = ly - R->sy * (R->sy >= 0.0f ? hz : lz);
+    float h = pn_kmaxf(pn_kmaxf(pn_ray_abs(x1), pn_ray_abs(x0)), pn_kmaxf(pn_ray_abs(y1), pn_ray_abs(y0)));
+    float eps = PN_RAY_EX * pn_kmaxf(mx, my) + R->ez * mz;
+    return R->filt ? pn_ray_eb(h, eps) : PN_KINF;
+}
+
+/* The three edge functions of triangle p (9 floats, A B C) into e. */
+PN_KFN_HOT void pn_ray_edges(const pn_ray *R, PN_CONST float *p, float *e)
+{
+    float ax = p[R->kx] - R->ox, ay = p[R->ky] - R->oy, az = p[R->kz] - R->oz;
+    float bx = p[3u + R->kx] - R->ox, by = p[3u + R->ky] - R->oy, bz = p[3u + R->kz] - R->oz;
+    float cx = p[6u + R->kx] - R->ox, cy = p[6u + R->ky] - R->oy, cz = p[6u + R->kz] - R->oz;
+    float Ax = ax - R->sx * az, Ay = ay - R->sy * az;
+    float Bx = bx - R->sx * bz, By = by - R->sy * bz;
+    float Cx = cx - R->sx * cz, Cy = cy - R->sy * cz;
+    e[0] = Bx * Cy - By * Cx;
+    e[1] = Cx * Ay - Cy * Ax;
+    e[2] = Ax * By - Ay * Bx;
+}
+
+/* Their signs against the bound eb: 0 when two exact edge values have opposite strict
+ * signs (not blocked), 1 when all three have the same strict sign, 2 when some value lies
+ * within eb. */
+PN_KFN_HOT int32_t pn_ray_signs(const float *e, float eb)
+{
+    float lo = pn_kminf(e[0], pn_kminf(e[1], e[2])), hi = pn_kmaxf(e[0], pn_kmaxf(e[1], e[2]));
+    if (hi >= eb && lo <= -eb) return 0;
+    if (lo >= eb || hi <= -eb) return 1;
+    return 2;
+}
+
+/* The plane half of the predicate, exactly as pn_tri_sample and pn_tri_resolve decide
+ * it: O off the plane and the sample strictly on its other side. */
+PN_KFN uint32_t pn_ray_plane(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight *L, float a, float b)
+{
+    pn_tri_forms F;
+    int32_t sp;
+    if (!pn_tri_plane(O, A, B, C, L, &F)) return 0u;
+    sp = pn_filter(pn_lin_at(F.plane, a, b), F.err_p);
+    if (sp == 2) {
+        PN_EXACT_HOOK(1);
+        sp = -F.dsign * pn_exact_plane(A, B, C, L, a, b);
     }
-    seg.is_point = 1u;
-    seg.tol = L->cull_tol;
-    seg.seg_o = O;
-    seg.seg_d = pn_v3_sub(S, O);
-    pn_bvh_walk_init(&w);
-    while ((leaf = pn_bvh_next_leaf(&w, &seg, nodes, cnt)) != PN_BVH_DONE) {
-        PN_CONST pn_kbvh_node *nd = nodes + leaf;
-        uint32_t e;
-        for (e = 0; e < nd->count; e++) {
-            uint32_t t = tri_index[nd->first + e];
-            pn_v3 A, B, C;
-            if (t == own) continue;
-            pn_tri_load(tris, t, &A, &B, &C);
-            cnt->candidates++;
-            if (pn_tri_sample(O, A, B, C, L, i, j)) {
-                cnt->blocking++;
-                return 1u;
+    return (uint32_t)(sp > 0);
+}
+
+/* The answer for triangle p from the filter's verdict s != 0 (pn_ray_signs): exactly
+ * pn_tri_sample()'s. Rare (a blocked ray's blocker, or a value within its bound): out of
+ * the traversal loop. */
+PN_KFN_COLD uint32_t pn_ray_decide(const pn_ray *R, const pn_klight *L, PN_CONST float *p, int32_t s)
+{
+    pn_v3 A, B, C;
+    A = pn_v3_load(p);
+    B = pn_v3_load(p + 3);
+    C = pn_v3_load(p + 6);
+    if (s == 1) return pn_ray_plane(R->O, A, B, C, L, R->a, R->b);
+    PN_RAY_FALLBACK_HOOK();
+    return pn_tri_sample(R->O, A, B, C, L, R->i, R->j);
+}
+
+/* 1 if triangle p blocks the ray's sample, with the bound eb of a box holding it
+ * (pn_ray_bound, or R->ebr). */
+PN_KFN uint32_t pn_ray_tri(const pn_ray *R, const pn_klight *L, PN_CONST float *p, float eb)
+{
+    float e[3];
+    int32_t s;
+    pn_ray_edges(R, p, e);
+    s = pn_ray_signs(e, eb);
+    return s != 0 && pn_ray_decide(R, L, p, s);
+}
+
+/* 1 if some triangle other than `own` blocks the ray's sample. */
+PN_KFN uint32_t pn_raytrace_sample(const pn_ray *R, uint32_t own, PN_CONST float *tris, PN_CONST pn_kbvh_node *nodes,
+                                   PN_CONST uint32_t *tri_index, const pn_klight *L, pn_shadow_counters *cnt)
+{
+    uint32_t stack[PN_BVH_STACK], sp = 0u, node = 0u, tests = 0u;
+    float tn, tl, tr;
+    if (!pn_ray_box(R, nodes, &tn)) return 0u;
+    for (;;) {
+        PN_CONST pn_kbvh_node *nd = nodes + node;
+        uint32_t first = nd->first, count = nd->count;
+        if (count == 0u && first != 0u) { /* interior (an empty root has first 0) */
+            int hl = pn_ray_box(R, nodes + first, &tl), hr = pn_ray_box(R, nodes + first + 1u, &tr);
+            if (hl && hr) {
+                uint32_t nearer = tl <= tr ? first : first + 1u;
+                if (sp < PN_BVH_STACK)
+                    stack[sp++] = 2u * first + 1u - nearer;
+                else
+                    cnt->overflow++;
+                node = nearer;
+                continue;
+            }
+            if (hl || hr) {
+                node = hl ? first : first + 1u;
+                continue;
+            }
+        } else if (count != 0u) {
+            /* The scene box's bound first; the leaf's, finer, computed once where needed. */
+            float eb = -1.0f, e[3];
+            uint32_t q;
+            for (q = 0; q < count; q++) {
+                uint32_t t = tri_index[first + q];
+                PN_CONST float *p = tris + (size_t)t * 9u;
+                int32_t s;
+                if (t == own) continue;
+                tests++;
+                pn_ray_edges(R, p, e);
+                s = pn_ray_signs(e, R->ebr);
+                if (s == 2) {
+                    if (eb < 0.0f) {
+                        float lo[3], hi[3];
+                        pn_ray_node_box(nd, lo, hi);
+                        eb = pn_ray_bound(R, lo, hi);
+                    }
+                    s = pn_ray_signs(e, eb);
+                }
+                if (s != 0 && pn_ray_decide(R, L, p, s)) {
+                    cnt->candidates += tests;
+                    cnt->blocking++;
+                    return 1u;
+                }
             }
         }
+        if (sp == 0u) break;
+        node = stack[--sp];
     }
+    cnt->candidates += tests;
     return 0u;
 }
 
@@ -68,14 +382,30 @@ PN_KFN float pn_raytrace_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float 
     uint32_t k = L->k, blocked = 0;
     int32_t i, j;
     pn_horizon H;
-    pn_v3 O;
+    pn_ray_origin X;
+    pn_ray R;
+    pn_v3 O, U = pn_light_U(L);
+    float av[32]; /* the sample coordinates, k <= 32 */
     if (!pn_shadow_origin(P, nrm, L, &O)) return 0.0f;
     cnt->lit++;
     pn_horizon_of(P, nrm, own, tris, L, &H);
-    for (j = 0; j < (int32_t)k; j++)
-        for (i = 0; i < (int32_t)k; i++)
-            blocked += pn_horizon_at(&H, L, pn_sample_coord(i, k), pn_sample_coord(j, k)) ||
-                       pn_raytrace_sample(O, own, i, j, tris, nodes, tri_index, L, cnt);
+    {
+        float lo[3], hi[3];
+        pn_ray_node_box(nodes, lo, hi);
+        pn_ray_origin_make(O, L, lo, hi, &X);
+    }
+    for (i = 0; i < (int32_t)k; i++) av[i] = pn_sample_coord(i, k);
+    for (j = 0; j < (int32_t)k; j++) {
+        pn_v3 row = pn_ray_row(&X, L, av[j]);
+        for (i = 0; i < (int32_t)k; i++) {
+            if (pn_horizon_at(&H, L, av[i], av[j])) {
+                blocked++;
+                continue;
+            }
+            pn_ray_set(&X, pn_v3_add(row, pn_v3_scale(U, av[i])), av[i], av[j], i, j, &R);
+            blocked += pn_raytrace_sample(&R, own, tris, nodes, tri_index, L, cnt);
+        }
+    }
     /* The same quotient as pn_mask_visibility(). */
     return (float)(k * k - blocked) / (float)(k * k);
 }

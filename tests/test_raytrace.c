@@ -6,7 +6,14 @@
  *    point light. This pins the mask's row narrowing and band classification to the
  *    per-sample definition: any shortcut that changes one bit fails here (both are exact,
  *    tests/test_exact.c compares them with an exact arbiter).
- * 2. Frames: the raytraced visibility buffer is byte-identical to the reference's on the
+ * 2. The per-ray filter (kernels/pn_raytrace.h): on hostile triangles (random, edge-on,
+ *    slivers, segments exactly through a vertex or along an edge, pairs sharing an edge the
+ *    segment crosses, dyadic coordinates with exact degeneracies, O a few ulps off the
+ *    plane, tiny and huge scales, far from the origin) and lights of any orientation,
+ *    pn_ray_tri() equals pn_tri_sample() for every sample, with its bound taken from the
+ *    triangle's own box and from a larger one (a BVH leaf's); the slab test never rejects
+ *    the box of a triangle that blocks; the fallbacks to pn_tri_sample are counted.
+ * 3. Frames: the raytraced visibility buffer is byte-identical to the reference's on the
  *    built-in scenes and spot.glb, area and point light. */
 #include <math.h>
 #include <stdlib.h>
@@ -16,7 +23,10 @@
 /* Counts the values the filter leaves to the exact arithmetic (coverage of that path). */
 static unsigned long exact_calls[4];
 #define PN_EXACT_HOOK(kind) (exact_calls[kind]++)
-#include "pn_predicate.h"
+/* ...and the triangles the ray filter leaves to pn_tri_sample. */
+static unsigned long ray_fallbacks;
+#define PN_RAY_FALLBACK_HOOK() (ray_fallbacks++)
+#include "pn_raytrace.h"
 #include "pn_scenes.h"
 #include "pn_setup.h"
 #include "pn_test.h"
@@ -109,6 +119,215 @@ static void test_mask_equals_samples(void)
     CHECK(mismatches == 0u);
 }
 
+/* ---- 2. the per-ray filter ------------------------------------------------------------ */
+
+static pn_v3 rnd3(void) { return pn_v3_make(rnds(), rnds(), rnds()); }
+
+/* A light of any orientation and aspect around c (k = 1: a point light). */
+static pn_klight any_light(pn_v3 c, float size, uint32_t k)
+{
+    pn_klight L;
+    memset(&L, 0, sizeof(L));
+    L.c[0] = c.x;
+    L.c[1] = c.y;
+    L.c[2] = c.z;
+    if (k > 1u) {
+        pn_v3 a = pn_v3_normalize(rnd3()), r = rnd3(), N, U, V;
+        if (!(pn_v3_dot(a, a) > 0.5f)) a = pn_v3_make(1, 0, 0);
+        N = pn_v3_normalize(pn_v3_cross(a, r));
+        if (!(pn_v3_dot(N, N) > 0.5f)) N = pn_v3_normalize(pn_v3_cross(a, pn_v3_make(a.y, a.z, a.x + 1.0f)));
+        U = pn_v3_scale(a, size * (0.1f + rndf()));
+        V = pn_v3_scale(pn_v3_normalize(pn_v3_cross(N, a)), size * (0.02f + rndf()));
+        N = pn_v3_normalize(pn_v3_cross(U, V));
+        L.U[0] = U.x; L.U[1] = U.y; L.U[2] = U.z;
+        L.V[0] = V.x; L.V[1] = V.y; L.V[2] = V.z;
+        L.N[0] = N.x; L.N[1] = N.y; L.N[2] = N.z;
+    } else {
+        L.is_point = 1u;
+    }
+    L.k = k;
+    L.cull_tol = 1e-5f * size;
+    return L;
+}
+
+/* The float sample point as a caller would aim at it. */
+static pn_v3 sample_point(const pn_klight *L, uint32_t i, uint32_t j)
+{
+    return pn_v3_add(pn_v3_add(pn_light_c(L), pn_v3_scale(pn_light_U(L), pn_sample_coord((int32_t)i, L->k))),
+                     pn_v3_scale(pn_light_V(L), pn_sample_coord((int32_t)j, L->k)));
+}
+
+static void tri_box(const float *T, float grow, float *lo, float *hi)
+{
+    int q;
+    for (q = 0; q < 3; q++) {
+        float a = pn_kminf(T[q], pn_kminf(T[3 + q], T[6 + q])), b = pn_kmaxf(T[q], pn_kmaxf(T[3 + q], T[6 + q]));
+        lo[q] = a - grow * (b - a + 1e-3f * (a < 0.0f ? -a : a));
+        hi[q] = b + grow * (b - a + 1e-3f * (b < 0.0f ? -b : b));
+        if (lo[q] > a) lo[q] = a; /* grow * huge could round the wrong way: keep the box around T */
+        if (hi[q] < b) hi[q] = b;
+    }
+}
+
+typedef struct ray_stats {
+    unsigned long tests, blocked, disagree, cull_misses;
+} ray_stats;
+
+/* Every sample of triangle T seen from O: pn_ray_tri (bounds from T's box, from a box
+ * `grow` times larger as a leaf's, and the scene bound from that box as the scene's)
+ * against pn_tri_sample; the slab test against T's box. */
+static void ray_check(pn_v3 O, const float *T, const pn_klight *L, float grow, ray_stats *st)
+{
+    pn_ray_origin X;
+    pn_v3 A = pn_v3_make(T[0], T[1], T[2]), B = pn_v3_make(T[3], T[4], T[5]), C = pn_v3_make(T[6], T[7], T[8]);
+    pn_kbvh_node nd;
+    float lo[3], hi[3], blo[3], bhi[3];
+    uint32_t i, j;
+    tri_box(T, 0.0f, lo, hi);
+    tri_box(T, grow, blo, bhi);
+    memset(&nd, 0, sizeof(nd));
+    memcpy(nd.bmin, lo, sizeof(lo));
+    memcpy(nd.bmax, hi, sizeof(hi));
+    pn_ray_origin_make(O, L, blo, bhi, &X);
+    for (j = 0; j < L->k; j++)
+        for (i = 0; i < L->k; i++) {
+            pn_ray R;
+            float tn;
+            uint32_t want = pn_tri_sample(O, A, B, C, L, (int32_t)i, (int32_t)j), got0, got1, got2;
+            pn_ray_make(&X, L, (int32_t)i, (int32_t)j, &R);
+            got0 = pn_ray_tri(&R, L, T, pn_ray_bound(&R, lo, hi));
+            got1 = pn_ray_tri(&R, L, T, pn_ray_bound(&R, blo, bhi));
+            got2 = pn_ray_tri(&R, L, T, R.ebr);
+            st->tests += 3u;
+            st->blocked += want;
+            if (got0 != want || got1 != want || got2 != want) {
+                if (st->disagree < 5u)
+                    fprintf(stderr, "ray filter: O (%a %a %a) T (%a %a %a, %a %a %a, %a %a %a) k %u sample %u,%u: "
+                                    "pn_tri_sample %u, pn_ray_tri %u (own box) %u (grown) %u (scene)\n",
+                            O.x, O.y, O.z, T[0], T[1], T[2], T[3], T[4], T[5], T[6], T[7], T[8], L->k, i, j, want, got0,
+                            got1, got2);
+                st->disagree++;
+            }
+            if (want && !pn_ray_box(&R, &nd, &tn)) st->cull_misses++;
+        }
+}
+
+static void nudge_vertex(float *P, int ulps)
+{
+    int q;
+    for (q = 0; q < 3; q++) {
+        int n = ulps;
+        while (n > 0) { P[q] = nextafterf(P[q], INFINITY); n--; }
+        while (n < 0) { P[q] = nextafterf(P[q], -INFINITY); n++; }
+    }
+}
+
+static void put(float *T, int v, pn_v3 P)
+{
+    T[3 * v] = P.x;
+    T[3 * v + 1] = P.y;
+    T[3 * v + 2] = P.z;
+}
+static pn_v3 vtx(const float *T, int v) { return pn_v3_make(T[3 * v], T[3 * v + 1], T[3 * v + 2]); }
+/* A + s (B - A) + t (C - A): a point of T's plane (exactly, on dyadic coordinates). */
+static pn_v3 in_plane(const float *T, float s, float t)
+{
+    pn_v3 A = vtx(T, 0);
+    return pn_v3_add(A, pn_v3_add(pn_v3_scale(pn_v3_sub(vtx(T, 1), A), s), pn_v3_scale(pn_v3_sub(vtx(T, 2), A), t)));
+}
+
+static void test_ray_filter(void)
+{
+    static const uint32_t ks[5] = {1, 4, 8, 16, 32};
+    static const float scales[6] = {1.0f, 1.0f, 1e-6f, 1e5f, 9.094947e-13f /* 2^-40 */, 1.0f};
+    ray_stats st = {0, 0, 0, 0};
+    unsigned long fb0 = ray_fallbacks, pairs_blocked = 0;
+    uint32_t trial;
+    for (trial = 0; trial < 12000u; trial++) {
+        uint32_t k = ks[trial % 5u], style = trial / 5u % 9u, si, sj, q;
+        float scale = scales[trial / 45u % 6u];
+        /* Far from the origin for one scale in six: the rounding of every difference grows. */
+        pn_v3 off = (trial / 45u % 6u) == 5u ? pn_v3_scale(rnd3(), 3e4f) : pn_v3_make(0, 0, 0);
+        pn_klight L = any_light(pn_v3_add(off, pn_v3_scale(rnd3(), scale)), scale * (0.05f + rndf()), k);
+        pn_v3 N = L.is_point ? pn_v3_normalize(rnd3()) : pn_v3_make(L.N[0], L.N[1], L.N[2]);
+        pn_v3 O = pn_v3_add(pn_light_c(&L),
+                            pn_v3_scale(pn_v3_add(N, pn_v3_scale(rnd3(), 0.7f)), scale * (0.2f + 2.0f * rndf())));
+        float size = scale * powf(10.0f, -4.0f + 4.5f * rndf()), T[9], T2[9], h = 0.05f + 0.9f * rndf();
+        pn_v3 S, X, d;
+        si = (uint32_t)(rndf() * (float)k) % k;
+        sj = (uint32_t)(rndf() * (float)k) % k;
+        S = sample_point(&L, si, sj);
+        X = pn_v3_add(O, pn_v3_scale(pn_v3_sub(S, O), h)); /* on (or a rounding off) segment (O, S_ij) */
+        for (q = 0; q < 3; q++) put(T, (int)q, pn_v3_add(X, pn_v3_scale(rnd3(), size)));
+        d = pn_v3_scale(rnd3(), size);
+        switch (style) {
+        case 0: /* random around the segment, up to 30 times larger */
+            put(T, 2, pn_v3_add(X, pn_v3_scale(rnd3(), size * 30.0f)));
+            break;
+        case 1: /* edge-on: C near the plane through O, A, B */
+            d = pn_v3_add(pn_v3_scale(pn_v3_sub(vtx(T, 0), O), rnds() * 0.5f), pn_v3_scale(rnd3(), size * 1e-5f));
+            put(T, 2, pn_v3_add(vtx(T, 0), d));
+            break;
+        case 2: /* sliver: C near edge AB */
+            put(T, 2, pn_v3_add(pn_v3_add(vtx(T, 0), pn_v3_scale(pn_v3_sub(vtx(T, 1), vtx(T, 0)), rndf())),
+                                pn_v3_scale(rnd3(), size * 1e-4f)));
+            break;
+        case 3: /* the segment through vertex A */
+            put(T, 0, X);
+            break;
+        case 4: /* the segment through edge AB (X on it, up to rounding), and a second
+                 * triangle ABD on the other side of the edge: a shared edge */
+            put(T, 0, pn_v3_add(X, d));
+            put(T, 1, pn_v3_sub(X, d));
+            break;
+        case 5: /* dyadic coordinates: exact degeneracies (O in the plane, samples on edges) */
+            for (q = 0; q < 3; q++)
+                put(T, (int)q, pn_v3_add(off, pn_v3_scale(pn_v3_make((float)((int)(rndf() * 17.0f) - 8),
+                                                                     (float)((int)(rndf() * 17.0f) - 8),
+                                                                     (float)((int)(rndf() * 17.0f) - 8)),
+                                                          0.125f * scale)));
+            if (rndf() < 0.5f) O = in_plane(T, 0.5f, -0.25f);
+            break;
+        case 6: /* O a few ulps off the triangle's plane */
+            O = in_plane(T, 0.3f, 0.4f);
+            O.x = nextafterf(O.x, rndf() < 0.5f ? INFINITY : -INFINITY);
+            break;
+        case 7: /* a vertex a few ulps from the segment through it */
+            put(T, 0, X);
+            nudge_vertex(T, (int)(rndf() * 7.0f) - 3);
+            break;
+        default: /* huge triangle around the segment, vertices far away */
+            put(T, 2, pn_v3_add(X, pn_v3_scale(rnd3(), size * 1e4f)));
+            put(T, 1, pn_v3_add(X, pn_v3_scale(rnd3(), size * 1e3f)));
+            break;
+        }
+        ray_check(O, T, &L, (float)(trial % 4u) * 0.75f, &st);
+        if (style == 4) {
+            /* BAD, D mirroring C through the edge's midpoint X: the two flank the edge. */
+            put(T2, 0, vtx(T, 1));
+            put(T2, 1, vtx(T, 0));
+            put(T2, 2, pn_v3_sub(pn_v3_scale(X, 2.0f), vtx(T, 2)));
+            {
+                unsigned long b0 = st.blocked;
+                ray_check(O, T2, &L, 1.5f, &st);
+                pairs_blocked += st.blocked - b0;
+            }
+        }
+    }
+    fprintf(stderr,
+            "ray filter vs pn_tri_sample: %lu tests, %lu blocked (%lu by shared-edge partners), %lu to pn_tri_sample "
+            "(%.3g%%), %lu disagreements, %lu blocked samples culled\n",
+            st.tests, st.blocked, pairs_blocked, ray_fallbacks - fb0,
+            100.0 * (double)(ray_fallbacks - fb0) / (double)(st.tests ? st.tests : 1u), st.disagree, st.cull_misses);
+    CHECK(st.blocked > 100000u);
+    CHECK(pairs_blocked > 1000u);
+    CHECK(ray_fallbacks - fb0 > 1000u); /* coverage: the hostile cases must reach the fallback */
+    CHECK(st.disagree == 0u);
+    CHECK(st.cull_misses == 0u);
+}
+
+/* ---- 3. frames ------------------------------------------------------------------------ */
+
 static void frames_equal(const char *src, int builtin, uint32_t w, uint32_t hh, const uint32_t *ks, int nk)
 {
     pn_setup s;
@@ -156,6 +375,7 @@ static void test_frames(void)
 int main(void)
 {
     RUN(test_mask_equals_samples);
+    RUN(test_ray_filter);
     RUN(test_frames);
     return pn_test_summary();
 }

@@ -135,46 +135,6 @@ typedef struct pn_shadow_counters {
     uint32_t nodes;      /* BVH nodes whose boxes were tested */
 } pn_shadow_counters;
 
-/* A stack traversal of the BVH, stepped from leaf to leaf: the leaves whose boxes the
- * frustum can reach, in a fixed order. Start with pn_bvh_walk_init(); pn_bvh_next_leaf()
- * returns the next such leaf's node index, or PN_BVH_DONE. */
-#define PN_BVH_DONE 0xFFFFFFFFu
-
-typedef struct pn_bvh_walk {
-    uint32_t stack[PN_BVH_STACK];
-    uint32_t sp, node;
-} pn_bvh_walk;
-
-PN_KFN void pn_bvh_walk_init(pn_bvh_walk *w)
-{
-    w->sp = 0u;
-    w->node = 0u;
-}
-
-PN_KFN uint32_t pn_bvh_next_leaf(pn_bvh_walk *w, const pn_frustum *fr, PN_CONST pn_kbvh_node *nodes,
-                                 pn_shadow_counters *cnt)
-{
-    while (w->node != PN_BVH_DONE) {
-        uint32_t cur = w->node;
-        PN_CONST pn_kbvh_node *nd = nodes + cur;
-        if (pn_frustum_box(fr, nd)) {
-            if (nd->count == 0u && nd->first != 0u) { /* interior (an empty root has first 0) */
-                if (w->sp < PN_BVH_STACK) {
-                    w->stack[w->sp++] = nd->first + 1u;
-                } else {
-                    cnt->overflow++;
-                }
-                w->node = nd->first;
-                continue;
-            }
-            w->node = w->sp == 0u ? PN_BVH_DONE : w->stack[--w->sp];
-            return cur;
-        }
-        w->node = w->sp == 0u ? PN_BVH_DONE : w->stack[--w->sp];
-    }
-    return PN_BVH_DONE;
-}
-
 /* Visibility of one G-buffer pixel (P, unit geometric normal nrm, own triangle id).
  *
  * The walk keeps the mask m of samples found blocked so far and visits a node only while

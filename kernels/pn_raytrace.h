@@ -49,8 +49,10 @@
  * the BVH build's leaf boxes are the min/max of their triangles' vertices), once per
  * leaf. Then: some e >= eb and some e <= -eb: two exact values of opposite strict signs,
  * not blocked (the common answer). All e >= eb or all e <= -eb: the edges pass, and the
- * plane decides, the very test pn_tri_sample makes (pn_tri_plane, the sample's float
- * plane value against its bound, the exact sign within it). Otherwise some edge value
+ * plane decides: Woop's t = T / P in (0, 1) in the same frame with its own bound
+ * (pn_ray_hit), and where that cannot tell, the very test pn_tri_sample makes
+ * (pn_tri_plane, the sample's float plane value against its bound, the exact sign
+ * within it). Otherwise some edge value
  * lies within its bound (rays through or near a vertex or edge, shared edges, slivers
  * seen edge-on, huge or far triangles): pn_tri_sample() decides, so every answer is the
  * exact one (tests/test_raytrace.c counts these fallbacks on hostile triangles and checks
@@ -71,10 +73,11 @@
 
 #include "pn_reference.h"
 
-/* Counting hook for tests: called once per triangle the filter leaves to pn_tri_sample().
- * The library compiles it away. */
+/* Counting hook for tests: called once per triangle the filter leaves to pn_tri_sample()
+ * (kind 0: an edge value within its bound) or to the plane test of pn_tri_sample (kind 1:
+ * the edges passed, the sheared plane test cannot tell). The library compiles it away. */
 #ifndef PN_RAY_FALLBACK_HOOK
-#define PN_RAY_FALLBACK_HOOK() ((void)0)
+#define PN_RAY_FALLBACK_HOOK(kind) ((void)0)
 #endif
 
 /* Direction components smaller than this in magnitude get reciprocal +-1/PN_RAY_DIR_MIN. */
@@ -98,6 +101,7 @@ typedef struct pn_ray {
     uint32_t kx, ky, kz; /* the shear frame */
     float ox, oy, oz;    /* O in it */
     float sx, sy;        /* the shear */
+    float dz, dlz;       /* D_kz and dl_kz */
     float ez;            /* eps = PN_RAY_EX max(M_x, M_y) + ez M_z */
     float ebr;           /* eb of the scene box (for any triangle), PN_KINF when not filtered */
     uint32_t filt;       /* 0: every triangle goes to pn_tri_sample */
@@ -180,6 +184,8 @@ PN_KFN void pn_ray_set(const pn_ray_origin *X, pn_v3 D, float a, float b, int32_
     iz = R->inv[kz];
     R->sx = d[kx] * iz;
     R->sy = d[ky] * iz;
+    R->dz = d[kz];
+    R->dlz = X->dl[kz];
     iz = pn_ray_abs(iz);
     w = X->dl[kz] * iz;
     R->filt = adz >= PN_RAY_DIR_MIN && w <= 0.25f;
@@ -289,17 +295,56 @@ PN_KFN uint32_t pn_ray_plane(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klight
     return (uint32_t)(sp > 0);
 }
 
-/* The answer for triangle p from the filter's verdict s != 0 (pn_ray_signs): exactly
- * pn_tri_sample()'s. Rare (a blocked ray's blocker, or a value within its bound): out of
- * the traversal loop. */
-PN_KFN_COLD uint32_t pn_ray_decide(const pn_ray *R, const pn_klight *L, PN_CONST float *p, int32_t s)
+/* The plane test in the shear frame (Woop et al.'s t), once the edge functions e of
+ * triangle p have one strict sign with bound eb: 1 blocked, 0 not, 2 cannot tell.
+ * With the exact e*, the identity U a + V b + W c = det(a, b, c) R for R = (sx*, sy*, 1)
+ * gives T* = e*0 p_z + e*1 q_z + e*2 r_z = det(p, q, r) = -(O - A).n, and
+ * (S - A).n = P* - T* with P* = D*_z (e*0 + e*1 + e*2) = D*.n; so the predicate's plane
+ * test (pn_tri_plane, then the sample's side) is T* != 0, sign T* = sign P* and
+ * |T*| < |P*|. sign P* is exact: that of D_z (|D_z - D*_z| <= dl_z < |D_z|) times the
+ * edges' common sign. Bounds (S1 = sum |e_q|, zmax = max |P~z| over the vertices):
+ * T = fl(fl(fl(e0 A~z) + fl(e1 B~z)) + fl(e2 C~z)) errs by at most 3.0001 u S1 zmax
+ * (rounding) + u' S1 zmax + 3.0001 eb zmax (the e and P~z errors): errT = zmax (4.25 u S1
+ * + 3.25 eb) + PN_KTINY; P = fl(D_z fl(fl(e0 + e1) + e2)) by at most
+ * |D_z| (3.001 u S1 + 3 eb) + (1.0001 S1 + 3 eb) dl_z: errP = |D_z| (3.25 u S1 + 3.25 eb)
+ * + 1.0625 (S1 + 3 eb) dl_z + PN_KTINY. |P*| - |T*| > 0 is proved when
+ * fl(|P| - |T|) > fl(errT + errP) (the subtraction's rounding is relative, inside the
+ * slack), its opposite likewise. */
+PN_KFN int32_t pn_ray_hit(const pn_ray *R, PN_CONST float *p, const float *e, float eb)
+{
+    float az = p[R->kz] - R->oz, bz = p[3u + R->kz] - R->oz, cz = p[6u + R->kz] - R->oz;
+    float T = e[0] * az + e[1] * bz + e[2] * cz, P = R->dz * (e[0] + e[1] + e[2]);
+    float s1 = pn_ray_abs(e[0]) + pn_ray_abs(e[1]) + pn_ray_abs(e[2]);
+    float zmax = pn_kmaxf(pn_ray_abs(az), pn_kmaxf(pn_ray_abs(bz), pn_ray_abs(cz)));
+    float errT = zmax * (4.25f * PN_KU * s1 + 3.25f * eb) + PN_KTINY;
+    float errP = pn_ray_abs(R->dz) * (3.25f * PN_KU * s1 + 3.25f * eb) + 1.0625f * (s1 + 3.0f * eb) * R->dlz + PN_KTINY;
+    float d = pn_ray_abs(P) - pn_ray_abs(T), r = errT + errP;
+    if (!(pn_ray_abs(T) > errT)) return 2;
+    if ((T > 0.0f) != ((R->dz > 0.0f) == (e[0] > 0.0f))) return 0; /* t < 0: behind O */
+    if (d > r) return 1;
+    if (-d > r) return 0; /* t > 1: beyond the sample */
+    return 2;
+}
+
+/* The answer for triangle p from the filter's verdict s != 0 (pn_ray_signs, edge
+ * functions e, bound eb): exactly pn_tri_sample()'s. Rare (a blocked ray's blocker, or a
+ * value within its bound): out of the traversal loop. */
+PN_KFN_COLD uint32_t pn_ray_decide(const pn_ray *R, const pn_klight *L, PN_CONST float *p, int32_t s, const float *e,
+                                   float eb)
 {
     pn_v3 A, B, C;
+    if (s == 1) {
+        int32_t h = R->filt ? pn_ray_hit(R, p, e, eb) : 2;
+        if (h != 2) return (uint32_t)h;
+    }
     A = pn_v3_load(p);
     B = pn_v3_load(p + 3);
     C = pn_v3_load(p + 6);
-    if (s == 1) return pn_ray_plane(R->O, A, B, C, L, R->a, R->b);
-    PN_RAY_FALLBACK_HOOK();
+    if (s == 1) {
+        PN_RAY_FALLBACK_HOOK(1);
+        return pn_ray_plane(R->O, A, B, C, L, R->a, R->b);
+    }
+    PN_RAY_FALLBACK_HOOK(0);
     return pn_tri_sample(R->O, A, B, C, L, R->i, R->j);
 }
 
@@ -311,7 +356,7 @@ PN_KFN uint32_t pn_ray_tri(const pn_ray *R, const pn_klight *L, PN_CONST float *
     int32_t s;
     pn_ray_edges(R, p, e);
     s = pn_ray_signs(e, eb);
-    return s != 0 && pn_ray_decide(R, L, p, s);
+    return s != 0 && pn_ray_decide(R, L, p, s, e, eb);
 }
 
 /* 1 if some triangle other than `own` blocks the ray's sample. */
@@ -341,7 +386,7 @@ PN_KFN uint32_t pn_raytrace_sample(const pn_ray *R, uint32_t own, PN_CONST float
             }
         } else if (count != 0u) {
             /* The scene box's bound first; the leaf's, finer, computed once where needed. */
-            float eb = -1.0f, e[3];
+            float eb = -1.0f, e[3], eu;
             uint32_t q;
             for (q = 0; q < count; q++) {
                 uint32_t t = tri_index[first + q];
@@ -350,16 +395,18 @@ PN_KFN uint32_t pn_raytrace_sample(const pn_ray *R, uint32_t own, PN_CONST float
                 if (t == own) continue;
                 tests++;
                 pn_ray_edges(R, p, e);
-                s = pn_ray_signs(e, R->ebr);
+                eu = R->ebr;
+                s = pn_ray_signs(e, eu);
                 if (s == 2) {
                     if (eb < 0.0f) {
                         float lo[3], hi[3];
                         pn_ray_node_box(nd, lo, hi);
                         eb = pn_ray_bound(R, lo, hi);
                     }
-                    s = pn_ray_signs(e, eb);
+                    eu = eb;
+                    s = pn_ray_signs(e, eu);
                 }
-                if (s != 0 && pn_ray_decide(R, L, p, s)) {
+                if (s != 0 && pn_ray_decide(R, L, p, s, e, eu)) {
                     cnt->candidates += tests;
                     cnt->blocking++;
                     return 1u;

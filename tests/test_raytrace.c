@@ -8,7 +8,8 @@
  *    tests/test_exact.c compares them with an exact arbiter).
  * 2. The per-ray filter (kernels/pn_raytrace.h): on hostile triangles (random, edge-on,
  *    slivers, segments exactly through a vertex or along an edge, pairs sharing an edge the
- *    segment crosses, dyadic coordinates with exact degeneracies, O a few ulps off the
+ *    segment crosses, triangles a hair from O or from the light plane (both ends of the
+ *    segment), dyadic coordinates with exact degeneracies, O a few ulps off the
  *    plane, tiny and huge scales, far from the origin) and lights of any orientation,
  *    pn_ray_tri() equals pn_tri_sample() for every sample, with its bound taken from the
  *    triangle's own box and from a larger one (a BVH leaf's); the slab test never rejects
@@ -23,9 +24,10 @@
 /* Counts the values the filter leaves to the exact arithmetic (coverage of that path). */
 static unsigned long exact_calls[4];
 #define PN_EXACT_HOOK(kind) (exact_calls[kind]++)
-/* ...and the triangles the ray filter leaves to pn_tri_sample. */
-static unsigned long ray_fallbacks;
-#define PN_RAY_FALLBACK_HOOK() (ray_fallbacks++)
+/* ...and the triangles the ray filter leaves to pn_tri_sample (kind 0) or its plane test
+ * (kind 1). */
+static unsigned long ray_fallbacks, ray_plane_fallbacks;
+#define PN_RAY_FALLBACK_HOOK(kind) ((kind) ? ray_plane_fallbacks++ : ray_fallbacks++)
 #include "pn_raytrace.h"
 #include "pn_scenes.h"
 #include "pn_setup.h"
@@ -241,10 +243,10 @@ static void test_ray_filter(void)
     static const uint32_t ks[5] = {1, 4, 8, 16, 32};
     static const float scales[6] = {1.0f, 1.0f, 1e-6f, 1e5f, 9.094947e-13f /* 2^-40 */, 1.0f};
     ray_stats st = {0, 0, 0, 0};
-    unsigned long fb0 = ray_fallbacks, pairs_blocked = 0;
+    unsigned long fb0 = ray_fallbacks, pf0 = ray_plane_fallbacks, pairs_blocked = 0;
     uint32_t trial;
     for (trial = 0; trial < 12000u; trial++) {
-        uint32_t k = ks[trial % 5u], style = trial / 5u % 9u, si, sj, q;
+        uint32_t k = ks[trial % 5u], style = trial / 5u % 10u, si, sj, q;
         float scale = scales[trial / 45u % 6u];
         /* Far from the origin for one scale in six: the rounding of every difference grows. */
         pn_v3 off = (trial / 45u % 6u) == 5u ? pn_v3_scale(rnd3(), 3e4f) : pn_v3_make(0, 0, 0);
@@ -253,6 +255,8 @@ static void test_ray_filter(void)
         pn_v3 O = pn_v3_add(pn_light_c(&L),
                             pn_v3_scale(pn_v3_add(N, pn_v3_scale(rnd3(), 0.7f)), scale * (0.2f + 2.0f * rndf())));
         float size = scale * powf(10.0f, -4.0f + 4.5f * rndf()), T[9], T2[9], h = 0.05f + 0.9f * rndf();
+        /* Style 9: at either end of the segment, a hair from O or from the light plane. */
+        if (style == 9) h = rndf() < 0.5f ? 1.0f - powf(10.0f, -1.0f - 6.0f * rndf()) : powf(10.0f, -1.0f - 6.0f * rndf());
         pn_v3 S, X, d;
         si = (uint32_t)(rndf() * (float)k) % k;
         sj = (uint32_t)(rndf() * (float)k) % k;
@@ -296,6 +300,15 @@ static void test_ray_filter(void)
             put(T, 0, X);
             nudge_vertex(T, (int)(rndf() * 7.0f) - 3);
             break;
+        case 9: /* small, at an end of the segment (h above), or A at the sample point, or the
+                 * whole triangle on the light plane (up to rounding) around the sample */
+            d.x = rndf();
+            if (d.x < 0.3f) put(T, 0, S);
+            if (d.x > 0.6f && !L.is_point)
+                for (q = 0; q < 3; q++)
+                    put(T, (int)q, pn_v3_add(pn_v3_add(pn_light_c(&L), pn_v3_scale(pn_light_U(&L), 1.2f * rnds())),
+                                             pn_v3_scale(pn_light_V(&L), 1.2f * rnds())));
+            break;
         default: /* huge triangle around the segment, vertices far away */
             put(T, 2, pn_v3_add(X, pn_v3_scale(rnd3(), size * 1e4f)));
             put(T, 1, pn_v3_add(X, pn_v3_scale(rnd3(), size * 1e3f)));
@@ -316,12 +329,15 @@ static void test_ray_filter(void)
     }
     fprintf(stderr,
             "ray filter vs pn_tri_sample: %lu tests, %lu blocked (%lu by shared-edge partners), %lu to pn_tri_sample "
-            "(%.3g%%), %lu disagreements, %lu blocked samples culled\n",
+            "(%.3g%%), %lu to its plane test (%.3g%% of the blocked), %lu disagreements, %lu blocked samples culled\n",
             st.tests, st.blocked, pairs_blocked, ray_fallbacks - fb0,
-            100.0 * (double)(ray_fallbacks - fb0) / (double)(st.tests ? st.tests : 1u), st.disagree, st.cull_misses);
+            100.0 * (double)(ray_fallbacks - fb0) / (double)(st.tests ? st.tests : 1u), ray_plane_fallbacks - pf0,
+            100.0 * (double)(ray_plane_fallbacks - pf0) / (double)(st.blocked ? st.blocked : 1u), st.disagree,
+            st.cull_misses);
     CHECK(st.blocked > 100000u);
     CHECK(pairs_blocked > 1000u);
-    CHECK(ray_fallbacks - fb0 > 1000u); /* coverage: the hostile cases must reach the fallback */
+    CHECK(ray_fallbacks - fb0 > 1000u); /* coverage: the hostile cases must reach the fallbacks */
+    CHECK(ray_plane_fallbacks - pf0 > 100u);
     CHECK(st.disagree == 0u);
     CHECK(st.cull_misses == 0u);
 }

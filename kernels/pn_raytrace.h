@@ -62,7 +62,11 @@
  * Slab tests with per-ray reciprocals inv = 1 / D (a component below 1e-30 in magnitude,
  * zero included, gets +-1e30: the segment it stands for moves by < 2e-30), both children
  * of a node tested together, the nearer one (entry distance along the ray) visited first,
- * the other pushed. A node is skipped only when the segment misses its box grown by tol.
+ * the other pushed. Per origin, the chain of nodes from the root down whose grown boxes
+ * hold O (pn_ray_chain) is taken as hit by every ray without a test: a ray starts at the
+ * chain's end with the chain's other children tested and pushed (about half of the
+ * interior nodes a ray visits on the scanned models). A node is skipped only when the
+ * segment misses its box grown by tol.
  * Rigorous: a blocked sample's exact segment meets the triangle at O + t D*, t in [0, 1],
  * inside every box on the triangle's path; O + t D lies within dl of it; the computed
  * entry fl(fl(lo - fl(O + tol)) * inv) errs by at most 3.01 u |D_i| in t |D_i| plus the
@@ -90,6 +94,10 @@ typedef struct pn_ray_origin {
     float tol;   /* growth of the boxes the slab test uses */
     float t0, t1; /* the segment's parameter range, 0 and 1 (see pn_ray_origin_make) */
     float mroot; /* max |fl(P - O)| over the scene box (its corners: rounding is monotone) */
+    /* The nodes from the root down whose boxes grown by tol hold O, following the first
+     * child that does: every ray from O enters them, so the walk takes them as hit. */
+    uint32_t chain[PN_BVH_STACK];
+    uint32_t chain_len;
 } pn_ray_origin;
 
 /* One ray: the slab test's and the filter's per-ray constants. */
@@ -223,6 +231,33 @@ PN_KFN void pn_ray_node_box(PN_CONST pn_kbvh_node *nd, float *lo, float *hi)
     hi[0] = nd->bmax[0];
     hi[1] = nd->bmax[1];
     hi[2] = nd->bmax[2];
+}
+
+/* 1 when O lies in node nd's box grown by tol. */
+PN_KFN int pn_ray_holds_origin(const pn_ray_origin *X, PN_CONST pn_kbvh_node *nd)
+{
+    return nd->bmin[0] - X->tol <= X->O.x && X->O.x <= nd->bmax[0] + X->tol && nd->bmin[1] - X->tol <= X->O.y &&
+           X->O.y <= nd->bmax[1] + X->tol && nd->bmin[2] - X->tol <= X->O.z && X->O.z <= nd->bmax[2] + X->tol;
+}
+
+/* X->chain: the walk is the same whatever it takes as hit (taking a box as hit only adds
+ * tests, and each test is exact), so the chain needs no rounding argument. */
+PN_KFN void pn_ray_chain(pn_ray_origin *X, PN_CONST pn_kbvh_node *nodes)
+{
+    uint32_t n = 0u;
+    X->chain_len = 0u;
+    if ((nodes->count == 0u && nodes->first == 0u) || !pn_ray_holds_origin(X, nodes)) return;
+    X->chain[X->chain_len++] = 0u;
+    while (nodes[n].count == 0u && X->chain_len < PN_BVH_STACK) {
+        uint32_t f = nodes[n].first;
+        if (pn_ray_holds_origin(X, nodes + f))
+            n = f;
+        else if (pn_ray_holds_origin(X, nodes + f + 1u))
+            n = f + 1u;
+        else
+            break;
+        X->chain[X->chain_len++] = n;
+    }
 }
 
 /* 1 when the segment may meet node nd's box grown by tol; *tn its entry parameter. */
@@ -360,12 +395,20 @@ PN_KFN uint32_t pn_ray_tri(const pn_ray *R, const pn_klight *L, PN_CONST float *
 }
 
 /* 1 if some triangle other than `own` blocks the ray's sample. */
-PN_KFN uint32_t pn_raytrace_sample(const pn_ray *R, uint32_t own, PN_CONST float *tris, PN_CONST pn_kbvh_node *nodes,
-                                   PN_CONST uint32_t *tri_index, const pn_klight *L, pn_shadow_counters *cnt)
+PN_KFN uint32_t pn_raytrace_sample(const pn_ray_origin *X, const pn_ray *R, uint32_t own, PN_CONST float *tris,
+                                   PN_CONST pn_kbvh_node *nodes, PN_CONST uint32_t *tri_index, const pn_klight *L,
+                                   pn_shadow_counters *cnt)
 {
-    uint32_t stack[PN_BVH_STACK], sp = 0u, node = 0u, tests = 0u;
+    uint32_t stack[PN_BVH_STACK], sp = 0u, node = 0u, tests = 0u, cd;
     float tn, tl, tr;
-    if (!pn_ray_box(R, nodes, &tn)) return 0u;
+    /* The chain first: its nodes are entered at t = 0, the nearest of their children;
+     * their other children are tested and pushed. The walk starts at the chain's end. */
+    if (X->chain_len == 0u && !pn_ray_box(R, nodes, &tn)) return 0u;
+    for (cd = 1u; cd < X->chain_len; cd++) {
+        uint32_t c = X->chain[cd], o = 2u * nodes[X->chain[cd - 1u]].first + 1u - c;
+        if (pn_ray_box(R, nodes + o, &tl)) stack[sp++] = o; /* at most one a level: no overflow */
+    }
+    if (X->chain_len != 0u) node = X->chain[X->chain_len - 1u];
     for (;;) {
         PN_CONST pn_kbvh_node *nd = nodes + node;
         uint32_t first = nd->first, count = nd->count;
@@ -441,6 +484,7 @@ PN_KFN float pn_raytrace_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float 
         pn_ray_node_box(nodes, lo, hi);
         pn_ray_origin_make(O, L, lo, hi, &X);
     }
+    pn_ray_chain(&X, nodes);
     for (i = 0; i < (int32_t)k; i++) av[i] = pn_sample_coord(i, k);
     for (j = 0; j < (int32_t)k; j++) {
         pn_v3 row = pn_ray_row(&X, L, av[j]);
@@ -450,7 +494,7 @@ PN_KFN float pn_raytrace_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float 
                 continue;
             }
             pn_ray_set(&X, pn_v3_add(row, pn_v3_scale(U, av[i])), av[i], av[j], i, j, &R);
-            blocked += pn_raytrace_sample(&R, own, tris, nodes, tri_index, L, cnt);
+            blocked += pn_raytrace_sample(&X, &R, own, tris, nodes, tri_index, L, cnt);
         }
     }
     /* The same quotient as pn_mask_visibility(). */

@@ -94,6 +94,7 @@ struct pn_context {
     } gears;
     struct {
         uint32_t map, pip, thin, tiles_masked;
+        uint64_t ns_map, ns_classify, ns_exact;
     } srt;
     char message[256];
 };

@@ -127,6 +127,7 @@ pn_status pn_srt_frame(pn_frame_state *fs)
     pn_srt_pools s;
     uint32_t res = fs->srt_map, tiles = (res + PN_SRT_TILE - 1u) / PN_SRT_TILE, T = ctx->tri_count;
     uint32_t npix = fs->width * fs->height, npip;
+    uint64_t t0 = pn_dev_timestamp(fs), t1, t2;
     pn_status st;
 
     if ((st = pn_srt_begin(fs, &s, res, tiles)) != PN_OK) return st;
@@ -163,13 +164,18 @@ pn_status pn_srt_frame(pn_frame_state *fs)
     }
 
     /* Classification, the dense PIP list, and the exact masks. */
+    t1 = pn_dev_timestamp(fs);
     if ((st = pn_dev_run(fs, PN_K_SRT_CLASSIFY, npix)) != PN_OK || (st = pn_dev_scan(fs, s.pip_off, npix)) != PN_OK ||
         (st = pn_dev_to_host(fs, s.pip_off + npix, 4u)) != PN_OK)
         return st;
     npip = s.pip_off[npix];
-    if ((st = pn_dev_run(fs, PN_K_SRT_PIP_LIST, npix)) != PN_OK || (st = pn_dev_run(fs, PN_K_SRT_EXACT, npip)) != PN_OK ||
-        (st = pn_dev_to_host(fs, s.words, 16u)) != PN_OK)
+    if ((st = pn_dev_run(fs, PN_K_SRT_PIP_LIST, npix)) != PN_OK) return st;
+    t2 = pn_dev_timestamp(fs);
+    if ((st = pn_dev_run(fs, PN_K_SRT_EXACT, npip)) != PN_OK || (st = pn_dev_to_host(fs, s.words, 16u)) != PN_OK)
         return st;
+    ctx->srt.ns_map = t1 - t0;
+    ctx->srt.ns_classify = t2 - t1;
+    ctx->srt.ns_exact = pn_dev_timestamp(fs) - t2;
     ctx->srt.map = res;
     ctx->srt.pip = npip;
     ctx->srt.thin = s.words[PN_SRT_WORD_THIN];

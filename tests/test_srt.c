@@ -13,7 +13,7 @@
  *    The same with conservative rasterization off is printed, not asserted.
  * 3. Options and pools: srt_map outside 8 .. the limit and unknown flags are
  *    PN_E_INVALID_ARG; a context whose srt_map_max is 64 renders, with its map size in the
- *    stats. */
+ *    stats, and with a clock its stage timings lie inside the shadow pass. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -135,6 +135,13 @@ static void test_scenes(void)
     one_scene(PN_SCENES_DIR "/spot.glb", 0);
 }
 
+static uint64_t g_ticks;
+static uint64_t tick_clock(void *user)
+{
+    (void)user;
+    return ++g_ticks;
+}
+
 static void test_options(void)
 {
     pn_setup s;
@@ -186,6 +193,17 @@ static void test_options(void)
     opt.srt_map = 0;
     CHECK_MSG(pn_render(ctx, &s.camera, &s.light, &opt, &fr) == PN_OK, "%s", pn_last_error(ctx));
     CHECK(pn_get_stats(ctx, &st) == PN_OK && st.srt_map == 64u);
+    /* Stage timings: with a clock that ticks once a call, every stage has taken at least
+     * one tick and together they lie inside the shadow pass. */
+    CHECK(st.srt_ns_map == 0u && st.srt_ns_classify == 0u && st.srt_ns_exact == 0u);
+    REQUIRE(pn_set_clock(ctx, tick_clock, NULL) == PN_OK);
+    CHECK_MSG(pn_render(ctx, &s.camera, &s.light, &opt, &fr) == PN_OK, "%s", pn_last_error(ctx));
+    CHECK(pn_get_stats(ctx, &st) == PN_OK);
+    CHECK(st.srt_ns_map >= 1u && st.srt_ns_classify >= 1u && st.srt_ns_exact >= 1u);
+    CHECK_MSG(st.srt_ns_map + st.srt_ns_classify + st.srt_ns_exact <= st.pass_ns[PN_PASS_SHADOW],
+              "stages %llu + %llu + %llu, shadow pass %llu", (unsigned long long)st.srt_ns_map,
+              (unsigned long long)st.srt_ns_classify, (unsigned long long)st.srt_ns_exact,
+              (unsigned long long)st.pass_ns[PN_PASS_SHADOW]);
     free(mem);
     pn_setup_free(&s);
 }

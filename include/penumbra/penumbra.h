@@ -310,6 +310,10 @@ typedef struct pn_stats {
     uint32_t srt_pip;            /* pixels in the PIP set (exact masks computed) */
     uint32_t srt_thin;           /* thin triangles conservatively rasterized into the map */
     uint32_t srt_tiles_masked;   /* penumbra-mask tiles (8x8 texels) set (area light) */
+    /* ...and its stages' share of pass_ns[PN_PASS_SHADOW] (0 without a clock): the map
+     * (window, rasterization, conservative marks, penumbra tiles), the classification
+     * with the PIP list, and the exact masks of the PIP pixels */
+    uint64_t srt_ns_map, srt_ns_classify, srt_ns_exact;
 } pn_stats;
 
 pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);

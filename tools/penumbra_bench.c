@@ -137,6 +137,7 @@ typedef struct bench_opts {
     int reps, reps_slow;  /* repetitions; reps_slow when one repetition takes > slow_s */
     double slow_s;
     uint32_t size, k, grid;
+    uint32_t srt_big; /* the SRT section's second image size (0: no SRT section) */
     uint32_t sweep_res[8], n_res, sweep_k[8], n_k, sweep_grid[8], n_grid;
     float sweep_light[8];
     uint32_t n_light;
@@ -240,6 +241,12 @@ typedef struct scene_state {
     /* from the main point, for the sweeps and the headline plot */
     pn_embree_api best_api;
     double gears_vs_ref, gears_vs_emb, gears_vs_rt;
+    /* from the main point (area light, first port), for the SRT section: every
+     * algorithm's shadow pass median and RMSE, Embree's best, the reference's visibility */
+    double pt_ms[NALGO], pt_rmse[NALGO], emb_ms, emb_rmse;
+    const char *emb_api;
+    float *ref_vis;
+    float cull_tol;
 } scene_state;
 
 static void job_lib(job *j, int algo, const pn_frame_options *opt, int keep)
@@ -432,6 +439,10 @@ enum {
     SEC_MEMORY,
     SEC_ACCURACY,
     SEC_MASKS,
+    SEC_SRT_ACC,
+    SEC_SRT_SPEED,
+    SEC_SRT_BOUND,
+    SEC_SRT_CHART,
     SEC_GALLERY,
     SEC_COUNT
 };
@@ -530,6 +541,7 @@ static void scene_close(scene_state *ss)
     if (ss->port && ss->port->detach) ss->port->detach(ss->port_state);
     pn_embree_close(ss->emb);
     pn_gbuf_free(&ss->g);
+    free(ss->ref_vis);
     pn_host_close(&ss->h);
     pn_setup_free(&ss->s);
 }
@@ -839,6 +851,18 @@ static void main_point(const bench_opts *o, report *r, scene_state *ss, int firs
             sec(r, SEC_ACCURACY, "| %s | Embree | n/a | n/a | n/a | %s |\n", ss->s.name,
                 ss->emb ? emb[0].err : ss->emb_err);
         }
+        /* For the SRT section and the time-vs-error chart. */
+        for (a = 0; a < NALGO; a++) {
+            accuracy acc = compare_vis(lib[a].vis, lib[A_REF].vis, n);
+            ss->pt_ms[a] = job_pass(&lib[a]);
+            ss->pt_rmse[a] = acc.ok ? acc.rmse : NAN;
+        }
+        ss->emb_ms = emb_best;
+        ss->emb_api = emb_api;
+        ss->emb_rmse = emb[ss->best_api].vis ? compare_vis(emb[ss->best_api].vis, lib[A_REF].vis, n).rmse : NAN;
+        ss->cull_tol = lib[A_REF].st.cull_tol;
+        if (lib[A_REF].vis && (ss->ref_vis = (float *)malloc(n * sizeof(float))) != NULL)
+            memcpy(ss->ref_vis, lib[A_REF].vis, n * sizeof(float));
         if (glb) gallery(o, r, ss, lib, NALGO, &emb[0], opt.width, opt.height);
         job_free(&exact);
     }
@@ -999,6 +1023,247 @@ static void sweep(const bench_opts *o, report *r, scene_state *ss, int kind, pn_
 
 /* ---- The report ----------------------------------------------------------------------- */
 
+/* ---- Selective ray tracing (issue 15): accuracy, speed, what it can save ------------------ */
+
+/* The configurations measured: the default (what --algo srt renders) and the main
+ * alternatives. Corner maps (the paper's union over the light's corners) are not
+ * implemented. */
+#define SRT_CFGS 4
+static const struct {
+    const char *name;
+    uint32_t flags, map;
+} srt_cfgs[SRT_CFGS] = {
+    {"default (map 2048, conservative)", 0u, 0u},
+    {"no conservative rasterization", PN_SRT_NO_CONSERVATIVE, 0u},
+    {"map 1024", 0u, 1024u},
+    {"map 512", 0u, 512u},
+};
+
+/* Pixels brighter than the reference (a missing shadow) and darker (an extra one). */
+static void srt_signs(const float *a, const float *ref, size_t n, size_t *missing, size_t *extra)
+{
+    size_t i;
+    *missing = *extra = 0;
+    if (!a || !ref) return;
+    for (i = 0; i < n; i++) {
+        if (a[i] > ref[i]) (*missing)++;
+        else if (a[i] < ref[i]) (*extra)++;
+    }
+}
+
+static void srt_row(report *r, const scene_state *ss, const char *light, uint32_t size, const char *cfg, const job *j,
+                    const float *ref, double exact_ms, const char *exact_name)
+{
+    size_t n = (size_t)size * size, missing, extra;
+    accuracy acc = compare_vis(j->vis, ref, n);
+    char c[4][48];
+    if (!j->ok || !acc.ok) {
+        sec(r, SEC_SRT_ACC, "| %s | %s | %u | %s | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a | %s |\n", ss->s.name,
+            light, size, cfg, j->ok ? "no reference" : j->err);
+        return;
+    }
+    srt_signs(j->vis, ref, n, &missing, &extra);
+    fmt_ms(c[0], sizeof(c[0]), job_pass(j));
+    fmt_ms(c[1], sizeof(c[1]), exact_ms);
+    fmt_ratio(c[2], sizeof(c[2]), exact_ms, job_pass(j));
+    sec(r, SEC_SRT_ACC, "| %s | %s | %u | %s | %.2f%% | %.4f%% | %zu | %zu | %.6f | %.4f | %s | %s (%s) | %s |\n",
+        ss->s.name, light, size, cfg, j->st.lit_pixels ? 100.0 * j->st.srt_pip / (double)j->st.lit_pixels : 0.0,
+        100.0 * acc.wrong_frac, missing, extra, acc.rmse, acc.max_err, c[0], c[1], exact_name, c[2]);
+}
+
+static void srt_speed_row(report *r, const scene_state *ss, const char *light, uint32_t size, const job *srt,
+                          const float *ref, double exact_ms, const char *exact_name)
+{
+    size_t n = (size_t)size * size;
+    accuracy acc = compare_vis(srt->vis, ref, n);
+    char c[7][48];
+    fmt_ms(c[0], sizeof(c[0]), exact_ms);
+    fmt_ms(c[1], sizeof(c[1]), job_pass(srt));
+    fmt_ms(c[2], sizeof(c[2]), srt->st.srt_ns_map / 1e6);
+    fmt_ms(c[3], sizeof(c[3]), srt->st.srt_ns_classify / 1e6);
+    fmt_ms(c[4], sizeof(c[4]), srt->st.srt_ns_exact / 1e6);
+    fmt_ratio(c[5], sizeof(c[5]), exact_ms, job_pass(srt));
+    if (acc.ok) snprintf(c[6], sizeof(c[6]), "%.4f%%", 100.0 * acc.wrong_frac);
+    else snprintf(c[6], sizeof(c[6]), "n/a");
+    if (!srt->ok) {
+        sec(r, SEC_SRT_SPEED, "| %s | %s | %ux%u | %s | %s | n/a | n/a | n/a | n/a | %s |\n", ss->s.name, light, size,
+            size, exact_name, c[0], srt->err);
+        return;
+    }
+    sec(r, SEC_SRT_SPEED, "| %s | %s | %ux%u | %s | %s | %s | %s / %s / %s | %.2f%% | %s | %s |\n", ss->s.name, light,
+        size, size, exact_name, c[0], c[1], c[2], c[3], c[4],
+        srt->st.lit_pixels ? 100.0 * srt->st.srt_pip / (double)srt->st.lit_pixels : 0.0, c[6], c[5]);
+}
+
+/* The fastest of the exact algorithms among jobs with times (index into jobs; -1: none). */
+static int srt_fastest(const job *jobs, int nj)
+{
+    int i, best = -1;
+    for (i = 0; i < nj; i++)
+        if (jobs[i].kind == JOB_LIB && algos[jobs[i].algo].exact && job_pass(&jobs[i]) == job_pass(&jobs[i]) &&
+            (best < 0 || job_pass(&jobs[i]) < job_pass(&jobs[best])))
+            best = i;
+    return best;
+}
+
+static void srt_section(const bench_opts *o, report *r, scene_state *ss)
+{
+    static const char *light_name[2] = {"area, k = 16", "point"};
+    pn_frame_options opt;
+    pn_light lights[2];
+    job jobs[NALGO + SRT_CFGS], big[2];
+    int li, i, a, nj, a_srt = -1;
+    size_t n;
+    base_options(o, ss, &opt);
+    n = (size_t)opt.width * opt.height;
+    for (a = 0; a < NALGO; a++)
+        if (algos[a].algo == PN_ALGO_SRT) a_srt = a;
+    if (a_srt < 0 || !(pn_build_info() & algos[a_srt].build_flag) || !in_list(o->algos, algos[a_srt].name)) return;
+    lights[0] = ss->s.light;
+    lights[1] = ss->s.light;
+    memset(lights[1].u, 0, sizeof(lights[1].u));
+    memset(lights[1].v, 0, sizeof(lights[1].v));
+    for (li = 0; li < 2; li++) {
+        const float *ref;
+        double exact_ms;
+        const char *exact_name;
+        int fastest_algo, f;
+        char name_buf[64];
+        nj = 0;
+        /* The point light's exact algorithms here (the area light's ran at the main point,
+         * in this run); then every SRT configuration. */
+        if (li == 1)
+            for (a = 0; a < NALGO; a++)
+                if (algos[a].exact && (pn_build_info() & algos[a].build_flag) && in_list(o->algos, algos[a].name)) {
+                    job_lib(&jobs[nj], a, &opt, 1);
+                    nj++;
+                }
+        for (i = 0; i < SRT_CFGS; i++) {
+            job_lib(&jobs[nj], a_srt, &opt, 1);
+            jobs[nj].opt.srt_flags = srt_cfgs[i].flags;
+            jobs[nj].opt.srt_map = srt_cfgs[i].map;
+            nj++;
+        }
+        progress("  %s: SRT, %s light, %ux%u", ss->s.name, li ? "point" : "area", opt.width, opt.height);
+        run_jobs(o, ss, jobs, nj, &lights[li]);
+        if (li == 0) {
+            ref = ss->ref_vis;
+            fastest_algo = -1;
+            for (a = 0; a < NALGO; a++)
+                if (algos[a].exact && ss->pt_ms[a] == ss->pt_ms[a] && (fastest_algo < 0 || ss->pt_ms[a] < ss->pt_ms[fastest_algo]))
+                    fastest_algo = a;
+            exact_ms = fastest_algo >= 0 ? ss->pt_ms[fastest_algo] : NAN;
+        } else {
+            ref = jobs[0].algo == A_REF ? jobs[0].vis : NULL;
+            f = srt_fastest(jobs, nj);
+            fastest_algo = f >= 0 ? jobs[f].algo : -1;
+            exact_ms = f >= 0 ? job_pass(&jobs[f]) : NAN;
+        }
+        exact_name = fastest_algo >= 0 ? algos[fastest_algo].name : "none";
+        for (i = 0; i < SRT_CFGS; i++)
+            srt_row(r, ss, light_name[li], opt.width, srt_cfgs[i].name, &jobs[nj - SRT_CFGS + i], ref, exact_ms,
+                    exact_name);
+        srt_speed_row(r, ss, light_name[li], opt.width, &jobs[nj - SRT_CFGS], ref, exact_ms, exact_name);
+
+        if (li == 0) {
+            /* The time-vs-error chart's points: every algorithm at the main point, Embree,
+             * and the SRT configurations. */
+            char *text = NULL, label[NALGO + 1 + SRT_CFGS][96];
+            int pt[NALGO + 1 + SRT_CFGS], np = 0;
+            size_t tl = 0;
+            FILE *t = open_memstream(&text, &tl);
+            if (t) {
+                /* One point a line; the plot gives each its own colour, symbol (exact: circle,
+                 * Embree: square, SRT: triangle) and legend entry. */
+                fprintf(t, "# label shadow_ms rmse (%ux%u, k = %u, area light)\n", opt.width, opt.height, o->k);
+                for (a = 0; a < NALGO; a++)
+                    if (a != a_srt && ss->pt_ms[a] == ss->pt_ms[a]) {
+                        fprintf(t, "\"%s\" %.6g %.6g\n", algos[a].name, ss->pt_ms[a], a == A_REF ? 0.0 : ss->pt_rmse[a]);
+                        snprintf(label[np], sizeof(label[np]), "%s", algos[a].name);
+                        pt[np++] = algos[a].exact ? 7 : 13;
+                    }
+                if (ss->emb_ms == ss->emb_ms) {
+                    fprintf(t, "\"Embree rtcOccluded%s\" %.6g %.6g\n", ss->emb_api, ss->emb_ms, ss->emb_rmse);
+                    snprintf(label[np], sizeof(label[np]), "Embree rtcOccluded%s", ss->emb_api);
+                    pt[np++] = 5;
+                }
+                for (i = 0; i < SRT_CFGS; i++) {
+                    const job *j = &jobs[nj - SRT_CFGS + i];
+                    accuracy acc = compare_vis(j->vis, ref, n);
+                    if (!j->ok || !acc.ok) continue;
+                    fprintf(t, "\"SRT %s\" %.6g %.6g\n", srt_cfgs[i].name, job_pass(j), acc.rmse);
+                    snprintf(label[np], sizeof(label[np]), "SRT %s", srt_cfgs[i].name);
+                    pt[np++] = 9;
+                }
+                fclose(t);
+                write_data(o, "tradeoff", ss->s.name, text);
+                free(text);
+                fprintf(r->plots,
+                        "\n# time against error: %s\nset terminal pngcairo noenhanced size 900,460 font 'sans,9'\n"
+                        "set output 'tradeoff_%s.png'\nset title '%s: shadow pass time against error (%ux%u, k = %u, "
+                        "area light)'\nset xlabel 'shadow pass ms (median, log scale)'\nset logscale x\n"
+                        "set ylabel 'RMSE of the visibility against the reference'\nset yrange [0:*]\n"
+                        "set offsets graph 0.1, graph 0.1, graph 0.1, graph 0.04\nset grid\n"
+                        "set key outside right top\nplot",
+                        ss->s.name, ss->s.name, ss->s.name, opt.width, opt.height, o->k);
+                for (i = 0; i < np; i++)
+                    fprintf(r->plots, "%s 'data/tradeoff_%s.dat' every ::%d::%d using 2:3 with points pt %d ps 1.6 lc %d "
+                                      "title '%s'",
+                            i ? ", \\\n    " : "", ss->s.name, i, i, pt[i], i + 1, label[i]);
+                fprintf(r->plots, "\nunset logscale x\nset yrange [*:*]\nset offsets 0,0,0,0\n");
+                sec(r, SEC_SRT_CHART, "![%s: time against error](tradeoff_%s.png)\n", ss->s.name, ss->s.name);
+            }
+
+            /* What SRT can save: the reference's per-pixel cost by class. */
+            if (ss->g.pos && ref) {
+                pn_class_cost cc;
+                char err[256], cb[4][48];
+                double wt = 0.0, nt = 0.0;
+                uint64_t lit = 0;
+                const job *d = &jobs[nj - SRT_CFGS];
+                if (pn_reference_class_cost(&ss->s.mesh, &ss->g, &lights[0], o->k, ss->s.eps, ss->cull_tol, &ss->h.threads,
+                                            ref, &cc, err, sizeof(err)) == 0) {
+                    for (i = 0; i < 3; i++) {
+                        wt += cc.work[i];
+                        nt += cc.ns[i];
+                        lit += cc.pixels[i];
+                    }
+                    fmt_ratio(cb[0], sizeof(cb[0]), wt, cc.work[2]);
+                    fmt_ratio(cb[1], sizeof(cb[1]), nt, cc.ns[2]);
+                    fmt_ratio(cb[2], sizeof(cb[2]), exact_ms, job_pass(d));
+                    fmt_ratio(cb[3], sizeof(cb[3]), ss->pt_ms[A_REF], d->st.srt_ns_exact / 1e6);
+                    sec(r, SEC_SRT_BOUND,
+                        "| %s | %llu | %.2f%% | %.2f%% | %.1f%% / %.1f%% / %.1f%% | %.1f%% / %.1f%% / %.1f%% | %s | %s | %s | %s | %s |\n",
+                        ss->s.name, (unsigned long long)lit, lit ? 100.0 * cc.pixels[2] / (double)lit : 0.0,
+                        d->st.lit_pixels ? 100.0 * d->st.srt_pip / (double)d->st.lit_pixels : 0.0,
+                        wt > 0 ? 100.0 * cc.work[0] / wt : 0.0, wt > 0 ? 100.0 * cc.work[1] / wt : 0.0,
+                        wt > 0 ? 100.0 * cc.work[2] / wt : 0.0, nt > 0 ? 100.0 * cc.ns[0] / nt : 0.0,
+                        nt > 0 ? 100.0 * cc.ns[1] / nt : 0.0, nt > 0 ? 100.0 * cc.ns[2] / nt : 0.0, cb[0], cb[1], cb[3],
+                        cb[2], cc.vis_agrees ? "yes" : "**no**");
+                } else {
+                    progress("    class cost: %s", err);
+                }
+            }
+        }
+
+        /* The second size: the fastest exact algorithm of this light and the default SRT. */
+        if (o->srt_big && fastest_algo >= 0) {
+            pn_frame_options ob = opt;
+            ob.width = ob.height = o->srt_big;
+            job_lib(&big[0], fastest_algo, &ob, 1);
+            job_lib(&big[1], a_srt, &ob, 1);
+            progress("  %s: SRT, %s light, %ux%u", ss->s.name, li ? "point" : "area", ob.width, ob.height);
+            run_jobs(o, ss, big, 2, &lights[li]);
+            snprintf(name_buf, sizeof(name_buf), "%s", algos[fastest_algo].name);
+            srt_row(r, ss, light_name[li], ob.width, srt_cfgs[0].name, &big[1], big[0].vis, job_pass(&big[0]), name_buf);
+            srt_speed_row(r, ss, light_name[li], ob.width, &big[1], big[0].vis, job_pass(&big[0]), name_buf);
+            job_free(&big[0]);
+            job_free(&big[1]);
+        }
+        for (i = 0; i < nj; i++) job_free(&jobs[i]);
+    }
+}
+
 static void machine(char *b, size_t n)
 {
     FILE *f = fopen("/proc/cpuinfo", "r");
@@ -1076,6 +1341,19 @@ static void report_open(report *r, const bench_opts *o)
         "| scene | k | mask bits compared | bits that differ | fraction | blocked by Embree only | blocked by us only | "
         "pixels with a difference | our masks reproduce the reference |\n"
         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n");
+    sec(r, SEC_SRT_ACC,
+        "| scene | light | size | configuration | PIP (%% of lit pixels) | differing pixels (%% of all) | missing shadow | "
+        "extra shadow | RMSE | max error | SRT ms | fastest exact ms | SRT vs fastest exact |\n"
+        "| --- | --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    sec(r, SEC_SRT_SPEED,
+        "| scene | light | size | fastest exact | its ms | SRT ms | map / classify / exact ms | PIP (%% of lit) | "
+        "differing pixels | SRT vs fastest exact |\n"
+        "| --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    sec(r, SEC_SRT_BOUND,
+        "| scene | lit pixels | penumbra (%% of lit) | SRT's PIP (%% of lit) | reference work: lit / umbra / penumbra | "
+        "reference time: lit / umbra / penumbra | bound (work) | bound (time) | reference vs SRT's exact stage | "
+        "SRT vs fastest exact, measured | host kernel = reference |\n"
+        "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n");
     fprintf(r->plots, "# Generated by penumbra_bench: run `gnuplot plots.gp` in this directory (tools/bench.sh does).\n"
                       "# The gallery panels it reads from work/ are removed afterwards; make bench recreates them.\n");
 }
@@ -1158,6 +1436,25 @@ static const struct {
      "reference's frustum cull); the last column checks that their visibility is byte-identical to the reference's "
      "frame. Embree's masks come from rtcOccluded1. Compared: every mask bit of every pixel that has a shadow-ray "
      "origin."},
+    {SEC_SRT_ACC, "## Selective ray tracing (issue 15): accuracy against the reference",
+     "Every configuration's visibility against the reference's (area light: the main point's reference frame; point "
+     "light: a reference frame of this section). Missing shadow: brighter than the reference; extra: darker. PIP pixels "
+     "take the reference's own per-pixel path, so every differing pixel lies outside the PIP set (with the PIP set "
+     "forced to every pixel the frame is byte-identical to the reference: tests/test_srt.c). The goal: at most 0.1% "
+     "of pixels differing. Corner maps (the paper's union of masks from the light's corners) are not implemented. "
+     "Fastest exact: the fastest of reference, GEARS and raytrace for that light in this run (at the second size, the "
+     "one that was fastest at the first)."},
+    {SEC_SRT_SPEED, "### SRT's speed against the fastest exact algorithm",
+     "The default configuration. Stages from `pn_stats` (srt_ns_map: window, shadow map, conservative marks, penumbra "
+     "tiles; srt_ns_classify: classification and the PIP list; srt_ns_exact: the PIP pixels' exact masks). The issue's "
+     "goal: at least 5x on every shared scene for soft shadows."},
+    {SEC_SRT_BOUND, "### What SRT can save: the reference's cost by pixel class (area light)",
+     "The library's per-pixel kernel (`pn_reference_pixel`) over a host BVH, each lit pixel timed alone and classed "
+     "by its own visibility: lit (1), umbra (0), penumbra (in between). Work: BVH nodes tested + triangles handed to "
+     "the predicate (deterministic); time: wall clock (noisy). Bound: with exact masks for the penumbra pixels only "
+     "(a perfect PIP set) and a free shadow map, a selective ray tracer built on the reference's per-pixel path "
+     "cannot be faster than all pixels' cost over the penumbra pixels' cost. The last column checks the host "
+     "kernel's visibility against the library's reference frame."},
 };
 
 static void print_report(report *r, const bench_opts *o, FILE *out, const char *mach, const char *emb_info, int threads,
@@ -1220,6 +1517,11 @@ static void print_report(report *r, const bench_opts *o, FILE *out, const char *
         else fprintf(out, "%s\n\n", notes[s].heading);
         fprintf(out, "%s\n%s\n\n", r->buf[sw], notes[s].note);
     }
+    fprintf(out, "## Time against error\n\nPer scene, %ux%u, k = %u, area light: each algorithm's shadow pass "
+                 "(median, this run) against the RMSE of its visibility to the reference's. Exact algorithms sit at 0; "
+                 "Embree traces the same samples and differs only in its arithmetic. Every algorithm and its main "
+                 "configurations is a point: the picture to choose an algorithm from.\n\n%s\n",
+            o->size, o->size, o->k, r->len[SEC_SRT_CHART] ? r->buf[SEC_SRT_CHART] : "(no SRT section in this run)\n");
     fprintf(out, "## Gallery\n\nPer shared scene: the shaded reference, its visibility, each algorithm's image and its "
                  "error heat map against the reference (|error| x 4, black = identical), and Embree's visibility and "
                  "error.\n\n%s",
@@ -1273,9 +1575,10 @@ static void usage(void)
 {
     fprintf(stderr,
             "usage: penumbra_bench [--out DIR] [--scenes DIR] [--quick] [--only a,b] [--sweep-scenes a,b]\n"
-            "                      [--algos reference,GEARS,raytrace,embree] [--ports N] [--lean]\n"
+            "                      [--algos reference,GEARS,raytrace,SRT,embree] [--ports N] [--lean]\n"
             "                      [--reps N] [--reps-slow N] [--slow-seconds S] [--threads N] [--size N] [--k K]\n"
-            "                      [--sweep-res a,b] [--sweep-k a,b] [--sweep-grid a,b] [--label TEXT]\n"
+            "                      [--sweep-res a,b] [--sweep-k a,b] [--sweep-grid a,b] [--srt-size N]\n"
+            "                      [--label TEXT]\n"
             "Prints Markdown tables and writes DIR/RESULTS.md, DIR/data/*.dat, DIR/plots.gp (gnuplot) and\n"
             "the gallery panels under DIR/work/. Scenes: the built-ins and every .glb in --scenes\n"
             "(default: $PN_SCENES_DIR).\n");
@@ -1303,6 +1606,7 @@ int main(int argc, char **argv)
     o.k = 16;
     o.grid = 128;
     o.sweep_scenes = "thin,chess_set,cad_infineon_easypim2b";
+    o.srt_big = 1024;
     for (i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (strcmp(a, "--quick") == 0) o.quick = 1;
@@ -1323,6 +1627,7 @@ int main(int argc, char **argv)
         else if (strcmp(a, "--threads") == 0) o.threads = atoi(argv[++i]);
         else if (strcmp(a, "--size") == 0) o.size = (uint32_t)atoi(argv[++i]);
         else if (strcmp(a, "--k") == 0) o.k = (uint32_t)atoi(argv[++i]);
+        else if (strcmp(a, "--srt-size") == 0) o.srt_big = (uint32_t)atoi(argv[++i]);
         else if (strcmp(a, "--sweep-res") == 0) o.n_res = (uint32_t)parse_list(argv[++i], o.sweep_res, 8);
         else if (strcmp(a, "--sweep-k") == 0) o.n_k = (uint32_t)parse_list(argv[++i], o.sweep_k, 8);
         else if (strcmp(a, "--sweep-grid") == 0) o.n_grid = (uint32_t)parse_list(argv[++i], o.sweep_grid, 8);
@@ -1337,6 +1642,7 @@ int main(int argc, char **argv)
         if (!o.only) o.only = "square,elongated-cube,spot";
         o.sweep_scenes = "spot";
         o.size = 128;
+        o.srt_big = 256;
         o.reps = o.reps_slow = 3;
         if (!o.n_res) o.n_res = (uint32_t)parse_list("64,128,192", o.sweep_res, 8);
         if (!o.n_k) o.n_k = (uint32_t)parse_list("4,16", o.sweep_k, 8);
@@ -1423,6 +1729,7 @@ int main(int argc, char **argv)
             for (p = 0; p < NPORT && p < o.nports; p++) {
                 scene_state ss;
                 uint32_t max_size = o.size;
+                if (p == 0 && !o.lean && o.srt_big > max_size) max_size = o.srt_big;
                 if (p == 0 && sweepable)
                     for (uint32_t v = 0; v < o.n_res; v++)
                         if (o.sweep_res[v] > max_size) max_size = o.sweep_res[v];
@@ -1432,6 +1739,7 @@ int main(int argc, char **argv)
                 }
                 main_point(&o, &r, &ss, p == 0, !builtin[i]);
                 if (p == 0 && hd) headline_data(hd, &r, &ss);
+                if (p == 0 && !o.lean) srt_section(&o, &r, &ss);
                 if (p == 0 && sweepable) {
                     int kind;
                     best_api = ss.best_api;

@@ -67,6 +67,25 @@ int pn_our_masks(const pn_mesh *mesh, const pn_gbuf *g, const pn_light *light, u
                  float cull_tol, pn_threads *threads, pn_masks *out, float *vis, char *err,
                  size_t err_size);
 
+/* Where the reference's shadow pass spends its work, by the class of the pixel in its own
+ * result: 0 lit (visibility 1), 1 umbra (0), 2 penumbra (in between), over the pixels with
+ * a shadow-ray origin. The library's per-pixel kernel (pn_reference_pixel: horizon,
+ * frustum and footprint culls, the exact predicate) over the host BVH above, each pixel
+ * timed alone: ns (wall, noisy) and work (BVH nodes tested + triangles handed to the
+ * predicate, deterministic). What selective ray tracing can save is bounded by it: with
+ * exact masks only for the penumbra pixels and a free shadow map, the shadow pass cannot
+ * be faster than total / penumbra. *vis_agrees: 1 when the visibility equals ref_vis (the
+ * library's frame) on every pixel. */
+typedef struct pn_class_cost {
+    double ns[3], work[3];
+    uint64_t pixels[3];
+    int vis_agrees;
+} pn_class_cost;
+
+int pn_reference_class_cost(const pn_mesh *mesh, const pn_gbuf *g, const pn_light *light, uint32_t k, float eps,
+                            float cull_tol, pn_threads *threads, const float *ref_vis, pn_class_cost *out, char *err,
+                            size_t err_size);
+
 /* ---- Embree 3 baseline (tools/pn_bench_embree.c; a stub when Embree was not found) ------ */
 
 typedef enum pn_embree_api {

@@ -325,3 +325,89 @@ int pn_our_masks(const pn_mesh *mesh, const pn_gbuf *g, const pn_light *light, u
     }
     return 0;
 }
+
+/* ---- The reference's cost by pixel class ------------------------------------------------ */
+
+typedef struct pn_class_task {
+    const pn_hbvh *bvh;
+    const pn_gbuf *g;
+    pn_klight light;
+    const float *ref_vis;
+    double *row_ns, *row_work; /* 3 per row */
+    uint64_t *row_pixels;      /* 3 per row */
+    uint8_t *row_agree;        /* 1 per row */
+} pn_class_task;
+
+static void pn_class_rows(void *task, uint32_t begin, uint32_t end)
+{
+    pn_class_task *tk = (pn_class_task *)task;
+    const pn_gbuf *g = tk->g;
+    uint32_t y, x;
+    for (y = begin; y < end; y++) {
+        tk->row_agree[y] = 1;
+        for (x = 0; x < g->width; x++) {
+            size_t pix = (size_t)y * g->width + x;
+            pn_shadow_counters cnt;
+            pn_v3 P, n, O;
+            uint64_t t0;
+            float v;
+            int c;
+            if (g->tri[pix] == PN_NO_TRIANGLE) continue;
+            P = pn_v3_load(g->pos + pix * 3u);
+            n = pn_v3_load(g->nrm + pix * 3u);
+            if (!pn_shadow_origin(P, n, &tk->light, &O)) continue;
+            memset(&cnt, 0, sizeof(cnt));
+            t0 = pn_threads_now_ns(NULL);
+            v = pn_reference_pixel(P, n, g->tri[pix], tk->bvh->tris, tk->bvh->nodes, tk->bvh->index, &tk->light, &cnt);
+            c = v == 1.0f ? 0 : v == 0.0f ? 1 : 2;
+            tk->row_ns[y * 3u + (uint32_t)c] += (double)(pn_threads_now_ns(NULL) - t0);
+            tk->row_work[y * 3u + (uint32_t)c] += (double)cnt.nodes + (double)cnt.candidates;
+            tk->row_pixels[y * 3u + (uint32_t)c]++;
+            if (tk->ref_vis && v != tk->ref_vis[pix]) tk->row_agree[y] = 0;
+        }
+    }
+}
+
+int pn_reference_class_cost(const pn_mesh *mesh, const pn_gbuf *g, const pn_light *light, uint32_t k, float eps,
+                            float cull_tol, pn_threads *threads, const float *ref_vis, pn_class_cost *out, char *err,
+                            size_t err_size)
+{
+    pn_hbvh bvh;
+    pn_class_task tk;
+    uint32_t y;
+    int c;
+    memset(out, 0, sizeof(*out));
+    memset(&tk, 0, sizeof(tk));
+    tk.row_ns = (double *)calloc((size_t)g->height * 3u, sizeof(double));
+    tk.row_work = (double *)calloc((size_t)g->height * 3u, sizeof(double));
+    tk.row_pixels = (uint64_t *)calloc((size_t)g->height * 3u, sizeof(uint64_t));
+    tk.row_agree = (uint8_t *)calloc(g->height, 1);
+    if (!tk.row_ns || !tk.row_work || !tk.row_pixels || !tk.row_agree || pn_hbvh_build(&bvh, mesh) != 0) {
+        free(tk.row_ns);
+        free(tk.row_work);
+        free(tk.row_pixels);
+        free(tk.row_agree);
+        pn_tools_err(err, err_size, "class cost: out of memory");
+        return 1;
+    }
+    tk.bvh = &bvh;
+    tk.g = g;
+    tk.ref_vis = ref_vis;
+    pn_bench_klight(light, k, eps, cull_tol, &tk.light);
+    pn_threads_parallel_for(threads, g->height, pn_class_rows, &tk);
+    out->vis_agrees = ref_vis != NULL;
+    for (y = 0; y < g->height; y++) {
+        for (c = 0; c < 3; c++) {
+            out->ns[c] += tk.row_ns[y * 3u + (uint32_t)c];
+            out->work[c] += tk.row_work[y * 3u + (uint32_t)c];
+            out->pixels[c] += tk.row_pixels[y * 3u + (uint32_t)c];
+        }
+        if (!tk.row_agree[y]) out->vis_agrees = 0;
+    }
+    free(tk.row_ns);
+    free(tk.row_work);
+    free(tk.row_pixels);
+    free(tk.row_agree);
+    pn_hbvh_free(&bvh);
+    return 0;
+}

@@ -23,7 +23,11 @@
  *     splat is conservative for the edges the map holds); or when the plane of the pixel's
  *     triangle comes within a tolerance of a light corner (invariant 6: part of the light
  *     may be behind the receiver). The mask is kept per tile of PN_SRT_TILE^2 texels.
- *   both: PIP when O is outside the map, and for every pixel with PN_SRT_FORCE_PIP.
+ *   both: PIP when O is outside the map, and for every pixel with PN_SRT_FORCE_PIP; and
+ *     when S holds another triangle in front of O (d > s (1 + 1e-4)) that only the slope
+ *     bias below would call lit: an occluder within the bias of its receiver, too close for
+ *     the discontinuity test (a board against a wall seen edge-on from the light: room's
+ *     point light lost 21 shadow pixels of 12,288 so, 0.17%, before this test).
  * Outside the PIP set the map answers: lit when S holds the pixel's own triangle or
  * d <= s + (d - d^) + 1e-4 d (slope bias), else in shadow. */
 #ifndef PN_SRT_H
@@ -448,6 +452,8 @@ PN_KFN uint32_t pn_srt_classify(const pn_kview *lv, const pn_klight *L, const pn
             return 1u;
     }
     bias = (d - dhat) + 1e-4f * d;
+    /* Another surface in front of O, lit only by the bias: the map cannot tell. */
+    if (lmap_id[(size_t)ty * res + (size_t)tx] != own && d > s * (1.0f + 1e-4f) && !(d > s + bias)) return 1u;
     *vis = (lmap_id[(size_t)ty * res + (size_t)tx] == own || !(d > s + bias)) ? 1.0f : 0.0f;
     return 0u;
 }

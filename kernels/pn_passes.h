@@ -242,7 +242,8 @@ PN_KFN void pn_e_lmap_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kp
 PN_KFN void pn_e_srt_conservative(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
 {
     pn_srt_conservative(&K->lview, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), t,
-                        PN_POOL(uint32_t, lmap_cons), PN_POOL(uint32_t, srt_words) + PN_SRT_WORD_THIN);
+                        PN_POOL(uint32_t, lmap_cons), PN_POOL(uint32_t, srt_words) + PN_SRT_WORD_THIN,
+                        PN_POOL(uint32_t, srt_words) + PN_SRT_WORD_CONS);
 }
 
 /* Tile: the largest splat weight of its edge texels. */

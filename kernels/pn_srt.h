@@ -41,10 +41,12 @@
 /* = PN_SRT_FORCE_PIP of penumbra.h (kernels do not see it; src/pn_srt.c checks they agree). */
 #define PN_SRT_FLAG_FORCE_PIP 2u
 /* The frame's counter words (pool srt_words): the largest splat weight's bits, thin
- * triangles conservatively rasterized, penumbra-mask tiles set. */
+ * triangles conservatively rasterized, penumbra-mask tiles set, texels the thin triangles
+ * marked. */
 #define PN_SRT_WORD_WMAX 0u
 #define PN_SRT_WORD_THIN 1u
 #define PN_SRT_WORD_TILES 2u
+#define PN_SRT_WORD_CONS 3u
 /* Largest map half-extent in tan units (76 degrees off the axis); beyond it: PIP. */
 #define PN_SRT_TAN_MAX 4.0f
 
@@ -77,15 +79,18 @@ PN_KFN float pn_srt_bitsf(uint32_t v)
 }
 
 /* Integer atomic max of a non-negative float stored as its bits (their order is the
- * floats' order), so the result is the same whatever order work items run in. */
-PN_KFN void pn_srt_atomic_fmax(PN_GLOBAL uint32_t *p, float v)
+ * floats' order), so the result is the same whatever order work items run in. Returns
+ * the bits it replaced (or kept): 0 for exactly one caller per word that starts at 0 and
+ * receives a positive value, whatever the order. */
+PN_KFN uint32_t pn_srt_atomic_fmax(PN_GLOBAL uint32_t *p, float v)
 {
 #if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
-    atomic_max(p, pn_srt_fbits(v));
+    return atomic_max(p, pn_srt_fbits(v));
 #else
     uint32_t b = pn_srt_fbits(v), cur = __atomic_load_n(p, __ATOMIC_RELAXED);
     while (cur < b && !__atomic_compare_exchange_n(p, &cur, b, 1, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
     }
+    return cur;
 #endif
 }
 
@@ -167,14 +172,15 @@ PN_KFN int pn_srt_strip(const pn_poly *p, float y0, float y1, float *xlo, float 
 /* Triangle t: when thin in the light view (it could slip between texel centres: narrower
  * than a texel, three times longer than wide, its longest edge at least a texel), every texel
  * it touches gets 1/zmin (zmin: its nearest depth along the light axis) by atomic max into
- * cons (widened by a texel for the rounding of the projection); *count: one more. */
+ * cons (widened by a texel for the rounding of the projection); *count: one more;
+ * *texels: one more for each texel it marked first. */
 PN_KFN void pn_srt_conservative(const pn_kview *lv, PN_CONST float *tris, PN_CONST uint8_t *flags, uint32_t t,
-                                PN_GLOBAL uint32_t *cons, PN_GLOBAL uint32_t *count)
+                                PN_GLOBAL uint32_t *cons, PN_GLOBAL uint32_t *count, PN_GLOBAL uint32_t *texels)
 {
     PN_CONST float *p = tris + (size_t)t * 9u;
     pn_poly poly;
     float zmin, area = 0.0f, longest = 0.0f, ylo, yhi, w;
-    uint32_t i, n, res = lv->width;
+    uint32_t i, n, res = lv->width, first = 0u;
     int32_t y, y0, y1;
     if (flags[t] & PN_TRI_DEGENERATE) return;
     pn_poly_project(lv, pn_v3_make(p[0], p[1], p[2]), pn_v3_make(p[3], p[4], p[5]), pn_v3_make(p[6], p[7], p[8]),
@@ -209,8 +215,9 @@ PN_KFN void pn_srt_conservative(const pn_kview *lv, PN_CONST float *tris, PN_CON
         if (!(xlo - 1.0f < (float)res) || !(xhi + 1.0f >= 0.0f)) continue;
         x0 = pn_kfloor_clamp(xlo - 1.0f, 0, (int32_t)res - 1);
         x1 = pn_kfloor_clamp(xhi + 1.0f, 0, (int32_t)res - 1);
-        for (x = x0; x <= x1; x++) pn_srt_atomic_fmax(cons + (size_t)y * res + (size_t)x, w);
+        for (x = x0; x <= x1; x++) first += pn_srt_atomic_fmax(cons + (size_t)y * res + (size_t)x, w) == 0u;
     }
+    if (first) pn_katomic_add(texels, first);
 }
 
 /* Depth along the light axis of the surface a texel holds (map depth s is along the

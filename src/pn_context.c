@@ -150,6 +150,7 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out)
     s.srt_pip = ctx->srt.pip;
     s.srt_thin = ctx->srt.thin;
     s.srt_tiles_masked = ctx->srt.tiles_masked;
+    s.srt_cons_texels = ctx->srt.cons_texels;
     s.srt_ns_map = ctx->srt.ns_map;
     s.srt_ns_classify = ctx->srt.ns_classify;
     s.srt_ns_exact = ctx->srt.ns_exact;

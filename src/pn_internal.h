@@ -93,7 +93,7 @@ struct pn_context {
         float mean_tris, mean_pix;
     } gears;
     struct {
-        uint32_t map, pip, thin, tiles_masked;
+        uint32_t map, pip, thin, tiles_masked, cons_texels;
         uint64_t ns_map, ns_classify, ns_exact;
     } srt;
     char message[256];

@@ -20,7 +20,7 @@ typedef struct pn_srt_pools {
     uint32_t *tile_w;    /* [tiles^2]: largest splat weight of a tile's edge texels */
     uint32_t *tile_h;    /* [tiles^2]: ...of those whose horizontal reach covers the tile */
     uint32_t *tile_mask; /* [tiles^2]: non-zero = in the penumbra mask */
-    uint32_t *words;     /* [4]: largest weight bits, thin triangles, masked tiles */
+    uint32_t *words;     /* [4]: largest weight bits, thin triangles, masked tiles, marked texels */
     uint32_t *pip_off;   /* [pixels + 1]: PIP flags, then their exclusive prefix sum */
     uint32_t *pip_list;  /* [pixels]: the PIP pixels, dense */
 } pn_srt_pools;
@@ -180,6 +180,7 @@ pn_status pn_srt_frame(pn_frame_state *fs)
     ctx->srt.pip = npip;
     ctx->srt.thin = s.words[PN_SRT_WORD_THIN];
     ctx->srt.tiles_masked = s.words[PN_SRT_WORD_TILES];
+    ctx->srt.cons_texels = s.words[PN_SRT_WORD_CONS];
     return PN_OK;
 }
 

@@ -124,6 +124,12 @@ static int same_frame(const char *what, const pn_xframe *a, const pn_xframe *b)
     SAME_STAT(gears_max_tris_per_cell);
     SAME_STAT(gears_max_pixels_per_cell);
     SAME_STAT(gears_pairs_high_water);
+    SAME_STAT(shadow_nodes);
+    SAME_STAT(srt_map);
+    SAME_STAT(srt_pip);
+    SAME_STAT(srt_thin);
+    SAME_STAT(srt_cons_texels);
+    SAME_STAT(srt_tiles_masked);
 #undef SAME_STAT
     CHECK_MSG(memcmp(&a->st.gears_mean_tris_per_cell, &b->st.gears_mean_tris_per_cell, sizeof(float)) == 0 &&
                   memcmp(&a->st.gears_mean_pixels_per_cell, &b->st.gears_mean_pixels_per_cell, sizeof(float)) == 0,

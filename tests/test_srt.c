@@ -94,10 +94,13 @@ static void one_scene(const char *source, int builtin)
             brighter += g_srt.vis[i] > g_ref.vis[i];
         }
         CHECK(g_srt.st.srt_pip <= g_srt.st.lit_pixels);
-        fprintf(stderr, "%-24s %-5s map %4u  PIP %5.1f%% of lit  thin %6u  differing %u (%.3f%%), brighter %u\n", s.name,
-                li ? "point" : "area", g_srt.st.srt_map,
-                g_srt.st.lit_pixels ? 100.0 * g_srt.st.srt_pip / g_srt.st.lit_pixels : 0.0, g_srt.st.srt_thin, diff,
-                100.0 * diff / n, brighter);
+        /* A thin triangle marks at least one texel (its extent is widened by a texel). */
+        CHECK_MSG((g_srt.st.srt_thin > 0u) == (g_srt.st.srt_cons_texels > 0u), "%s: %u thin triangles, %u texels marked",
+                  s.name, g_srt.st.srt_thin, g_srt.st.srt_cons_texels);
+        fprintf(stderr, "%-24s %-5s map %4u  PIP %5.1f%% of lit  thin %6u (%u texels)  differing %u (%.3f%%), brighter %u\n",
+                s.name, li ? "point" : "area", g_srt.st.srt_map,
+                g_srt.st.lit_pixels ? 100.0 * g_srt.st.srt_pip / g_srt.st.lit_pixels : 0.0, g_srt.st.srt_thin,
+                g_srt.st.srt_cons_texels, diff, 100.0 * diff / n, brighter);
         /* room's point light missed 21 shadow pixels (0.17%) until the classification sent
          * pixels lit only by the slope bias to the PIP set (kernels/pn_srt.h); now 1. */
         CHECK_MSG(diff * 1000u <= n, "%s %s: %u of %u pixels differ from the reference (goal: at most 0.1%%)", s.name,
@@ -106,6 +109,7 @@ static void one_scene(const char *source, int builtin)
             CHECK_MSG(brighter == 0u, "thin %s: %u pixels miss a shadow", li ? "point" : "area", brighter);
         /* Without conservative rasterization: printed for the record. */
         if (render(&h, &s, &light, PN_ALGO_SRT, k, PN_SRT_NO_CONSERVATIVE, 0u, &g_srt) == 0) {
+            CHECK(g_srt.st.srt_thin == 0u && g_srt.st.srt_cons_texels == 0u);
             for (i = 0; i < n; i++) diff_nc += g_srt.vis[i] != g_ref.vis[i];
             fprintf(stderr, "%-24s %-5s without conservative rasterization: PIP %5.1f%%, differing %u (%.3f%%)\n",
                     s.name, li ? "point" : "area",

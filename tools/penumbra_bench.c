@@ -1058,7 +1058,7 @@ static void srt_row(report *r, const scene_state *ss, const char *light, uint32_
     accuracy acc = compare_vis(j->vis, ref, n);
     char c[4][48];
     if (!j->ok || !acc.ok) {
-        sec(r, SEC_SRT_ACC, "| %s | %s | %u | %s | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a | %s |\n", ss->s.name,
+        sec(r, SEC_SRT_ACC, "| %s | %s | %u | %s | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a | %s |\n", ss->s.name,
             light, size, cfg, j->ok ? "no reference" : j->err);
         return;
     }
@@ -1066,8 +1066,9 @@ static void srt_row(report *r, const scene_state *ss, const char *light, uint32_
     fmt_ms(c[0], sizeof(c[0]), job_pass(j));
     fmt_ms(c[1], sizeof(c[1]), exact_ms);
     fmt_ratio(c[2], sizeof(c[2]), exact_ms, job_pass(j));
-    sec(r, SEC_SRT_ACC, "| %s | %s | %u | %s | %.2f%% | %.4f%% | %zu | %zu | %.6f | %.4f | %s | %s (%s) | %s |\n",
+    sec(r, SEC_SRT_ACC, "| %s | %s | %u | %s | %.2f%% | %u / %u | %.4f%% | %zu | %zu | %.6f | %.4f | %s | %s (%s) | %s |\n",
         ss->s.name, light, size, cfg, j->st.lit_pixels ? 100.0 * j->st.srt_pip / (double)j->st.lit_pixels : 0.0,
+        j->st.srt_thin, j->st.srt_cons_texels,
         100.0 * acc.wrong_frac, missing, extra, acc.rmse, acc.max_err, c[0], c[1], exact_name, c[2]);
 }
 
@@ -1342,9 +1343,10 @@ static void report_open(report *r, const bench_opts *o)
         "pixels with a difference | our masks reproduce the reference |\n"
         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n");
     sec(r, SEC_SRT_ACC,
-        "| scene | light | size | configuration | PIP (%% of lit pixels) | differing pixels (%% of all) | missing shadow | "
-        "extra shadow | RMSE | max error | SRT ms | fastest exact ms | SRT vs fastest exact |\n"
-        "| --- | --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        "| scene | light | size | configuration | PIP (%% of lit pixels) | thin triangles / texels marked | "
+        "differing pixels (%% of all) | missing shadow | extra shadow | RMSE | max error | SRT ms | fastest exact ms | "
+        "SRT vs fastest exact |\n"
+        "| --- | --- | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     sec(r, SEC_SRT_SPEED,
         "| scene | light | size | fastest exact | its ms | SRT ms | map / classify / exact ms | PIP (%% of lit) | "
         "differing pixels | SRT vs fastest exact |\n"

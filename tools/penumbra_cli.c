@@ -191,8 +191,9 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
             st->gears_tiles, st->gears_faces, st->gears_cells_used, st->gears_max_tris_per_cell,
             st->gears_mean_tris_per_cell, st->gears_max_pixels_per_cell, st->gears_mean_pixels_per_cell,
             st->gears_pairs_high_water);
-    fprintf(f, "  \"srt_map\": %u,\n  \"srt_pip\": %u,\n  \"srt_thin\": %u,\n  \"srt_tiles_masked\": %u,\n",
-            st->srt_map, st->srt_pip, st->srt_thin, st->srt_tiles_masked);
+    fprintf(f, "  \"srt_map\": %u,\n  \"srt_pip\": %u,\n  \"srt_thin\": %u,\n  \"srt_cons_texels\": %u,\n"
+               "  \"srt_tiles_masked\": %u,\n",
+            st->srt_map, st->srt_pip, st->srt_thin, st->srt_cons_texels, st->srt_tiles_masked);
     fprintf(f, "  \"ms_srt_map\": %.3f,\n  \"ms_srt_classify\": %.3f,\n  \"ms_srt_exact\": %.3f,\n",
             (double)st->srt_ns_map * 1e-6, (double)st->srt_ns_classify * 1e-6, (double)st->srt_ns_exact * 1e-6);
     fprintf(f, "  \"mean_visibility\": %.9g\n}\n", mean);

@@ -310,6 +310,7 @@ typedef struct pn_stats {
     uint32_t srt_pip;            /* pixels in the PIP set (exact masks computed) */
     uint32_t srt_thin;           /* thin triangles conservatively rasterized into the map */
     uint32_t srt_tiles_masked;   /* penumbra-mask tiles (8x8 texels) set (area light) */
+    uint32_t srt_cons_texels;    /* map texels the thin triangles marked (each counted once) */
     /* ...and its stages' share of pass_ns[PN_PASS_SHADOW] (0 without a clock): the map
      * (window, rasterization, conservative marks, penumbra tiles), the classification
      * with the PIP list, and the exact masks of the PIP pixels */

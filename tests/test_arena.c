@@ -67,8 +67,9 @@ static void test_bad_limits(void)
     CHECK(bytes == 12345); /* out-parameter untouched on failure */
 }
 
-/* One byte short fails and writes nothing; the exact size renders real frames with a guard
- * region behind the block that stays intact; every misalignment works. */
+/* One byte short fails and writes nothing; the exact size renders real frames of every
+ * algorithm in the build (SRT on the context's largest map) with a guard region behind the
+ * block that stays intact; every misalignment works. */
 static void test_too_small_and_guard(void)
 {
     pn_mesh m;
@@ -78,9 +79,11 @@ static void test_too_small_and_guard(void)
     size_t bytes;
     unsigned off;
     REQUIRE(pn_builtin_scene("spheres", &m, &v, err, sizeof(err)) == 0);
+    memset(&lim, 0, sizeof(lim));
     lim.max_triangles = m.triangle_count;
     lim.max_width = 64;
     lim.max_height = 48;
+    lim.srt_map_max = 128;
     REQUIRE(pn_arena_size(&lim, &bytes) == PN_OK);
     for (off = 0; off < 64; off += 13) {
         uint8_t *raw = (uint8_t *)malloc(bytes + GUARD + 64);
@@ -110,10 +113,15 @@ static void test_too_small_and_guard(void)
         memcpy(light.v, v.light_v, sizeof(light.v));
         pn_frame_options_default(&opt);
         opt.k = 8;
-        for (f = 0; f < 3; f++) {
+        for (f = 0; f < 3 + 4; f++) {
+            static const pn_algo algo[4] = {PN_ALGO_REFERENCE, PN_ALGO_GEARS, PN_ALGO_RAYTRACE, PN_ALGO_SRT};
+            static const uint32_t flag[4] = {PN_BUILD_REFERENCE, PN_BUILD_GEARS, PN_BUILD_RAYTRACE, PN_BUILD_SRT};
             opt.width = f == 1 ? 32u : 64u;
             opt.height = f == 1 ? 17u : 48u;
-            CHECK(pn_render(ctx, &cam, &light, &opt, &fr) == PN_OK);
+            opt.algo = f < 3 ? PN_ALGO_REFERENCE : algo[f - 3];
+            if (f >= 3 && !(pn_build_info() & flag[f - 3])) continue;
+            CHECK_MSG(pn_render(ctx, &cam, &light, &opt, &fr) == PN_OK, "algorithm %d: %s", (int)opt.algo,
+                      pn_last_error(ctx));
             CHECK((const uint8_t *)fr.visibility >= mem &&
                   (const uint8_t *)(fr.visibility + opt.width * opt.height) <= mem + bytes);
         }

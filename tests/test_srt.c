@@ -10,6 +10,13 @@
  *    missing shadow). Every pixel that differs lies outside the PIP set by construction (PIP pixels
  *    take the reference's own path), so the measured rates are the classification's misses.
  *    The same with conservative rasterization off is printed, not asserted.
+ * 4. Property over random scenes (test_random): a ground plane under boxes, boards (one
+ *    side a fraction of a percent of the scene) and slivers at random, an area (k = 16)
+ *    and a point light: forced PIP is the reference byte for byte on every one, and the
+ *    defaults' differing pixels are counted. A scene/light over the 0.1% goal is a
+ *    documented case (g_cases: the misses the paper admits, regular light-space sampling
+ *    missing what falls between texel centres) and may not grow; every other one must
+ *    meet the goal. The whole rate is printed.
  * 3. Options and pools: srt_map outside 8 .. the limit and unknown flags are
  *    PN_E_INVALID_ARG; a context whose srt_map_max is 64 renders, with its map size in the
  *    stats, and with a clock its stage timings lie inside the shadow pass. */
@@ -129,6 +136,158 @@ static void test_scenes(void)
     one_scene(PN_SCENES_DIR "/spot.glb", 0);
 }
 
+/* ---- 4. random scenes ---------------------------------------------------------------------- */
+
+#define RT_MAX 640u /* triangles of a random scene at most */
+static float g_pos[RT_MAX * 9u];
+static uint32_t g_idx[RT_MAX * 3u];
+
+static uint32_t g_rs;
+static float rnd01(void)
+{
+    g_rs ^= g_rs << 13;
+    g_rs ^= g_rs >> 17;
+    g_rs ^= g_rs << 5;
+    return (float)(g_rs >> 8) * (1.0f / 16777216.0f);
+}
+
+static uint32_t put_tri(uint32_t t, const float *a, const float *b, const float *c)
+{
+    memcpy(g_pos + t * 9u, a, 12);
+    memcpy(g_pos + t * 9u + 3u, b, 12);
+    memcpy(g_pos + t * 9u + 6u, c, 12);
+    g_idx[t * 3u] = t * 3u;
+    g_idx[t * 3u + 1u] = t * 3u + 1u;
+    g_idx[t * 3u + 2u] = t * 3u + 2u;
+    return t + 1u;
+}
+
+/* An axis-aligned box (12 triangles, outward winding not needed: the light sees both sides). */
+static uint32_t put_box(uint32_t t, const float lo[3], const float hi[3])
+{
+    static const int f[6][4][3] = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},
+                                   {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}},
+                                   {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}}};
+    int q, v, a;
+    for (q = 0; q < 6; q++) {
+        float c[4][3];
+        for (v = 0; v < 4; v++)
+            for (a = 0; a < 3; a++) c[v][a] = f[q][v][a] ? hi[a] : lo[a];
+        t = put_tri(t, c[0], c[1], c[2]);
+        t = put_tri(t, c[0], c[2], c[3]);
+    }
+    return t;
+}
+
+/* Scene `seed`: a 4 x 4 ground quad at y = 0 and up to 40 boxes, boards and slivers above it
+ * (y up to 1.2), seen from above at an angle, lit from above. */
+static uint32_t random_scene(uint32_t seed, pn_setup *s)
+{
+    uint32_t t = 0, n, i;
+    float g[4][3] = {{-2, 0, -2}, {2, 0, -2}, {2, 0, 2}, {-2, 0, 2}};
+    g_rs = 0x9E3779B9u ^ (seed * 2654435761u);
+    if (!g_rs) g_rs = 1u;
+    t = put_tri(t, g[0], g[1], g[2]);
+    t = put_tri(t, g[0], g[2], g[3]);
+    n = 8u + (uint32_t)(rnd01() * 32.0f);
+    for (i = 0; i < n && t + 12u <= RT_MAX; i++) {
+        float lo[3], hi[3], size[3], kind = rnd01();
+        int a;
+        for (a = 0; a < 3; a++) {
+            lo[a] = (a == 1 ? 0.02f + 1.0f * rnd01() : -1.6f + 3.2f * rnd01());
+            size[a] = 0.05f + 0.5f * rnd01();
+        }
+        if (kind < 0.35f) size[(uint32_t)(rnd01() * 3.0f) % 3u] = 0.002f + 0.01f * rnd01(); /* a board */
+        if (kind > 0.85f) { /* a sliver: one long thin triangle */
+            float a0[3], b0[3], c0[3];
+            for (a = 0; a < 3; a++) {
+                a0[a] = lo[a];
+                b0[a] = lo[a] + (a == 1 ? 0.0f : 2.0f * size[a]);
+                c0[a] = b0[a] + (a == 1 ? 0.004f : 0.003f);
+            }
+            t = put_tri(t, a0, b0, c0);
+            continue;
+        }
+        for (a = 0; a < 3; a++) hi[a] = lo[a] + size[a];
+        t = put_box(t, lo, hi);
+    }
+    memset(s, 0, sizeof(*s));
+    snprintf(s->name, sizeof(s->name), "random %u", seed);
+    s->camera.eye[0] = 3.2f * (rnd01() - 0.5f);
+    s->camera.eye[1] = 3.0f + rnd01();
+    s->camera.eye[2] = 4.0f;
+    s->camera.up[1] = 1.0f;
+    s->camera.fov_deg = 50.0f;
+    s->light.center[0] = 1.5f * (rnd01() - 0.5f);
+    s->light.center[1] = 2.5f + rnd01();
+    s->light.center[2] = 1.5f * (rnd01() - 0.5f);
+    s->light.u[0] = 0.1f + 0.3f * rnd01();
+    s->light.v[2] = 0.1f + 0.3f * rnd01();
+    s->diag = 6.0f;
+    s->eps = 1e-4f * s->diag;
+    return t;
+}
+
+/* Scene/light pairs over the goal, as measured: {seed, light (0 area, 1 point), differing
+ * pixels at most}. When this test was written (49083e4) none of the 48 was: 6 of 589,824
+ * pixels differed (seeds 16, 20, 24 point: 1 each; seed 21 area: 3), so the list holds only
+ * its end marker (seed 0 is not a scene). */
+static const struct {
+    uint32_t seed, light, diff;
+} g_cases[] = {
+    {0u, 0u, 0u},
+};
+
+static void test_random(void)
+{
+    pn_host h;
+    char err[256];
+    uint32_t seed, total = 0, px = 0, over = 0, pip = 0, lit = 0, shadowed = 0;
+    REQUIRE(pn_host_open(&h, RT_MAX, W, H, 2, err, sizeof(err)) == 0);
+    for (seed = 1; seed <= 24u; seed++) {
+        pn_setup s;
+        uint32_t tris = random_scene(seed, &s), li;
+        REQUIRE(pn_scene_set(h.ctx, g_pos, tris * 3u, g_idx, tris) == PN_OK);
+        for (li = 0; li < 2u; li++) {
+            pn_light light = s.light;
+            uint32_t k = li ? 4u : 16u, i, diff = 0, q, allowed = W * H / 1000u;
+            int documented = 0;
+            if (li) memset(light.u, 0, sizeof(light.u)), memset(light.v, 0, sizeof(light.v));
+            REQUIRE(render(&h, &s, &light, PN_ALGO_REFERENCE, k, 0u, 0u, &g_ref) == 0);
+            REQUIRE(render(&h, &s, &light, PN_ALGO_SRT, k, PN_SRT_FORCE_PIP, 8u, &g_srt) == 0);
+            CHECK_MSG(memcmp(g_ref.vis, g_srt.vis, sizeof(g_ref.vis)) == 0 && memcmp(g_ref.rgba, g_srt.rgba, sizeof(g_ref.rgba)) == 0,
+                      "%s %s: forced PIP differs from the reference", s.name, li ? "point" : "area");
+            REQUIRE(render(&h, &s, &light, PN_ALGO_SRT, k, 0u, 0u, &g_srt) == 0);
+            for (i = 0; i < W * H; i++) {
+                diff += g_srt.vis[i] != g_ref.vis[i];
+                shadowed += g_ref.vis[i] < 1.0f;
+            }
+            for (q = 0; q < sizeof(g_cases) / sizeof(g_cases[0]); q++)
+                if (g_cases[q].seed == seed && g_cases[q].light == li) {
+                    allowed = g_cases[q].diff;
+                    documented = 1;
+                }
+            CHECK_MSG(diff <= allowed, "%s %s (%u triangles): %u pixels differ from the reference, %s %u", s.name,
+                      li ? "point" : "area", tris, diff, documented ? "documented case at most" : "goal at most", allowed);
+            if (diff) fprintf(stderr, "  %s %-5s: %u differing pixels (%.3f%%)\n", s.name, li ? "point" : "area", diff,
+                              100.0 * diff / (W * H));
+            total += diff;
+            px += W * H;
+            over += diff * 1000u > W * H;
+            pip += g_srt.st.srt_pip;
+            lit += g_srt.st.lit_pixels;
+        }
+    }
+    fprintf(stderr,
+            "random scenes: %u of %u pixels differ (%.4f%%), %u scene/light pairs over 0.1%%; PIP %.1f%% of lit; %.1f%% of "
+            "pixels not fully lit in the reference\n",
+            total, px, 100.0 * total / px, over, lit ? 100.0 * pip / lit : 0.0, 100.0 * shadowed / px);
+    /* Not vacuous: the scenes cast shadows (about a tenth of all pixels, background
+     * included, is not fully lit) and SRT had pixels to classify. */
+    CHECK(shadowed * 20u > px && pip < lit);
+    pn_host_close(&h);
+}
+
 static uint64_t g_ticks;
 static uint64_t tick_clock(void *user)
 {
@@ -206,5 +365,6 @@ int main(void)
 {
     RUN(test_options);
     RUN(test_scenes);
+    RUN(test_random);
     return pn_test_summary();
 }

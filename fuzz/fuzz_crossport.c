@@ -54,7 +54,7 @@ static rig *get_rig(uint32_t pool_sel)
     static const uint32_t pools[4] = {0u, 64u, 12u, 3u};
     rig *r = &rigs[pool_sel];
     if (!r->ctx) {
-        pn_limits lim = {MAX_T, MAX_W, MAX_H, pools[pool_sel], 64u, 64u}; /* SRT: a 64^2 map at most */
+        pn_limits lim = {MAX_T, MAX_W, MAX_H, pools[pool_sel], 64u, 64u, 64u}; /* SRT: a 64^2 map at most */
         size_t bytes;
         pn_status st;
         FUZZ_CHECK(pn_arena_size(&lim, &bytes) == PN_OK, "arena size");

@@ -17,8 +17,12 @@ typedef struct pn_kpools {
     uint64_t depth, tri_id, pos, nrm, vis, rgba, rows, counters;
     /* frame: GEARS (src/pn_gears.c) */
     uint64_t faces, rects, tri_off, pix_cell, row_box, cell_off, cell_pix, cell_cur, row_pairs, pairs, sorted;
+    /* frame: the light view's row bounds (SRT, occlusion textures) */
+    uint64_t lview_box;
+    /* frame: occlusion textures (src/pn_occtex.c) */
+    uint64_t occ_bits, occ_filt, occ_words;
     /* frame: selective ray tracing (src/pn_srt.c) */
-    uint64_t srt_box, lmap_depth, lmap_id, lmap_cons, srt_tile_w, srt_tile_h, srt_tile_mask, srt_words, pip_off, pip_list;
+    uint64_t lmap_depth, lmap_id, lmap_cons, srt_tile_w, srt_tile_h, srt_tile_mask, srt_words, pip_off, pip_list;
 } pn_kpools;
 
 /* A tile of GEARS grid cells: grid rows [r0, r1] and columns [x0, x1] of one face. */
@@ -35,8 +39,12 @@ typedef struct pn_kparams {
     pn_ktile tile;        /* GEARS: the tile a pass works on (grid row r0 for a row count) */
     uint32_t tri_count;   /* scene triangles */
     uint32_t exact_stats; /* GEARS masks: 1 = do not stop at a full mask (exact counters) */
-    /* selective ray tracing: the light view and the classification's constants */
+    /* the light-space view (SRT: at the light centre; occlusion textures: at the centre of
+     * projection behind it) and the offsets of its row bounds (pn_lview.h) */
     pn_kview lview;
+    float lview_ha, lview_hb;
+    pn_kocc occ;
+    /* selective ray tracing: the classification's constants */
     float srt_delta, srt_alpha, srt_reach_u, srt_reach_v; /* reach: texels per unit splat weight */
     float srt_wmax; /* largest splat weight 1/z of the map's edge texels */
     uint32_t srt_flags, srt_tiles, srt_pad0;

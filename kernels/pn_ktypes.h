@@ -46,6 +46,20 @@ typedef struct pn_kshade {
     uint32_t pad;
 } pn_kshade;
 
+/* Occlusion textures' frame constants (kernels/pn_occtex.h; src/pn_occtex.c sets them). */
+typedef struct pn_kocc {
+    float d;              /* centre of projection behind the light centre (0: point light) */
+    float zmin, h;        /* slice k's bottom plane at light depth zmin + k h */
+    float sfac_x, sfac_y; /* kernel side in texels = sfac (z - zb) / (z (zb + d)) */
+    float pad0, pad1, pad2;
+    uint32_t res;         /* texels per axis */
+    uint32_t slices;      /* 2 .. PN_OCC_SLICES_MAX */
+    uint32_t filter, combine, flags;
+    uint32_t slice;       /* the slice a filter or lookup pass works on */
+    uint32_t levels;      /* N-buffer and mipmap levels: floor(log2 res) + 1 */
+    uint32_t level;       /* the level a filter pass builds */
+} pn_kocc;
+
 /* Triangle flags (one byte each). */
 #define PN_TRI_DEGENERATE 1u
 

@@ -28,8 +28,15 @@
 #if PN_ENABLE_GEARS
 #include "pn_gears_pass.h"
 #endif
+#define PN_LIGHT_VIEW (PN_ENABLE_SRT || PN_ENABLE_OCCTEX)
+#if PN_LIGHT_VIEW
+#include "pn_lview.h"
+#endif
 #if PN_ENABLE_SRT
 #include "pn_srt.h"
+#endif
+#if PN_ENABLE_OCCTEX
+#include "pn_occtex.h"
 #endif
 
 #define PN_NO_PIXEL_TRIANGLE 0xFFFFFFFFu
@@ -206,15 +213,27 @@ PN_KFN void pn_e_gears_masks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
 }
 #endif
 
+/* ---- The light-space view (pn_lview.h): SRT's map and the occlusion textures' slices ---- */
+
+#if PN_LIGHT_VIEW
+/* Row: the light-frame extent of its lit origins. */
+PN_KFN void pn_e_lview_bounds(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
+{
+    pn_lview_bounds_row(&K->lview, &K->light, K->lview_ha, K->lview_hb, K->view.width, y,
+                        PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos), PN_POOL(const float, nrm),
+                        PN_POOL(float, lview_box));
+}
+
+/* Triangle: the light-view rows it may cover (the G-buffer's set-up on the light view). */
+PN_KFN void pn_e_lmap_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+{
+    PN_POOL(uint32_t, rows)[t] = pn_raster_rows(&K->lview, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), t);
+}
+#endif
+
 /* ---- Selective ray tracing (pn_srt.h; the frame is src/pn_srt.c) ------------------------- */
 
 #if PN_ENABLE_SRT
-/* Row: the light-frame extent of its lit origins. */
-PN_KFN void pn_e_srt_bounds(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
-{
-    pn_srt_bounds_row(&K->lview, &K->light, K->view.width, y, PN_POOL(const uint32_t, tri_id),
-                      PN_POOL(const float, pos), PN_POOL(const float, nrm), PN_POOL(float, srt_box));
-}
 
 /* Texel: empty map (depth +inf, no triangle, no thin triangle). */
 PN_KFN void pn_e_lmap_clear(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
@@ -223,12 +242,6 @@ PN_KFN void pn_e_lmap_clear(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
     PN_POOL(float, lmap_depth)[t] = PN_KINF;
     PN_POOL(uint32_t, lmap_id)[t] = PN_NO_PIXEL_TRIANGLE;
     PN_POOL(uint32_t, lmap_cons)[t] = 0u;
-}
-
-/* Triangle: the map rows it may cover (the G-buffer's set-up on the light view). */
-PN_KFN void pn_e_lmap_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
-{
-    PN_POOL(uint32_t, rows)[t] = pn_raster_rows(&K->lview, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), t);
 }
 
 /* Band of map rows: the G-buffer's rasterizer on the light view. */
@@ -317,6 +330,92 @@ PN_KFN void pn_e_srt_exact(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kp
 }
 #endif
 
+/* ---- Occlusion textures (pn_occtex.h; the frame is src/pn_occtex.c) ---------------------- */
+
+#if PN_ENABLE_OCCTEX
+/* Band of texel rows: every fragment's slice bits. */
+PN_KFN void pn_e_occ_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
+{
+    pn_occ_band(&K->lview, &K->occ, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows), K->tri_count, band,
+                PN_POOL(uint32_t, occ_bits), PN_POOL(uint32_t, occ_words));
+}
+
+/* Texel: level 0 of the N-buffer or mipmap, the slice's bit. */
+PN_KFN void pn_e_occ_level0(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
+{
+    pn_occ_level0(&K->occ, PN_POOL(const uint32_t, occ_bits), i, PN_POOL(uint32_t, occ_filt));
+}
+
+/* Texel of N-buffer level K->occ.level. */
+PN_KFN void pn_e_occ_nbuf(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
+{
+    pn_occ_nbuf_level(&K->occ, i, PN_POOL(uint32_t, occ_filt));
+}
+
+/* Texel of mipmap level K->occ.level. */
+PN_KFN void pn_e_occ_mip(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
+{
+    pn_occ_mip_level(&K->occ, i, PN_POOL(uint32_t, occ_filt));
+}
+
+/* Summed-area table: row j's prefix sums, then column i's. */
+PN_KFN void pn_e_occ_sat_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t j)
+{
+    pn_occ_sat_row(&K->occ, PN_POOL(const uint32_t, occ_bits), j, PN_POOL(uint32_t, occ_filt));
+}
+PN_KFN void pn_e_occ_sat_cols(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
+{
+    pn_occ_sat_col(&K->occ, i, PN_POOL(uint32_t, occ_filt));
+}
+
+/* Pixel: visibility 1 (lit or background) or 0 (facing away, behind the light), counted. */
+PN_KFN void pn_e_occ_init(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
+    pn_v3 O;
+    uint32_t id = PN_POOL(const uint32_t, tri_id)[pix];
+    int lit = id != PN_NO_PIXEL_TRIANGLE &&
+              pn_shadow_origin(pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u),
+                               pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u), &K->light, &O);
+    PN_POOL(float, vis)[pix] = (id == PN_NO_PIXEL_TRIANGLE || lit) ? 1.0f : 0.0f;
+    c.lit = lit ? 1u : 0u;
+    pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
+}
+
+/* Pixel: slice K->occ.slice's occlusion combined into its visibility; a lookup counted
+ * (as a candidate) when the slice weighs in. */
+PN_KFN void pn_e_occ_lookup(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
+    pn_v3 O;
+    float I;
+    if (PN_POOL(const uint32_t, tri_id)[pix] == PN_NO_PIXEL_TRIANGLE ||
+        !pn_shadow_origin(pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u),
+                          pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u), &K->light, &O))
+        return;
+    if (!pn_occ_slice_occlusion(&K->lview, &K->light, &K->occ, PN_POOL(const uint32_t, occ_filt), O, &I)) return;
+    if (I > 0.0f) PN_POOL(float, vis)[pix] = pn_occ_combine(K->occ.combine, PN_POOL(const float, vis)[pix], I);
+    c.candidates = 1u;
+    pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
+}
+
+/* Pixel: times the fraction of light samples in front of its own plane. */
+PN_KFN void pn_e_occ_finish(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    uint32_t m[PN_MASK_WORDS_MAX], id = PN_POOL(const uint32_t, tri_id)[pix];
+    pn_v3 pos, nrm, O;
+    pn_horizon H;
+    if (id == PN_NO_PIXEL_TRIANGLE) return;
+    pos = pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u);
+    nrm = pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u);
+    if (!pn_shadow_origin(pos, nrm, &K->light, &O)) return;
+    pn_mask_clear(m);
+    pn_horizon_of(pos, nrm, id, PN_POOL(const float, tris), &K->light, &H);
+    pn_horizon_mask(&H, &K->light, m);
+    PN_POOL(float, vis)[pix] = PN_POOL(const float, vis)[pix] * pn_mask_visibility(m, K->light.k);
+}
+#endif
+
 /* ---- Shading (pn_shade.h) --------------------------------------------------------------- */
 
 /* Pixel: RGBA8 bytes r g b a, whatever the device's endianness. */
@@ -359,11 +458,32 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
 #define PN_PASSES_GEARS(X)
 #endif
 
+#if PN_LIGHT_VIEW
+#define PN_PASSES_LVIEW(X)                                \
+    X(LVIEW_BOUNDS, lview_bounds, 1, 1)                   \
+    X(LMAP_ROWS, lmap_rows, 64, 4096)
+#else
+#define PN_PASSES_LVIEW(X)
+#endif
+
+#if PN_ENABLE_OCCTEX
+#define PN_PASSES_OCCTEX(X)                               \
+    X(OCC_BAND, occ_band, 1, 1)                           \
+    X(OCC_LEVEL0, occ_level0, 64, 4096)                   \
+    X(OCC_NBUF, occ_nbuf, 64, 4096)                       \
+    X(OCC_MIP, occ_mip, 64, 4096)                         \
+    X(OCC_SAT_ROWS, occ_sat_rows, 1, 1)                   \
+    X(OCC_SAT_COLS, occ_sat_cols, 1, 1)                   \
+    X(OCC_INIT, occ_init, 64, 4096)                       \
+    X(OCC_LOOKUP, occ_lookup, 64, 1024)                   \
+    X(OCC_FINISH, occ_finish, 64, 1024)
+#else
+#define PN_PASSES_OCCTEX(X)
+#endif
+
 #if PN_ENABLE_SRT
 #define PN_PASSES_SRT(X)                                  \
-    X(SRT_BOUNDS, srt_bounds, 1, 1)                       \
     X(LMAP_CLEAR, lmap_clear, 64, 4096)                   \
-    X(LMAP_ROWS, lmap_rows, 64, 4096)                     \
     X(LMAP_BAND, lmap_band, 1, 1)                         \
     X(SRT_CONSERVATIVE, srt_conservative, 64, 1024)       \
     X(SRT_TILES, srt_tiles, 16, 64)                       \
@@ -382,7 +502,9 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
     PN_PASSES_REFERENCE(X)                          \
     PN_PASSES_RAYTRACE(X)                           \
     PN_PASSES_GEARS(X)                              \
+    PN_PASSES_LVIEW(X)                              \
     PN_PASSES_SRT(X)                                \
+    PN_PASSES_OCCTEX(X)                             \
     X(SHADE, shade, 64, 1024)
 
 #define PN_PASS_ENUM(id, name, local, grain) PN_K_##id,

@@ -212,56 +212,84 @@ PN_KFN uint32_t pn_raster_rows(const pn_kview *v, PN_CONST float *tris, PN_CONST
     return (uint32_t)y0 | ((uint32_t)y1 << 16);
 }
 
+/* One triangle set up for the rows [row0, row1] of view v: its projected polygon and edge
+ * functions, the pixel columns and rows it may cover there, and its plane (n, n.(A - eye))
+ * for the depth along a pixel's primary ray. The one set-up of every rasterizer here (the
+ * G-buffer, the light-space maps, the occlusion-texture slices), so they cover the same
+ * pixel centres. */
+typedef struct pn_raster_tri {
+    pn_poly poly;
+    pn_edge2 e[4];
+    int32_t x0, x1;
+    uint32_t y0, y1;
+    pn_v3 n;
+    float nA;
+} pn_raster_tri;
+
+/* 0 when triangle t covers nothing in rows [row0, row1] (rows[t]: pn_raster_rows). */
+PN_KFN int pn_raster_tri_setup(const pn_kview *v, PN_CONST float *tris, PN_CONST uint32_t *rows, uint32_t t,
+                               uint32_t row0, uint32_t row1, pn_raster_tri *rt)
+{
+    uint32_t r = rows[t], i;
+    PN_CONST float *p;
+    pn_v3 A, B, C;
+    float xlo, xhi;
+    if (r == PN_RASTER_EMPTY) return 0;
+    rt->y0 = r & 0xFFFFu;
+    rt->y1 = r >> 16;
+    if (rt->y1 < row0 || rt->y0 > row1) return 0;
+    if (rt->y0 < row0) rt->y0 = row0;
+    if (rt->y1 > row1) rt->y1 = row1;
+    p = tris + (size_t)t * 9u;
+    A = pn_v3_make(p[0], p[1], p[2]);
+    B = pn_v3_make(p[3], p[4], p[5]);
+    C = pn_v3_make(p[6], p[7], p[8]);
+    pn_poly_make(v, A, B, C, &rt->poly);
+    if (rt->poly.n == 0u) return 0;
+    pn_edges_make(&rt->poly, rt->e);
+    xlo = rt->poly.x[0];
+    xhi = rt->poly.x[0];
+    for (i = 1; i < rt->poly.n; i++) {
+        xlo = pn_kminf(xlo, rt->poly.x[i]);
+        xhi = pn_kmaxf(xhi, rt->poly.x[i]);
+    }
+    rt->x0 = pn_kceil_clamp(xlo - 0.5f, 0, (int32_t)v->width);
+    rt->x1 = pn_kfloor_clamp(xhi - 0.5f, -1, (int32_t)v->width - 1);
+    rt->n = pn_tri_cross(A, B, C);
+    rt->nA = pn_v3_dot(rt->n, pn_v3_sub(A, pn_view_eye(v)));
+    return 1;
+}
+
+/* Whether the set-up triangle covers the centre of pixel (x, y) in front of the eye, and
+ * then *t: its distance along the pixel's unit primary ray *dir. */
+PN_KFN_HOT int pn_raster_tri_hit(const pn_kview *v, const pn_raster_tri *rt, uint32_t x, uint32_t y, float *t, pn_v3 *dir)
+{
+    float den;
+    if (!pn_edges_inside(rt->e, rt->poly.n, (float)x + 0.5f, (float)y + 0.5f)) return 0;
+    *dir = pn_ray_dir(v, x, y);
+    den = pn_v3_dot(rt->n, *dir);
+    if (den == 0.0f) return 0;
+    *t = rt->nA / den;
+    return *t > 0.0f;
+}
+
 /* Rasterizes every triangle into rows [row0, row1] of the G-buffer. depth and tri_id of
  * those rows must hold +inf / PN_NO_TRIANGLE on entry. */
 PN_KFN void pn_raster_band(const pn_kview *v, PN_CONST float *tris, PN_CONST uint32_t *rows, uint32_t tri_count, uint32_t row0,
                            uint32_t row1, PN_GLOBAL float *depth, PN_GLOBAL uint32_t *tri_id)
 {
     uint32_t t;
-    pn_v3 eye = pn_view_eye(v);
     for (t = 0; t < tri_count; t++) {
-        uint32_t r = rows[t], y, y0, y1;
-        PN_CONST float *p;
-        pn_v3 A, B, C, n;
-        pn_poly poly;
-        pn_edge2 e[4];
-        float xlo, xhi, nA;
-        int32_t x0, x1;
-        uint32_t i;
-        if (r == PN_RASTER_EMPTY) continue;
-        y0 = r & 0xFFFFu;
-        y1 = r >> 16;
-        if (y1 < row0 || y0 > row1) continue;
-        if (y0 < row0) y0 = row0;
-        if (y1 > row1) y1 = row1;
-        p = tris + (size_t)t * 9u;
-        A = pn_v3_make(p[0], p[1], p[2]);
-        B = pn_v3_make(p[3], p[4], p[5]);
-        C = pn_v3_make(p[6], p[7], p[8]);
-        pn_poly_make(v, A, B, C, &poly);
-        if (poly.n == 0u) continue;
-        pn_edges_make(&poly, e);
-        xlo = poly.x[0];
-        xhi = poly.x[0];
-        for (i = 1; i < poly.n; i++) {
-            xlo = pn_kminf(xlo, poly.x[i]);
-            xhi = pn_kmaxf(xhi, poly.x[i]);
-        }
-        x0 = pn_kceil_clamp(xlo - 0.5f, 0, (int32_t)v->width);
-        x1 = pn_kfloor_clamp(xhi - 0.5f, -1, (int32_t)v->width - 1);
-        n = pn_tri_cross(A, B, C);
-        nA = pn_v3_dot(n, pn_v3_sub(A, eye));
-        for (y = y0; y <= y1; y++) {
-            float py = (float)y + 0.5f;
+        pn_raster_tri rt;
+        uint32_t y;
+        if (!pn_raster_tri_setup(v, tris, rows, t, row0, row1, &rt)) continue;
+        for (y = rt.y0; y <= rt.y1; y++) {
             int32_t x;
-            for (x = x0; x <= x1; x++) {
+            for (x = rt.x0; x <= rt.x1; x++) {
                 size_t pix = (size_t)y * v->width + (size_t)x;
-                float den, tt;
-                if (!pn_edges_inside(e, poly.n, (float)x + 0.5f, py)) continue;
-                den = pn_v3_dot(n, pn_ray_dir(v, (uint32_t)x, y));
-                if (den == 0.0f) continue;
-                tt = nA / den;
-                if (!(tt > 0.0f)) continue;
+                float tt;
+                pn_v3 dir;
+                if (!pn_raster_tri_hit(v, &rt, (uint32_t)x, y, &tt, &dir)) continue;
                 if (tt < depth[pix] || (tt == depth[pix] && t < tri_id[pix])) {
                     depth[pix] = tt;
                     tri_id[pix] = t;

@@ -34,6 +34,7 @@
 #define PN_SRT_H
 
 #include "pn_kpools.h"
+#include "pn_lview.h"
 #include "pn_raster.h"
 #include "pn_reference.h"
 
@@ -47,8 +48,8 @@
 #define PN_SRT_WORD_THIN 1u
 #define PN_SRT_WORD_TILES 2u
 #define PN_SRT_WORD_CONS 3u
-/* Largest map half-extent in tan units (76 degrees off the axis); beyond it: PIP. */
-#define PN_SRT_TAN_MAX 4.0f
+/* Largest map half-extent in tan units; beyond it: PIP. */
+#define PN_SRT_TAN_MAX PN_LVIEW_TAN_MAX
 
 PN_KFN uint32_t pn_srt_fbits(float v)
 {
@@ -92,46 +93,6 @@ PN_KFN uint32_t pn_srt_atomic_fmax(PN_GLOBAL uint32_t *p, float v)
     }
     return cur;
 #endif
-}
-
-/* Row y of the G-buffer: over its lit pixels (origins in front of the light), the largest
- * |x/z| and |y/z| in the light frame (lview's axes), the smallest z, and how many origins
- * are too close to the light plane or too far off the axis for any map (z <= 0 or
- * beyond PN_SRT_TAN_MAX): box[y * 4 ..] = {max |x/z|, max |y/z|, min z, count}. */
-PN_KFN void pn_srt_bounds_row(const pn_kview *lv, const pn_klight *L, uint32_t width, uint32_t y,
-                              PN_CONST uint32_t *tri_id, PN_CONST float *pos, PN_CONST float *nrm,
-                              PN_GLOBAL float *box)
-{
-    float ax = 0.0f, ay = 0.0f, zmin = PN_KINF, out = 0.0f;
-    uint32_t x;
-    for (x = 0; x < width; x++) {
-        size_t pix = (size_t)y * width + x;
-        pn_v3 O, c;
-        float tx, ty;
-        if (tri_id[pix] == 0xFFFFFFFFu ||
-            !pn_shadow_origin(pn_v3_load(pos + pix * 3u), pn_v3_load(nrm + pix * 3u), L, &O))
-            continue;
-        c = pn_to_camera(lv, O);
-        if (!(c.z > 0.0f)) {
-            out += 1.0f;
-            continue;
-        }
-        tx = c.x / c.z;
-        ty = c.y / c.z;
-        tx = tx < 0.0f ? -tx : tx;
-        ty = ty < 0.0f ? -ty : ty;
-        if (!(tx <= PN_SRT_TAN_MAX && ty <= PN_SRT_TAN_MAX)) {
-            out += 1.0f;
-            continue;
-        }
-        ax = pn_kmaxf(ax, tx);
-        ay = pn_kmaxf(ay, ty);
-        zmin = pn_kminf(zmin, c.z);
-    }
-    box[(size_t)y * 4u + 0u] = ax;
-    box[(size_t)y * 4u + 1u] = ay;
-    box[(size_t)y * 4u + 2u] = zmin;
-    box[(size_t)y * 4u + 3u] = out;
 }
 
 /* The polygon's x-extent within the horizontal strip [y0, y1] (pixel coordinates), for a

@@ -77,7 +77,7 @@ static int pn_srt_pools(const pn_limits *l, uint64_t *off)
     uint64_t px = (uint64_t)l->max_width * l->max_height, r = pn_srt_map_max(l), tl = r / 8u + 1u;
     size_t dummy;
     /* pn_srt_frame() in src/pn_srt.c allocates exactly these, in this order. */
-    return pn_bump(off, l->max_height, 16u, &dummy) &&    /* row bounds */
+    return pn_bump(off, l->max_height, 4u * PN_LVIEW_BOX_FLOATS, &dummy) && /* row bounds */
            pn_bump(off, r * r, 4u, &dummy) &&              /* map depth */
            pn_bump(off, r * r, 4u, &dummy) &&              /* map triangle ids */
            pn_bump(off, r * r, 4u, &dummy) &&              /* thin-triangle marks */
@@ -94,6 +94,25 @@ static int pn_srt_pools(const pn_limits *l, uint64_t *off)
 #endif
 }
 
+/* The occlusion-texture frame pools (one filter pool: the largest of N-buffer levels^2,
+ * summed-area table and mipmap is the N-buffer, or the table for a tiny map). */
+static int pn_occ_pools(const pn_limits *l, uint64_t *off)
+{
+#if PN_ENABLE_OCCTEX
+    uint64_t r = pn_occ_map_max(l);
+    size_t dummy;
+    /* pn_occtex_frame() in src/pn_occtex.c allocates exactly these, in this order. */
+    return pn_bump(off, l->max_height, 4u * PN_LVIEW_BOX_FLOATS, &dummy) && /* row bounds */
+           pn_bump(off, r * r, 4u, &dummy) &&                               /* slice bits */
+           pn_bump(off, pn_occ_filter_words((uint32_t)r), 4u, &dummy) &&    /* one slice's filter */
+           pn_bump(off, 32u, 4u, &dummy);                                   /* counters */
+#else
+    (void)l;
+    (void)off;
+    return 1;
+#endif
+}
+
 pn_status pn_carve(const pn_limits *l, pn_layout *out)
 {
     uint64_t off = 0, frame_start;
@@ -101,7 +120,8 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
     if (l->max_triangles < 1u || l->max_triangles > PN_MAX_TRIANGLES || l->max_width < 1u ||
         l->max_width > PN_MAX_WIDTH || l->max_height < 1u || l->max_height > PN_MAX_HEIGHT ||
         l->gears_pairs > (1u << 28) || l->gears_grid_max > 1024u || l->srt_map_max > PN_SRT_MAP_MAX ||
-        (l->srt_map_max != 0u && l->srt_map_max < 8u))
+        (l->srt_map_max != 0u && l->srt_map_max < 8u) || l->occ_map_max > PN_OCCTEX_MAP_MAX ||
+        (l->occ_map_max != 0u && l->occ_map_max < 8u))
         return PN_E_LIMIT;
     if (!pn_bump(&off, 1u, sizeof(pn_context), &lay.ctx) ||
         !pn_bump(&off, l->max_triangles, 9u * sizeof(float), &lay.tris) ||
@@ -113,13 +133,16 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
         return PN_E_LIMIT;
     frame_start = off;
     {
-        /* The common pools, then the larger of GEARS' and SRT's (one algorithm a frame). */
-        uint64_t common = off, a, b;
+        /* The common pools, then the largest of GEARS', SRT's and the occlusion textures'
+         * (one algorithm a frame). */
+        uint64_t common = off, a, b, c;
         if (!pn_frame_pools_common(l, &common)) return PN_E_LIMIT;
         a = common;
         b = common;
-        if (!pn_gears_pools(l, &a) || !pn_srt_pools(l, &b)) return PN_E_LIMIT;
+        c = common;
+        if (!pn_gears_pools(l, &a) || !pn_srt_pools(l, &b) || !pn_occ_pools(l, &c)) return PN_E_LIMIT;
         off = a > b ? a : b;
+        off = off > c ? off : c;
     }
     /* Round the end so the last pool's alignment padding is inside the region. */
     if (!pn_bump(&off, 0u, 1u, &lay.end)) return PN_E_LIMIT;
@@ -172,10 +195,23 @@ void pn_limits_max(pn_limits *limits)
     limits->gears_pairs = 0;
     limits->gears_grid_max = 0;
     limits->srt_map_max = 0;
+    limits->occ_map_max = 0;
 }
 
 uint32_t pn_gears_pairs_max(const pn_limits *l) { return l->gears_pairs ? l->gears_pairs : PN_GEARS_PAIRS; }
 uint32_t pn_srt_map_max(const pn_limits *l) { return l->srt_map_max ? l->srt_map_max : PN_SRT_MAP_MAX; }
+uint32_t pn_occ_map_max(const pn_limits *l) { return l->occ_map_max ? l->occ_map_max : PN_OCCTEX_MAP_MAX; }
+uint32_t pn_occ_levels(uint32_t res)
+{
+    uint32_t l = 1u;
+    while ((2u << (l - 1u)) <= res) l++;
+    return l;
+}
+uint64_t pn_occ_filter_words(uint32_t res)
+{
+    uint64_t nb = (uint64_t)pn_occ_levels(res) * res * res, sat = ((uint64_t)res + 1u) * (res + 1u);
+    return nb > sat ? nb : sat;
+}
 uint32_t pn_gears_grid_max(const pn_limits *l) { return l->gears_grid_max ? l->gears_grid_max : PN_GEARS_GRID_MAX; }
 
 pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes)

@@ -154,6 +154,13 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out)
     s.srt_ns_map = ctx->srt.ns_map;
     s.srt_ns_classify = ctx->srt.ns_classify;
     s.srt_ns_exact = ctx->srt.ns_exact;
+    s.occ_map = ctx->occ.map;
+    s.occ_slices = ctx->occ.slices;
+    s.occ_texels_set = ctx->occ.texels;
+    s.occ_lookups = ctx->occ.lookups;
+    s.occ_ns_slice = ctx->occ.ns_slice;
+    s.occ_ns_filter = ctx->occ.ns_filter;
+    s.occ_ns_lookup = ctx->occ.ns_lookup;
     *out = s;
     return PN_OK;
 }
@@ -172,6 +179,9 @@ uint32_t pn_build_info(void)
 #endif
 #if PN_ENABLE_SRT
     f |= PN_BUILD_SRT;
+#endif
+#if PN_ENABLE_OCCTEX
+    f |= PN_BUILD_OCCTEX;
 #endif
     return f;
 }

@@ -6,6 +6,7 @@
 #include "pn_device.h"
 #include "pn_gears_frame.h"
 #include "pn_srt_frame.h"
+#include "pn_occtex_frame.h"
 #include "pn_kmath.h"
 #include "pn_passes.h"
 
@@ -216,6 +217,24 @@ static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
 #else
         return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_SRT is not compiled in (PN_ENABLE_SRT 0)");
 #endif
+    case PN_ALGO_OCCTEX:
+#if PN_ENABLE_OCCTEX
+        if (o->occ_slices != 0u && (o->occ_slices < 2u || o->occ_slices > 16u))
+            return pn_fail(ctx, PN_E_INVALID_ARG, "occ_slices = %u; it must be 0 or in 2 .. 16", o->occ_slices);
+        if (o->occ_map != 0u && (o->occ_map < 8u || o->occ_map > pn_occ_map_max(&ctx->limits)))
+            return pn_fail(ctx, PN_E_INVALID_ARG, "occ_map = %u; it must be 0 or in 8 .. %u (pn_limits.occ_map_max)",
+                           o->occ_map, pn_occ_map_max(&ctx->limits));
+        if (o->occ_filter > PN_OCC_FILTER_MIPMAP)
+            return pn_fail(ctx, PN_E_INVALID_ARG, "occ_filter = %u; it must be 0 or a PN_OCC_FILTER_*", o->occ_filter);
+        if (o->occ_combine > PN_OCC_COMBINE_SUM)
+            return pn_fail(ctx, PN_E_INVALID_ARG, "occ_combine = %u; it must be 0 or a PN_OCC_COMBINE_*",
+                           o->occ_combine);
+        if (o->occ_flags & ~PN_OCC_NO_LEAK_FIX)
+            return pn_fail(ctx, PN_E_INVALID_ARG, "occ_flags = %u has unknown bits", o->occ_flags);
+        return PN_OK;
+#else
+        return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_OCCTEX is not compiled in (PN_ENABLE_OCCTEX 0)");
+#endif
     }
     return pn_fail(ctx, PN_E_INVALID_ARG, "unknown algorithm %u", (uint32_t)o->algo);
 }
@@ -274,6 +293,9 @@ static pn_status pn_shadow(pn_frame_state *fs)
 #endif
 #if PN_ENABLE_SRT
     case PN_ALGO_SRT: st = pn_srt_frame(fs); break;
+#endif
+#if PN_ENABLE_OCCTEX
+    case PN_ALGO_OCCTEX: st = pn_occtex_frame(fs); break;
 #endif
     default: return pn_fail(fs->ctx, PN_E_UNSUPPORTED, "algorithm %u not available", fs->algo);
     }
@@ -342,6 +364,15 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     if (!opt->srt_map && fs.srt_map > 2048u) fs.srt_map = 2048u;
     fs.K.srt_flags = opt->srt_flags;
     fs.K.srt_delta = (opt->srt_delta > 0.0f ? opt->srt_delta : 1e-3f) * ctx->scene_diag;
+#endif
+#if PN_ENABLE_OCCTEX
+    /* Defaults: the configuration docs/bench/RESULTS.md recommends ("Occlusion textures"). */
+    fs.occ_map = opt->occ_map ? opt->occ_map : pn_occ_map_max(&ctx->limits);
+    if (!opt->occ_map && fs.occ_map > 512u) fs.occ_map = 512u;
+    fs.K.occ.slices = opt->occ_slices ? opt->occ_slices : 8u;
+    fs.K.occ.filter = opt->occ_filter ? opt->occ_filter : PN_OCC_FILTER_NBUFFER;
+    fs.K.occ.combine = opt->occ_combine ? opt->occ_combine : PN_OCC_COMBINE_PRODUCT;
+    fs.K.occ.flags = opt->occ_flags;
 #endif
 
     px = (size_t)opt->width * opt->height;

@@ -39,6 +39,7 @@ typedef struct pn_frame_state {
     uint32_t width, height;
     uint32_t gears_grid;
     uint32_t srt_map;
+    uint32_t occ_map;
     float *depth;
     uint32_t *tri_id;
     float *pos;
@@ -96,6 +97,10 @@ struct pn_context {
         uint32_t map, pip, thin, tiles_masked, cons_texels;
         uint64_t ns_map, ns_classify, ns_exact;
     } srt;
+    struct {
+        uint32_t map, slices;
+        uint64_t texels, lookups, ns_slice, ns_filter, ns_lookup;
+    } occ;
     char message[256];
 };
 
@@ -103,6 +108,17 @@ struct pn_context {
 uint32_t pn_gears_pairs_max(const pn_limits *l);
 uint32_t pn_gears_grid_max(const pn_limits *l);
 uint32_t pn_srt_map_max(const pn_limits *l);
+uint32_t pn_occ_map_max(const pn_limits *l);
+/* Occlusion textures: N-buffer / mipmap levels of a res^2 texture (floor(log2 res) + 1), and
+ * the words of the one-slice filter pool (the largest of the three filters). */
+uint32_t pn_occ_levels(uint32_t res);
+uint64_t pn_occ_filter_words(uint32_t res);
+/* Floats per row of the light view's bounds pool (kernels/pn_lview.h PN_LVIEW_BOX). */
+#define PN_LVIEW_BOX_FLOATS 8u
+/* The light view's frame (SRT, occlusion textures): eye at the light centre; an area light
+ * looks along N with axes U^, V^, a point light toward the scene's centre; square, res^2,
+ * tan_half 1 until the caller fits its window. */
+void pn_light_view(const pn_context *ctx, const pn_klight *L, uint32_t res, pn_kview *lv);
 pn_status pn_carve(const pn_limits *limits, pn_layout *out);
 void pn_frame_reset(pn_context *ctx);
 void *pn_frame_alloc(pn_context *ctx, size_t count, size_t elem, const char *pool);

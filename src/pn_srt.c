@@ -13,7 +13,7 @@
 typedef char pn_srt_flag_agrees[PN_SRT_FLAG_FORCE_PIP == PN_SRT_FORCE_PIP ? 1 : -1];
 
 typedef struct pn_srt_pools {
-    float *box;          /* [height * 4]: per row max |x/z|, max |y/z|, min z, origins off the map */
+    float *box;          /* [height * PN_LVIEW_BOX]: row bounds (kernels/pn_lview.h) */
     float *depth;        /* [res^2]: map depth (distance from the light centre) */
     uint32_t *id;        /* [res^2]: map triangle */
     uint32_t *cons;      /* [res^2]: 1/z bits of the nearest thin triangle touching the texel */
@@ -25,20 +25,13 @@ typedef struct pn_srt_pools {
     uint32_t *pip_list;  /* [pixels]: the PIP pixels, dense */
 } pn_srt_pools;
 
-static void pn_set3(float *d, pn_v3 v)
-{
-    d[0] = v.x;
-    d[1] = v.y;
-    d[2] = v.z;
-}
-
 static pn_status pn_srt_begin(pn_frame_state *fs, pn_srt_pools *s, uint32_t res, uint32_t tiles)
 {
     pn_context *ctx = fs->ctx;
     pn_kpools *P = &fs->P;
     size_t px = (size_t)fs->width * fs->height, texels = (size_t)res * res, tl = (size_t)tiles * tiles;
     /* Same pools, same order as pn_srt_pools() in src/pn_arena.c. */
-    if (!(s->box = (float *)pn_frame_alloc(ctx, fs->height, 16u, "srt row bounds")) ||
+    if (!(s->box = (float *)pn_frame_alloc(ctx, fs->height, 4u * PN_LVIEW_BOX_FLOATS, "srt row bounds")) ||
         !(s->depth = (float *)pn_frame_alloc(ctx, texels, 4u, "srt map depth")) ||
         !(s->id = (uint32_t *)pn_frame_alloc(ctx, texels, 4u, "srt map triangle ids")) ||
         !(s->cons = (uint32_t *)pn_frame_alloc(ctx, texels, 4u, "srt thin-triangle marks")) ||
@@ -49,7 +42,7 @@ static pn_status pn_srt_begin(pn_frame_state *fs, pn_srt_pools *s, uint32_t res,
         !(s->pip_off = (uint32_t *)pn_frame_alloc(ctx, px + 1u, 4u, "srt PIP offsets")) ||
         !(s->pip_list = (uint32_t *)pn_frame_alloc(ctx, px, 4u, "srt PIP list")))
         return PN_E_POOL_EXHAUSTED;
-    P->srt_box = pn_dev_off(ctx, s->box);
+    P->lview_box = pn_dev_off(ctx, s->box);
     P->lmap_depth = pn_dev_off(ctx, s->depth);
     P->lmap_id = pn_dev_off(ctx, s->id);
     P->lmap_cons = pn_dev_off(ctx, s->cons);
@@ -63,38 +56,6 @@ static pn_status pn_srt_begin(pn_frame_state *fs, pn_srt_pools *s, uint32_t res,
     return PN_OK;
 }
 
-/* The light view's frame: an area light looks along N with axes U^, V^; a point light
- * looks at the scene's centre (any direction if it sits there). */
-static void pn_srt_axes(const pn_context *ctx, const pn_klight *L, uint32_t res, pn_kview *lv)
-{
-    pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]), f, r, u;
-    memset(lv, 0, sizeof(*lv));
-    pn_set3(lv->eye, c);
-    if (!L->is_point) {
-        f = pn_v3_make(L->N[0], L->N[1], L->N[2]);
-        r = pn_v3_normalize(pn_v3_make(L->U[0], L->U[1], L->U[2]));
-        u = pn_v3_normalize(pn_v3_make(L->V[0], L->V[1], L->V[2]));
-    } else {
-        pn_v3 mid = pn_v3_make(0.5f * (ctx->scene_min[0] + ctx->scene_max[0]), 0.5f * (ctx->scene_min[1] + ctx->scene_max[1]),
-                               0.5f * (ctx->scene_min[2] + ctx->scene_max[2]));
-        pn_v3 up = pn_v3_make(0.0f, 1.0f, 0.0f);
-        f = pn_v3_normalize(pn_v3_sub(mid, c));
-        if (!(pn_v3_dot(f, f) > 0.5f)) f = pn_v3_make(0.0f, -1.0f, 0.0f);
-        if (f.y > 0.9f || f.y < -0.9f) up = pn_v3_make(1.0f, 0.0f, 0.0f);
-        r = pn_v3_normalize(pn_v3_cross(f, up));
-        u = pn_v3_cross(r, f);
-    }
-    pn_set3(lv->f, f);
-    pn_set3(lv->r, r);
-    pn_set3(lv->u, u);
-    lv->tan_half = 1.0f;
-    lv->aspect = 1.0f;
-    lv->znear = 1e-5f * ctx->scene_diag;
-    if (!(lv->znear > 0.0f)) lv->znear = 1e-30f;
-    lv->width = res;
-    lv->height = res;
-}
-
 /* The map window from the row bounds: the lit origins' extent, widened for occluders off
  * to the side (an occluder at depth z shifts by up to |U|/z in the map as seen from the
  * light's points; occluders nearer than a quarter of the nearest receiver's depth are
@@ -105,8 +66,8 @@ static void pn_srt_window(pn_frame_state *fs, const pn_srt_pools *s, uint32_t re
     float ext = 0.0f, zmin = PN_KINF, margin = 0.0f, t;
     uint32_t y;
     for (y = 0; y < fs->height; y++) {
-        ext = pn_kmaxf(ext, pn_kmaxf(s->box[(size_t)y * 4u], s->box[(size_t)y * 4u + 1u]));
-        zmin = pn_kminf(zmin, s->box[(size_t)y * 4u + 2u]);
+        ext = pn_kmaxf(ext, pn_kmaxf(s->box[(size_t)y * PN_LVIEW_BOX], s->box[(size_t)y * PN_LVIEW_BOX + 1u]));
+        zmin = pn_kminf(zmin, s->box[(size_t)y * PN_LVIEW_BOX + 2u]);
     }
     if (!L->is_point && zmin < PN_KINF) {
         pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]), V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
@@ -131,12 +92,14 @@ pn_status pn_srt_frame(pn_frame_state *fs)
     pn_status st;
 
     if ((st = pn_srt_begin(fs, &s, res, tiles)) != PN_OK) return st;
-    pn_srt_axes(ctx, &K->light, res, &K->lview);
+    pn_light_view(ctx, &K->light, res, &K->lview);
+    K->lview_ha = 0.0f;
+    K->lview_hb = 0.0f;
     K->srt_tiles = tiles;
 
     /* The map window. */
-    if ((st = pn_dev_run(fs, PN_K_SRT_BOUNDS, fs->height)) != PN_OK ||
-        (st = pn_dev_to_host(fs, s.box, (size_t)fs->height * 16u)) != PN_OK)
+    if ((st = pn_dev_run(fs, PN_K_LVIEW_BOUNDS, fs->height)) != PN_OK ||
+        (st = pn_dev_to_host(fs, s.box, (size_t)fs->height * 4u * PN_LVIEW_BOX)) != PN_OK)
         return st;
     pn_srt_window(fs, &s, res);
 

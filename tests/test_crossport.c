@@ -36,6 +36,7 @@ static const struct {
     {"gears", PN_ALGO_GEARS, PN_BUILD_GEARS},
     {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},
     {"srt", PN_ALGO_SRT, PN_BUILD_SRT},
+    {"occtex", PN_ALGO_OCCTEX, PN_BUILD_OCCTEX},
 };
 #define PN_X_ALGOS (sizeof(pn_x_algos) / sizeof(pn_x_algos[0]))
 
@@ -130,6 +131,10 @@ static int same_frame(const char *what, const pn_xframe *a, const pn_xframe *b)
     SAME_STAT(srt_thin);
     SAME_STAT(srt_cons_texels);
     SAME_STAT(srt_tiles_masked);
+    SAME_STAT(occ_map);
+    SAME_STAT(occ_slices);
+    SAME_STAT(occ_texels_set);
+    SAME_STAT(occ_lookups);
 #undef SAME_STAT
     CHECK_MSG(memcmp(&a->st.gears_mean_tris_per_cell, &b->st.gears_mean_tris_per_cell, sizeof(float)) == 0 &&
                   memcmp(&a->st.gears_mean_pixels_per_cell, &b->st.gears_mean_pixels_per_cell, sizeof(float)) == 0,
@@ -330,6 +335,23 @@ static void test_options(void)
         snprintf(what, sizeof(what), "spheres GEARS grid %u exact_stats %u", o.gears_grid, o.exact_stats);
         CHECK(cross(&g_rig, &s.camera, &s.light, &o, what) == PN_OK);
     }
+    /* Occlusion textures: every filter, combination and slice count at the extremes, the
+     * leak fix off, an odd map size (mipmap levels with partial blocks), a point light. */
+    if (pn_build_info() & PN_BUILD_OCCTEX) {
+        static const uint32_t slices[3] = {2u, 5u, 16u}, maps[3] = {64u, 37u, 512u};
+        for (i = 0; i < 3 * 3 * 3; i++) {
+            pn_light light = i % 9 == 4 ? point_light(&s.light) : s.light;
+            opts(&o, &s, 40, 40, 16, PN_ALGO_OCCTEX);
+            o.occ_filter = 1u + (uint32_t)i % 3u;
+            o.occ_combine = 1u + (uint32_t)(i / 3) % 3u;
+            o.occ_slices = slices[(i / 9) % 3];
+            o.occ_map = maps[(i + i / 9) % 3];
+            o.occ_flags = (i & 1) ? PN_OCC_NO_LEAK_FIX : 0u;
+            snprintf(what, sizeof(what), "spheres occtex filter %u combine %u slices %u map %u flags %u%s", o.occ_filter,
+                     o.occ_combine, o.occ_slices, o.occ_map, o.occ_flags, i % 9 == 4 ? " point light" : "");
+            CHECK(cross(&g_rig, &s.camera, &light, &o, what) == PN_OK);
+        }
+    }
     pn_setup_free(&s);
 }
 
@@ -471,7 +493,7 @@ static void test_api(void)
     /* Validation and statuses as pn_render's: no scene yet on a fresh context. */
     {
         pn_xrig fresh;
-        pn_limits lim = {64, 16, 16, 0, 0, 0};
+        pn_limits lim = {64, 16, 16, 0, 0, 0, 0};
         pn_camera cam = {{0, 1, 3}, {0, 0, 0}, {0, 1, 0}, 45.0f};
         pn_light light = {{0, 3, 0}, {0.5f, 0, 0}, {0, 0, 0.5f}};
         static const float quad[12] = {-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};

@@ -32,12 +32,13 @@ static const pn_algo_name pn_algos[] = {
     {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE},
     {"gears", PN_ALGO_GEARS, PN_BUILD_GEARS},
     {"srt", PN_ALGO_SRT, PN_BUILD_SRT},
+    {"occtex", PN_ALGO_OCCTEX, PN_BUILD_OCCTEX},
     {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},
 };
 #define PN_ALGO_COUNT (sizeof(pn_algos) / sizeof(pn_algos[0]))
 /* The demo renders the first entries only: raytrace is a baseline with the reference's bits
  * by construction and the slowest of all (k^2 rays per pixel); the benchmark measures it. */
-#define PN_DEMO_ALGO_COUNT 3u
+#define PN_DEMO_ALGO_COUNT 4u
 
 static void usage(FILE *f)
 {
@@ -51,6 +52,8 @@ static void usage(FILE *f)
             "                  [--light-center x,y,z --light-u x,y,z --light-v x,y,z]\n"
             "                  [--ground on|off] [--eps E] [--grid N] [--exact-stats] [--threads N]\n"
             "                  [--srt-map N] [--srt-delta D] [--srt-no-conservative] [--srt-force-pip]\n"
+            "                  [--occ-slices N] [--occ-map N] [--occ-filter nbuffer|sat|mipmap]\n"
+            "                  [--occ-combine product|max|sum] [--occ-no-leak-fix]\n"
             "                  --out image.png [--vis vis.pfm] [--ids ids.bin] [--stats stats.json]\n"
             "  penumbra demo [--out DIR] [--size WxH] [--k K] [--threads N]\n"
             "  penumbra info\n"
@@ -196,6 +199,10 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
             st->srt_map, st->srt_pip, st->srt_thin, st->srt_cons_texels, st->srt_tiles_masked);
     fprintf(f, "  \"ms_srt_map\": %.3f,\n  \"ms_srt_classify\": %.3f,\n  \"ms_srt_exact\": %.3f,\n",
             (double)st->srt_ns_map * 1e-6, (double)st->srt_ns_classify * 1e-6, (double)st->srt_ns_exact * 1e-6);
+    fprintf(f, "  \"occ_map\": %u,\n  \"occ_slices\": %u,\n  \"occ_texels_set\": %llu,\n  \"occ_lookups\": %llu,\n",
+            st->occ_map, st->occ_slices, (unsigned long long)st->occ_texels_set, (unsigned long long)st->occ_lookups);
+    fprintf(f, "  \"ms_occ_slice\": %.3f,\n  \"ms_occ_filter\": %.3f,\n  \"ms_occ_lookup\": %.3f,\n",
+            (double)st->occ_ns_slice * 1e-6, (double)st->occ_ns_filter * 1e-6, (double)st->occ_ns_lookup * 1e-6);
     fprintf(f, "  \"mean_visibility\": %.9g\n}\n", mean);
     return fclose(f) != 0;
 }
@@ -277,6 +284,23 @@ static int cmd_render(int argc, char **argv)
         else if (strcmp(a, "--srt-delta") == 0) { NEED_ARG; opt.srt_delta = strtof(v, NULL); }
         else if (strcmp(a, "--srt-no-conservative") == 0) opt.srt_flags |= PN_SRT_NO_CONSERVATIVE;
         else if (strcmp(a, "--srt-force-pip") == 0) opt.srt_flags |= PN_SRT_FORCE_PIP;
+        else if (strcmp(a, "--occ-slices") == 0) { NEED_ARG; opt.occ_slices = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--occ-map") == 0) { NEED_ARG; opt.occ_map = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--occ-filter") == 0) {
+            NEED_ARG;
+            if (strcmp(v, "nbuffer") == 0) opt.occ_filter = PN_OCC_FILTER_NBUFFER;
+            else if (strcmp(v, "sat") == 0) opt.occ_filter = PN_OCC_FILTER_SAT;
+            else if (strcmp(v, "mipmap") == 0) opt.occ_filter = PN_OCC_FILTER_MIPMAP;
+            else BAD(a);
+        }
+        else if (strcmp(a, "--occ-combine") == 0) {
+            NEED_ARG;
+            if (strcmp(v, "product") == 0) opt.occ_combine = PN_OCC_COMBINE_PRODUCT;
+            else if (strcmp(v, "max") == 0) opt.occ_combine = PN_OCC_COMBINE_MAX;
+            else if (strcmp(v, "sum") == 0) opt.occ_combine = PN_OCC_COMBINE_SUM;
+            else BAD(a);
+        }
+        else if (strcmp(a, "--occ-no-leak-fix") == 0) opt.occ_flags |= PN_OCC_NO_LEAK_FIX;
         else if (strcmp(a, "--threads") == 0) { NEED_ARG; threads = atoi(v); if (threads < 1) BAD(a); }
         else if (strcmp(a, "--out") == 0) { NEED_ARG; out = v; }
         else if (strcmp(a, "--vis") == 0) { NEED_ARG; vis = v; }

@@ -23,6 +23,14 @@
 #error "PN_SRT_MAP_MAX must be in 8 .. 8192"
 #endif
 
+#if PN_ENABLE_OCCTEX != 0 && PN_ENABLE_OCCTEX != 1
+#error "PN_ENABLE_OCCTEX must be 0 or 1"
+#endif
+
+#if PN_OCCTEX_MAP_MAX < 8 || PN_OCCTEX_MAP_MAX > 4096
+#error "PN_OCCTEX_MAP_MAX must be in 8 .. 4096"
+#endif
+
 #if PN_GEARS_GRID_MAX < 1 || PN_GEARS_GRID_MAX > 1024
 #error "PN_GEARS_GRID_MAX must be in 1 .. 1024"
 #endif

@@ -50,6 +50,23 @@
 #define PN_SRT_MAP_MAX 2048u
 #endif
 
+/* Occlusion textures (Eisemann & Decoret 2006): the scene cut into slices parallel to the
+ * light, one binary occlusion texture per slice, box-filtered by an N-buffer, a summed-area
+ * table or a mipmap and combined by probability. Approximate (no exact path at all; its
+ * error against the reference is in docs/bench/RESULTS.md). Costs the pools below. */
+#ifndef PN_ENABLE_OCCTEX
+#define PN_ENABLE_OCCTEX 1
+#endif
+
+/* Largest occlusion-texture resolution per axis (frame option occ_map, default the smaller
+ * of 512 and this; pn_limits.occ_map_max lowers it per context). Costs 4 bytes per texel
+ * (the slices' bits, 16 in a word) plus the filter of one slice at a time: 4 bytes per
+ * texel per N-buffer level (floor(log2 res) + 1 levels: 10 MiB at 512), which covers the
+ * summed-area table and the mipmap; plus 16 bytes per row and 64. Range 8 .. 4096. */
+#ifndef PN_OCCTEX_MAP_MAX
+#define PN_OCCTEX_MAP_MAX 512u
+#endif
+
 /* ---- Limits (they size the arena; see pn_arena_size()). ------------------------------ */
 
 /* Largest triangle count a scene may have, including any ground plane the caller adds.

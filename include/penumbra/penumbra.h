@@ -37,7 +37,7 @@
  *   one call at a time per context.
  *
  * USAGE
- *   pn_limits lim = { 100000, 512, 512, 0, 0, 0 };  // max triangles, width, height; GEARS, SRT pools default
+ *   pn_limits lim = { 100000, 512, 512, 0, 0, 0, 0 };  // max triangles, width, height; the rest default
  *   size_t bytes; pn_arena_size(&lim, &bytes);
  *   void *mem = my_alloc(bytes);             // or static uint8_t mem[PN_ARENA_BYTES_MAX(...)]
  *   pn_context *ctx; pn_init(&ctx, mem, bytes, &lim);
@@ -119,6 +119,7 @@ typedef struct pn_limits {
     uint32_t gears_pairs;    /* GEARS (triangle, cell) pair pool; 0: PN_GEARS_PAIRS */
     uint32_t gears_grid_max; /* largest GEARS grid resolution; 0: PN_GEARS_GRID_MAX */
     uint32_t srt_map_max;    /* largest SRT shadow map per axis; 0: PN_SRT_MAP_MAX */
+    uint32_t occ_map_max;    /* largest occlusion texture per axis; 0: PN_OCCTEX_MAP_MAX */
 } pn_limits;
 
 /* Limits equal to the compile-time maxima. */
@@ -136,14 +137,23 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
 #define PN_ARENA_BYTES_MAX(t, w, h)                                                         \
     ((size_t)(17u * 1024u) + (size_t)(t) * 112u + (size_t)(w) * (size_t)(h) * 40u +          \
      (size_t)(h) * 16u + 32u * (size_t)PN_ARENA_ALIGN + PN_GEARS_BYTES_MAX(t, w, h) +      \
-     PN_SRT_BYTES_MAX(t, w, h))
+     PN_SRT_BYTES_MAX(t, w, h) + PN_OCCTEX_BYTES_MAX(t, w, h))
+#if PN_ENABLE_OCCTEX
+/* Occlusion-texture frame pools at the default map maximum: per texel 4 (slice bits) and
+ * 4 per filter level (14 bound floor(log2 4096) + 1 = 13); per row 32; the rest 64. */
+#define PN_OCCTEX_BYTES_MAX(t, w, h)                                                        \
+    ((size_t)(PN_OCCTEX_MAP_MAX + 1u) * (size_t)(PN_OCCTEX_MAP_MAX + 1u) * 60u +             \
+     (size_t)(h) * 32u + 64u)
+#else
+#define PN_OCCTEX_BYTES_MAX(t, w, h) ((size_t)0)
+#endif
 #if PN_ENABLE_SRT
 /* SRT frame pools at the default map maximum: per texel 12; per 8x8 tile 12; per pixel 8
- * (+4); per row 16; the rest 64. */
+ * (+4); per row 32; the rest 64. */
 #define PN_SRT_BYTES_MAX(t, w, h)                                                           \
     ((size_t)PN_SRT_MAP_MAX * (size_t)PN_SRT_MAP_MAX * 12u +                                 \
      ((size_t)PN_SRT_MAP_MAX / 8u + 1u) * ((size_t)PN_SRT_MAP_MAX / 8u + 1u) * 12u +          \
-     (size_t)(w) * (size_t)(h) * 8u + 4u + (size_t)(h) * 16u + 64u)
+     (size_t)(w) * (size_t)(h) * 8u + 4u + (size_t)(h) * 32u + 64u)
 #else
 #define PN_SRT_BYTES_MAX(t, w, h) ((size_t)0)
 #endif
@@ -214,8 +224,10 @@ typedef enum pn_algo {
     PN_ALGO_REFERENCE = 0,
     PN_ALGO_GEARS = 1,
     PN_ALGO_RAYTRACE = 2, /* k^2 single shadow rays per pixel; same bits as the reference */
-    PN_ALGO_SRT = 3       /* selective ray tracing: a shadow map, exact masks only for the
+    PN_ALGO_SRT = 3,      /* selective ray tracing: a shadow map, exact masks only for the
                              potentially incorrect pixels (approximate) */
+    PN_ALGO_OCCTEX = 4    /* occlusion textures: slices parallel to the light, box-filtered
+                             and combined by probability (approximate) */
 } pn_algo;
 
 typedef struct pn_frame_options {
@@ -238,10 +250,27 @@ typedef struct pn_frame_options {
                               triangles; PN_SRT_FORCE_PIP: every pixel exact (= reference) */
     float srt_delta;       /* depth-discontinuity threshold, fraction of the scene diagonal;
                               0: 1e-3 */
+    /* PN_ALGO_OCCTEX (0 everywhere is the recommended configuration) */
+    uint32_t occ_slices;   /* slices, 2 .. 16; 0: 8 */
+    uint32_t occ_map;      /* occlusion-texture texels per axis, 8 .. limits.occ_map_max; 0:
+                              the smaller of 512 and the limit */
+    uint32_t occ_filter;   /* PN_OCC_FILTER_*; 0: PN_OCC_FILTER_NBUFFER */
+    uint32_t occ_combine;  /* PN_OCC_COMBINE_*; 0: PN_OCC_COMBINE_PRODUCT */
+    uint32_t occ_flags;    /* PN_OCC_NO_LEAK_FIX: a fragment marks its own slice only (the
+                              default also marks the next, paper §3.4) */
 } pn_frame_options;
 
 #define PN_SRT_NO_CONSERVATIVE 0x1u
 #define PN_SRT_FORCE_PIP 0x2u
+/* Box filters of an occlusion texture (paper §3.2). */
+#define PN_OCC_FILTER_NBUFFER 1u /* means of 2^l x 2^l boxes, interpolated between levels */
+#define PN_OCC_FILTER_SAT 2u     /* summed-area table: the exact box integral */
+#define PN_OCC_FILTER_MIPMAP 3u  /* dyadic means, trilinear */
+/* How the slices' occlusions I_k combine into visibility (paper §3.3). */
+#define PN_OCC_COMBINE_PRODUCT 1u /* prod (1 - I_k), eq. 5 */
+#define PN_OCC_COMBINE_MAX 2u     /* 1 - max I_k */
+#define PN_OCC_COMBINE_SUM 3u     /* max(0, 1 - sum I_k) */
+#define PN_OCC_NO_LEAK_FIX 0x1u
 
 /* 512x512, k = 16, reference, eps = 1e-4, albedo 0.8, ambient 0.1, dark blue background. */
 void pn_frame_options_default(pn_frame_options *opt);
@@ -287,7 +316,8 @@ typedef struct pn_stats {
     uint32_t bvh_max_leaf;
     uint64_t pass_ns[PN_PASS_COUNT]; /* 0 without a clock; last scene set / last frame */
     uint64_t shadow_candidates;  /* triangles handed to the predicate in the last frame
-                                    (PN_ALGO_RAYTRACE: ray-triangle tests) */
+                                    (PN_ALGO_RAYTRACE: ray-triangle tests; PN_ALGO_OCCTEX:
+                                    its filtered lookups, = occ_lookups) */
     uint64_t shadow_blocking;    /* ...of which blocked at least one sample (per pixel;
                                     PN_ALGO_RAYTRACE: blocked rays) */
     uint64_t shadow_nodes;       /* BVH nodes whose boxes the shadow pass tested (0 for
@@ -315,6 +345,14 @@ typedef struct pn_stats {
      * (window, rasterization, conservative marks, penumbra tiles), the classification
      * with the PIP list, and the exact masks of the PIP pixels */
     uint64_t srt_ns_map, srt_ns_classify, srt_ns_exact;
+    /* Occlusion textures, last frame */
+    uint32_t occ_map;            /* texels per axis */
+    uint32_t occ_slices;         /* slices */
+    uint64_t occ_texels_set;     /* (texel, slice) bits set, over all slices */
+    uint64_t occ_lookups;        /* filtered lookups: slices weighted > 0, over lit pixels */
+    /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: slicing (window, depth range,
+     * rasterization), pre-filtering (every slice), lookups and combination */
+    uint64_t occ_ns_slice, occ_ns_filter, occ_ns_lookup;
 } pn_stats;
 
 pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);
@@ -324,6 +362,7 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);
 #define PN_BUILD_GEARS 0x2u
 #define PN_BUILD_RAYTRACE 0x4u
 #define PN_BUILD_SRT 0x8u
+#define PN_BUILD_OCCTEX 0x10u
 #define PN_BUILD_PORT_SCALAR 0x100u
 uint32_t pn_build_info(void);
 

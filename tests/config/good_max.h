@@ -12,3 +12,4 @@
 #define PN_BVH_STACK 256u
 #define PN_DEBUG_ARENA 1
 #define PN_SRT_MAP_MAX 8192u
+#define PN_OCCTEX_MAP_MAX 4096u

@@ -12,3 +12,4 @@
 #define PN_BVH_STACK 27u
 #define PN_DEBUG_ARENA 0
 #define PN_SRT_MAP_MAX 8u
+#define PN_OCCTEX_MAP_MAX 8u

@@ -21,5 +21,6 @@
 #define PN_GEARS_GRID_MAX 16u
 #define PN_GEARS_PAIRS 4096u
 #define PN_SRT_MAP_MAX 64u
+#define PN_OCCTEX_MAP_MAX 64u
 
 #endif

@@ -1,0 +1,66 @@
+/* pn_lview.h - the light-space view the light-space algorithms share (selective ray
+ * tracing's shadow map, the occlusion textures' slices): a pn_kview (K->lview) with the
+ * light's frame as axes, rasterized by the G-buffer's own code (pn_raster.h), and the row
+ * bounds of the G-buffer's shadow-ray origins in that frame, from which src/ sizes the
+ * view's window. */
+#ifndef PN_LVIEW_H
+#define PN_LVIEW_H
+
+#include "pn_raster.h"
+#include "pn_reference.h"
+
+/* Largest window half-extent in tan units (76 degrees off the axis); origins beyond it
+ * are left out of the window (and counted). */
+#define PN_LVIEW_TAN_MAX 4.0f
+/* Floats per row of the bounds pool. */
+#define PN_LVIEW_BOX 8u
+
+/* Row y of the G-buffer: over its lit pixels (origins in front of the light), with (x, y,
+ * z) an origin in lv's frame relative to the light centre lc (so the view's eye may sit
+ * behind it): the largest (|x| - ha) / z and (|y| - hb) / z (ha = hb = 0: the tan of the
+ * angle off the axis), the smallest and largest z, and how many origins are too close to
+ * the light plane or too far off the axis for any window (z <= 0 or beyond
+ * PN_LVIEW_TAN_MAX): box[y * PN_LVIEW_BOX ..] = {x, y, min z, max z, count}. */
+PN_KFN void pn_lview_bounds_row(const pn_kview *lv, const pn_klight *L, float ha, float hb, uint32_t width, uint32_t y,
+                                PN_CONST uint32_t *tri_id, PN_CONST float *pos, PN_CONST float *nrm,
+                                PN_GLOBAL float *box)
+{
+    float ax = 0.0f, ay = 0.0f, zmin = PN_KINF, zmax = 0.0f, out = 0.0f;
+    pn_v3 lc = pn_v3_make(L->c[0], L->c[1], L->c[2]);
+    pn_v3 r = pn_v3_make(lv->r[0], lv->r[1], lv->r[2]), u = pn_v3_make(lv->u[0], lv->u[1], lv->u[2]);
+    pn_v3 f = pn_v3_make(lv->f[0], lv->f[1], lv->f[2]);
+    uint32_t x;
+    for (x = 0; x < width; x++) {
+        size_t pix = (size_t)y * width + x;
+        pn_v3 O, rel;
+        float cx, cy, cz, tx, ty;
+        if (tri_id[pix] == 0xFFFFFFFFu ||
+            !pn_shadow_origin(pn_v3_load(pos + pix * 3u), pn_v3_load(nrm + pix * 3u), L, &O))
+            continue;
+        rel = pn_v3_sub(O, lc);
+        cx = pn_v3_dot(rel, r);
+        cy = pn_v3_dot(rel, u);
+        cz = pn_v3_dot(rel, f);
+        if (!(cz > 0.0f)) {
+            out += 1.0f;
+            continue;
+        }
+        tx = ((cx < 0.0f ? -cx : cx) - ha) / cz;
+        ty = ((cy < 0.0f ? -cy : cy) - hb) / cz;
+        if (!(tx <= PN_LVIEW_TAN_MAX && ty <= PN_LVIEW_TAN_MAX)) {
+            out += 1.0f;
+            continue;
+        }
+        ax = pn_kmaxf(ax, tx);
+        ay = pn_kmaxf(ay, ty);
+        zmin = pn_kminf(zmin, cz);
+        zmax = pn_kmaxf(zmax, cz);
+    }
+    box[(size_t)y * PN_LVIEW_BOX + 0u] = ax;
+    box[(size_t)y * PN_LVIEW_BOX + 1u] = ay;
+    box[(size_t)y * PN_LVIEW_BOX + 2u] = zmin;
+    box[(size_t)y * PN_LVIEW_BOX + 3u] = zmax;
+    box[(size_t)y * PN_LVIEW_BOX + 4u] = out;
+}
+
+#endif

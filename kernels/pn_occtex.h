@@ -1,0 +1,351 @@
+/* pn_occtex.h - occlusion textures (Eisemann & Decoret 2006): the work items of the frame
+ * in src/pn_occtex.c.
+ *
+ * Frame of reference. The light frame has its origin at the light centre, axes lview's
+ * r, u, f (an area light: U^, V^, N); "depth" z is the coordinate along f. The slicing
+ * view lview is a perspective view from a centre of projection (COP) d behind the light
+ * centre, its frustum through the light rectangle's edges (tan_x = |U| / d, tan_y =
+ * |V| / d), d chosen so that the frustum holds every lit shadow-ray origin (paper §3.4,
+ * Fig. 5); a point light has d = 0 and a window fitted to the origins. Because the frustum
+ * is fitted to the light, the light's image seen from any point P through a plane parallel
+ * to the light is a square of texels: its side is
+ *
+ *     s(P, z_b) = res d (z_P - z_b) / (z_P (d + z_b))      (paper eq. 4 in texels)
+ *
+ * centred where the segment from P to the light centre crosses the plane.
+ *
+ * Slices. n bottom planes at depths z_b[k] = zmin + k h, h = (zmax - zmin) / (n - 1):
+ * zmin the nearest geometry in front of the light, zmax the deepest lit origin, so the
+ * scene's two ends lie on bottom planes (a planar occluder nearest the light, the paper's
+ * exact case §3.1, is its slice's plane). Slice k holds the geometry of depths
+ * (z_b[k-1], z_b[k]], projected through the COP onto z_b[k] (paper §3.4): every fragment of
+ * every triangle, no depth test, sets bit k of its texel's word; with the leak fix (paper
+ * Fig. 6) also bit k + 1.
+ *
+ * Shading (paper §3.3, §3.5). A point at depth z_P takes from slice k the filtered mean
+ * occupancy I_k of its kernel, weighted w_k = clamp((z_P - z_b[k]) / h, 0, 1): slices
+ * wholly above the slice holding P count fully, the slice holding P not at all (its own
+ * surface is in it, Fig. 7), and the one just above it fades in with P's distance below
+ * its lower plane, so that the shadow is continuous where geometry crosses a plane.
+ * Visibility = the combination of the w_k I_k (product, eq. 5; or max, or clamped sum),
+ * times the fraction of light samples in front of P's own plane (the horizon of invariant
+ * 6, the same mask every algorithm uses).
+ *
+ * Filters (paper §3.2), of one slice at a time, over integer occupancy counts (so every
+ * table is exact, and the ports agree):
+ *   N-buffer: level l holds the count of the 2^l x 2^l box centred on lattice point i
+ *     (i + 0.5 at level 0, i + 1 above), from level l - 1 by 4 lookups; a kernel of side s
+ *     takes levels floor(log2 s) and the next, bilinear in position, linear in size;
+ *   summed-area table: the exact integral of the box over the texels, from 9 integer
+ *     block counts weighted by the box's fractional overlaps;
+ *   mipmap: counts of aligned 2^l blocks, trilinear.
+ * Texels outside the texture are unoccupied; means are over the whole kernel. */
+#ifndef PN_OCCTEX_H
+#define PN_OCCTEX_H
+
+#include "pn_lview.h"
+#include "pn_predicate.h"
+#include "pn_raster.h"
+
+#define PN_OCC_SLICES_MAX 16u
+/* Filters and combinations: the values of penumbra.h's PN_OCC_FILTER_* / PN_OCC_COMBINE_*
+ * (src/pn_occtex.c checks they agree). */
+#define PN_OCC_F_NBUFFER 1u
+#define PN_OCC_F_SAT 2u
+#define PN_OCC_F_MIPMAP 3u
+#define PN_OCC_C_PRODUCT 1u
+#define PN_OCC_C_MAX 2u
+#define PN_OCC_C_SUM 3u
+#define PN_OCC_FLAG_NO_LEAK_FIX 1u
+/* Counter words (pool occ_words, PN_OCC_WORDS): bits set, then per slice its bits. */
+#define PN_OCC_WORD_TEXELS 0u
+#define PN_OCC_WORD_SLICE0 2u
+#define PN_OCC_WORDS 32u
+/* A fragment within this fraction of a slice thickness below a bottom plane belongs to the
+ * plane's slice (the rounding of its depth must not move a planar occluder on a plane to
+ * the next slice). */
+#define PN_OCC_PLANE_TOL 1e-3f
+/* Smallest kernel side of the summed-area table, texels (a point sample below it). */
+#define PN_OCC_SAT_MIN 1e-3f
+
+/* Slice of a fragment at light depth z: the k with z_b[k-1] < z <= z_b[k] (within the
+ * tolerance), or -1 behind the light plane. */
+PN_KFN int32_t pn_occ_slice_of(const pn_kocc *o, float z)
+{
+    if (!(z > 0.0f)) return -1;
+    return pn_kceil_clamp((z - o->zmin) / o->h - PN_OCC_PLANE_TOL, 0, (int32_t)o->slices - 1);
+}
+
+/* Band `band` of PN_RASTER_BAND texel rows: its words cleared, then every triangle's
+ * fragments set their slices' bits (the G-buffer's set-up and coverage on the slicing
+ * view); the bits the band holds added to words (all, and per slice). */
+PN_KFN void pn_occ_band(const pn_kview *v, const pn_kocc *o, PN_CONST float *tris, PN_CONST uint32_t *rows,
+                        uint32_t tri_count, uint32_t band, PN_GLOBAL uint32_t *bits, PN_GLOBAL uint32_t *words)
+{
+    uint32_t y0 = band * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND - 1u, t, y, x, n = 0u, k;
+    uint32_t per[PN_OCC_SLICES_MAX];
+    uint32_t last = o->slices - 1u;
+    pn_v3 f = pn_v3_make(v->f[0], v->f[1], v->f[2]);
+    if (y1 >= v->height) y1 = v->height - 1u;
+    for (y = y0; y <= y1; y++)
+        for (x = 0; x < v->width; x++) bits[(size_t)y * v->width + x] = 0u;
+    for (t = 0; t < tri_count; t++) {
+        pn_raster_tri rt;
+        if (!pn_raster_tri_setup(v, tris, rows, t, y0, y1, &rt)) continue;
+        for (y = rt.y0; y <= rt.y1; y++) {
+            int32_t xi;
+            for (xi = rt.x0; xi <= rt.x1; xi++) {
+                float tt;
+                pn_v3 dir;
+                int32_t sl;
+                uint32_t m;
+                if (!pn_raster_tri_hit(v, &rt, (uint32_t)xi, y, &tt, &dir)) continue;
+                sl = pn_occ_slice_of(o, tt * pn_v3_dot(dir, f) - o->d);
+                /* The deepest slice holds receivers only: no point lies below its plane. */
+                if (sl < 0 || (uint32_t)sl >= last) continue;
+                m = 1u << (uint32_t)sl;
+                if (!(o->flags & PN_OCC_FLAG_NO_LEAK_FIX) && (uint32_t)sl + 1u < last) m |= m << 1;
+                bits[(size_t)y * v->width + (uint32_t)xi] |= m;
+            }
+        }
+    }
+    for (k = 0; k < PN_OCC_SLICES_MAX; k++) per[k] = 0u;
+    for (y = y0; y <= y1; y++)
+        for (x = 0; x < v->width; x++) {
+            uint32_t w = bits[(size_t)y * v->width + x];
+            while (w) {
+                per[pn_kctz(w)]++;
+                n++;
+                w &= w - 1u;
+            }
+        }
+    if (n) pn_katomic_add(words + PN_OCC_WORD_TEXELS, n);
+    for (k = 0; k < PN_OCC_SLICES_MAX; k++)
+        if (per[k]) pn_katomic_add(words + PN_OCC_WORD_SLICE0 + k, per[k]);
+}
+
+/* ---- Filters of slice o->slice ---------------------------------------------------------- */
+
+/* Texel i of level 0 (N-buffer and mipmap alike): the slice's bit. */
+PN_KFN void pn_occ_level0(const pn_kocc *o, PN_CONST uint32_t *bits, uint32_t i, PN_GLOBAL uint32_t *filt)
+{
+    filt[i] = (bits[i] >> o->slice) & 1u;
+}
+
+PN_KFN uint32_t pn_occ_at(PN_CONST uint32_t *lvl, uint32_t dim, int32_t i, int32_t j)
+{
+    if (i < 0 || j < 0 || i >= (int32_t)dim || j >= (int32_t)dim) return 0u;
+    return lvl[(size_t)j * dim + (uint32_t)i];
+}
+
+/* N-buffer level o->level >= 1, texel i, from the level below (pool: levels of res^2). */
+PN_KFN void pn_occ_nbuf_level(const pn_kocc *o, uint32_t i, PN_GLOBAL uint32_t *filt)
+{
+    uint32_t res = o->res, l = o->level;
+    PN_CONST uint32_t *lo = filt + (size_t)(l - 1u) * res * res;
+    int32_t x = (int32_t)(i % res), y = (int32_t)(i / res);
+    int32_t a = l == 1u ? 0 : -(int32_t)(1u << (l - 2u)), b = l == 1u ? 1 : (int32_t)(1u << (l - 2u));
+    filt[(size_t)l * res * res + i] = pn_occ_at(lo, res, x + a, y + a) + pn_occ_at(lo, res, x + b, y + a) +
+                                      pn_occ_at(lo, res, x + a, y + b) + pn_occ_at(lo, res, x + b, y + b);
+}
+
+/* Mipmap level l: side and offset in the pool (levels one after another). */
+PN_KFN uint32_t pn_occ_mip_dim(uint32_t res, uint32_t l) { return (res + (1u << l) - 1u) >> l; }
+PN_KFN size_t pn_occ_mip_off(uint32_t res, uint32_t l)
+{
+    size_t off = 0u;
+    uint32_t m;
+    for (m = 0; m < l; m++) off += (size_t)pn_occ_mip_dim(res, m) * pn_occ_mip_dim(res, m);
+    return off;
+}
+
+/* Mipmap level o->level >= 1, texel i: its four children's counts. */
+PN_KFN void pn_occ_mip_level(const pn_kocc *o, uint32_t i, PN_GLOBAL uint32_t *filt)
+{
+    uint32_t l = o->level, dl = pn_occ_mip_dim(o->res, l - 1u), d = pn_occ_mip_dim(o->res, l);
+    PN_CONST uint32_t *lo = filt + pn_occ_mip_off(o->res, l - 1u);
+    int32_t x = 2 * (int32_t)(i % d), y = 2 * (int32_t)(i / d);
+    filt[pn_occ_mip_off(o->res, l) + i] = pn_occ_at(lo, dl, x, y) + pn_occ_at(lo, dl, x + 1, y) +
+                                          pn_occ_at(lo, dl, x, y + 1) + pn_occ_at(lo, dl, x + 1, y + 1);
+}
+
+/* Summed-area table ((res + 1)^2, S[j][i] = bits of the slice in [0, i) x [0, j)): row j's
+ * prefix sums (row 0 is zero), then column i's. */
+PN_KFN void pn_occ_sat_row(const pn_kocc *o, PN_CONST uint32_t *bits, uint32_t j, PN_GLOBAL uint32_t *sat)
+{
+    uint32_t res = o->res, i, acc = 0u;
+    PN_GLOBAL uint32_t *row = sat + (size_t)j * (res + 1u);
+    row[0] = 0u;
+    for (i = 0; i < res; i++) {
+        if (j > 0u) acc += (bits[(size_t)(j - 1u) * res + i] >> o->slice) & 1u;
+        row[i + 1u] = acc;
+    }
+}
+PN_KFN void pn_occ_sat_col(const pn_kocc *o, uint32_t i, PN_GLOBAL uint32_t *sat)
+{
+    uint32_t res = o->res, j;
+    for (j = 1; j <= res; j++) sat[(size_t)j * (res + 1u) + i] += sat[(size_t)(j - 1u) * (res + 1u) + i];
+}
+
+/* ---- Lookups ------------------------------------------------------------------------------ */
+
+/* Bilinear value of a level (dim x dim counts) at continuous lattice coordinates q
+ * (lattice point i at q = i), clamped to the edge. */
+PN_KFN float pn_occ_bilerp(PN_CONST uint32_t *lvl, uint32_t dim, float qx, float qy)
+{
+    int32_t i, j, i1, j1, last = (int32_t)dim - 1;
+    float fx, fy, a, b, c, d;
+    if (!(qx >= 0.0f)) qx = 0.0f;
+    if (!(qy >= 0.0f)) qy = 0.0f;
+    if (!(qx <= (float)last)) qx = (float)last;
+    if (!(qy <= (float)last)) qy = (float)last;
+    i = pn_kfloor_clamp(qx, 0, last);
+    j = pn_kfloor_clamp(qy, 0, last);
+    fx = qx - (float)i;
+    fy = qy - (float)j;
+    i1 = pn_kmini(i + 1, last);
+    j1 = pn_kmini(j + 1, last);
+    a = (float)lvl[(size_t)j * dim + (uint32_t)i];
+    b = (float)lvl[(size_t)j * dim + (uint32_t)i1];
+    c = (float)lvl[(size_t)j1 * dim + (uint32_t)i];
+    d = (float)lvl[(size_t)j1 * dim + (uint32_t)i1];
+    return (1.0f - fy) * ((1.0f - fx) * a + fx * b) + fy * ((1.0f - fx) * c + fx * d);
+}
+
+/* 4^-l, exactly. */
+PN_KFN float pn_occ_inv_area(uint32_t l)
+{
+    float v = 1.0f;
+    uint32_t m;
+    for (m = 0; m < l; m++) v *= 0.25f;
+    return v;
+}
+
+/* Mean occupancy of level l (N-buffer or mipmap) around (px, py) (texel units). */
+PN_KFN float pn_occ_level_mean(const pn_kocc *o, PN_CONST uint32_t *filt, uint32_t l, float px, float py)
+{
+    uint32_t res = o->res;
+    if (o->filter == PN_OCC_F_MIPMAP) {
+        float inv = 1.0f;
+        uint32_t m;
+        for (m = 0; m < l; m++) inv *= 0.5f;
+        return pn_occ_bilerp(filt + pn_occ_mip_off(res, l), pn_occ_mip_dim(res, l), px * inv - 0.5f,
+                             py * inv - 0.5f) *
+               pn_occ_inv_area(l);
+    }
+    {
+        float off = l == 0u ? 0.5f : 1.0f;
+        return pn_occ_bilerp(filt + (size_t)l * res * res, res, px - off, py - off) * pn_occ_inv_area(l);
+    }
+}
+
+/* N-buffer / mipmap: the mean over a square kernel of side s. */
+PN_KFN float pn_occ_pyramid(const pn_kocc *o, PN_CONST uint32_t *filt, float px, float py, float s)
+{
+    uint32_t l = 0u;
+    float size = 1.0f, t;
+    if (!(s > 1.0f)) return pn_occ_level_mean(o, filt, 0u, px, py);
+    while (l + 1u < o->levels && 2.0f * size <= s) {
+        l++;
+        size *= 2.0f;
+    }
+    if (l + 1u >= o->levels) { /* wider than the top box: its count spread over the kernel */
+        t = size / s;
+        return pn_occ_level_mean(o, filt, l, px, py) * t * t;
+    }
+    t = (s - size) / size;
+    return (1.0f - t) * pn_occ_level_mean(o, filt, l, px, py) + t * pn_occ_level_mean(o, filt, l + 1u, px, py);
+}
+
+/* The columns (or rows) interval [a, b] (0 <= a <= b <= res) overlaps: up to 3 runs r of
+ * texels lo[r] .. lo[r + 1] - 1 with overlap weights w[r] (the first and last partial, the
+ * middle whole, possibly empty); returns the run count. */
+PN_KFN uint32_t pn_occ_runs(float a, float b, uint32_t res, uint32_t *lo, float *w)
+{
+    int32_t ia = pn_kfloor_clamp(a, 0, (int32_t)res - 1), ib = pn_kfloor_clamp(b, 0, (int32_t)res - 1);
+    if (ia == ib) {
+        lo[0] = (uint32_t)ia;
+        lo[1] = (uint32_t)ia + 1u;
+        w[0] = b - a;
+        return 1u;
+    }
+    lo[0] = (uint32_t)ia;
+    lo[1] = (uint32_t)ia + 1u;
+    lo[2] = (uint32_t)ib;
+    lo[3] = (uint32_t)ib + 1u;
+    w[0] = (float)(ia + 1) - a;
+    w[1] = 1.0f;
+    w[2] = b - (float)ib;
+    return 3u;
+}
+
+/* Summed-area table: the exact mean occupancy of the box of sides sx, sy around (px, py). */
+PN_KFN float pn_occ_sat_mean(const pn_kocc *o, PN_CONST uint32_t *sat, float px, float py, float sx, float sy)
+{
+    uint32_t res = o->res, W = res + 1u, lx[4] = {0u, 0u, 0u, 0u}, ly[4] = {0u, 0u, 0u, 0u}, nx, ny, a, b;
+    float wx[3] = {0.0f, 0.0f, 0.0f}, wy[3] = {0.0f, 0.0f, 0.0f}, x0, x1, y0, y1, sum = 0.0f, R = (float)res, v;
+    if (!(sx >= PN_OCC_SAT_MIN)) sx = PN_OCC_SAT_MIN;
+    if (!(sy >= PN_OCC_SAT_MIN)) sy = PN_OCC_SAT_MIN;
+    x0 = pn_kmaxf(px - 0.5f * sx, 0.0f);
+    x1 = pn_kminf(px + 0.5f * sx, R);
+    y0 = pn_kmaxf(py - 0.5f * sy, 0.0f);
+    y1 = pn_kminf(py + 0.5f * sy, R);
+    if (!(x1 > x0 && y1 > y0)) return 0.0f;
+    nx = pn_occ_runs(x0, x1, res, lx, wx);
+    ny = pn_occ_runs(y0, y1, res, ly, wy);
+    for (b = 0; b < ny; b++) {
+        uint32_t j0 = ly[b], j1 = ly[b + 1u];
+        float row = 0.0f;
+        for (a = 0; a < nx; a++) {
+            uint32_t i0 = lx[a], i1 = lx[a + 1u];
+            uint32_t cnt = sat[(size_t)j1 * W + i1] - sat[(size_t)j0 * W + i1] - sat[(size_t)j1 * W + i0] +
+                           sat[(size_t)j0 * W + i0];
+            row += wx[a] * (float)cnt;
+        }
+        sum += wy[b] * row;
+    }
+    v = sum / (sx * sy);
+    return v > 1.0f ? 1.0f : v;
+}
+
+/* Slice o->slice's occlusion of origin O, weighted, into *I; 0 when the slice does not
+ * weigh in (not above O). */
+PN_KFN int pn_occ_slice_occlusion(const pn_kview *lv, const pn_klight *L, const pn_kocc *o, PN_CONST uint32_t *filt,
+                                  pn_v3 O, float *I)
+{
+    pn_v3 rel = pn_v3_sub(O, pn_v3_make(L->c[0], L->c[1], L->c[2]));
+    float x = pn_v3_dot(rel, pn_v3_make(lv->r[0], lv->r[1], lv->r[2]));
+    float y = pn_v3_dot(rel, pn_v3_make(lv->u[0], lv->u[1], lv->u[2]));
+    float z = pn_v3_dot(rel, pn_v3_make(lv->f[0], lv->f[1], lv->f[2]));
+    float zb = o->zmin + (float)o->slice * o->h, w, fr, q, sx, sy, px, py, v;
+    *I = 0.0f;
+    if (!(z > 0.0f)) return 0;
+    w = (z - zb) / o->h;
+    if (!(w > 0.0f)) return 0;
+    if (w > 1.0f) w = 1.0f;
+    /* Where the segment from O to the light centre crosses the plane, in texels. */
+    fr = zb / z;
+    pn_project_camera(lv, pn_v3_make(x * fr, y * fr, zb + o->d), &px, &py);
+    q = (z - zb) / (z * (zb + o->d));
+    sx = o->sfac_x * q;
+    sy = o->sfac_y * q;
+    if (o->filter == PN_OCC_F_SAT)
+        v = pn_occ_sat_mean(o, filt, px, py, sx, sy);
+    else
+        v = pn_occ_pyramid(o, filt, px, py, pn_kmaxf(sx, sy));
+    *I = w * v;
+    return 1;
+}
+
+/* One combination step: visibility v so far and one slice's occlusion I. */
+PN_KFN float pn_occ_combine(uint32_t how, float v, float I)
+{
+    if (how == PN_OCC_C_MAX) return pn_kminf(v, 1.0f - I);
+    if (how == PN_OCC_C_SUM) {
+        v -= I;
+        return v > 0.0f ? v : 0.0f;
+    }
+    return v * (1.0f - I);
+}
+
+#endif

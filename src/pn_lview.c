@@ -1,0 +1,47 @@
+/* pn_lview.c - the light view's frame, shared by the light-space algorithms (selective ray
+ * tracing's map, the occlusion textures' slices; kernels/pn_lview.h has its passes). */
+#include <string.h>
+
+#include "pn_internal.h"
+#include "pn_kmath.h"
+
+#if PN_ENABLE_SRT || PN_ENABLE_OCCTEX
+typedef char pn_lview_box_agrees[PN_LVIEW_BOX_FLOATS == 8u ? 1 : -1];
+
+static void pn_set3(float *d, pn_v3 v)
+{
+    d[0] = v.x;
+    d[1] = v.y;
+    d[2] = v.z;
+}
+
+void pn_light_view(const pn_context *ctx, const pn_klight *L, uint32_t res, pn_kview *lv)
+{
+    pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]), f, r, u;
+    memset(lv, 0, sizeof(*lv));
+    pn_set3(lv->eye, c);
+    if (!L->is_point) {
+        f = pn_v3_make(L->N[0], L->N[1], L->N[2]);
+        r = pn_v3_normalize(pn_v3_make(L->U[0], L->U[1], L->U[2]));
+        u = pn_v3_normalize(pn_v3_make(L->V[0], L->V[1], L->V[2]));
+    } else {
+        pn_v3 mid = pn_v3_make(0.5f * (ctx->scene_min[0] + ctx->scene_max[0]), 0.5f * (ctx->scene_min[1] + ctx->scene_max[1]),
+                               0.5f * (ctx->scene_min[2] + ctx->scene_max[2]));
+        pn_v3 up = pn_v3_make(0.0f, 1.0f, 0.0f);
+        f = pn_v3_normalize(pn_v3_sub(mid, c));
+        if (!(pn_v3_dot(f, f) > 0.5f)) f = pn_v3_make(0.0f, -1.0f, 0.0f);
+        if (f.y > 0.9f || f.y < -0.9f) up = pn_v3_make(1.0f, 0.0f, 0.0f);
+        r = pn_v3_normalize(pn_v3_cross(f, up));
+        u = pn_v3_cross(r, f);
+    }
+    pn_set3(lv->f, f);
+    pn_set3(lv->r, r);
+    pn_set3(lv->u, u);
+    lv->tan_half = 1.0f;
+    lv->aspect = 1.0f;
+    lv->znear = 1e-5f * ctx->scene_diag;
+    if (!(lv->znear > 0.0f)) lv->znear = 1e-30f;
+    lv->width = res;
+    lv->height = res;
+}
+#endif

@@ -1,0 +1,208 @@
+/* pn_occtex.c - the occlusion textures' whole frame (sequence in pn_occtex_frame.h): the
+ * slicing view, the slice planes, and the passes of kernels/pn_occtex.h between them, run
+ * on the frame's port. Written once: both ports run this sequence. */
+#include <string.h>
+
+#include "pn_device.h"
+#include "pn_occtex_frame.h"
+#include "pn_passes.h"
+
+#if PN_ENABLE_OCCTEX
+
+/* The kernels' copies of the public constants (kernels/ does not include penumbra.h). */
+typedef char pn_occ_consts_agree[PN_OCC_F_NBUFFER == PN_OCC_FILTER_NBUFFER && PN_OCC_F_SAT == PN_OCC_FILTER_SAT &&
+                                         PN_OCC_F_MIPMAP == PN_OCC_FILTER_MIPMAP &&
+                                         PN_OCC_C_PRODUCT == PN_OCC_COMBINE_PRODUCT &&
+                                         PN_OCC_C_MAX == PN_OCC_COMBINE_MAX && PN_OCC_C_SUM == PN_OCC_COMBINE_SUM &&
+                                         PN_OCC_FLAG_NO_LEAK_FIX == PN_OCC_NO_LEAK_FIX && PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS &&
+                                         PN_OCC_WORD_SLICE0 + PN_OCC_SLICES_MAX <= PN_OCC_WORDS
+                                     ? 1
+                                     : -1];
+
+typedef struct pn_occ_pools {
+    float *box;      /* [height * PN_LVIEW_BOX]: row bounds (kernels/pn_lview.h) */
+    uint32_t *bits;  /* [res^2]: bit k = the texel is covered in slice k */
+    uint32_t *filt;  /* [pn_occ_filter_words(res)]: one slice's filter */
+    uint32_t *words; /* [PN_OCC_WORDS]: bits set, and per slice */
+} pn_occ_pools;
+
+static pn_status pn_occ_begin(pn_frame_state *fs, pn_occ_pools *s, uint32_t res)
+{
+    pn_context *ctx = fs->ctx;
+    pn_kpools *P = &fs->P;
+    /* Same pools, same order as pn_occ_pools() in src/pn_arena.c. */
+    if (!(s->box = (float *)pn_frame_alloc(ctx, fs->height, 4u * PN_LVIEW_BOX_FLOATS, "occtex row bounds")) ||
+        !(s->bits = (uint32_t *)pn_frame_alloc(ctx, (size_t)res * res, 4u, "occtex slice bits")) ||
+        !(s->filt = (uint32_t *)pn_frame_alloc(ctx, (size_t)pn_occ_filter_words(res), 4u, "occtex filter")) ||
+        !(s->words = (uint32_t *)pn_frame_alloc(ctx, PN_OCC_WORDS, 4u, "occtex counters")))
+        return PN_E_POOL_EXHAUSTED;
+    P->lview_box = pn_dev_off(ctx, s->box);
+    P->occ_bits = pn_dev_off(ctx, s->bits);
+    P->occ_filt = pn_dev_off(ctx, s->filt);
+    P->occ_words = pn_dev_off(ctx, s->words);
+    memset(&ctx->occ, 0, sizeof(ctx->occ));
+    return PN_OK;
+}
+
+/* The nearest depth along the view axis f of any triangle part in front of the light
+ * (>= 0), over the scene copy; +inf for none. The same floats on every port (host). */
+static float pn_occ_nearest(const pn_context *ctx, const pn_klight *L, const pn_kview *lv)
+{
+    pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]), f = pn_v3_make(lv->f[0], lv->f[1], lv->f[2]);
+    float best = PN_KINF;
+    uint32_t t, i;
+    for (t = 0; t < ctx->tri_count; t++) {
+        const float *p = ctx->tris + (size_t)t * 9u;
+        float lo = PN_KINF, hi = -PN_KINF;
+        if (ctx->flags[t] & PN_TRI_DEGENERATE) continue;
+        for (i = 0; i < 3u; i++) {
+            float z = pn_v3_dot(pn_v3_sub(pn_v3_make(p[3u * i], p[3u * i + 1u], p[3u * i + 2u]), c), f);
+            lo = pn_kminf(lo, z);
+            hi = pn_kmaxf(hi, z);
+        }
+        if (!(hi > 0.0f)) continue;
+        best = pn_kminf(best, pn_kmaxf(lo, 0.0f));
+    }
+    return best;
+}
+
+/* The slicing view and the slice planes from the row bounds (kernels/pn_occtex.h):
+ * an area light's centre of projection at d = 1 / max over origins of (|x| - |U|) / (|U| z)
+ * and (|y| - |V|) / (|V| z) behind the light centre (the frustum through the light's
+ * edges then holds every origin), widened by two texels for rounding, d at most twice the
+ * scene diagonal (all origins above the light: nearly orthographic) and at least such that
+ * the frustum stays within PN_LVIEW_TAN_MAX; a point light's window fitted to the origins'
+ * tans. Returns 0 when no lit origin lies in front of the light (nothing to slice). */
+static int pn_occ_window(pn_frame_state *fs, const pn_occ_pools *s, uint32_t res)
+{
+    pn_context *ctx = fs->ctx;
+    pn_kparams *K = &fs->K;
+    const pn_klight *L = &K->light;
+    pn_kview *lv = &K->lview;
+    pn_kocc *o = &K->occ;
+    float mx = 0.0f, my = 0.0f, zmax = 0.0f, tx, ty, grow = 1.0f + 4.0f / (float)res, zmin, diag = ctx->scene_diag;
+    uint32_t y;
+    for (y = 0; y < fs->height; y++) {
+        const float *b = s->box + (size_t)y * PN_LVIEW_BOX;
+        mx = pn_kmaxf(mx, b[0]);
+        my = pn_kmaxf(my, b[1]);
+        zmax = pn_kmaxf(zmax, b[3]);
+    }
+    if (!(zmax > 0.0f)) return 0;
+    if (!L->is_point) {
+        float a = K->lview_ha, bb = K->lview_hb, inv_d = pn_kmaxf(mx / a, my / bb) * grow;
+        float lo = 1.0f / (2.0f * diag), hi = PN_LVIEW_TAN_MAX / pn_kmaxf(a, bb);
+        if (!(inv_d >= lo)) inv_d = lo;
+        if (!(inv_d <= hi)) inv_d = hi;
+        o->d = 1.0f / inv_d;
+        tx = a * inv_d;
+        ty = bb * inv_d;
+        o->sfac_x = (float)res * a / tx;
+        o->sfac_y = (float)res * bb / ty;
+    } else {
+        tx = pn_kminf(pn_kmaxf(mx * grow, 1e-6f), PN_LVIEW_TAN_MAX);
+        ty = pn_kminf(pn_kmaxf(my * grow, 1e-6f), PN_LVIEW_TAN_MAX);
+        o->d = 0.0f;
+        o->sfac_x = 0.0f;
+        o->sfac_y = 0.0f;
+    }
+    {
+        pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]), f = pn_v3_make(lv->f[0], lv->f[1], lv->f[2]);
+        pn_v3 eye = pn_v3_sub(c, pn_v3_scale(f, o->d));
+        lv->eye[0] = eye.x;
+        lv->eye[1] = eye.y;
+        lv->eye[2] = eye.z;
+    }
+    lv->tan_half = ty;
+    lv->aspect = tx / ty;
+    lv->znear = o->d + 1e-5f * diag;
+    if (!(lv->znear > 0.0f)) lv->znear = 1e-30f;
+    /* Slice planes: nearest geometry to deepest origin. */
+    zmin = pn_occ_nearest(ctx, L, lv);
+    if (!(zmin <= zmax)) zmin = zmax;
+    o->zmin = zmin;
+    o->h = (zmax - zmin) / (float)(o->slices - 1u);
+    if (!(o->h >= 1e-6f * diag)) o->h = pn_kmaxf(1e-6f * diag, 1e-30f);
+    return 1;
+}
+
+pn_status pn_occtex_frame(pn_frame_state *fs)
+{
+    pn_context *ctx = fs->ctx;
+    pn_kparams *K = &fs->K;
+    pn_kocc *o = &K->occ;
+    pn_occ_pools s;
+    uint32_t res = fs->occ_map, npix = fs->width * fs->height, k, l, y;
+    uint64_t t0 = pn_dev_timestamp(fs), t1, t2, lookups = 0u;
+    pn_status st;
+
+    if ((st = pn_occ_begin(fs, &s, res)) != PN_OK) return st;
+    pn_light_view(ctx, &K->light, res, &K->lview);
+    if (!K->light.is_point) {
+        pn_v3 U = pn_v3_make(K->light.U[0], K->light.U[1], K->light.U[2]);
+        pn_v3 V = pn_v3_make(K->light.V[0], K->light.V[1], K->light.V[2]);
+        K->lview_ha = pn_ksqrt(pn_v3_dot(U, U));
+        K->lview_hb = pn_ksqrt(pn_v3_dot(V, V));
+    } else {
+        K->lview_ha = 0.0f;
+        K->lview_hb = 0.0f;
+    }
+    o->res = res;
+    o->levels = pn_occ_levels(res);
+    ctx->occ.map = res;
+    ctx->occ.slices = o->slices;
+
+    if ((st = pn_dev_run(fs, PN_K_OCC_INIT, npix)) != PN_OK) return st;
+    if ((st = pn_dev_run(fs, PN_K_LVIEW_BOUNDS, fs->height)) != PN_OK ||
+        (st = pn_dev_to_host(fs, s.box, (size_t)fs->height * 4u * PN_LVIEW_BOX)) != PN_OK)
+        return st;
+    if (!pn_occ_window(fs, &s, res)) {
+        /* No origin in front of the light: nothing to slice, nothing lit to finish. */
+        ctx->occ.ns_slice = pn_dev_timestamp(fs) - t0;
+        return PN_OK;
+    }
+
+    /* Slicing. */
+    if ((st = pn_dev_fill(fs, s.words, PN_OCC_WORDS, 0u)) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_LMAP_ROWS, ctx->tri_count)) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_OCC_BAND, (res + PN_RASTER_BAND - 1u) / PN_RASTER_BAND)) != PN_OK ||
+        (st = pn_dev_to_host(fs, s.words, PN_OCC_WORDS * 4u)) != PN_OK)
+        return st;
+    t1 = pn_dev_timestamp(fs);
+    ctx->occ.ns_slice = t1 - t0;
+    ctx->occ.texels = s.words[PN_OCC_WORD_TEXELS];
+
+    /* Per slice: its filter, then its lookups. The deepest slice holds receivers only. */
+    for (k = 0; k + 1u < o->slices; k++) {
+        if (s.words[PN_OCC_WORD_SLICE0 + k] == 0u) continue; /* occlusion 0: no change */
+        o->slice = k;
+        if (o->filter == PN_OCC_F_SAT) {
+            if ((st = pn_dev_run(fs, PN_K_OCC_SAT_ROWS, res + 1u)) != PN_OK ||
+                (st = pn_dev_run(fs, PN_K_OCC_SAT_COLS, res + 1u)) != PN_OK)
+                return st;
+        } else {
+            if ((st = pn_dev_run(fs, PN_K_OCC_LEVEL0, res * res)) != PN_OK) return st;
+            for (l = 1; l < o->levels; l++) {
+                uint32_t dim = o->filter == PN_OCC_F_MIPMAP ? pn_occ_mip_dim(res, l) : res;
+                o->level = l;
+                if ((st = pn_dev_run(fs, o->filter == PN_OCC_F_MIPMAP ? PN_K_OCC_MIP : PN_K_OCC_NBUF, dim * dim)) !=
+                    PN_OK)
+                    return st;
+            }
+        }
+        t2 = pn_dev_timestamp(fs);
+        ctx->occ.ns_filter += t2 - t1;
+        if ((st = pn_dev_run(fs, PN_K_OCC_LOOKUP, npix)) != PN_OK) return st;
+        t1 = pn_dev_timestamp(fs);
+        ctx->occ.ns_lookup += t1 - t2;
+    }
+    if ((st = pn_dev_run(fs, PN_K_OCC_FINISH, npix)) != PN_OK ||
+        (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_shadow_counters))) != PN_OK)
+        return st;
+    ctx->occ.ns_lookup += pn_dev_timestamp(fs) - t1;
+    for (y = 0; y < fs->height; y++) lookups += ((const pn_shadow_counters *)fs->counters)[y].candidates;
+    ctx->occ.lookups = lookups;
+    return PN_OK;
+}
+
+#endif

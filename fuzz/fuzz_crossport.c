@@ -3,7 +3,8 @@
  * visibility, RGBA, depth, ids, positions, normals and pn_stats counters.
  *
  * Input (bytes past the end read as zero):
- *   0 algorithm (reference, GEARS, raytrace, SRT)  1 bit 0 point light, bit 1 exact_stats,
+ *   0 algorithm (reference, GEARS, raytrace, SRT, occlusion textures)  1 bit 0 point light,
+ *     bit 1 exact_stats, bit 7 occlusion textures' leak fix off,
  *     bit 2 ground quad, bits 3-4 GEARS pair pool (default, 64, 12, 3: tiles, split rows,
  *     PN_E_POOL_EXHAUSTED), bit 5 unit-grid scene scale 1e-3, bit 6 scale 1e3
  *   2 k (4 << n)   3 GEARS grid 1 .. 64   4 width 1 .. 24   5 height 1 .. 24
@@ -89,7 +90,7 @@ static uint8_t k_rgba[MAX_W * MAX_H * 4];
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     rd r = {data, size, 0};
-    uint32_t algo = byte(&r) % 4u, flags = byte(&r), k = 4u << (byte(&r) % 4u), grid = 1u + byte(&r) % 64u;
+    uint32_t algo = byte(&r) % 5u, flags = byte(&r), k = 4u << (byte(&r) % 4u), grid = 1u + byte(&r) % 64u;
     uint32_t w = 1u + byte(&r) % MAX_W, h = 1u + byte(&r) % MAX_H, nv = 3u + byte(&r) % (MAX_V - 2u);
     uint32_t nt = 1u + byte(&r) % (MAX_T - 2u), i, q;
     float scale = (flags & 32u) ? 1e-3f : (flags & 64u) ? 1e3f : 1.0f;
@@ -103,7 +104,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     pn_status sa, sb, s1;
     char msg[256];
     rig *rg = get_rig((flags >> 3) & 3u);
-    const pn_algo algos[4] = {PN_ALGO_REFERENCE, PN_ALGO_GEARS, PN_ALGO_RAYTRACE, PN_ALGO_SRT};
+    const pn_algo algos[5] = {PN_ALGO_REFERENCE, PN_ALGO_GEARS, PN_ALGO_RAYTRACE, PN_ALGO_SRT, PN_ALGO_OCCTEX};
 
     /* Camera around the origin, light above, both scaled with the scene. */
     for (q = 0; q < 3; q++) cam.eye[q] = scale * 3.0f * num(&r);
@@ -156,6 +157,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     opt.algo = algos[algo];
     opt.gears_grid = grid;
     opt.exact_stats = (flags >> 1) & 1u;
+    /* Occlusion textures: every filter, combination and slice count from the grid byte. */
+    opt.occ_filter = 1u + (grid - 1u) % 3u;
+    opt.occ_combine = 1u + ((grid - 1u) / 3u) % 3u;
+    opt.occ_slices = 2u + ((grid - 1u) / 9u) % 15u;
+    opt.occ_flags = (flags >> 7) ? PN_OCC_NO_LEAK_FIX : 0u;
     opt.eps = 1e-4f * scale;
 
     sa = pn_render(rg->ctx, &cam, &light, &opt, &fa);
@@ -175,7 +181,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                pn_last_error(rg->ctx));
     if (getenv("PN_FUZZ_VERBOSE"))
         fprintf(stderr, "%s %ux%u k=%u %s light, %u triangles: %s, %u lit, %llu candidates, %u GEARS tiles\n",
-                algo == 0 ? "reference" : algo == 1 ? "gears" : algo == 2 ? "raytrace" : "srt", w, h, k, (flags & 1u) ? "point" : "area", nt,
+                algo == 0 ? "reference" : algo == 1 ? "gears" : algo == 2 ? "raytrace" : algo == 3 ? "srt" : "occtex", w, h, k, (flags & 1u) ? "point" : "area", nt,
                 pn_status_str(sa), sa == PN_OK ? sa_st.lit_pixels : 0u,
                 sa == PN_OK ? (unsigned long long)sa_st.shadow_candidates : 0ull, sa == PN_OK ? sa_st.gears_tiles : 0u);
     if (sa != PN_OK) {

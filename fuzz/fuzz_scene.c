@@ -11,7 +11,8 @@
  *   7 algo: low 3 bits below 0xF0, else the raw byte   8..10 limits - 1 (% 64, % 24, % 24)
  *   GEARS builds: 11 gears_grid, 12..13 limits.gears_pairs (u16), 14 limits.gears_grid_max,
  *   15 bit 0 exact_stats (0 in a limit means the default); SRT builds: bits 1..7 the map limit
- *   8 + n % 57
+ *   8 + n % 57; occlusion-texture builds: the same bits the texture limit, and 11 slices
+ *   % 18, 12 filter % 5, 13 combination % 5, 14 flags & 3 (out-of-range values included)
  *   then floats: eye[3] target[3] up[3] fov, light c[3] u[3] v[3], eps albedo ambient;
  *   4 background bytes; vertex count * 3 floats; triangle count * 3 uint32 indices.
  *
@@ -20,7 +21,8 @@
  * status the function does not document; PN_E_POOL_EXHAUSTED only for algorithms whose
  * pools may not fit a frame); failures leave a message and do not touch out-parameters;
  * the library writes only inside the block it was given; caller arrays
- * are unchanged; a frame has visibility in {0, 1/k^2, ..., 1}, background pixels at
+ * are unchanged; a frame has visibility in {0, 1/k^2, ..., 1} (occlusion textures: in
+ * [0, 1]), background pixels at
  * visibility 1 / PN_NO_TRIANGLE / +inf depth / the background colour, ids below the
  * triangle count and unit normals; and rendering again, after scribbling over the
  * caller's arrays and under a reversed work-item schedule, gives the same bytes. Within
@@ -124,6 +126,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     /* SRT maps of 8 .. 64 texels a side: every SRT code path, at a fuzzing pace. */
     lim.srt_map_max = 8u + (uint32_t)(h[15] >> 1) % 57u;
 #endif
+#ifdef PN_BUILD_OCCTEX
+    lim.occ_map_max = 8u + (uint32_t)(h[15] >> 1) % 57u;
+    opt.occ_slices = h[11] % 18u;
+    opt.occ_filter = h[12] % 5u;
+    opt.occ_combine = h[13] % 5u;
+    opt.occ_flags = h[14] & 3u;
+#endif
     take(&r, &cam, sizeof cam);
     take(&r, &light, sizeof light);
     take(&r, shade, sizeof shade);
@@ -189,6 +198,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         may |= BIT(PN_E_INVALID_ARG);
     }
 #endif
+#ifdef PN_BUILD_OCCTEX
+    if (opt.algo == PN_ALGO_OCCTEX && (opt.occ_slices == 1u || opt.occ_slices > 16u || opt.occ_filter > 3u ||
+                                       opt.occ_combine > 3u || (opt.occ_flags & ~PN_OCC_NO_LEAK_FIX)))
+        must |= BIT(PN_E_INVALID_ARG);
+#endif
     must |= vec_causes(shade, 3u) & BIT(PN_E_NONFINITE);
     must |= (opt.eps < 0.0f || opt.albedo < 0.0f || opt.albedo > 1.0f || opt.ambient < 0.0f ||
              opt.ambient > 1.0f) ? BIT(PN_E_INVALID_ARG) : 0u;
@@ -253,7 +267,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             float vi = out.visibility[i];
             const float *nr = out.normal + 3u * i;
             FUZZ_CHECK(vi >= 0.0f && vi <= 1.0f, "pixel %zu visibility %g", i, vi);
-            FUZZ_CHECK(point ? vi == 0.0f || vi == 1.0f : vi * kk == floorf(vi * kk),
+            FUZZ_CHECK(opt.algo == PN_ALGO_OCCTEX || (point ? vi == 0.0f || vi == 1.0f : vi * kk == floorf(vi * kk)),
                        "pixel %zu visibility %g: not a multiple of 1/k^2 (k %u)", i, vi, k);
             if (out.tri_id[i] == PN_NO_TRIANGLE) {
                 FUZZ_CHECK(vi == 1.0f && out.depth[i] == INFINITY && !memcmp(out.rgba + 4u * i, opt.background, 4u),

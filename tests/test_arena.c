@@ -68,7 +68,7 @@ static void test_bad_limits(void)
 }
 
 /* One byte short fails and writes nothing; the exact size renders real frames of every
- * algorithm in the build (SRT on the context's largest map) with a guard region behind the
+ * algorithm in the build (SRT and the occlusion textures on the context's largest maps) with a guard region behind the
  * block that stays intact; every misalignment works. */
 static void test_too_small_and_guard(void)
 {
@@ -84,6 +84,7 @@ static void test_too_small_and_guard(void)
     lim.max_width = 64;
     lim.max_height = 48;
     lim.srt_map_max = 128;
+    lim.occ_map_max = 128;
     REQUIRE(pn_arena_size(&lim, &bytes) == PN_OK);
     for (off = 0; off < 64; off += 13) {
         uint8_t *raw = (uint8_t *)malloc(bytes + GUARD + 64);
@@ -113,9 +114,11 @@ static void test_too_small_and_guard(void)
         memcpy(light.v, v.light_v, sizeof(light.v));
         pn_frame_options_default(&opt);
         opt.k = 8;
-        for (f = 0; f < 3 + 4; f++) {
-            static const pn_algo algo[4] = {PN_ALGO_REFERENCE, PN_ALGO_GEARS, PN_ALGO_RAYTRACE, PN_ALGO_SRT};
-            static const uint32_t flag[4] = {PN_BUILD_REFERENCE, PN_BUILD_GEARS, PN_BUILD_RAYTRACE, PN_BUILD_SRT};
+        for (f = 0; f < 3 + 5; f++) {
+            static const pn_algo algo[5] = {PN_ALGO_REFERENCE, PN_ALGO_GEARS, PN_ALGO_RAYTRACE, PN_ALGO_SRT,
+                                            PN_ALGO_OCCTEX};
+            static const uint32_t flag[5] = {PN_BUILD_REFERENCE, PN_BUILD_GEARS, PN_BUILD_RAYTRACE, PN_BUILD_SRT,
+                                             PN_BUILD_OCCTEX};
             opt.width = f == 1 ? 32u : 64u;
             opt.height = f == 1 ? 17u : 48u;
             opt.algo = f < 3 ? PN_ALGO_REFERENCE : algo[f - 3];

@@ -1,0 +1,272 @@
+/* PN_ALGO_OCCTEX (occlusion textures): what it promises and what it is built from.
+ *
+ * 1. The paper's exact case (§3.1): `square`, one planar occluder parallel to the light,
+ *    is its slice's bottom plane; with the summed-area table (the exact box integral) and
+ *    the leak fix off, its shadow matches the reference (k = 32) to the texture's
+ *    quantization: mean absolute error below 1/255, no pixel off by more than two of the
+ *    reference's sample steps (1/32 each) plus nothing; the N-buffer (approximate sizes
+ *    between levels) is less accurate there than the table, the mipmap less than both.
+ * 2. Combinations: per pixel, clamped sum <= product <= max visibility (1 - sum I <=
+ *    prod (1 - I) <= min (1 - I) for I in [0, 1]), up to float rounding, with the
+ *    inequalities strict somewhere (spheres: overlapping penumbrae).
+ * 3. Determinism: the same bytes from 1 and 2 threads and from two runs.
+ * 4. Options and pools: occ_slices, occ_map, occ_filter, occ_combine, occ_flags outside
+ *    their ranges are PN_E_INVALID_ARG; a context whose occ_map_max is 64 has a smaller
+ *    arena and renders at that size; the stats hold the slices, map, bits and lookups
+ *    (= shadow_candidates), and with a clock the stage times lie inside the shadow pass.
+ * The error against the reference on every scene is the benchmark's (RESULTS.md). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "penumbra/penumbra.h"
+#include "pn_scenes.h"
+#include "pn_setup.h"
+#include "pn_test.h"
+
+#define W 128u
+#define H 96u
+
+typedef struct frame {
+    float vis[W * H];
+    uint8_t rgba[W * H * 4u];
+    pn_stats st;
+} frame;
+
+static frame g_a, g_b, g_c;
+
+static int render(pn_host *h, const pn_setup *s, const pn_light *light, pn_algo algo, uint32_t k, uint32_t filter,
+                  uint32_t combine, uint32_t flags, frame *out)
+{
+    pn_frame_options opt;
+    pn_frame fr;
+    pn_status rs;
+    pn_frame_options_default(&opt);
+    opt.width = W;
+    opt.height = H;
+    opt.k = k;
+    opt.eps = s->eps;
+    opt.algo = algo;
+    opt.occ_filter = filter;
+    opt.occ_combine = combine;
+    opt.occ_flags = flags;
+    rs = pn_render(h->ctx, &s->camera, light, &opt, &fr);
+    if (rs != PN_OK) {
+        fprintf(stderr, "render %s: %s\n", s->name, pn_last_error(h->ctx));
+        return (int)rs;
+    }
+    memcpy(out->vis, fr.visibility, sizeof(out->vis));
+    memcpy(out->rgba, fr.rgba, sizeof(out->rgba));
+    pn_get_stats(h->ctx, &out->st);
+    return 0;
+}
+
+static int open_scene(const char *name, pn_setup *s, pn_host *h, int threads)
+{
+    char err[256];
+    if (pn_setup_load(s, name, 1, -1, err, sizeof(err)) != 0) {
+        CHECK_MSG(0, "loading %s: %s", name, err);
+        return 0;
+    }
+    if (pn_host_open(h, s->mesh.triangle_count, W, H, threads, err, sizeof(err)) != 0) {
+        CHECK_MSG(0, "context: %s", err);
+        pn_setup_free(s);
+        return 0;
+    }
+    if (pn_scene_set(h->ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices, s->mesh.triangle_count) !=
+        PN_OK) {
+        CHECK_MSG(0, "%s: %s", name, pn_last_error(h->ctx));
+        pn_host_close(h);
+        pn_setup_free(s);
+        return 0;
+    }
+    return 1;
+}
+
+static void error_of(const frame *ref, const frame *f, double *mean_abs, double *max_abs)
+{
+    size_t i;
+    double sum = 0.0, mx = 0.0;
+    for (i = 0; i < W * H; i++) {
+        double e = fabs((double)ref->vis[i] - (double)f->vis[i]);
+        sum += e;
+        if (e > mx) mx = e;
+    }
+    *mean_abs = sum / (double)(W * H);
+    *max_abs = mx;
+}
+
+static void test_exact_case(void)
+{
+    pn_setup s;
+    pn_host h;
+    double sat_mean, sat_max, nb_mean, nb_max, mip_mean, mip_max;
+    if (!open_scene("square", &s, &h, 2)) return;
+    REQUIRE(render(&h, &s, &s.light, PN_ALGO_REFERENCE, 32, 0, 0, 0, &g_a) == 0);
+    REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 32, PN_OCC_FILTER_SAT, 0, PN_OCC_NO_LEAK_FIX, &g_b) == 0);
+    error_of(&g_a, &g_b, &sat_mean, &sat_max);
+    fprintf(stderr, "square, summed-area table: mean |error| %.5f, max %.4f\n", sat_mean, sat_max);
+    CHECK_MSG(sat_mean < 1.0 / 255.0, "mean |error| %.5f", sat_mean);
+    CHECK_MSG(sat_max <= 2.0 / 32.0, "max |error| %.4f", sat_max);
+    /* The slicing did its work: the occluder's bits and lookups are there. */
+    CHECK(g_b.st.occ_texels_set > 0u && g_b.st.occ_lookups > 0u && g_b.st.occ_lookups == g_b.st.shadow_candidates);
+    CHECK(g_b.st.occ_slices == 8u && g_b.st.occ_map == 512u);
+    REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 32, PN_OCC_FILTER_NBUFFER, 0, PN_OCC_NO_LEAK_FIX, &g_c) == 0);
+    error_of(&g_a, &g_c, &nb_mean, &nb_max);
+    REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 32, PN_OCC_FILTER_MIPMAP, 0, PN_OCC_NO_LEAK_FIX, &g_c) == 0);
+    error_of(&g_a, &g_c, &mip_mean, &mip_max);
+    fprintf(stderr, "square, N-buffer: mean |error| %.5f, max %.4f; mipmap: %.5f, %.4f\n", nb_mean, nb_max, mip_mean,
+            mip_max);
+    CHECK_MSG(sat_mean < nb_mean && nb_mean < mip_mean, "mean |error| SAT %.5f, N-buffer %.5f, mipmap %.5f", sat_mean,
+              nb_mean, mip_mean);
+    pn_host_close(&h);
+    pn_setup_free(&s);
+}
+
+static void test_combinations(void)
+{
+    pn_setup s;
+    pn_host h;
+    size_t i, below = 0, above = 0, bad = 0;
+    if (!open_scene("spheres", &s, &h, 2)) return;
+    REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 16, 0, PN_OCC_COMBINE_SUM, 0, &g_a) == 0);
+    REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 16, 0, PN_OCC_COMBINE_PRODUCT, 0, &g_b) == 0);
+    REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 16, 0, PN_OCC_COMBINE_MAX, 0, &g_c) == 0);
+    for (i = 0; i < W * H; i++) {
+        /* Rounding: each of at most 15 steps rounds once (relative 2^-24). */
+        if (g_a.vis[i] > g_b.vis[i] + 1e-6f || g_b.vis[i] > g_c.vis[i] + 1e-6f) bad++;
+        below += g_a.vis[i] < g_b.vis[i] - 0.01f;
+        above += g_b.vis[i] < g_c.vis[i] - 0.01f;
+    }
+    fprintf(stderr, "spheres: sum < product - 0.01 at %zu pixels, product < max - 0.01 at %zu\n", below, above);
+    CHECK_MSG(bad == 0u, "%zu pixels break sum <= product <= max", bad);
+    CHECK(below > 100u && above > 100u);
+    pn_host_close(&h);
+    pn_setup_free(&s);
+}
+
+static void test_determinism(void)
+{
+    pn_setup s;
+    pn_host h1, h2;
+    pn_light point;
+    int li;
+    if (!open_scene("room", &s, &h1, 1)) return;
+    if (!open_scene("room", &s, &h2, 2)) {
+        pn_host_close(&h1);
+        return;
+    }
+    memset(&point, 0, sizeof(point));
+    memcpy(point.center, s.light.center, sizeof(point.center));
+    for (li = 0; li < 2; li++) {
+        const pn_light *L = li ? &point : &s.light;
+        REQUIRE(render(&h1, &s, L, PN_ALGO_OCCTEX, 16, 0, 0, 0, &g_a) == 0);
+        REQUIRE(render(&h2, &s, L, PN_ALGO_OCCTEX, 16, 0, 0, 0, &g_b) == 0);
+        REQUIRE(render(&h2, &s, L, PN_ALGO_OCCTEX, 16, 0, 0, 0, &g_c) == 0);
+        CHECK_MSG(memcmp(g_a.vis, g_b.vis, sizeof(g_a.vis)) == 0 && memcmp(g_a.rgba, g_b.rgba, sizeof(g_a.rgba)) == 0,
+                  "room %s light: 1 and 2 threads differ", li ? "point" : "area");
+        CHECK(memcmp(g_b.vis, g_c.vis, sizeof(g_b.vis)) == 0);
+        CHECK(g_a.st.occ_texels_set == g_b.st.occ_texels_set && g_a.st.occ_lookups == g_b.st.occ_lookups);
+    }
+    pn_host_close(&h1);
+    pn_host_close(&h2);
+    pn_setup_free(&s);
+}
+
+static uint64_t g_ticks;
+static uint64_t tick_clock(void *user)
+{
+    (void)user;
+    return ++g_ticks;
+}
+
+static void test_options(void)
+{
+    pn_setup s;
+    pn_host h;
+    pn_limits lim = {64, 32, 32, 1000, 16, 8, 64}; /* the others small: the frame region holds the largest */
+    size_t bytes;
+    void *mem;
+    pn_context *ctx;
+    pn_frame_options opt;
+    pn_frame fr;
+    pn_stats st;
+    if (!open_scene("square", &s, &h, 1)) return;
+    pn_frame_options_default(&opt);
+    opt.width = opt.height = 32;
+    opt.algo = PN_ALGO_OCCTEX;
+    opt.occ_slices = 1;
+    CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
+    opt.occ_slices = 17;
+    CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
+    opt.occ_slices = 0;
+    opt.occ_map = 7;
+    CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
+    opt.occ_map = PN_OCCTEX_MAP_MAX + 1u;
+    CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
+    opt.occ_map = 0;
+    opt.occ_filter = 4;
+    CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
+    opt.occ_filter = 0;
+    opt.occ_combine = 4;
+    CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
+    opt.occ_combine = 0;
+    opt.occ_flags = 2;
+    CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
+    CHECK(strstr(pn_last_error(h.ctx), "occ_flags") != NULL);
+    opt.occ_flags = 0;
+    opt.occ_slices = 2; /* one occluder slice and the receivers' */
+    CHECK_MSG(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_OK, "%s", pn_last_error(h.ctx));
+    CHECK(pn_get_stats(h.ctx, &st) == PN_OK && st.occ_slices == 2u && st.occ_texels_set > 0u);
+    opt.occ_slices = 0;
+    pn_host_close(&h);
+
+    /* A small map limit: a smaller arena, and frames at that map size. */
+    REQUIRE(pn_arena_size(&lim, &bytes) == PN_OK);
+    {
+        pn_limits big = lim;
+        size_t big_bytes;
+        big.occ_map_max = 0;
+        REQUIRE(pn_arena_size(&big, &big_bytes) == PN_OK);
+        CHECK(bytes < big_bytes);
+        big.occ_map_max = PN_OCCTEX_MAP_MAX + 1u;
+        CHECK(pn_arena_size(&big, &big_bytes) == PN_E_LIMIT);
+        big.occ_map_max = 7u;
+        CHECK(pn_arena_size(&big, &big_bytes) == PN_E_LIMIT);
+    }
+    mem = malloc(bytes);
+    REQUIRE(mem != NULL);
+    REQUIRE(pn_init(&ctx, mem, bytes, &lim) == PN_OK);
+    REQUIRE(pn_scene_set(ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
+    opt.occ_map = 65;
+    CHECK(pn_render(ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
+    opt.occ_map = 0;
+    CHECK_MSG(pn_render(ctx, &s.camera, &s.light, &opt, &fr) == PN_OK, "%s", pn_last_error(ctx));
+    CHECK(pn_get_stats(ctx, &st) == PN_OK && st.occ_map == 64u);
+    /* Stage timings: with a clock that ticks once a call, every stage has taken at least
+     * one tick and together they lie inside the shadow pass. */
+    CHECK(st.occ_ns_slice == 0u && st.occ_ns_filter == 0u && st.occ_ns_lookup == 0u);
+    REQUIRE(pn_set_clock(ctx, tick_clock, NULL) == PN_OK);
+    CHECK_MSG(pn_render(ctx, &s.camera, &s.light, &opt, &fr) == PN_OK, "%s", pn_last_error(ctx));
+    CHECK(pn_get_stats(ctx, &st) == PN_OK);
+    CHECK(st.occ_ns_slice >= 1u && st.occ_ns_filter >= 1u && st.occ_ns_lookup >= 1u);
+    CHECK_MSG(st.occ_ns_slice + st.occ_ns_filter + st.occ_ns_lookup <= st.pass_ns[PN_PASS_SHADOW],
+              "stages %llu + %llu + %llu, shadow pass %llu", (unsigned long long)st.occ_ns_slice,
+              (unsigned long long)st.occ_ns_filter, (unsigned long long)st.occ_ns_lookup,
+              (unsigned long long)st.pass_ns[PN_PASS_SHADOW]);
+    free(mem);
+    pn_setup_free(&s);
+}
+
+int main(void)
+{
+    if (!(pn_build_info() & PN_BUILD_OCCTEX)) {
+        fprintf(stderr, "PN_ENABLE_OCCTEX is 0 in this build\n");
+        return 1;
+    }
+    RUN(test_options);
+    RUN(test_exact_case);
+    RUN(test_combinations);
+    RUN(test_determinism);
+    return pn_test_summary();
+}

@@ -51,7 +51,8 @@ typedef struct pn_kocc {
     float d;              /* centre of projection behind the light centre (0: point light) */
     float zmin, h;        /* slice k's bottom plane at light depth zmin + k h */
     float sfac_x, sfac_y; /* kernel side in texels = sfac (z - zb) / (z (zb + d)) */
-    float pad0, pad1, pad2;
+    uint32_t live;        /* bit k: slice k holds a bit and was looked up */
+    uint32_t pad0, pad1;
     uint32_t res;         /* texels per axis */
     uint32_t slices;      /* 2 .. PN_OCC_SLICES_MAX */
     uint32_t filter, combine, flags;

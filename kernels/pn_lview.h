@@ -18,9 +18,10 @@
 /* Row y of the G-buffer: over its lit pixels (origins in front of the light), with (x, y,
  * z) an origin in lv's frame relative to the light centre lc (so the view's eye may sit
  * behind it): the largest (|x| - ha) / z and (|y| - hb) / z (ha = hb = 0: the tan of the
- * angle off the axis), the smallest and largest z, and how many origins are too close to
- * the light plane or too far off the axis for any window (z <= 0 or beyond
- * PN_LVIEW_TAN_MAX): box[y * PN_LVIEW_BOX ..] = {x, y, min z, max z, count}. */
+ * angle off the axis) and the smallest z over the origins within the window's reach, the
+ * largest z over all with z > 0, and how many origins are too close to the light plane or
+ * too far off the axis for any window (z <= 0 or beyond PN_LVIEW_TAN_MAX):
+ * box[y * PN_LVIEW_BOX ..] = {x, y, min z, max z, count}. */
 PN_KFN void pn_lview_bounds_row(const pn_kview *lv, const pn_klight *L, float ha, float hb, uint32_t width, uint32_t y,
                                 PN_CONST uint32_t *tri_id, PN_CONST float *pos, PN_CONST float *nrm,
                                 PN_GLOBAL float *box)
@@ -45,6 +46,7 @@ PN_KFN void pn_lview_bounds_row(const pn_kview *lv, const pn_klight *L, float ha
             out += 1.0f;
             continue;
         }
+        zmax = pn_kmaxf(zmax, cz);
         tx = ((cx < 0.0f ? -cx : cx) - ha) / cz;
         ty = ((cy < 0.0f ? -cy : cy) - hb) / cz;
         if (!(tx <= PN_LVIEW_TAN_MAX && ty <= PN_LVIEW_TAN_MAX)) {
@@ -54,7 +56,6 @@ PN_KFN void pn_lview_bounds_row(const pn_kview *lv, const pn_klight *L, float ha
         ax = pn_kmaxf(ax, tx);
         ay = pn_kmaxf(ay, ty);
         zmin = pn_kminf(zmin, cz);
-        zmax = pn_kmaxf(zmax, cz);
     }
     box[(size_t)y * PN_LVIEW_BOX + 0u] = ax;
     box[(size_t)y * PN_LVIEW_BOX + 1u] = ay;

@@ -346,16 +346,16 @@ PN_KFN void pn_e_occ_level0(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
     pn_occ_level0(&K->occ, PN_POOL(const uint32_t, occ_bits), i, PN_POOL(uint32_t, occ_filt));
 }
 
-/* Texel of N-buffer level K->occ.level. */
-PN_KFN void pn_e_occ_nbuf(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
+/* Row of N-buffer level K->occ.level. */
+PN_KFN void pn_e_occ_nbuf(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
 {
-    pn_occ_nbuf_level(&K->occ, i, PN_POOL(uint32_t, occ_filt));
+    pn_occ_nbuf_row(&K->occ, y, PN_POOL(uint32_t, occ_filt));
 }
 
-/* Texel of mipmap level K->occ.level. */
-PN_KFN void pn_e_occ_mip(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
+/* Row of mipmap level K->occ.level. */
+PN_KFN void pn_e_occ_mip(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
 {
-    pn_occ_mip_level(&K->occ, i, PN_POOL(uint32_t, occ_filt));
+    pn_occ_mip_row(&K->occ, y, PN_POOL(uint32_t, occ_filt));
 }
 
 /* Summed-area table: row j's prefix sums, then column i's. */
@@ -382,27 +382,25 @@ PN_KFN void pn_e_occ_init(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
 }
 
-/* Pixel: slice K->occ.slice's occlusion combined into its visibility; a lookup counted
- * (as a candidate) when the slice weighs in. */
+/* Pixel: slice K->occ.slice's occlusion combined into its visibility. */
 PN_KFN void pn_e_occ_lookup(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
     pn_v3 O;
     float I;
     if (PN_POOL(const uint32_t, tri_id)[pix] == PN_NO_PIXEL_TRIANGLE ||
         !pn_shadow_origin(pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u),
                           pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u), &K->light, &O))
         return;
-    if (!pn_occ_slice_occlusion(&K->lview, &K->light, &K->occ, PN_POOL(const uint32_t, occ_filt), O, &I)) return;
-    if (I > 0.0f) PN_POOL(float, vis)[pix] = pn_occ_combine(K->occ.combine, PN_POOL(const float, vis)[pix], I);
-    c.candidates = 1u;
-    pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
+    if (pn_occ_slice_occlusion(&K->lview, &K->light, &K->occ, PN_POOL(const uint32_t, occ_filt), O, &I) && I > 0.0f)
+        PN_POOL(float, vis)[pix] = pn_occ_combine(K->occ.combine, PN_POOL(const float, vis)[pix], I);
 }
 
-/* Pixel: times the fraction of light samples in front of its own plane. */
+/* Pixel: times the fraction of light samples in front of its own plane; its lookups (the
+ * slices looked up that weighed in) counted as candidates. */
 PN_KFN void pn_e_occ_finish(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
     uint32_t m[PN_MASK_WORDS_MAX], id = PN_POOL(const uint32_t, tri_id)[pix];
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
     pn_v3 pos, nrm, O;
     pn_horizon H;
     if (id == PN_NO_PIXEL_TRIANGLE) return;
@@ -413,6 +411,8 @@ PN_KFN void pn_e_occ_finish(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
     pn_horizon_of(pos, nrm, id, PN_POOL(const float, tris), &K->light, &H);
     pn_horizon_mask(&H, &K->light, m);
     PN_POOL(float, vis)[pix] = PN_POOL(const float, vis)[pix] * pn_mask_visibility(m, K->light.k);
+    c.candidates = pn_occ_lookups(&K->lview, &K->light, &K->occ, O);
+    if (c.candidates) pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
 }
 #endif
 
@@ -470,8 +470,8 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
 #define PN_PASSES_OCCTEX(X)                               \
     X(OCC_BAND, occ_band, 1, 1)                           \
     X(OCC_LEVEL0, occ_level0, 64, 4096)                   \
-    X(OCC_NBUF, occ_nbuf, 64, 4096)                       \
-    X(OCC_MIP, occ_mip, 64, 4096)                         \
+    X(OCC_NBUF, occ_nbuf, 4, 8)                           \
+    X(OCC_MIP, occ_mip, 4, 8)                             \
     X(OCC_SAT_ROWS, occ_sat_rows, 1, 1)                   \
     X(OCC_SAT_COLS, occ_sat_cols, 1, 1)                   \
     X(OCC_INIT, occ_init, 64, 4096)                       \

@@ -73,7 +73,7 @@ static float pn_occ_nearest(const pn_context *ctx, const pn_klight *L, const pn_
  * scene diagonal (all origins above the light: nearly orthographic) and at least such that
  * the frustum stays within PN_LVIEW_TAN_MAX; a point light's window fitted to the origins'
  * tans. Returns 0 when no lit origin lies in front of the light (nothing to slice). */
-static int pn_occ_window(pn_frame_state *fs, const pn_occ_pools *s, uint32_t res)
+static int pn_occ_window(pn_frame_state *fs, const pn_occ_pools *s, uint32_t res, float *zmax_out)
 {
     pn_context *ctx = fs->ctx;
     pn_kparams *K = &fs->K;
@@ -123,7 +123,26 @@ static int pn_occ_window(pn_frame_state *fs, const pn_occ_pools *s, uint32_t res
     o->zmin = zmin;
     o->h = (zmax - zmin) / (float)(o->slices - 1u);
     if (!(o->h >= 1e-6f * diag)) o->h = pn_kmaxf(1e-6f * diag, 1e-30f);
+    *zmax_out = zmax;
     return 1;
+}
+
+/* The highest N-buffer / mipmap level a lookup into slice k can touch: the kernel side
+ * (pn_occ_slice_occlusion) grows with the origin's depth z, so it is largest at the
+ * deepest origin zmax; lookups read levels floor(log2 s) and the next. One level of slack
+ * for the rounding of s; every level above it is never read, so it is not built. */
+static uint32_t pn_occ_top_level(const pn_kocc *o, uint32_t k, float zmax)
+{
+    float zb = o->zmin + (float)k * o->h, q = (zmax - zb) / (zmax * (zb + o->d));
+    float s = pn_kmaxf(o->sfac_x * q, o->sfac_y * q), size = 1.0f;
+    uint32_t l = 0u;
+    if (!(s == s) || s > 1e30f) return o->levels - 1u;
+    while (l + 1u < o->levels && 2.0f * size <= s) {
+        l++;
+        size *= 2.0f;
+    }
+    l += 2u;
+    return l < o->levels ? l : o->levels - 1u;
 }
 
 pn_status pn_occtex_frame(pn_frame_state *fs)
@@ -134,6 +153,7 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
     pn_occ_pools s;
     uint32_t res = fs->occ_map, npix = fs->width * fs->height, k, l, y;
     uint64_t t0 = pn_dev_timestamp(fs), t1, t2, lookups = 0u;
+    float zmax = 0.0f;
     pn_status st;
 
     if ((st = pn_occ_begin(fs, &s, res)) != PN_OK) return st;
@@ -156,7 +176,7 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
     if ((st = pn_dev_run(fs, PN_K_LVIEW_BOUNDS, fs->height)) != PN_OK ||
         (st = pn_dev_to_host(fs, s.box, (size_t)fs->height * 4u * PN_LVIEW_BOX)) != PN_OK)
         return st;
-    if (!pn_occ_window(fs, &s, res)) {
+    if (!pn_occ_window(fs, &s, res, &zmax)) {
         /* No origin in front of the light: nothing to slice, nothing lit to finish. */
         ctx->occ.ns_slice = pn_dev_timestamp(fs) - t0;
         return PN_OK;
@@ -176,17 +196,18 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
     for (k = 0; k + 1u < o->slices; k++) {
         if (s.words[PN_OCC_WORD_SLICE0 + k] == 0u) continue; /* occlusion 0: no change */
         o->slice = k;
+        o->live |= 1u << k;
         if (o->filter == PN_OCC_F_SAT) {
             if ((st = pn_dev_run(fs, PN_K_OCC_SAT_ROWS, res + 1u)) != PN_OK ||
                 (st = pn_dev_run(fs, PN_K_OCC_SAT_COLS, res + 1u)) != PN_OK)
                 return st;
         } else {
+            uint32_t top = pn_occ_top_level(o, k, zmax);
             if ((st = pn_dev_run(fs, PN_K_OCC_LEVEL0, res * res)) != PN_OK) return st;
-            for (l = 1; l < o->levels; l++) {
-                uint32_t dim = o->filter == PN_OCC_F_MIPMAP ? pn_occ_mip_dim(res, l) : res;
+            for (l = 1; l <= top; l++) {
                 o->level = l;
-                if ((st = pn_dev_run(fs, o->filter == PN_OCC_F_MIPMAP ? PN_K_OCC_MIP : PN_K_OCC_NBUF, dim * dim)) !=
-                    PN_OK)
+                if ((st = pn_dev_run(fs, o->filter == PN_OCC_F_MIPMAP ? PN_K_OCC_MIP : PN_K_OCC_NBUF,
+                                     o->filter == PN_OCC_F_MIPMAP ? pn_occ_mip_dim(res, l) : res)) != PN_OK)
                     return st;
             }
         }

@@ -50,6 +50,7 @@ static const bench_algo algos[] = {
     {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE, 1, 0},
 #endif
     {"SRT", PN_ALGO_SRT, PN_BUILD_SRT, 0, 1},
+    {"occtex", PN_ALGO_OCCTEX, PN_BUILD_OCCTEX, 0, 1},
 };
 #define NALGO ((int)(sizeof(algos) / sizeof(algos[0])))
 #define A_REF 0
@@ -247,6 +248,17 @@ typedef struct scene_state {
     const char *emb_api;
     float *ref_vis;
     float cull_tol;
+    /* the fastest exact algorithm at the SRT section's second size (area light) */
+    double big_ms;
+    const char *big_name;
+    /* the time-vs-error chart's points beyond the main point's algorithms and Embree:
+     * configurations of the approximate algorithms (same size, k and reference) */
+    struct {
+        char label[96];
+        double ms, rmse;
+        int pt;
+    } xpt[24];
+    int nxpt;
 } scene_state;
 
 static void job_lib(job *j, int algo, const pn_frame_options *opt, int keep)
@@ -443,6 +455,9 @@ enum {
     SEC_SRT_SPEED,
     SEC_SRT_BOUND,
     SEC_SRT_CHART,
+    SEC_OCC_CLAIMS,
+    SEC_OCC_SPEED,
+    SEC_OCC_LIGHT,
     SEC_GALLERY,
     SEC_COUNT
 };
@@ -1160,52 +1175,16 @@ static void srt_section(const bench_opts *o, report *r, scene_state *ss)
         srt_speed_row(r, ss, light_name[li], opt.width, &jobs[nj - SRT_CFGS], ref, exact_ms, exact_name);
 
         if (li == 0) {
-            /* The time-vs-error chart's points: every algorithm at the main point, Embree,
-             * and the SRT configurations. */
-            char *text = NULL, label[NALGO + 1 + SRT_CFGS][96];
-            int pt[NALGO + 1 + SRT_CFGS], np = 0;
-            size_t tl = 0;
-            FILE *t = open_memstream(&text, &tl);
-            if (t) {
-                /* One point a line; the plot gives each its own colour, symbol (exact: circle,
-                 * Embree: square, SRT: triangle) and legend entry. */
-                fprintf(t, "# label shadow_ms rmse (%ux%u, k = %u, area light)\n", opt.width, opt.height, o->k);
-                for (a = 0; a < NALGO; a++)
-                    if (a != a_srt && ss->pt_ms[a] == ss->pt_ms[a]) {
-                        fprintf(t, "\"%s\" %.6g %.6g\n", algos[a].name, ss->pt_ms[a], a == A_REF ? 0.0 : ss->pt_rmse[a]);
-                        snprintf(label[np], sizeof(label[np]), "%s", algos[a].name);
-                        pt[np++] = algos[a].exact ? 7 : 13;
-                    }
-                if (ss->emb_ms == ss->emb_ms) {
-                    fprintf(t, "\"Embree rtcOccluded%s\" %.6g %.6g\n", ss->emb_api, ss->emb_ms, ss->emb_rmse);
-                    snprintf(label[np], sizeof(label[np]), "Embree rtcOccluded%s", ss->emb_api);
-                    pt[np++] = 5;
-                }
-                for (i = 0; i < SRT_CFGS; i++) {
-                    const job *j = &jobs[nj - SRT_CFGS + i];
-                    accuracy acc = compare_vis(j->vis, ref, n);
-                    if (!j->ok || !acc.ok) continue;
-                    fprintf(t, "\"SRT %s\" %.6g %.6g\n", srt_cfgs[i].name, job_pass(j), acc.rmse);
-                    snprintf(label[np], sizeof(label[np]), "SRT %s", srt_cfgs[i].name);
-                    pt[np++] = 9;
-                }
-                fclose(t);
-                write_data(o, "tradeoff", ss->s.name, text);
-                free(text);
-                fprintf(r->plots,
-                        "\n# time against error: %s\nset terminal pngcairo noenhanced size 900,460 font 'sans,9'\n"
-                        "set output 'tradeoff_%s.png'\nset title '%s: shadow pass time against error (%ux%u, k = %u, "
-                        "area light)'\nset xlabel 'shadow pass ms (median, log scale)'\nset logscale x\n"
-                        "set ylabel 'RMSE of the visibility against the reference'\nset yrange [0:*]\n"
-                        "set offsets graph 0.1, graph 0.1, graph 0.1, graph 0.04\nset grid\n"
-                        "set key outside right top\nplot",
-                        ss->s.name, ss->s.name, ss->s.name, opt.width, opt.height, o->k);
-                for (i = 0; i < np; i++)
-                    fprintf(r->plots, "%s 'data/tradeoff_%s.dat' every ::%d::%d using 2:3 with points pt %d ps 1.6 lc %d "
-                                      "title '%s'",
-                            i ? ", \\\n    " : "", ss->s.name, i, i, pt[i], i + 1, label[i]);
-                fprintf(r->plots, "\nunset logscale x\nset yrange [*:*]\nset offsets 0,0,0,0\n");
-                sec(r, SEC_SRT_CHART, "![%s: time against error](tradeoff_%s.png)\n", ss->s.name, ss->s.name);
+            /* The time-vs-error chart's points (tradeoff_chart): the SRT configurations. */
+            for (i = 0; i < SRT_CFGS && ss->nxpt < (int)(sizeof(ss->xpt) / sizeof(ss->xpt[0])); i++) {
+                const job *j = &jobs[nj - SRT_CFGS + i];
+                accuracy acc = compare_vis(j->vis, ref, n);
+                if (!j->ok || !acc.ok) continue;
+                snprintf(ss->xpt[ss->nxpt].label, sizeof(ss->xpt[ss->nxpt].label), "SRT %s", srt_cfgs[i].name);
+                ss->xpt[ss->nxpt].ms = job_pass(j);
+                ss->xpt[ss->nxpt].rmse = acc.rmse;
+                ss->xpt[ss->nxpt].pt = 9;
+                ss->nxpt++;
             }
 
             /* What SRT can save: the reference's per-pixel cost by class. */
@@ -1248,12 +1227,238 @@ static void srt_section(const bench_opts *o, report *r, scene_state *ss)
             job_lib(&big[1], a_srt, &ob, 1);
             progress("  %s: SRT, %s light, %ux%u", ss->s.name, li ? "point" : "area", ob.width, ob.height);
             run_jobs(o, ss, big, 2, &lights[li]);
+            if (li == 0) {
+                ss->big_ms = job_pass(&big[0]);
+                ss->big_name = exact_name;
+            }
             srt_row(r, ss, light_name[li], ob.width, srt_cfgs[0].name, &big[1], big[0].vis, job_pass(&big[0]), exact_name);
             srt_speed_row(r, ss, light_name[li], ob.width, &big[1], big[0].vis, job_pass(&big[0]), exact_name);
             job_free(&big[0]);
             job_free(&big[1]);
         }
         for (i = 0; i < nj; i++) job_free(&jobs[i]);
+    }
+}
+
+/* ---- The time-vs-error chart: every algorithm at the main point, Embree, and the extra
+ * configurations the sections added (ss->xpt) ----------------------------------------------- */
+
+static void tradeoff_chart(const bench_opts *o, report *r, scene_state *ss)
+{
+    char *text = NULL, label[NALGO + 1 + 24][96];
+    int pt[NALGO + 1 + 24], np = 0, a, i;
+    size_t tl = 0;
+    FILE *t;
+    if (!ss->ref_vis) return;
+    t = open_memstream(&text, &tl);
+    if (!t) return;
+    /* One point a line; the plot gives each its own colour, symbol (exact: circle, Embree:
+     * square, configurations: their section's) and legend entry. */
+    fprintf(t, "# label shadow_ms rmse (%ux%u, k = %u, area light)\n", o->size, o->size, o->k);
+    for (a = 0; a < NALGO; a++)
+        if (ss->pt_ms[a] == ss->pt_ms[a] && algos[a].algo != PN_ALGO_SRT && algos[a].algo != PN_ALGO_OCCTEX) {
+            fprintf(t, "\"%s\" %.6g %.6g\n", algos[a].name, ss->pt_ms[a], a == A_REF ? 0.0 : ss->pt_rmse[a]);
+            snprintf(label[np], sizeof(label[np]), "%s", algos[a].name);
+            pt[np++] = algos[a].exact ? 7 : 13;
+        }
+    if (ss->emb_ms == ss->emb_ms) {
+        fprintf(t, "\"Embree rtcOccluded%s\" %.6g %.6g\n", ss->emb_api, ss->emb_ms, ss->emb_rmse);
+        snprintf(label[np], sizeof(label[np]), "Embree rtcOccluded%s", ss->emb_api);
+        pt[np++] = 5;
+    }
+    for (i = 0; i < ss->nxpt; i++) {
+        fprintf(t, "\"%s\" %.6g %.6g\n", ss->xpt[i].label, ss->xpt[i].ms, ss->xpt[i].rmse);
+        snprintf(label[np], sizeof(label[np]), "%s", ss->xpt[i].label);
+        pt[np++] = ss->xpt[i].pt;
+    }
+    fclose(t);
+    write_data(o, "tradeoff", ss->s.name, text);
+    free(text);
+    fprintf(r->plots,
+            "\n# time against error: %s\nset terminal pngcairo noenhanced size 980,520 font 'sans,9'\n"
+            "set output 'tradeoff_%s.png'\nset title '%s: shadow pass time against error (%ux%u, k = %u, "
+            "area light)'\nset xlabel 'shadow pass ms (median, log scale)'\nset logscale x\n"
+            "set ylabel 'RMSE of the visibility against the reference'\nset yrange [0:*]\n"
+            "set offsets graph 0.1, graph 0.1, graph 0.1, graph 0.04\nset grid\n"
+            "set key outside right top\nplot",
+            ss->s.name, ss->s.name, ss->s.name, o->size, o->size, o->k);
+    for (i = 0; i < np; i++)
+        fprintf(r->plots, "%s 'data/tradeoff_%s.dat' every ::%d::%d using 2:3 with points pt %d ps 1.6 lc %d "
+                          "title '%s'",
+                i ? ", \\\n    " : "", ss->s.name, i, i, pt[i], i + 1, label[i]);
+    fprintf(r->plots, "\nunset logscale x\nset yrange [*:*]\nset offsets 0,0,0,0\n");
+    sec(r, SEC_SRT_CHART, "![%s: time against error](tradeoff_%s.png)\n", ss->s.name, ss->s.name);
+}
+
+/* ---- Occlusion textures (issue 17) ---------------------------------------------------------- */
+
+/* The configurations measured: the default (what --algo occtex renders) and one change of
+ * it at a time, plus the paper's exact case (summed-area table, no leak fix). */
+#define OCC_CFGS 9
+static const struct {
+    const char *name;
+    uint32_t filter, combine, slices, flags;
+} occ_cfgs[OCC_CFGS] = {
+    {"default (N-buffer, product, 8 slices, leak fix)", 0u, 0u, 0u, 0u},
+    {"max", 0u, PN_OCC_COMBINE_MAX, 0u, 0u},
+    {"clamped sum", 0u, PN_OCC_COMBINE_SUM, 0u, 0u},
+    {"summed-area table", PN_OCC_FILTER_SAT, 0u, 0u, 0u},
+    {"mipmap", PN_OCC_FILTER_MIPMAP, 0u, 0u, 0u},
+    {"4 slices", 0u, 0u, 4u, 0u},
+    {"16 slices", 0u, 0u, 16u, 0u},
+    {"no leak fix", 0u, 0u, 0u, PN_OCC_NO_LEAK_FIX},
+    {"summed-area table, no leak fix", PN_OCC_FILTER_SAT, 0u, 0u, PN_OCC_NO_LEAK_FIX},
+};
+#define OCC_LIGHTS 5
+static const float occ_light_scale[OCC_LIGHTS] = {0.25f, 0.5f, 1.0f, 2.0f, 4.0f};
+
+/* Light leaks: pixels at least 0.25 brighter than the reference (a shadow that light
+ * shines through, not a penumbra's slope). */
+static size_t occ_leaks(const float *a, const float *ref, size_t n)
+{
+    size_t i, c = 0;
+    if (!a || !ref) return 0;
+    for (i = 0; i < n; i++) c += a[i] > ref[i] + 0.25f;
+    return c;
+}
+
+static void occ_stages(char *b, size_t n, const job *j)
+{
+    char c[3][20];
+    fmt_ms(c[0], sizeof(c[0]), j->st.occ_ns_slice / 1e6);
+    fmt_ms(c[1], sizeof(c[1]), j->st.occ_ns_filter / 1e6);
+    fmt_ms(c[2], sizeof(c[2]), j->st.occ_ns_lookup / 1e6);
+    snprintf(b, n, "%s / %s / %s", c[0], c[1], c[2]);
+}
+
+static void occ_section(const bench_opts *o, report *r, scene_state *ss)
+{
+    pn_frame_options opt;
+    job jobs[1 + OCC_CFGS], cfg16[OCC_CFGS], big, lights[OCC_LIGHTS];
+    int i, a, a_occ = -1, fastest = -1;
+    size_t n;
+    double occ_ms, occ_rmse;
+    char c[8][64];
+    base_options(o, ss, &opt);
+    n = (size_t)opt.width * opt.height;
+    for (a = 0; a < NALGO; a++)
+        if (algos[a].algo == PN_ALGO_OCCTEX) a_occ = a;
+    if (a_occ < 0 || !(pn_build_info() & algos[a_occ].build_flag) || !in_list(o->algos, algos[a_occ].name)) return;
+
+    /* Claims: every configuration against a k = 32 reference (the paper's claims are about
+     * the filtered occlusion; a finer reference shows its error, not the reference's). */
+    job_lib(&jobs[0], A_REF, &opt, 1);
+    jobs[0].opt.k = 32;
+    for (i = 0; i < OCC_CFGS; i++) {
+        job_lib(&jobs[1 + i], a_occ, &opt, 1);
+        jobs[1 + i].opt.k = 32;
+        jobs[1 + i].opt.occ_filter = occ_cfgs[i].filter;
+        jobs[1 + i].opt.occ_combine = occ_cfgs[i].combine;
+        jobs[1 + i].opt.occ_slices = occ_cfgs[i].slices;
+        jobs[1 + i].opt.occ_flags = occ_cfgs[i].flags;
+        cfg16[i] = jobs[1 + i];
+        cfg16[i].opt.k = opt.k;
+    }
+    progress("  %s: occlusion textures, k = 32 reference and %d configurations", ss->s.name, OCC_CFGS);
+    run_jobs(o, ss, jobs, 1 + OCC_CFGS, &ss->s.light);
+    for (i = 0; i < OCC_CFGS; i++) {
+        const job *j = &jobs[1 + i];
+        accuracy acc = compare_vis(j->vis, jobs[0].vis, n);
+        if (!j->ok || !acc.ok) {
+            sec(r, SEC_OCC_CLAIMS, "| %s | %s | n/a | n/a | n/a | n/a | n/a | %s |\n", ss->s.name, occ_cfgs[i].name,
+                j->ok ? jobs[0].err : j->err);
+            continue;
+        }
+        fmt_ms(c[0], sizeof(c[0]), job_pass(j));
+        occ_stages(c[1], sizeof(c[1]), j);
+        sec(r, SEC_OCC_CLAIMS, "| %s | %s | %.5f | %.4f | %zu | %s | %s | %llu / %llu |\n", ss->s.name,
+            occ_cfgs[i].name, acc.rmse, acc.max_err, occ_leaks(j->vis, jobs[0].vis, n), c[0], c[1],
+            (unsigned long long)j->st.occ_texels_set, (unsigned long long)j->st.occ_lookups);
+    }
+    for (i = 0; i < 1 + OCC_CFGS; i++) job_free(&jobs[i]);
+
+    /* The configurations at the main point's k against its reference: the chart's points. */
+    progress("  %s: occlusion textures, %d configurations at k = %u", ss->s.name, OCC_CFGS, opt.k);
+    run_jobs(o, ss, cfg16, OCC_CFGS, &ss->s.light);
+    for (i = 0; i < OCC_CFGS && ss->nxpt < (int)(sizeof(ss->xpt) / sizeof(ss->xpt[0])); i++) {
+        accuracy acc = compare_vis(cfg16[i].vis, ss->ref_vis, n);
+        if (!cfg16[i].ok || !acc.ok) continue;
+        snprintf(ss->xpt[ss->nxpt].label, sizeof(ss->xpt[ss->nxpt].label), "occtex %s", occ_cfgs[i].name);
+        ss->xpt[ss->nxpt].ms = job_pass(&cfg16[i]);
+        ss->xpt[ss->nxpt].rmse = acc.rmse;
+        ss->xpt[ss->nxpt].pt = 11;
+        ss->nxpt++;
+    }
+
+    /* Speed at the main point: against the fastest exact algorithm of the same run, and
+     * whether anything on the chart is both faster and more accurate. */
+    for (a = 0; a < NALGO; a++)
+        if (algos[a].exact && ss->pt_ms[a] == ss->pt_ms[a] && (fastest < 0 || ss->pt_ms[a] < ss->pt_ms[fastest])) fastest = a;
+    occ_ms = job_pass(&cfg16[0]);
+    occ_rmse = compare_vis(cfg16[0].vis, ss->ref_vis, n).rmse;
+    {
+        char front[256] = "yes";
+        int len = 0;
+        for (a = 0; a < NALGO; a++)
+            if (a != a_occ && ss->pt_ms[a] == ss->pt_ms[a] && ss->pt_ms[a] < occ_ms &&
+                (a == A_REF ? 0.0 : ss->pt_rmse[a]) < occ_rmse)
+                len += snprintf(front + len, sizeof(front) - (size_t)len, "%s%s", len ? ", " : "no: ", algos[a].name);
+        if (ss->emb_ms == ss->emb_ms && ss->emb_ms < occ_ms && ss->emb_rmse < occ_rmse)
+            len += snprintf(front + len, sizeof(front) - (size_t)len, "%sEmbree", len ? ", " : "no: ");
+        for (i = 0; i < ss->nxpt; i++)
+            if (strncmp(ss->xpt[i].label, "occtex", 6) != 0 && ss->xpt[i].ms < occ_ms && ss->xpt[i].rmse < occ_rmse)
+                len += snprintf(front + len, sizeof(front) - (size_t)len, "%s%s", len ? ", " : "no: ", ss->xpt[i].label);
+        fmt_ms(c[0], sizeof(c[0]), fastest >= 0 ? ss->pt_ms[fastest] : NAN);
+        fmt_ms(c[1], sizeof(c[1]), occ_ms);
+        occ_stages(c[2], sizeof(c[2]), &cfg16[0]);
+        fmt_ratio(c[3], sizeof(c[3]), fastest >= 0 ? ss->pt_ms[fastest] : NAN, occ_ms);
+        {
+            double best_other = NAN;
+            const char *bo = "none";
+            for (a = 0; a < NALGO; a++)
+                if (a != a_occ && ss->pt_ms[a] == ss->pt_ms[a] && !(best_other <= ss->pt_ms[a])) {
+                    best_other = ss->pt_ms[a];
+                    bo = algos[a].name;
+                }
+            fmt_ratio(c[4], sizeof(c[4]), best_other, occ_ms);
+            sec(r, SEC_OCC_SPEED, "| %s | %u | %ux%u | %s | %s | %s | %s | %s | %s (%s) | %.4f | %s |\n", ss->s.name,
+                ss->s.mesh.triangle_count, opt.width, opt.height, fastest >= 0 ? algos[fastest].name : "none", c[0],
+                c[1], c[2], c[3], c[4], bo, occ_rmse, front);
+        }
+    }
+    for (i = 0; i < OCC_CFGS; i++) job_free(&cfg16[i]);
+
+    /* The second size against the SRT section's fastest exact algorithm there. */
+    if (o->srt_big) {
+        pn_frame_options ob = opt;
+        ob.width = ob.height = o->srt_big;
+        job_lib(&big, a_occ, &ob, 0);
+        progress("  %s: occlusion textures, %ux%u", ss->s.name, ob.width, ob.height);
+        run_jobs(o, ss, &big, 1, &ss->s.light);
+        fmt_ms(c[0], sizeof(c[0]), ss->big_ms);
+        fmt_ms(c[1], sizeof(c[1]), job_pass(&big));
+        occ_stages(c[2], sizeof(c[2]), &big);
+        fmt_ratio(c[3], sizeof(c[3]), ss->big_ms, job_pass(&big));
+        sec(r, SEC_OCC_SPEED, "| %s | %u | %ux%u | %s | %s | %s | %s | %s | n/a | n/a | n/a |\n", ss->s.name,
+            ss->s.mesh.triangle_count, ob.width, ob.height, ss->big_name ? ss->big_name : "n/a", c[0], c[1], c[2], c[3]);
+        job_free(&big);
+    }
+
+    /* Light size: the default at the main point with the light scaled. */
+    for (i = 0; i < OCC_LIGHTS; i++) job_lib(&lights[i], a_occ, &opt, 0);
+    {
+        int len;
+        char row[1024];
+        len = snprintf(row, sizeof(row), "| %s |", ss->s.name);
+        for (i = 0; i < OCC_LIGHTS; i++) {
+            pn_light L;
+            scaled_light(&ss->s.light, occ_light_scale[i], &L);
+            run_jobs(o, ss, &lights[i], 1, &L);
+            fmt_ms(c[0], sizeof(c[0]), job_pass(&lights[i]));
+            occ_stages(c[1], sizeof(c[1]), &lights[i]);
+            len += snprintf(row + len, sizeof(row) - (size_t)len, " %s (%s) |", c[0], c[1]);
+        }
+        sec(r, SEC_OCC_LIGHT, "%s\n", row);
     }
 }
 
@@ -1348,6 +1553,20 @@ static void report_open(report *r, const bench_opts *o)
         "reference time: lit / umbra / penumbra | bound (work) | bound (time) | reference vs SRT's exact stage | "
         "SRT vs fastest exact, measured | host kernel = reference |\n"
         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n");
+    sec(r, SEC_OCC_CLAIMS,
+        "| scene | configuration | RMSE | max error | light leaks (pixels >= 0.25 brighter) | ms | "
+        "slice / filter / lookup ms | bits set / lookups |\n"
+        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    sec(r, SEC_OCC_SPEED,
+        "| scene | triangles | size | fastest exact | its ms | occtex ms | slice / filter / lookup ms | "
+        "occtex vs fastest exact | occtex vs fastest other | RMSE (k = %u) | on the chart's front |\n"
+        "| --- | ---: | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n",
+        o->k);
+    sec(r, SEC_OCC_LIGHT, "| scene |");
+    for (v = 0; v < OCC_LIGHTS; v++) sec(r, SEC_OCC_LIGHT, " light x %g: ms (slice / filter / lookup) |", occ_light_scale[v]);
+    sec(r, SEC_OCC_LIGHT, "\n| --- |");
+    for (v = 0; v < OCC_LIGHTS; v++) sec(r, SEC_OCC_LIGHT, " ---: |");
+    sec(r, SEC_OCC_LIGHT, "\n");
     fprintf(r->plots, "# Generated by penumbra_bench: run `gnuplot plots.gp` in this directory (tools/bench.sh does).\n"
                       "# The gallery panels it reads from work/ are removed afterwards; make bench recreates them.\n");
 }
@@ -1450,6 +1669,22 @@ static const struct {
      "(a perfect PIP set) and a free shadow map, a selective ray tracer built on the reference's per-pixel path "
      "cannot be faster than all pixels' cost over the penumbra pixels' cost. The last column checks the host "
      "kernel's visibility against the library's reference frame."},
+    {SEC_OCC_CLAIMS, "## Occlusion textures (issue 17): the paper's claims",
+     "Every configuration against a k = 32 reference at the main point's size (area light): the default (what "
+     "`--algo occtex` renders) and one change of it per row; the last row is the paper's exact case set-up "
+     "(summed-area table, no leak fix). ms: the shadow pass's median; the stages are the last repetition's "
+     "(slice: window, planes, rasterization of every triangle into the slices; filter: every slice's N-buffer, "
+     "table or mipmap; lookup: every slice's lookups and the combination). Light leaks: pixels at least 0.25 "
+     "brighter than the reference."},
+    {SEC_OCC_SPEED, "### Occlusion textures: speed against the other algorithms",
+     "The default configuration at the main point (k as in the headline) and at the SRT section's second size. "
+     "Fastest exact: of reference, GEARS and raytrace in this run; fastest other: of every other algorithm of the "
+     "library. On the chart's front: no point of the time-vs-error chart (every algorithm, Embree, the SRT and "
+     "occlusion-texture configurations) is both faster and more accurate; otherwise the points that are. The "
+     "issue's goal: faster than every other algorithm on every shared scene, on the front on half of the scenes."},
+    {SEC_OCC_LIGHT, "### Occlusion textures: cost against light size",
+     "The default at the main point with the light's half-edges scaled (1: the scene's light). The paper claims "
+     "the cost does not depend on the light's size."},
 };
 
 static void print_report(report *r, const bench_opts *o, FILE *out, const char *mach, const char *emb_info, int threads,
@@ -1570,7 +1805,7 @@ static void usage(void)
 {
     fprintf(stderr,
             "usage: penumbra_bench [--out DIR] [--scenes DIR] [--quick] [--only a,b] [--sweep-scenes a,b]\n"
-            "                      [--algos reference,GEARS,raytrace,SRT,embree] [--ports N] [--lean]\n"
+            "                      [--algos reference,GEARS,raytrace,SRT,occtex,embree] [--ports N] [--lean]\n"
             "                      [--reps N] [--reps-slow N] [--slow-seconds S] [--threads N] [--size N] [--k K]\n"
             "                      [--sweep-res a,b] [--sweep-k a,b] [--sweep-grid a,b] [--srt-size N]\n"
             "                      [--label TEXT]\n"
@@ -1734,7 +1969,11 @@ int main(int argc, char **argv)
                 }
                 main_point(&o, &r, &ss, p == 0, !builtin[i]);
                 if (p == 0 && hd) headline_data(hd, &r, &ss);
-                if (p == 0 && !o.lean) srt_section(&o, &r, &ss);
+                if (p == 0 && !o.lean) {
+                    srt_section(&o, &r, &ss);
+                    occ_section(&o, &r, &ss);
+                    tradeoff_chart(&o, &r, &ss);
+                }
                 if (p == 0 && sweepable) {
                     int kind;
                     best_api = ss.best_api;

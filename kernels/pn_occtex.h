@@ -86,11 +86,26 @@ PN_KFN void pn_occ_band(const pn_kview *v, const pn_kocc *o, PN_CONST float *tri
     uint32_t per[PN_OCC_SLICES_MAX];
     uint32_t last = o->slices - 1u;
     pn_v3 f = pn_v3_make(v->f[0], v->f[1], v->f[2]);
+    /* Depths beyond it fall in the deepest slice (pn_occ_slice_of), with a margin of a
+     * hundredth of a slice for the rounding of the fragments' depths. */
+    float zdeep = o->zmin + ((float)last - 1.0f + PN_OCC_PLANE_TOL + 1e-2f) * o->h;
     if (y1 >= v->height) y1 = v->height - 1u;
     for (y = y0; y <= y1; y++)
         for (x = 0; x < v->width; x++) bits[(size_t)y * v->width + x] = 0u;
     for (t = 0; t < tri_count; t++) {
         pn_raster_tri rt;
+        if (rows[t] == PN_RASTER_EMPTY) continue;
+        /* Wholly within the deepest slice (a receiver below every occluder: a ground
+         * plane), or behind the light plane: none of its fragments marks a bit. */
+        {
+            PN_CONST float *p = tris + (size_t)t * 9u;
+            pn_v3 eye = pn_view_eye(v);
+            float z0 = pn_v3_dot(pn_v3_sub(pn_v3_make(p[0], p[1], p[2]), eye), f);
+            float z1 = pn_v3_dot(pn_v3_sub(pn_v3_make(p[3], p[4], p[5]), eye), f);
+            float z2 = pn_v3_dot(pn_v3_sub(pn_v3_make(p[6], p[7], p[8]), eye), f);
+            float lo = pn_kminf(z0, pn_kminf(z1, z2)) - o->d, hi = pn_kmaxf(z0, pn_kmaxf(z1, z2)) - o->d;
+            if (lo > zdeep || !(hi > 0.0f)) continue;
+        }
         if (!pn_raster_tri_setup(v, tris, rows, t, y0, y1, &rt)) continue;
         for (y = rt.y0; y <= rt.y1; y++) {
             int32_t xi;

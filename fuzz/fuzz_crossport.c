@@ -4,7 +4,7 @@
  *
  * Input (bytes past the end read as zero):
  *   0 algorithm (reference, GEARS, raytrace, SRT, occlusion textures)  1 bit 0 point light,
- *     bit 1 exact_stats, bit 7 occlusion textures' leak fix off,
+ *     bit 1 exact_stats, bit 7 occlusion textures' leak fix,
  *     bit 2 ground quad, bits 3-4 GEARS pair pool (default, 64, 12, 3: tiles, split rows,
  *     PN_E_POOL_EXHAUSTED), bit 5 unit-grid scene scale 1e-3, bit 6 scale 1e3
  *   2 k (4 << n)   3 GEARS grid 1 .. 64   4 width 1 .. 24   5 height 1 .. 24
@@ -161,7 +161,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     opt.occ_filter = 1u + (grid - 1u) % 3u;
     opt.occ_combine = 1u + ((grid - 1u) / 3u) % 3u;
     opt.occ_slices = 2u + ((grid - 1u) / 9u) % 15u;
-    opt.occ_flags = (flags >> 7) ? PN_OCC_NO_LEAK_FIX : 0u;
+    opt.occ_flags = (flags >> 7) ? PN_OCC_LEAK_FIX : 0u;
     opt.eps = 1e-4f * scale;
 
     sa = pn_render(rg->ctx, &cam, &light, &opt, &fa);

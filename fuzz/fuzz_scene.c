@@ -200,7 +200,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 #endif
 #ifdef PN_BUILD_OCCTEX
     if (opt.algo == PN_ALGO_OCCTEX && (opt.occ_slices == 1u || opt.occ_slices > 16u || opt.occ_filter > 3u ||
-                                       opt.occ_combine > 3u || (opt.occ_flags & ~PN_OCC_NO_LEAK_FIX)))
+                                       opt.occ_combine > 3u || (opt.occ_flags & ~PN_OCC_LEAK_FIX)))
         must |= BIT(PN_E_INVALID_ARG);
 #endif
     must |= vec_causes(shade, 3u) & BIT(PN_E_NONFINITE);

@@ -20,7 +20,7 @@
  * exact case §3.1, is its slice's plane). Slice k holds the geometry of depths
  * (z_b[k-1], z_b[k]], projected through the COP onto z_b[k] (paper §3.4): every fragment of
  * every triangle, no depth test, sets bit k of its texel's word; with the leak fix (paper
- * Fig. 6) also bit k + 1.
+ * Fig. 6, an option) also bit k + 1.
  *
  * Shading (paper §3.3, §3.5). A point at depth z_P takes from slice k the filtered mean
  * occupancy I_k of its kernel, weighted w_k = clamp((z_P - z_b[k]) / h, 0, 1): slices
@@ -56,7 +56,7 @@
 #define PN_OCC_C_PRODUCT 1u
 #define PN_OCC_C_MAX 2u
 #define PN_OCC_C_SUM 3u
-#define PN_OCC_FLAG_NO_LEAK_FIX 1u
+#define PN_OCC_FLAG_LEAK_FIX 1u
 /* Counter words (pool occ_words, PN_OCC_WORDS): bits set, then per slice its bits. */
 #define PN_OCC_WORD_TEXELS 0u
 #define PN_OCC_WORD_SLICE0 2u
@@ -119,7 +119,7 @@ PN_KFN void pn_occ_band(const pn_kview *v, const pn_kocc *o, PN_CONST float *tri
                 /* The deepest slice holds receivers only: no point lies below its plane. */
                 if (sl < 0 || (uint32_t)sl >= last) continue;
                 m = 1u << (uint32_t)sl;
-                if (!(o->flags & PN_OCC_FLAG_NO_LEAK_FIX) && (uint32_t)sl + 1u < last) m |= m << 1;
+                if ((o->flags & PN_OCC_FLAG_LEAK_FIX) && (uint32_t)sl + 1u < last) m |= m << 1;
                 bits[(size_t)y * v->width + (uint32_t)xi] |= m;
             }
         }
@@ -204,7 +204,7 @@ PN_KFN void pn_occ_mip_row(const pn_kocc *o, uint32_t y, PN_GLOBAL uint32_t *fil
 }
 
 /* Summed-area table ((res + 1)^2, S[j][i] = bits of the slice in [0, i) x [0, j)): row j's
- * prefix sums (row 0 is zero), then column i's. */
+ * prefix sums (row 0 is zero), then the columns' (pn_occ_sat_cols). */
 PN_KFN void pn_occ_sat_row(const pn_kocc *o, PN_CONST uint32_t *bits, uint32_t j, PN_GLOBAL uint32_t *sat)
 {
     uint32_t res = o->res, i, acc = 0u;
@@ -215,10 +215,18 @@ PN_KFN void pn_occ_sat_row(const pn_kocc *o, PN_CONST uint32_t *bits, uint32_t j
         row[i + 1u] = acc;
     }
 }
-PN_KFN void pn_occ_sat_col(const pn_kocc *o, uint32_t i, PN_GLOBAL uint32_t *sat)
+/* Columns [PN_OCC_SAT_COLS * c, + PN_OCC_SAT_COLS) of the table: each row's run of them
+ * added to the row below it, row after row (a run is contiguous in memory). */
+#define PN_OCC_SAT_COLS 16u
+PN_KFN void pn_occ_sat_cols(const pn_kocc *o, uint32_t c, PN_GLOBAL uint32_t *sat)
 {
-    uint32_t res = o->res, j;
-    for (j = 1; j <= res; j++) sat[(size_t)j * (res + 1u) + i] += sat[(size_t)(j - 1u) * (res + 1u) + i];
+    uint32_t res = o->res, W = res + 1u, i0 = c * PN_OCC_SAT_COLS, i1 = i0 + PN_OCC_SAT_COLS, i, j;
+    if (i1 > W) i1 = W;
+    for (j = 1; j <= res; j++) {
+        PN_GLOBAL uint32_t *row = sat + (size_t)j * W;
+        PN_CONST uint32_t *up = sat + (size_t)(j - 1u) * W;
+        for (i = i0; i < i1; i++) row[i] += up[i];
+    }
 }
 
 /* ---- Lookups ------------------------------------------------------------------------------ */

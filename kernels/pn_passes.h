@@ -358,14 +358,14 @@ PN_KFN void pn_e_occ_mip(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
     pn_occ_mip_row(&K->occ, y, PN_POOL(uint32_t, occ_filt));
 }
 
-/* Summed-area table: row j's prefix sums, then column i's. */
+/* Summed-area table: row j's prefix sums, then a block of PN_OCC_SAT_COLS columns'. */
 PN_KFN void pn_e_occ_sat_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t j)
 {
     pn_occ_sat_row(&K->occ, PN_POOL(const uint32_t, occ_bits), j, PN_POOL(uint32_t, occ_filt));
 }
-PN_KFN void pn_e_occ_sat_cols(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
+PN_KFN void pn_e_occ_sat_cols(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t c)
 {
-    pn_occ_sat_col(&K->occ, i, PN_POOL(uint32_t, occ_filt));
+    pn_occ_sat_cols(&K->occ, c, PN_POOL(uint32_t, occ_filt));
 }
 
 /* Pixel: visibility 1 (lit or background) or 0 (facing away, behind the light), counted. */

@@ -229,7 +229,7 @@ static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
         if (o->occ_combine > PN_OCC_COMBINE_SUM)
             return pn_fail(ctx, PN_E_INVALID_ARG, "occ_combine = %u; it must be 0 or a PN_OCC_COMBINE_*",
                            o->occ_combine);
-        if (o->occ_flags & ~PN_OCC_NO_LEAK_FIX)
+        if (o->occ_flags & ~PN_OCC_LEAK_FIX)
             return pn_fail(ctx, PN_E_INVALID_ARG, "occ_flags = %u has unknown bits", o->occ_flags);
         return PN_OK;
 #else
@@ -369,8 +369,8 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     /* Defaults: the configuration docs/bench/RESULTS.md recommends ("Occlusion textures"). */
     fs.occ_map = opt->occ_map ? opt->occ_map : pn_occ_map_max(&ctx->limits);
     if (!opt->occ_map && fs.occ_map > 512u) fs.occ_map = 512u;
-    fs.K.occ.slices = opt->occ_slices ? opt->occ_slices : 8u;
-    fs.K.occ.filter = opt->occ_filter ? opt->occ_filter : PN_OCC_FILTER_NBUFFER;
+    fs.K.occ.slices = opt->occ_slices ? opt->occ_slices : 16u;
+    fs.K.occ.filter = opt->occ_filter ? opt->occ_filter : PN_OCC_FILTER_SAT;
     fs.K.occ.combine = opt->occ_combine ? opt->occ_combine : PN_OCC_COMBINE_PRODUCT;
     fs.K.occ.flags = opt->occ_flags;
 #endif

@@ -14,7 +14,7 @@ typedef char pn_occ_consts_agree[PN_OCC_F_NBUFFER == PN_OCC_FILTER_NBUFFER && PN
                                          PN_OCC_F_MIPMAP == PN_OCC_FILTER_MIPMAP &&
                                          PN_OCC_C_PRODUCT == PN_OCC_COMBINE_PRODUCT &&
                                          PN_OCC_C_MAX == PN_OCC_COMBINE_MAX && PN_OCC_C_SUM == PN_OCC_COMBINE_SUM &&
-                                         PN_OCC_FLAG_NO_LEAK_FIX == PN_OCC_NO_LEAK_FIX && PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS &&
+                                         PN_OCC_FLAG_LEAK_FIX == PN_OCC_LEAK_FIX && PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS &&
                                          PN_OCC_WORD_SLICE0 + PN_OCC_SLICES_MAX <= PN_OCC_WORDS
                                      ? 1
                                      : -1];
@@ -199,7 +199,7 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
         o->live |= 1u << k;
         if (o->filter == PN_OCC_F_SAT) {
             if ((st = pn_dev_run(fs, PN_K_OCC_SAT_ROWS, res + 1u)) != PN_OK ||
-                (st = pn_dev_run(fs, PN_K_OCC_SAT_COLS, res + 1u)) != PN_OK)
+                (st = pn_dev_run(fs, PN_K_OCC_SAT_COLS, (res + PN_OCC_SAT_COLS) / PN_OCC_SAT_COLS)) != PN_OK)
                 return st;
         } else {
             uint32_t top = pn_occ_top_level(o, k, zmax);

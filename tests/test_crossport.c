@@ -336,7 +336,7 @@ static void test_options(void)
         CHECK(cross(&g_rig, &s.camera, &s.light, &o, what) == PN_OK);
     }
     /* Occlusion textures: every filter, combination and slice count at the extremes, the
-     * leak fix off, an odd map size (mipmap levels with partial blocks), a point light. */
+     * leak fix on, an odd map size (mipmap levels with partial blocks), a point light. */
     if (pn_build_info() & PN_BUILD_OCCTEX) {
         static const uint32_t slices[3] = {2u, 5u, 16u}, maps[3] = {64u, 37u, 512u};
         for (i = 0; i < 3 * 3 * 3; i++) {
@@ -346,7 +346,7 @@ static void test_options(void)
             o.occ_combine = 1u + (uint32_t)(i / 3) % 3u;
             o.occ_slices = slices[(i / 9) % 3];
             o.occ_map = maps[(i + i / 9) % 3];
-            o.occ_flags = (i & 1) ? PN_OCC_NO_LEAK_FIX : 0u;
+            o.occ_flags = (i & 1) ? PN_OCC_LEAK_FIX : 0u;
             snprintf(what, sizeof(what), "spheres occtex filter %u combine %u slices %u map %u flags %u%s", o.occ_filter,
                      o.occ_combine, o.occ_slices, o.occ_map, o.occ_flags, i % 9 == 4 ? " point light" : "");
             CHECK(cross(&g_rig, &s.camera, &light, &o, what) == PN_OK);

@@ -53,7 +53,7 @@ static void usage(FILE *f)
             "                  [--ground on|off] [--eps E] [--grid N] [--exact-stats] [--threads N]\n"
             "                  [--srt-map N] [--srt-delta D] [--srt-no-conservative] [--srt-force-pip]\n"
             "                  [--occ-slices N] [--occ-map N] [--occ-filter nbuffer|sat|mipmap]\n"
-            "                  [--occ-combine product|max|sum] [--occ-no-leak-fix]\n"
+            "                  [--occ-combine product|max|sum] [--occ-leak-fix]\n"
             "                  --out image.png [--vis vis.pfm] [--ids ids.bin] [--stats stats.json]\n"
             "  penumbra demo [--out DIR] [--size WxH] [--k K] [--threads N]\n"
             "  penumbra info\n"
@@ -300,7 +300,7 @@ static int cmd_render(int argc, char **argv)
             else if (strcmp(v, "sum") == 0) opt.occ_combine = PN_OCC_COMBINE_SUM;
             else BAD(a);
         }
-        else if (strcmp(a, "--occ-no-leak-fix") == 0) opt.occ_flags |= PN_OCC_NO_LEAK_FIX;
+        else if (strcmp(a, "--occ-leak-fix") == 0) opt.occ_flags |= PN_OCC_LEAK_FIX;
         else if (strcmp(a, "--threads") == 0) { NEED_ARG; threads = atoi(v); if (threads < 1) BAD(a); }
         else if (strcmp(a, "--out") == 0) { NEED_ARG; out = v; }
         else if (strcmp(a, "--vis") == 0) { NEED_ARG; vis = v; }

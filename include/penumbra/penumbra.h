@@ -251,13 +251,14 @@ typedef struct pn_frame_options {
     float srt_delta;       /* depth-discontinuity threshold, fraction of the scene diagonal;
                               0: 1e-3 */
     /* PN_ALGO_OCCTEX (0 everywhere is the recommended configuration) */
-    uint32_t occ_slices;   /* slices, 2 .. 16; 0: 8 */
+    uint32_t occ_slices;   /* slices, 2 .. 16; 0: 16 */
     uint32_t occ_map;      /* occlusion-texture texels per axis, 8 .. limits.occ_map_max; 0:
                               the smaller of 512 and the limit */
-    uint32_t occ_filter;   /* PN_OCC_FILTER_*; 0: PN_OCC_FILTER_NBUFFER */
+    uint32_t occ_filter;   /* PN_OCC_FILTER_*; 0: PN_OCC_FILTER_SAT */
     uint32_t occ_combine;  /* PN_OCC_COMBINE_*; 0: PN_OCC_COMBINE_PRODUCT */
-    uint32_t occ_flags;    /* PN_OCC_NO_LEAK_FIX: a fragment marks its own slice only (the
-                              default also marks the next, paper §3.4) */
+    uint32_t occ_flags;    /* PN_OCC_LEAK_FIX: a fragment marks the next slice too (paper
+                              §3.4; off by default: measured, it does not reduce leaks here
+                              and doubles planar occluders) */
 } pn_frame_options;
 
 #define PN_SRT_NO_CONSERVATIVE 0x1u
@@ -270,7 +271,7 @@ typedef struct pn_frame_options {
 #define PN_OCC_COMBINE_PRODUCT 1u /* prod (1 - I_k), eq. 5 */
 #define PN_OCC_COMBINE_MAX 2u     /* 1 - max I_k */
 #define PN_OCC_COMBINE_SUM 3u     /* max(0, 1 - sum I_k) */
-#define PN_OCC_NO_LEAK_FIX 0x1u
+#define PN_OCC_LEAK_FIX 0x1u
 
 /* 512x512, k = 16, reference, eps = 1e-4, albedo 0.8, ambient 0.1, dark blue background. */
 void pn_frame_options_default(pn_frame_options *opt);

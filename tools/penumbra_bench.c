@@ -1275,7 +1275,7 @@ static void tradeoff_chart(const bench_opts *o, report *r, scene_state *ss)
     write_data(o, "tradeoff", ss->s.name, text);
     free(text);
     fprintf(r->plots,
-            "\n# time against error: %s\nset terminal pngcairo noenhanced size 980,520 font 'sans,9'\n"
+            "\n# time against error: %s\nset terminal pngcairo noenhanced size 1280,560 font 'sans,9'\n"
             "set output 'tradeoff_%s.png'\nset title '%s: shadow pass time against error (%ux%u, k = %u, "
             "area light)'\nset xlabel 'shadow pass ms (median, log scale)'\nset logscale x\n"
             "set ylabel 'RMSE of the visibility against the reference'\nset yrange [0:*]\n"
@@ -1286,7 +1286,8 @@ static void tradeoff_chart(const bench_opts *o, report *r, scene_state *ss)
         fprintf(r->plots, "%s 'data/tradeoff_%s.dat' every ::%d::%d using 2:3 with points pt %d ps 1.6 lc %d "
                           "title '%s'",
                 i ? ", \\\n    " : "", ss->s.name, i, i, pt[i], i + 1, label[i]);
-    fprintf(r->plots, "\nunset logscale x\nset yrange [*:*]\nset offsets 0,0,0,0\n");
+    /* Nothing of the chart's settings may reach the plots after it (the next scene's gallery). */
+    fprintf(r->plots, "\nunset logscale x\nset yrange [*:*]\nset offsets 0,0,0,0\nreset\n");
     sec(r, SEC_SRT_CHART, "![%s: time against error](tradeoff_%s.png)\n", ss->s.name, ss->s.name);
 }
 

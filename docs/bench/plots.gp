@@ -2,7 +2,7 @@
 # The gallery panels it reads from work/ are removed afterwards; make bench recreates them.
 
 # time against error: square
-set terminal pngcairo noenhanced size 900,460 font 'sans,9'
+set terminal pngcairo noenhanced size 1280,560 font 'sans,9'
 set output 'tradeoff_square.png'
 set title 'square: shadow pass time against error (512x512, k = 16, area light)'
 set xlabel 'shadow pass ms (median, log scale)'
@@ -19,13 +19,22 @@ plot 'data/tradeoff_square.dat' every ::0::0 using 2:3 with points pt 7 ps 1.6 l
      'data/tradeoff_square.dat' every ::4::4 using 2:3 with points pt 9 ps 1.6 lc 5 title 'SRT default (map 2048, conservative)', \
      'data/tradeoff_square.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_square.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
-     'data/tradeoff_square.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512'
+     'data/tradeoff_square.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
+     'data/tradeoff_square.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_square.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
+     'data/tradeoff_square.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
+     'data/tradeoff_square.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
+     'data/tradeoff_square.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
+     'data/tradeoff_square.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
+     'data/tradeoff_square.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
+     'data/tradeoff_square.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
+reset
 
 # time against error: spheres
-set terminal pngcairo noenhanced size 900,460 font 'sans,9'
+set terminal pngcairo noenhanced size 1280,560 font 'sans,9'
 set output 'tradeoff_spheres.png'
 set title 'spheres: shadow pass time against error (512x512, k = 16, area light)'
 set xlabel 'shadow pass ms (median, log scale)'
@@ -42,13 +51,22 @@ plot 'data/tradeoff_spheres.dat' every ::0::0 using 2:3 with points pt 7 ps 1.6 
      'data/tradeoff_spheres.dat' every ::4::4 using 2:3 with points pt 9 ps 1.6 lc 5 title 'SRT default (map 2048, conservative)', \
      'data/tradeoff_spheres.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_spheres.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
-     'data/tradeoff_spheres.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512'
+     'data/tradeoff_spheres.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
+     'data/tradeoff_spheres.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_spheres.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
+     'data/tradeoff_spheres.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
+     'data/tradeoff_spheres.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
+     'data/tradeoff_spheres.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
+     'data/tradeoff_spheres.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
+     'data/tradeoff_spheres.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
+     'data/tradeoff_spheres.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
+reset
 
 # time against error: elongated-cube
-set terminal pngcairo noenhanced size 900,460 font 'sans,9'
+set terminal pngcairo noenhanced size 1280,560 font 'sans,9'
 set output 'tradeoff_elongated-cube.png'
 set title 'elongated-cube: shadow pass time against error (512x512, k = 16, area light)'
 set xlabel 'shadow pass ms (median, log scale)'
@@ -65,13 +83,22 @@ plot 'data/tradeoff_elongated-cube.dat' every ::0::0 using 2:3 with points pt 7 
      'data/tradeoff_elongated-cube.dat' every ::4::4 using 2:3 with points pt 9 ps 1.6 lc 5 title 'SRT default (map 2048, conservative)', \
      'data/tradeoff_elongated-cube.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_elongated-cube.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
-     'data/tradeoff_elongated-cube.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512'
+     'data/tradeoff_elongated-cube.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
+     'data/tradeoff_elongated-cube.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_elongated-cube.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
+     'data/tradeoff_elongated-cube.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
+     'data/tradeoff_elongated-cube.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
+     'data/tradeoff_elongated-cube.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
+     'data/tradeoff_elongated-cube.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
+     'data/tradeoff_elongated-cube.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
+     'data/tradeoff_elongated-cube.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
+reset
 
 # time against error: thin
-set terminal pngcairo noenhanced size 900,460 font 'sans,9'
+set terminal pngcairo noenhanced size 1280,560 font 'sans,9'
 set output 'tradeoff_thin.png'
 set title 'thin: shadow pass time against error (512x512, k = 16, area light)'
 set xlabel 'shadow pass ms (median, log scale)'
@@ -88,13 +115,22 @@ plot 'data/tradeoff_thin.dat' every ::0::0 using 2:3 with points pt 7 ps 1.6 lc 
      'data/tradeoff_thin.dat' every ::4::4 using 2:3 with points pt 9 ps 1.6 lc 5 title 'SRT default (map 2048, conservative)', \
      'data/tradeoff_thin.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_thin.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
-     'data/tradeoff_thin.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512'
+     'data/tradeoff_thin.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
+     'data/tradeoff_thin.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_thin.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
+     'data/tradeoff_thin.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
+     'data/tradeoff_thin.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
+     'data/tradeoff_thin.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
+     'data/tradeoff_thin.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
+     'data/tradeoff_thin.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
+     'data/tradeoff_thin.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
+reset
 
 # time against error: room
-set terminal pngcairo noenhanced size 900,460 font 'sans,9'
+set terminal pngcairo noenhanced size 1280,560 font 'sans,9'
 set output 'tradeoff_room.png'
 set title 'room: shadow pass time against error (512x512, k = 16, area light)'
 set xlabel 'shadow pass ms (median, log scale)'
@@ -111,34 +147,47 @@ plot 'data/tradeoff_room.dat' every ::0::0 using 2:3 with points pt 7 ps 1.6 lc 
      'data/tradeoff_room.dat' every ::4::4 using 2:3 with points pt 9 ps 1.6 lc 5 title 'SRT default (map 2048, conservative)', \
      'data/tradeoff_room.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_room.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
-     'data/tradeoff_room.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512'
+     'data/tradeoff_room.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
+     'data/tradeoff_room.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_room.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
+     'data/tradeoff_room.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
+     'data/tradeoff_room.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
+     'data/tradeoff_room.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
+     'data/tradeoff_room.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
+     'data/tradeoff_room.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
+     'data/tradeoff_room.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
+reset
 
 # gallery: cad_infineon_easypim2b
-set terminal pngcairo noenhanced size 2400,262 font 'sans,9'
+set terminal pngcairo noenhanced size 2880,262 font 'sans,9'
 set output 'gallery/cad_infineon_easypim2b.png'
-set multiplot layout 1,10 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
+set multiplot layout 1,12 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 569 ms"
+set title "reference, 397 ms"
 plot 'work/gallery/cad_infineon_easypim2b/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/cad_infineon_easypim2b/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 788 ms"
+set title "GEARS, 423 ms"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 3789 ms"
+set title "raytrace, 2585 ms"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 903 ms"
+set title "SRT, 621 ms"
 plot 'work/gallery/cad_infineon_easypim2b/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/SRT error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 2122 ms"
+set title "occtex, 160 ms"
+plot 'work/gallery/cad_infineon_easypim2b/occtex.png' binary filetype=png with rgbimage
+set title "occtex |error| x4 (differs)"
+plot 'work/gallery/cad_infineon_easypim2b/occtex error.png' binary filetype=png with rgbimage
+set title "Embree visibility, 1400 ms"
 plot 'work/gallery/cad_infineon_easypim2b/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.4425% px)"
 plot 'work/gallery/cad_infineon_easypim2b/embree_error.png' binary filetype=png with rgbimage
@@ -148,7 +197,7 @@ set size noratio
 set border; set tics
 
 # time against error: cad_infineon_easypim2b
-set terminal pngcairo noenhanced size 900,460 font 'sans,9'
+set terminal pngcairo noenhanced size 1280,560 font 'sans,9'
 set output 'tradeoff_cad_infineon_easypim2b.png'
 set title 'cad_infineon_easypim2b: shadow pass time against error (512x512, k = 16, area light)'
 set xlabel 'shadow pass ms (median, log scale)'
@@ -165,34 +214,47 @@ plot 'data/tradeoff_cad_infineon_easypim2b.dat' every ::0::0 using 2:3 with poin
      'data/tradeoff_cad_infineon_easypim2b.dat' every ::4::4 using 2:3 with points pt 9 ps 1.6 lc 5 title 'SRT default (map 2048, conservative)', \
      'data/tradeoff_cad_infineon_easypim2b.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_cad_infineon_easypim2b.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512'
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
+reset
 
 # gallery: chess_set
-set terminal pngcairo noenhanced size 2400,262 font 'sans,9'
+set terminal pngcairo noenhanced size 2880,262 font 'sans,9'
 set output 'gallery/chess_set.png'
-set multiplot layout 1,10 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
+set multiplot layout 1,12 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 241 ms"
+set title "reference, 232 ms"
 plot 'work/gallery/chess_set/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/chess_set/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 425 ms"
+set title "GEARS, 389 ms"
 plot 'work/gallery/chess_set/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/chess_set/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2583 ms"
+set title "raytrace, 2728 ms"
 plot 'work/gallery/chess_set/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/chess_set/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 380 ms"
+set title "SRT, 345 ms"
 plot 'work/gallery/chess_set/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/chess_set/SRT error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1458 ms"
+set title "occtex, 150 ms"
+plot 'work/gallery/chess_set/occtex.png' binary filetype=png with rgbimage
+set title "occtex |error| x4 (differs)"
+plot 'work/gallery/chess_set/occtex error.png' binary filetype=png with rgbimage
+set title "Embree visibility, 1473 ms"
 plot 'work/gallery/chess_set/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.2148% px)"
 plot 'work/gallery/chess_set/embree_error.png' binary filetype=png with rgbimage
@@ -202,7 +264,7 @@ set size noratio
 set border; set tics
 
 # time against error: chess_set
-set terminal pngcairo noenhanced size 900,460 font 'sans,9'
+set terminal pngcairo noenhanced size 1280,560 font 'sans,9'
 set output 'tradeoff_chess_set.png'
 set title 'chess_set: shadow pass time against error (512x512, k = 16, area light)'
 set xlabel 'shadow pass ms (median, log scale)'
@@ -219,34 +281,47 @@ plot 'data/tradeoff_chess_set.dat' every ::0::0 using 2:3 with points pt 7 ps 1.
      'data/tradeoff_chess_set.dat' every ::4::4 using 2:3 with points pt 9 ps 1.6 lc 5 title 'SRT default (map 2048, conservative)', \
      'data/tradeoff_chess_set.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_chess_set.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
-     'data/tradeoff_chess_set.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512'
+     'data/tradeoff_chess_set.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
+     'data/tradeoff_chess_set.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_chess_set.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
+     'data/tradeoff_chess_set.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
+     'data/tradeoff_chess_set.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
+     'data/tradeoff_chess_set.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
+     'data/tradeoff_chess_set.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
+     'data/tradeoff_chess_set.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
+     'data/tradeoff_chess_set.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
+reset
 
 # gallery: happy_buddha_100k
-set terminal pngcairo noenhanced size 2400,262 font 'sans,9'
+set terminal pngcairo noenhanced size 2880,262 font 'sans,9'
 set output 'gallery/happy_buddha_100k.png'
-set multiplot layout 1,10 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
+set multiplot layout 1,12 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 3709 ms"
+set title "reference, 3475 ms"
 plot 'work/gallery/happy_buddha_100k/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/happy_buddha_100k/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 7085 ms"
+set title "GEARS, 6812 ms"
 plot 'work/gallery/happy_buddha_100k/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 5950 ms"
+set title "raytrace, 4793 ms"
 plot 'work/gallery/happy_buddha_100k/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 3807 ms"
+set title "SRT, 3464 ms"
 plot 'work/gallery/happy_buddha_100k/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/SRT error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 2166 ms"
+set title "occtex, 161 ms"
+plot 'work/gallery/happy_buddha_100k/occtex.png' binary filetype=png with rgbimage
+set title "occtex |error| x4 (differs)"
+plot 'work/gallery/happy_buddha_100k/occtex error.png' binary filetype=png with rgbimage
+set title "Embree visibility, 2075 ms"
 plot 'work/gallery/happy_buddha_100k/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8091% px)"
 plot 'work/gallery/happy_buddha_100k/embree_error.png' binary filetype=png with rgbimage
@@ -256,7 +331,7 @@ set size noratio
 set border; set tics
 
 # time against error: happy_buddha_100k
-set terminal pngcairo noenhanced size 900,460 font 'sans,9'
+set terminal pngcairo noenhanced size 1280,560 font 'sans,9'
 set output 'tradeoff_happy_buddha_100k.png'
 set title 'happy_buddha_100k: shadow pass time against error (512x512, k = 16, area light)'
 set xlabel 'shadow pass ms (median, log scale)'
@@ -273,34 +348,47 @@ plot 'data/tradeoff_happy_buddha_100k.dat' every ::0::0 using 2:3 with points pt
      'data/tradeoff_happy_buddha_100k.dat' every ::4::4 using 2:3 with points pt 9 ps 1.6 lc 5 title 'SRT default (map 2048, conservative)', \
      'data/tradeoff_happy_buddha_100k.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_happy_buddha_100k.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512'
+     'data/tradeoff_happy_buddha_100k.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
+reset
 
 # gallery: spot
-set terminal pngcairo noenhanced size 2400,262 font 'sans,9'
+set terminal pngcairo noenhanced size 2880,262 font 'sans,9'
 set output 'gallery/spot.png'
-set multiplot layout 1,10 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
+set multiplot layout 1,12 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 522 ms"
+set title "reference, 519 ms"
 plot 'work/gallery/spot/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/spot/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 578 ms"
+set title "GEARS, 570 ms"
 plot 'work/gallery/spot/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/spot/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 3339 ms"
+set title "raytrace, 3118 ms"
 plot 'work/gallery/spot/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/spot/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 580 ms"
+set title "SRT, 561 ms"
 plot 'work/gallery/spot/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/spot/SRT error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1651 ms"
+set title "occtex, 130 ms"
+plot 'work/gallery/spot/occtex.png' binary filetype=png with rgbimage
+set title "occtex |error| x4 (differs)"
+plot 'work/gallery/spot/occtex error.png' binary filetype=png with rgbimage
+set title "Embree visibility, 1706 ms"
 plot 'work/gallery/spot/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (1.2997% px)"
 plot 'work/gallery/spot/embree_error.png' binary filetype=png with rgbimage
@@ -310,7 +398,7 @@ set size noratio
 set border; set tics
 
 # time against error: spot
-set terminal pngcairo noenhanced size 900,460 font 'sans,9'
+set terminal pngcairo noenhanced size 1280,560 font 'sans,9'
 set output 'tradeoff_spot.png'
 set title 'spot: shadow pass time against error (512x512, k = 16, area light)'
 set xlabel 'shadow pass ms (median, log scale)'
@@ -327,26 +415,35 @@ plot 'data/tradeoff_spot.dat' every ::0::0 using 2:3 with points pt 7 ps 1.6 lc 
      'data/tradeoff_spot.dat' every ::4::4 using 2:3 with points pt 9 ps 1.6 lc 5 title 'SRT default (map 2048, conservative)', \
      'data/tradeoff_spot.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_spot.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
-     'data/tradeoff_spot.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512'
+     'data/tradeoff_spot.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
+     'data/tradeoff_spot.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_spot.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
+     'data/tradeoff_spot.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
+     'data/tradeoff_spot.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
+     'data/tradeoff_spot.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
+     'data/tradeoff_spot.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
+     'data/tradeoff_spot.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
+     'data/tradeoff_spot.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
+reset
 
 # gallery: stanford_bunny
-set terminal pngcairo noenhanced size 2400,262 font 'sans,9'
+set terminal pngcairo noenhanced size 2880,262 font 'sans,9'
 set output 'gallery/stanford_bunny.png'
-set multiplot layout 1,10 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
+set multiplot layout 1,12 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 1978 ms"
+set title "reference, 1993 ms"
 plot 'work/gallery/stanford_bunny/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_bunny/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 3281 ms"
+set title "GEARS, 3194 ms"
 plot 'work/gallery/stanford_bunny/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 4592 ms"
+set title "raytrace, 4795 ms"
 plot 'work/gallery/stanford_bunny/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/raytrace error.png' binary filetype=png with rgbimage
@@ -354,7 +451,11 @@ set title "SRT, 2066 ms"
 plot 'work/gallery/stanford_bunny/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/SRT error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 2107 ms"
+set title "occtex, 161 ms"
+plot 'work/gallery/stanford_bunny/occtex.png' binary filetype=png with rgbimage
+set title "occtex |error| x4 (differs)"
+plot 'work/gallery/stanford_bunny/occtex error.png' binary filetype=png with rgbimage
+set title "Embree visibility, 2175 ms"
 plot 'work/gallery/stanford_bunny/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.7610% px)"
 plot 'work/gallery/stanford_bunny/embree_error.png' binary filetype=png with rgbimage
@@ -364,7 +465,7 @@ set size noratio
 set border; set tics
 
 # time against error: stanford_bunny
-set terminal pngcairo noenhanced size 900,460 font 'sans,9'
+set terminal pngcairo noenhanced size 1280,560 font 'sans,9'
 set output 'tradeoff_stanford_bunny.png'
 set title 'stanford_bunny: shadow pass time against error (512x512, k = 16, area light)'
 set xlabel 'shadow pass ms (median, log scale)'
@@ -381,34 +482,47 @@ plot 'data/tradeoff_stanford_bunny.dat' every ::0::0 using 2:3 with points pt 7 
      'data/tradeoff_stanford_bunny.dat' every ::4::4 using 2:3 with points pt 9 ps 1.6 lc 5 title 'SRT default (map 2048, conservative)', \
      'data/tradeoff_stanford_bunny.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_stanford_bunny.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
-     'data/tradeoff_stanford_bunny.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512'
+     'data/tradeoff_stanford_bunny.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
+     'data/tradeoff_stanford_bunny.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_stanford_bunny.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
+     'data/tradeoff_stanford_bunny.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
+     'data/tradeoff_stanford_bunny.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
+     'data/tradeoff_stanford_bunny.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
+     'data/tradeoff_stanford_bunny.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
+     'data/tradeoff_stanford_bunny.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
+     'data/tradeoff_stanford_bunny.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
+reset
 
 # gallery: stanford_dragon
-set terminal pngcairo noenhanced size 2400,262 font 'sans,9'
+set terminal pngcairo noenhanced size 2880,262 font 'sans,9'
 set output 'gallery/stanford_dragon.png'
-set multiplot layout 1,10 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
+set multiplot layout 1,12 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 4615 ms"
+set title "reference, 4146 ms"
 plot 'work/gallery/stanford_dragon/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_dragon/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 17049 ms"
+set title "GEARS, 17594 ms"
 plot 'work/gallery/stanford_dragon/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 4999 ms"
+set title "raytrace, 5732 ms"
 plot 'work/gallery/stanford_dragon/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 5340 ms"
+set title "SRT, 5053 ms"
 plot 'work/gallery/stanford_dragon/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/SRT error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 2425 ms"
+set title "occtex, 491 ms"
+plot 'work/gallery/stanford_dragon/occtex.png' binary filetype=png with rgbimage
+set title "occtex |error| x4 (differs)"
+plot 'work/gallery/stanford_dragon/occtex error.png' binary filetype=png with rgbimage
+set title "Embree visibility, 2513 ms"
 plot 'work/gallery/stanford_dragon/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8690% px)"
 plot 'work/gallery/stanford_dragon/embree_error.png' binary filetype=png with rgbimage
@@ -418,7 +532,7 @@ set size noratio
 set border; set tics
 
 # time against error: stanford_dragon
-set terminal pngcairo noenhanced size 900,460 font 'sans,9'
+set terminal pngcairo noenhanced size 1280,560 font 'sans,9'
 set output 'tradeoff_stanford_dragon.png'
 set title 'stanford_dragon: shadow pass time against error (512x512, k = 16, area light)'
 set xlabel 'shadow pass ms (median, log scale)'
@@ -435,10 +549,19 @@ plot 'data/tradeoff_stanford_dragon.dat' every ::0::0 using 2:3 with points pt 7
      'data/tradeoff_stanford_dragon.dat' every ::4::4 using 2:3 with points pt 9 ps 1.6 lc 5 title 'SRT default (map 2048, conservative)', \
      'data/tradeoff_stanford_dragon.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_stanford_dragon.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
-     'data/tradeoff_stanford_dragon.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512'
+     'data/tradeoff_stanford_dragon.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
+     'data/tradeoff_stanford_dragon.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_stanford_dragon.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
+     'data/tradeoff_stanford_dragon.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
+     'data/tradeoff_stanford_dragon.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
+     'data/tradeoff_stanford_dragon.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
+     'data/tradeoff_stanford_dragon.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
+     'data/tradeoff_stanford_dragon.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
+     'data/tradeoff_stanford_dragon.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
+reset
 
 # headline speed-ups
 set terminal pngcairo noenhanced size 1000,520 font 'sans,10'
@@ -453,7 +576,7 @@ unset xlabel
 set xtics rotate by -30
 set grid ytics
 set key inside top right
-set yrange [0.0648894:38.5976]
+set yrange [0.0607737:33.243]
 set arrow 1 from graph 0, first 1 to graph 1, first 1 nohead dt 2
 set arrow 2 from graph 0, first 10 to graph 1, first 10 nohead dt 3 lc rgb 'red'
 set label 1 'goal 10x' at graph 0.01, first 10 offset 0,0.6 tc rgb 'red'

@@ -26,6 +26,24 @@ for a in gears raytrace; do
   check cmp -s sq.pfm sq_$a.pfm
 done
 
+# Occlusion textures (approximate): the options reach the frame and its stats; a bad value
+# is a usage error (2) or a library error (1) with the option named.
+"$bin" render --builtin square --size 64x48 --k 8 --algo occtex --out oc.png --vis oc.pfm --stats oc.json 2>err.txt
+check test $? -eq 0
+check grep -q '"occ_slices": 16' oc.json
+check grep -q '"occ_map": 512' oc.json
+"$bin" render --builtin square --size 64x48 --k 8 --algo occtex --occ-slices 4 --occ-map 64 --occ-filter mipmap \
+    --occ-combine max --occ-leak-fix --out oc2.png --vis oc2.pfm --stats oc2.json 2>err.txt
+check test $? -eq 0
+check grep -q '"occ_slices": 4' oc2.json
+check grep -q '"occ_map": 64' oc2.json
+check sh -c '! cmp -s oc.pfm oc2.pfm'
+"$bin" render --builtin square --algo occtex --occ-filter box --out x.png 2>err.txt; r=$?
+check test $r -eq 2
+"$bin" render --builtin square --algo occtex --occ-slices 17 --out x.png 2>err.txt; r=$?
+check test $r -eq 1
+check grep -q 'occ_slices' err.txt
+
 # View and light flags override the defaults and are recorded; point light via zero edges.
 "$bin" render --builtin square --size 32x32 --eye 0,6,6 --target 0,0,0 --up 0,1,0 --fov 45 \
     --light-center 0,4,0 --light-u 0,0,0 --light-v 0,0,0 --out pt.png --stats pt.json 2>err.txt

@@ -4,29 +4,40 @@
 #ifndef PN_TEST_RENDER_H
 #define PN_TEST_RENDER_H
 
+/* Renders with opt as given except eps (the setup's); copies the visibility buffer and,
+ * if not NULL, the image and the stats. 0 on success. */
+static inline int render_opt(pn_host *h, const pn_setup *s, const pn_light *light, const pn_frame_options *o,
+                             float *vis, uint8_t *rgba, pn_stats *st)
+{
+    pn_frame_options opt = *o;
+    pn_frame fr;
+    pn_status rs;
+    size_t n = (size_t)opt.width * opt.height;
+    opt.eps = s->eps;
+    rs = pn_render(h->ctx, &s->camera, light, &opt, &fr);
+    if (rs != PN_OK) {
+        fprintf(stderr, "render %s: %s\n", s->name, pn_last_error(h->ctx));
+        return (int)rs;
+    }
+    memcpy(vis, fr.visibility, n * sizeof(float));
+    if (rgba) memcpy(rgba, fr.rgba, n * 4u);
+    if (st) pn_get_stats(h->ctx, st);
+    return 0;
+}
+
 /* Renders with opt's defaults except size, k, eps (the setup's), algo and GEARS grid;
  * copies the visibility buffer to out and, if st is not NULL, the stats. 0 on success. */
 static inline int render_vis(pn_host *h, const pn_setup *s, const pn_light *light, pn_algo algo, uint32_t w, uint32_t hh,
                              uint32_t k, uint32_t grid, float *out, pn_stats *st)
 {
     pn_frame_options opt;
-    pn_frame fr;
-    pn_status rs;
     pn_frame_options_default(&opt);
     opt.width = w;
     opt.height = hh;
     opt.k = k;
-    opt.eps = s->eps;
     opt.algo = algo;
     opt.gears_grid = grid;
-    rs = pn_render(h->ctx, &s->camera, light, &opt, &fr);
-    if (rs != PN_OK) {
-        fprintf(stderr, "render %s: %s\n", s->name, pn_last_error(h->ctx));
-        return (int)rs;
-    }
-    memcpy(out, fr.visibility, (size_t)w * hh * sizeof(float));
-    if (st) pn_get_stats(h->ctx, st);
-    return 0;
+    return render_opt(h, s, light, &opt, out, NULL, st);
 }
 
 static uint64_t g_pn_test_ticks;

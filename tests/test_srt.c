@@ -46,25 +46,14 @@ static int render(pn_host *h, const pn_setup *s, const pn_light *light, pn_algo 
                   uint32_t map, frame *out)
 {
     pn_frame_options opt;
-    pn_frame fr;
-    pn_status rs;
     pn_frame_options_default(&opt);
     opt.width = W;
     opt.height = H;
     opt.k = k;
-    opt.eps = s->eps;
     opt.algo = algo;
     opt.srt_flags = flags;
     opt.srt_map = map;
-    rs = pn_render(h->ctx, &s->camera, light, &opt, &fr);
-    if (rs != PN_OK) {
-        fprintf(stderr, "render %s: %s\n", s->name, pn_last_error(h->ctx));
-        return (int)rs;
-    }
-    memcpy(out->vis, fr.visibility, sizeof(out->vis));
-    memcpy(out->rgba, fr.rgba, sizeof(out->rgba));
-    pn_get_stats(h->ctx, &out->st);
-    return 0;
+    return render_opt(h, s, light, &opt, out->vis, out->rgba, &out->st);
 }
 
 static void one_scene(const char *source, int builtin)

@@ -3,11 +3,14 @@
  * visibility, RGBA, depth, ids, positions, normals and pn_stats counters.
  *
  * Input (bytes past the end read as zero):
- *   0 algorithm (reference, GEARS, raytrace, SRT, occlusion textures)  1 bit 0 point light,
- *     bit 1 exact_stats, bit 7 occlusion textures' leak fix,
+ *   0 algorithm (reference, GEARS, raytrace, SRT, occlusion textures, Monte Carlo shadow
+ *     maps)  1 bit 0 point light, bit 1 exact_stats, bit 7 occlusion textures' leak fix
+ *     and the Monte Carlo blur off,
  *     bit 2 ground quad, bits 3-4 GEARS pair pool (default, 64, 12, 3: tiles, split rows,
  *     PN_E_POOL_EXHAUSTED), bit 5 unit-grid scene scale 1e-3, bit 6 scale 1e3
- *   2 k (4 << n)   3 GEARS grid 1 .. 64   4 width 1 .. 24   5 height 1 .. 24
+ *   2 k (4 << n)   3 GEARS grid 1 .. 64 (also the occlusion textures' and Monte Carlo options;
+ *     an odd grid with the ground quad marks the quad receiver-only)   4 width 1 .. 24
+ *   5 height 1 .. 24
  *   6 vertex count 3 .. 34   7 triangle count 1 .. 32
  *   then 16-bit numbers: camera eye (3), fov; light centre (3), half-edge lengths (2) and
  *   the angle of U about the vertical; vertices (3 each, in [-1, 1)); then one byte per
@@ -55,7 +58,7 @@ static rig *get_rig(uint32_t pool_sel)
     static const uint32_t pools[4] = {0u, 64u, 12u, 3u};
     rig *r = &rigs[pool_sel];
     if (!r->ctx) {
-        pn_limits lim = {MAX_T, MAX_W, MAX_H, pools[pool_sel], 64u, 64u, 64u}; /* SRT: a 64^2 map at most */
+        pn_limits lim = {MAX_T, MAX_W, MAX_H, pools[pool_sel], 64u, 64u, 64u, 64u}; /* light-space maps: 64^2 at most */
         size_t bytes;
         pn_status st;
         FUZZ_CHECK(pn_arena_size(&lim, &bytes) == PN_OK, "arena size");
@@ -90,7 +93,7 @@ static uint8_t k_rgba[MAX_W * MAX_H * 4];
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     rd r = {data, size, 0};
-    uint32_t algo = byte(&r) % 5u, flags = byte(&r), k = 4u << (byte(&r) % 4u), grid = 1u + byte(&r) % 64u;
+    uint32_t algo = byte(&r) % 6u, flags = byte(&r), k = 4u << (byte(&r) % 4u), grid = 1u + byte(&r) % 64u;
     uint32_t w = 1u + byte(&r) % MAX_W, h = 1u + byte(&r) % MAX_H, nv = 3u + byte(&r) % (MAX_V - 2u);
     uint32_t nt = 1u + byte(&r) % (MAX_T - 2u), i, q;
     float scale = (flags & 32u) ? 1e-3f : (flags & 64u) ? 1e3f : 1.0f;
@@ -104,7 +107,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     pn_status sa, sb, s1;
     char msg[256];
     rig *rg = get_rig((flags >> 3) & 3u);
-    const pn_algo algos[5] = {PN_ALGO_REFERENCE, PN_ALGO_GEARS, PN_ALGO_RAYTRACE, PN_ALGO_SRT, PN_ALGO_OCCTEX};
+    const pn_algo algos[6] = {PN_ALGO_REFERENCE, PN_ALGO_GEARS, PN_ALGO_RAYTRACE, PN_ALGO_SRT, PN_ALGO_OCCTEX,
+                              PN_ALGO_MCSM};
 
     /* Camera around the origin, light above, both scaled with the scene. */
     for (q = 0; q < 3; q++) cam.eye[q] = scale * 3.0f * num(&r);
@@ -150,6 +154,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 
     s1 = pn_scene_set(rg->ctx, pos, nv, idx, nt);
     FUZZ_CHECK(s1 == PN_OK, "pn_scene_set: %s", pn_last_error(rg->ctx));
+    if ((flags & 4u) && (grid & 1u))
+        FUZZ_CHECK(pn_scene_set_receivers(rg->ctx, nt - 2u, 2u) == PN_OK, "pn_scene_set_receivers: %s",
+                   pn_last_error(rg->ctx));
     pn_frame_options_default(&opt);
     opt.width = w;
     opt.height = h;
@@ -162,6 +169,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     opt.occ_combine = 1u + ((grid - 1u) / 3u) % 3u;
     opt.occ_slices = 2u + ((grid - 1u) / 9u) % 15u;
     opt.occ_flags = (flags >> 7) ? PN_OCC_LEAK_FIX : 0u;
+    /* Monte Carlo shadow maps: every layer count, search and ray count, blur radius and flag. */
+    opt.mc_layers = 1u + (grid - 1u) % 3u;
+    opt.mc_search = 1u + ((grid - 1u) / 3u) % 2u;
+    opt.mc_rays = 1u + ((grid - 1u) / 6u) % 8u;
+    opt.mc_blur = (flags >> 7) ? PN_MC_BLUR_OFF : 1u + (grid - 1u) % 8u;
+    opt.mc_flags = ((grid - 1u) / 2u) % 4u;
+    opt.mc_seed = grid;
     opt.eps = 1e-4f * scale;
 
     sa = pn_render(rg->ctx, &cam, &light, &opt, &fa);
@@ -181,7 +195,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                pn_last_error(rg->ctx));
     if (getenv("PN_FUZZ_VERBOSE"))
         fprintf(stderr, "%s %ux%u k=%u %s light, %u triangles: %s, %u lit, %llu candidates, %u GEARS tiles\n",
-                algo == 0 ? "reference" : algo == 1 ? "gears" : algo == 2 ? "raytrace" : algo == 3 ? "srt" : "occtex", w, h, k, (flags & 1u) ? "point" : "area", nt,
+                algo == 0 ? "reference" : algo == 1 ? "gears" : algo == 2 ? "raytrace" : algo == 3 ? "srt" : algo == 4 ? "occtex" : "mcsm", w, h, k, (flags & 1u) ? "point" : "area", nt,
                 pn_status_str(sa), sa == PN_OK ? sa_st.lit_pixels : 0u,
                 sa == PN_OK ? (unsigned long long)sa_st.shadow_candidates : 0ull, sa == PN_OK ? sa_st.gears_tiles : 0u);
     if (sa != PN_OK) {

@@ -12,7 +12,10 @@
  *   GEARS builds: 11 gears_grid, 12..13 limits.gears_pairs (u16), 14 limits.gears_grid_max,
  *   15 bit 0 exact_stats (0 in a limit means the default); SRT builds: bits 1..7 the map limit
  *   8 + n % 57; occlusion-texture builds: the same bits the texture limit, and 11 slices
- *   % 18, 12 filter % 5, 13 combination % 5, 14 flags & 3 (out-of-range values included)
+ *   % 18, 12 filter % 5, 13 combination % 5, 14 flags & 3 (out-of-range values included);
+ *   Monte Carlo builds: the same bits the layers' limit, 11 layers % 5, 12 search % 4, 13 rays
+ *   % 10, 14 bits 0..2 flags, bits 3..7 blur % 11 (31: off); 6 bit 128: the second half of
+ *   the triangles receiver-only (pn_scene_set_receivers), and a call out of range first
  *   then floats: eye[3] target[3] up[3] fov, light c[3] u[3] v[3], eps albedo ambient;
  *   4 background bytes; vertex count * 3 floats; triangle count * 3 uint32 indices.
  *
@@ -21,8 +24,8 @@
  * status the function does not document; PN_E_POOL_EXHAUSTED only for algorithms whose
  * pools may not fit a frame); failures leave a message and do not touch out-parameters;
  * the library writes only inside the block it was given; caller arrays
- * are unchanged; a frame has visibility in {0, 1/k^2, ..., 1} (occlusion textures: in
- * [0, 1]), background pixels at
+ * are unchanged; a frame has visibility in {0, 1/k^2, ..., 1} (occlusion textures and
+ * Monte Carlo shadow maps: in [0, 1]), background pixels at
  * visibility 1 / PN_NO_TRIANGLE / +inf depth / the background colour, ids below the
  * triangle count and unit normals; and rendering again, after scribbling over the
  * caller's arrays and under a reversed work-item schedule, gives the same bytes. Within
@@ -133,6 +136,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     opt.occ_combine = h[13] % 5u;
     opt.occ_flags = h[14] & 3u;
 #endif
+#ifdef PN_BUILD_MCSM
+    lim.mc_map_max = 8u + (uint32_t)(h[15] >> 1) % 57u;
+    opt.mc_layers = h[11] % 5u;
+    opt.mc_search = h[12] % 4u;
+    opt.mc_rays = h[13] % 10u;
+    opt.mc_flags = h[14] & 7u;
+    opt.mc_blur = (h[14] >> 3) == 31u ? PN_MC_BLUR_OFF : (uint32_t)(h[14] >> 3) % 11u;
+    opt.mc_seed = h[15];
+#endif
     take(&r, &cam, sizeof cam);
     take(&r, &light, sizeof light);
     take(&r, shade, sizeof shade);
@@ -177,6 +189,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         st = pn_scene_set(ctx, P, vc, I, tc);
         expect("pn_scene_set", st, must, 0u, ctx);
         if (st != PN_OK) tc = 0u;
+        if (h[6] & 128u) {
+            /* Out of range: refused, nothing marked; then the second half marked. */
+            expect("pn_scene_set_receivers", pn_scene_set_receivers(ctx, tc / 2u, tc - tc / 2u + 1u),
+                   tc ? BIT(PN_E_INDEX_RANGE) : BIT(PN_E_NO_SCENE), 0u, ctx);
+            expect("pn_scene_set_receivers", pn_scene_set_receivers(ctx, tc / 2u, tc - tc / 2u),
+                   tc ? 0u : BIT(PN_E_NO_SCENE), 0u, ctx);
+        }
     }
     FUZZ_CHECK(!memcmp(pos, pos_copy, sizeof pos) && !memcmp(idx, idx_copy, sizeof idx), "caller arrays changed");
 
@@ -201,6 +220,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 #ifdef PN_BUILD_OCCTEX
     if (opt.algo == PN_ALGO_OCCTEX && (opt.occ_slices == 1u || opt.occ_slices > 16u || opt.occ_filter > 3u ||
                                        opt.occ_combine > 3u || (opt.occ_flags & ~PN_OCC_LEAK_FIX)))
+        must |= BIT(PN_E_INVALID_ARG);
+#endif
+#ifdef PN_BUILD_MCSM
+    if (opt.algo == PN_ALGO_MCSM && (opt.mc_layers > 3u || opt.mc_search > 2u || opt.mc_rays > 8u ||
+                                     (opt.mc_blur > 8u && opt.mc_blur != PN_MC_BLUR_OFF) || (opt.mc_flags & 4u)))
         must |= BIT(PN_E_INVALID_ARG);
 #endif
     must |= vec_causes(shade, 3u) & BIT(PN_E_NONFINITE);
@@ -267,7 +291,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             float vi = out.visibility[i];
             const float *nr = out.normal + 3u * i;
             FUZZ_CHECK(vi >= 0.0f && vi <= 1.0f, "pixel %zu visibility %g", i, vi);
-            FUZZ_CHECK(opt.algo == PN_ALGO_OCCTEX || (point ? vi == 0.0f || vi == 1.0f : vi * kk == floorf(vi * kk)),
+            FUZZ_CHECK(opt.algo == PN_ALGO_OCCTEX || opt.algo == PN_ALGO_MCSM || (point ? vi == 0.0f || vi == 1.0f : vi * kk == floorf(vi * kk)),
                        "pixel %zu visibility %g: not a multiple of 1/k^2 (k %u)", i, vi, k);
             if (out.tri_id[i] == PN_NO_TRIANGLE) {
                 FUZZ_CHECK(vi == 1.0f && out.depth[i] == INFINITY && !memcmp(out.rgba + 4u * i, opt.background, 4u),

@@ -21,6 +21,8 @@ typedef struct pn_kpools {
     uint64_t lview_box;
     /* frame: occlusion textures (src/pn_occtex.c) */
     uint64_t occ_bits, occ_filt, occ_words;
+    /* frame: Monte Carlo shadow maps (src/pn_mcsm.c) */
+    uint64_t mc_nb, mc_tmp, mc_words;
     /* frame: selective ray tracing (src/pn_srt.c) */
     uint64_t lmap_depth, lmap_id, lmap_cons, srt_tile_w, srt_tile_h, srt_tile_mask, srt_words, pip_off, pip_list;
 } pn_kpools;
@@ -44,6 +46,7 @@ typedef struct pn_kparams {
     pn_kview lview;
     float lview_ha, lview_hb;
     pn_kocc occ;
+    pn_kmc mc;
     /* selective ray tracing: the classification's constants */
     float srt_delta, srt_alpha, srt_reach_u, srt_reach_v; /* reach: texels per unit splat weight */
     float srt_wmax; /* largest splat weight 1/z of the map's edge texels */

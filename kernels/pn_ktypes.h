@@ -61,8 +61,33 @@ typedef struct pn_kocc {
     uint32_t level;       /* the level a filter pass builds */
 } pn_kocc;
 
+/* Monte Carlo shadow maps' frame constants (kernels/pn_mcsm.h; src/pn_mcsm.c sets them).
+ * Light frame: origin at the light centre, axes lview's r, u, f; depth z along f. */
+typedef struct pn_kmc {
+    float d;          /* centre of projection behind the light centre (0: point light) */
+    float sfac;       /* res * d: a region's side in texels is sfac (z - zb) / (z (zb + d)) */
+    float bias_k;     /* adaptive bias (eq. 3.2) per unit of (z + d) / cos */
+    float zmin;       /* smallest near-layer depth over the whole map (+inf: no occluder) */
+    float blur_depth; /* blur: a neighbour's weight / (1 + |depth - centre| blur_depth / centre) */
+    float pad0, pad1, pad2;
+    uint32_t res;     /* texels per axis */
+    uint32_t levels;  /* N-buffer levels: floor(log2 res) + 1 */
+    uint32_t level;   /* the level an N-buffer pass builds */
+    uint32_t layers;  /* 1 (near), 2 (near, far) or 3 (near, far and the eye's depth) */
+    uint32_t search;  /* PN_MC_S_LINEAR or PN_MC_S_HIER */
+    uint32_t rays;    /* n: n x n jittered rays per pixel, 1 .. 8 */
+    uint32_t blur;    /* blur radius in pixels, 0 .. 8 (0: off) */
+    uint32_t flags;   /* PN_MC_F_* */
+    uint32_t seed;    /* frame key of the sample hash */
+    uint32_t pad3, pad4, pad5;
+    float blur_w[12]; /* binomial weights C(2r, r + i), i = 0 .. r */
+} pn_kmc;
+
 /* Triangle flags (one byte each). */
 #define PN_TRI_DEGENERATE 1u
+/* Receiver only (pn_scene_set_receivers): casts no shadow into the Monte Carlo shadow
+ * maps' depth layers; every other algorithm treats it like any triangle. */
+#define PN_TRI_RECEIVER 2u
 
 /* Rows of pixels per rasterizer work item. */
 #define PN_RASTER_BAND 8u

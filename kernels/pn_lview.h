@@ -15,6 +15,15 @@
 /* Floats per row of the bounds pool. */
 #define PN_LVIEW_BOX 8u
 
+/* Point X in the light frame: relative to the light centre, along lv's axes r, u, f. */
+PN_KFN pn_v3 pn_lview_frame(const pn_kview *lv, const pn_klight *L, pn_v3 X)
+{
+    pn_v3 rel = pn_v3_sub(X, pn_v3_make(L->c[0], L->c[1], L->c[2]));
+    return pn_v3_make(pn_v3_dot(rel, pn_v3_make(lv->r[0], lv->r[1], lv->r[2])),
+                      pn_v3_dot(rel, pn_v3_make(lv->u[0], lv->u[1], lv->u[2])),
+                      pn_v3_dot(rel, pn_v3_make(lv->f[0], lv->f[1], lv->f[2])));
+}
+
 /* Row y of the G-buffer: over its lit pixels (origins in front of the light), with (x, y,
  * z) an origin in lv's frame relative to the light centre lc (so the view's eye may sit
  * behind it): the largest (|x| - ha) / z and (|y| - hb) / z (ha = hb = 0: the tan of the

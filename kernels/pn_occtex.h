@@ -44,6 +44,7 @@
 #define PN_OCCTEX_H
 
 #include "pn_lview.h"
+#include "pn_nbuffer.h"
 #include "pn_predicate.h"
 #include "pn_raster.h"
 
@@ -153,31 +154,11 @@ PN_KFN uint32_t pn_occ_at(PN_CONST uint32_t *lvl, uint32_t dim, int32_t i, int32
     return lvl[(size_t)j * dim + (uint32_t)i];
 }
 
-/* Row y of N-buffer level o->level >= 1 from the level below (pool: levels of res^2): the
- * box of texel (x, y) is the union of the four boxes of the level below at (x + a, y + a),
- * (x + b, y + a), (x + a, y + b), (x + b, y + b); outside the texture counts 0. */
+/* Row y of N-buffer level o->level >= 1 from the level below (pool: levels of res^2; the
+ * library's one N-buffer builder, kernels/pn_nbuffer.h, summing counts). */
 PN_KFN void pn_occ_nbuf_row(const pn_kocc *o, uint32_t y, PN_GLOBAL uint32_t *filt)
 {
-    uint32_t res = o->res, l = o->level, x;
-    int32_t a = l == 1u ? 0 : -(int32_t)(1u << (l - 2u)), b = l == 1u ? 1 : (int32_t)(1u << (l - 2u));
-    int32_t ya = (int32_t)y + a, yb = (int32_t)y + b;
-    PN_CONST uint32_t *lo = filt + (size_t)(l - 1u) * res * res;
-    PN_GLOBAL uint32_t *out = filt + (size_t)l * res * res + (size_t)y * res;
-    for (x = 0; x < res; x++) {
-        int32_t xa = (int32_t)x + a, xb = (int32_t)x + b;
-        uint32_t v = 0u;
-        if (ya >= 0 && ya < (int32_t)res) {
-            PN_CONST uint32_t *r = lo + (size_t)ya * res;
-            if (xa >= 0) v += r[xa];
-            if (xb < (int32_t)res) v += r[xb];
-        }
-        if (yb >= 0 && yb < (int32_t)res) {
-            PN_CONST uint32_t *r = lo + (size_t)yb * res;
-            if (xa >= 0) v += r[xa];
-            if (xb < (int32_t)res) v += r[xb];
-        }
-        out[x] = v;
-    }
+    pn_nb_sum_row(o->res, o->level, y, filt);
 }
 
 /* Mipmap level l: side and offset in the pool (levels one after another). */
@@ -350,15 +331,6 @@ PN_KFN float pn_occ_sat_mean(const pn_kocc *o, PN_CONST uint32_t *sat, float px,
     return v > 1.0f ? 1.0f : v;
 }
 
-/* Origin O in the light frame (relative to the light centre, lv's axes). */
-PN_KFN pn_v3 pn_occ_frame(const pn_kview *lv, const pn_klight *L, pn_v3 O)
-{
-    pn_v3 rel = pn_v3_sub(O, pn_v3_make(L->c[0], L->c[1], L->c[2]));
-    return pn_v3_make(pn_v3_dot(rel, pn_v3_make(lv->r[0], lv->r[1], lv->r[2])),
-                      pn_v3_dot(rel, pn_v3_make(lv->u[0], lv->u[1], lv->u[2])),
-                      pn_v3_dot(rel, pn_v3_make(lv->f[0], lv->f[1], lv->f[2])));
-}
-
 /* The weight of slice k for an origin at light depth z > 0 (<= 0: the slice is not above). */
 PN_KFN float pn_occ_weight(const pn_kocc *o, uint32_t k, float z) { return (z - (o->zmin + (float)k * o->h)) / o->h; }
 
@@ -367,7 +339,7 @@ PN_KFN float pn_occ_weight(const pn_kocc *o, uint32_t k, float z) { return (z - 
 PN_KFN int pn_occ_slice_occlusion(const pn_kview *lv, const pn_klight *L, const pn_kocc *o, PN_CONST uint32_t *filt,
                                   pn_v3 O, float *I)
 {
-    pn_v3 c = pn_occ_frame(lv, L, O);
+    pn_v3 c = pn_lview_frame(lv, L, O);
     float x = c.x, y = c.y, z = c.z;
     float zb = o->zmin + (float)o->slice * o->h, w, fr, q, sx, sy, px, py, v;
     *I = 0.0f;
@@ -392,7 +364,7 @@ PN_KFN int pn_occ_slice_occlusion(const pn_kview *lv, const pn_klight *L, const 
 /* The lookups origin O took: the slices looked up (o->live) that weighed in. */
 PN_KFN uint32_t pn_occ_lookups(const pn_kview *lv, const pn_klight *L, const pn_kocc *o, pn_v3 O)
 {
-    float z = pn_occ_frame(lv, L, O).z;
+    float z = pn_lview_frame(lv, L, O).z;
     uint32_t k, n = 0u;
     if (!(z > 0.0f)) return 0u;
     for (k = 0; k < o->slices; k++) n += ((o->live >> k) & 1u) && pn_occ_weight(o, k, z) > 0.0f;

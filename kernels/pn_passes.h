@@ -28,7 +28,7 @@
 #if PN_ENABLE_GEARS
 #include "pn_gears_pass.h"
 #endif
-#define PN_LIGHT_VIEW (PN_ENABLE_SRT || PN_ENABLE_OCCTEX)
+#define PN_LIGHT_VIEW (PN_ENABLE_SRT || PN_ENABLE_OCCTEX || PN_ENABLE_MCSM)
 #if PN_LIGHT_VIEW
 #include "pn_lview.h"
 #endif
@@ -37,6 +37,9 @@
 #endif
 #if PN_ENABLE_OCCTEX
 #include "pn_occtex.h"
+#endif
+#if PN_ENABLE_MCSM
+#include "pn_mcsm.h"
 #endif
 
 #define PN_NO_PIXEL_TRIANGLE 0xFFFFFFFFu
@@ -416,6 +419,73 @@ PN_KFN void pn_e_occ_finish(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
 }
 #endif
 
+/* ---- Monte Carlo shadow maps (pn_mcsm.h; the frame is src/pn_mcsm.c) ------------------------ */
+
+#if PN_ENABLE_MCSM
+/* Band of texel rows: the near and far layers (N-buffer level 0). */
+PN_KFN void pn_e_mc_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
+{
+    pn_mc_band(&K->lview, &K->mc, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags),
+               PN_POOL(const uint32_t, rows), K->tri_count, band, PN_POOL(float, mc_nb));
+}
+
+/* Row of N-buffer level K->mc.level. */
+PN_KFN void pn_e_mc_nbuf(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
+{
+    pn_nb_mm_row(K->mc.res, K->mc.level, y, PN_POOL(float, mc_nb));
+}
+
+/* Pixel: its rays through the layers; visibility, class and counters. */
+PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
+    uint32_t id = PN_POOL(const uint32_t, tri_id)[pix], W = K->view.width, cls, rays;
+    PN_GLOBAL uint32_t *words = PN_POOL(uint32_t, mc_words) + (size_t)(pix / W) * PN_MC_WORDS;
+    pn_v3 nrm, O;
+    pn_mc_ctx m;
+    if (id == PN_NO_PIXEL_TRIANGLE) {
+        PN_POOL(float, vis)[pix] = 1.0f;
+        return;
+    }
+    nrm = pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u);
+    if (!pn_shadow_origin(pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u), nrm, &K->light, &O)) {
+        PN_POOL(float, vis)[pix] = 0.0f;
+        return;
+    }
+    m.view = &K->view;
+    m.lv = &K->lview;
+    m.L = &K->light;
+    m.mc = &K->mc;
+    m.nb = PN_POOL(const float, mc_nb);
+    m.depth = PN_POOL(const float, depth);
+    m.tx = K->lview.tan_half * K->lview.aspect;
+    m.ty = K->lview.tan_half;
+    m.steps = 0u;
+    m.capped = 0u;
+    PN_POOL(float, vis)[pix] = pn_mc_pixel(&m, pix % W, pix / W, nrm, O, &cls, &rays);
+    c.lit = 1u;
+    c.candidates = rays;
+    c.nodes = m.steps;
+    pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / W, &c);
+    if (cls != PN_MC_CLASS_NONE) pn_katomic_add(words + (cls - 1u), 1u);
+    if (m.capped) pn_katomic_add(words + PN_MC_WORD_CAPPED, m.capped);
+}
+
+/* Pixel: the blur across (visibility into the other buffer), then down (back). */
+PN_KFN void pn_e_mc_blur_h(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    pn_mc_blur_pixel(&K->mc, K->view.width, K->view.height, pix % K->view.width, pix / K->view.width, 0u,
+                     PN_POOL(const uint32_t, tri_id), PN_POOL(const float, depth), PN_POOL(const float, vis),
+                     PN_POOL(float, mc_tmp));
+}
+PN_KFN void pn_e_mc_blur_v(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    pn_mc_blur_pixel(&K->mc, K->view.width, K->view.height, pix % K->view.width, pix / K->view.width, 1u,
+                     PN_POOL(const uint32_t, tri_id), PN_POOL(const float, depth), PN_POOL(const float, mc_tmp),
+                     PN_POOL(float, vis));
+}
+#endif
+
 /* ---- Shading (pn_shade.h) --------------------------------------------------------------- */
 
 /* Pixel: RGBA8 bytes r g b a, whatever the device's endianness. */
@@ -481,6 +551,17 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
 #define PN_PASSES_OCCTEX(X)
 #endif
 
+#if PN_ENABLE_MCSM
+#define PN_PASSES_MCSM(X)                                 \
+    X(MC_BAND, mc_band, 1, 1)                             \
+    X(MC_NBUF, mc_nbuf, 4, 8)                             \
+    X(MC_PIXEL, mc_pixel, 16, 64)                         \
+    X(MC_BLUR_H, mc_blur_h, 64, 1024)                     \
+    X(MC_BLUR_V, mc_blur_v, 64, 1024)
+#else
+#define PN_PASSES_MCSM(X)
+#endif
+
 #if PN_ENABLE_SRT
 #define PN_PASSES_SRT(X)                                  \
     X(LMAP_CLEAR, lmap_clear, 64, 4096)                   \
@@ -505,6 +586,7 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
     PN_PASSES_LVIEW(X)                              \
     PN_PASSES_SRT(X)                                \
     PN_PASSES_OCCTEX(X)                             \
+    PN_PASSES_MCSM(X)                               \
     X(SHADE, shade, 64, 1024)
 
 #define PN_PASS_ENUM(id, name, local, grain) PN_K_##id,

@@ -113,6 +113,24 @@ static int pn_occ_pools(const pn_limits *l, uint64_t *off)
 #endif
 }
 
+/* The Monte Carlo shadow maps' frame pools. */
+static int pn_mc_pools(const pn_limits *l, uint64_t *off)
+{
+#if PN_ENABLE_MCSM
+    uint64_t r = pn_mc_map_max(l), px = (uint64_t)l->max_width * l->max_height;
+    size_t dummy;
+    /* pn_mcsm_frame() in src/pn_mcsm.c allocates exactly these, in this order. */
+    return pn_bump(off, l->max_height, 4u * PN_LVIEW_BOX_FLOATS, &dummy) &&     /* row bounds */
+           pn_bump(off, (uint64_t)pn_occ_levels((uint32_t)r) * r * r, 12u, &dummy) && /* N-buffer */
+           pn_bump(off, px, 4u, &dummy) &&                                     /* blur buffer */
+           pn_bump(off, l->max_height, 16u, &dummy);                           /* counters */
+#else
+    (void)l;
+    (void)off;
+    return 1;
+#endif
+}
+
 pn_status pn_carve(const pn_limits *l, pn_layout *out)
 {
     uint64_t off = 0, frame_start;
@@ -121,7 +139,8 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
         l->max_width > PN_MAX_WIDTH || l->max_height < 1u || l->max_height > PN_MAX_HEIGHT ||
         l->gears_pairs > (1u << 28) || l->gears_grid_max > 1024u || l->srt_map_max > PN_SRT_MAP_MAX ||
         (l->srt_map_max != 0u && l->srt_map_max < 8u) || l->occ_map_max > PN_OCCTEX_MAP_MAX ||
-        (l->occ_map_max != 0u && l->occ_map_max < 8u))
+        (l->occ_map_max != 0u && l->occ_map_max < 8u) || l->mc_map_max > PN_MCSM_MAP_MAX ||
+        (l->mc_map_max != 0u && l->mc_map_max < 8u))
         return PN_E_LIMIT;
     if (!pn_bump(&off, 1u, sizeof(pn_context), &lay.ctx) ||
         !pn_bump(&off, l->max_triangles, 9u * sizeof(float), &lay.tris) ||
@@ -135,14 +154,17 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
     {
         /* The common pools, then the largest of GEARS', SRT's and the occlusion textures'
          * (one algorithm a frame). */
-        uint64_t common = off, a, b, c;
+        uint64_t common = off, a, b, c, m;
         if (!pn_frame_pools_common(l, &common)) return PN_E_LIMIT;
         a = common;
         b = common;
         c = common;
-        if (!pn_gears_pools(l, &a) || !pn_srt_pools(l, &b) || !pn_occ_pools(l, &c)) return PN_E_LIMIT;
+        m = common;
+        if (!pn_gears_pools(l, &a) || !pn_srt_pools(l, &b) || !pn_occ_pools(l, &c) || !pn_mc_pools(l, &m))
+            return PN_E_LIMIT;
         off = a > b ? a : b;
         off = off > c ? off : c;
+        off = off > m ? off : m;
     }
     /* Round the end so the last pool's alignment padding is inside the region. */
     if (!pn_bump(&off, 0u, 1u, &lay.end)) return PN_E_LIMIT;
@@ -196,11 +218,13 @@ void pn_limits_max(pn_limits *limits)
     limits->gears_grid_max = 0;
     limits->srt_map_max = 0;
     limits->occ_map_max = 0;
+    limits->mc_map_max = 0;
 }
 
 uint32_t pn_gears_pairs_max(const pn_limits *l) { return l->gears_pairs ? l->gears_pairs : PN_GEARS_PAIRS; }
 uint32_t pn_srt_map_max(const pn_limits *l) { return l->srt_map_max ? l->srt_map_max : PN_SRT_MAP_MAX; }
 uint32_t pn_occ_map_max(const pn_limits *l) { return l->occ_map_max ? l->occ_map_max : PN_OCCTEX_MAP_MAX; }
+uint32_t pn_mc_map_max(const pn_limits *l) { return l->mc_map_max ? l->mc_map_max : PN_MCSM_MAP_MAX; }
 uint32_t pn_occ_levels(uint32_t res)
 {
     uint32_t l = 1u;

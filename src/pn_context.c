@@ -161,6 +161,17 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out)
     s.occ_ns_slice = ctx->occ.ns_slice;
     s.occ_ns_filter = ctx->occ.ns_filter;
     s.occ_ns_lookup = ctx->occ.ns_lookup;
+    s.mc_map = ctx->mc.map;
+    s.mc_lit = ctx->mc.lit;
+    s.mc_umbra = ctx->mc.umbra;
+    s.mc_penumbra = ctx->mc.penumbra;
+    s.mc_rays = ctx->mc.rays;
+    s.mc_steps = ctx->mc.steps;
+    s.mc_capped = ctx->mc.capped;
+    s.mc_ns_layers = ctx->mc.ns_layers;
+    s.mc_ns_nbuffer = ctx->mc.ns_nbuffer;
+    s.mc_ns_rays = ctx->mc.ns_rays;
+    s.mc_ns_blur = ctx->mc.ns_blur;
     *out = s;
     return PN_OK;
 }
@@ -182,6 +193,9 @@ uint32_t pn_build_info(void)
 #endif
 #if PN_ENABLE_OCCTEX
     f |= PN_BUILD_OCCTEX;
+#endif
+#if PN_ENABLE_MCSM
+    f |= PN_BUILD_MCSM;
 #endif
     return f;
 }

@@ -6,6 +6,7 @@
 #include "pn_device.h"
 #include "pn_gears_frame.h"
 #include "pn_srt_frame.h"
+#include "pn_mcsm_frame.h"
 #include "pn_occtex_frame.h"
 #include "pn_kmath.h"
 #include "pn_passes.h"
@@ -235,6 +236,25 @@ static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
 #else
         return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_OCCTEX is not compiled in (PN_ENABLE_OCCTEX 0)");
 #endif
+    case PN_ALGO_MCSM:
+#if PN_ENABLE_MCSM
+        if (o->mc_layers > 3u)
+            return pn_fail(ctx, PN_E_INVALID_ARG, "mc_layers = %u; it must be 0 or in 1 .. 3", o->mc_layers);
+        if (o->mc_search > PN_MC_SEARCH_HIER)
+            return pn_fail(ctx, PN_E_INVALID_ARG, "mc_search = %u; it must be 0 or a PN_MC_SEARCH_*", o->mc_search);
+        if (o->mc_rays > 8u)
+            return pn_fail(ctx, PN_E_INVALID_ARG, "mc_rays = %u; it must be 0 or in 1 .. 8 (n x n rays)", o->mc_rays);
+        if (o->mc_blur > 8u && o->mc_blur != PN_MC_BLUR_OFF)
+            return pn_fail(ctx, PN_E_INVALID_ARG, "mc_blur = %u; it must be 0, 1 .. 8 or PN_MC_BLUR_OFF", o->mc_blur);
+        if (o->mc_map != 0u && (o->mc_map < 8u || o->mc_map > pn_mc_map_max(&ctx->limits)))
+            return pn_fail(ctx, PN_E_INVALID_ARG, "mc_map = %u; it must be 0 or in 8 .. %u (pn_limits.mc_map_max)",
+                           o->mc_map, pn_mc_map_max(&ctx->limits));
+        if (o->mc_flags & ~(PN_MC_NO_BIAS | PN_MC_NO_CLASSIFY))
+            return pn_fail(ctx, PN_E_INVALID_ARG, "mc_flags = %u has unknown bits", o->mc_flags);
+        return PN_OK;
+#else
+        return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_MCSM is not compiled in (PN_ENABLE_MCSM 0)");
+#endif
     }
     return pn_fail(ctx, PN_E_INVALID_ARG, "unknown algorithm %u", (uint32_t)o->algo);
 }
@@ -296,6 +316,9 @@ static pn_status pn_shadow(pn_frame_state *fs)
 #endif
 #if PN_ENABLE_OCCTEX
     case PN_ALGO_OCCTEX: st = pn_occtex_frame(fs); break;
+#endif
+#if PN_ENABLE_MCSM
+    case PN_ALGO_MCSM: st = pn_mcsm_frame(fs); break;
 #endif
     default: return pn_fail(fs->ctx, PN_E_UNSUPPORTED, "algorithm %u not available", fs->algo);
     }
@@ -373,6 +396,18 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     fs.K.occ.filter = opt->occ_filter ? opt->occ_filter : PN_OCC_FILTER_SAT;
     fs.K.occ.combine = opt->occ_combine ? opt->occ_combine : PN_OCC_COMBINE_PRODUCT;
     fs.K.occ.flags = opt->occ_flags;
+#endif
+#if PN_ENABLE_MCSM
+    /* Defaults: the configuration docs/bench/RESULTS.md recommends ("Monte Carlo shadow
+     * maps"): two layers, hierarchical search, 3 x 3 rays, blur radius 3, 512^2 layers. */
+    fs.mc_map = opt->mc_map ? opt->mc_map : pn_mc_map_max(&ctx->limits);
+    if (!opt->mc_map && fs.mc_map > 512u) fs.mc_map = 512u;
+    fs.K.mc.layers = opt->mc_layers ? opt->mc_layers : 2u;
+    fs.K.mc.search = opt->mc_search ? opt->mc_search : PN_MC_SEARCH_HIER;
+    fs.K.mc.rays = opt->mc_rays ? opt->mc_rays : 3u;
+    fs.K.mc.blur = opt->mc_blur == PN_MC_BLUR_OFF ? 0u : opt->mc_blur ? opt->mc_blur : 3u;
+    fs.K.mc.flags = opt->mc_flags;
+    fs.K.mc.seed = opt->mc_seed;
 #endif
 
     px = (size_t)opt->width * opt->height;

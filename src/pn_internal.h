@@ -40,6 +40,7 @@ typedef struct pn_frame_state {
     uint32_t gears_grid;
     uint32_t srt_map;
     uint32_t occ_map;
+    uint32_t mc_map;
     float *depth;
     uint32_t *tri_id;
     float *pos;
@@ -101,6 +102,10 @@ struct pn_context {
         uint32_t map, slices;
         uint64_t texels, lookups, ns_slice, ns_filter, ns_lookup;
     } occ;
+    struct {
+        uint32_t map, lit, umbra, penumbra, capped;
+        uint64_t rays, steps, ns_layers, ns_nbuffer, ns_rays, ns_blur;
+    } mc;
     char message[256];
 };
 
@@ -109,6 +114,7 @@ uint32_t pn_gears_pairs_max(const pn_limits *l);
 uint32_t pn_gears_grid_max(const pn_limits *l);
 uint32_t pn_srt_map_max(const pn_limits *l);
 uint32_t pn_occ_map_max(const pn_limits *l);
+uint32_t pn_mc_map_max(const pn_limits *l);
 /* Occlusion textures: N-buffer / mipmap levels of a res^2 texture (floor(log2 res) + 1), and
  * the words of the one-slice filter pool (the largest of the three filters). */
 uint32_t pn_occ_levels(uint32_t res);
@@ -119,6 +125,23 @@ uint64_t pn_occ_filter_words(uint32_t res);
  * looks along N with axes U^, V^, a point light toward the scene's centre; square, res^2,
  * tan_half 1 until the caller fits its window. */
 void pn_light_view(const pn_context *ctx, const pn_klight *L, uint32_t res, pn_kview *lv);
+/* The window of a light view from a centre of projection d behind the light centre
+ * (occlusion textures, Monte Carlo shadow maps): from the row bounds `box` of the lit
+ * origins (height rows of PN_LVIEW_BOX_FLOATS, kernels/pn_lview.h, computed with the light's
+ * half-sizes ha, hb), an area light's d = 1 / max over origins of (|x| - ha) / (ha z) and
+ * (|y| - hb) / (hb z) (the frustum through the light's edges then holds every origin, and
+ * so every segment from the light to one: Curtis 2009 eq. 3.1, Eisemann 2006 Fig. 5),
+ * widened by two texels for rounding, at most twice the scene diagonal and at least such
+ * that the frustum stays within PN_LVIEW_TAN_MAX; a point light's window fitted to the
+ * origins' tans (d = 0). Sets lv's eye, tan_half, aspect and znear, and *w. Returns 0 when no lit origin lies in front of the light. */
+/* The light's half-edge lengths |U|, |V| (0 for a point light): the window's ha, hb. */
+void pn_light_halves(const pn_klight *L, float *ha, float *hb);
+typedef struct pn_lwin {
+    float d, zmax; /* centre of projection behind the light centre; deepest origin */
+    float tx, ty;  /* the window's half-tans */
+} pn_lwin;
+int pn_lview_window(const pn_context *ctx, const float *box, uint32_t height, uint32_t res, const pn_klight *L, float ha,
+                    float hb, pn_kview *lv, pn_lwin *w);
 pn_status pn_carve(const pn_limits *limits, pn_layout *out);
 void pn_frame_reset(pn_context *ctx);
 void *pn_frame_alloc(pn_context *ctx, size_t count, size_t elem, const char *pool);

@@ -4,8 +4,9 @@
 
 #include "pn_internal.h"
 #include "pn_kmath.h"
+#include "pn_lview.h"
 
-#if PN_ENABLE_SRT || PN_ENABLE_OCCTEX
+#if PN_ENABLE_SRT || PN_ENABLE_OCCTEX || PN_ENABLE_MCSM
 typedef char pn_lview_box_agrees[PN_LVIEW_BOX_FLOATS == 8u ? 1 : -1];
 
 static void pn_set3(float *d, pn_v3 v)
@@ -44,4 +45,54 @@ void pn_light_view(const pn_context *ctx, const pn_klight *L, uint32_t res, pn_k
     lv->width = res;
     lv->height = res;
 }
+
+#if PN_ENABLE_OCCTEX || PN_ENABLE_MCSM
+void pn_light_halves(const pn_klight *L, float *ha, float *hb)
+{
+    pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]), V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
+    *ha = L->is_point ? 0.0f : pn_ksqrt(pn_v3_dot(U, U));
+    *hb = L->is_point ? 0.0f : pn_ksqrt(pn_v3_dot(V, V));
+}
+
+int pn_lview_window(const pn_context *ctx, const float *box, uint32_t height, uint32_t res, const pn_klight *L, float ha,
+                    float hb, pn_kview *lv, pn_lwin *w)
+{
+    float mx = 0.0f, my = 0.0f, zmax = 0.0f, tx, ty, d, grow = 1.0f + 4.0f / (float)res, diag = ctx->scene_diag;
+    uint32_t y;
+    for (y = 0; y < height; y++) {
+        const float *b = box + (size_t)y * PN_LVIEW_BOX_FLOATS;
+        mx = pn_kmaxf(mx, b[0]);
+        my = pn_kmaxf(my, b[1]);
+        zmax = pn_kmaxf(zmax, b[3]);
+    }
+    if (!(zmax > 0.0f)) return 0;
+    if (!L->is_point) {
+        float inv_d = pn_kmaxf(mx / ha, my / hb) * grow;
+        float lo = 1.0f / (2.0f * diag), hi = PN_LVIEW_TAN_MAX / pn_kmaxf(ha, hb);
+        if (!(inv_d >= lo)) inv_d = lo;
+        if (!(inv_d <= hi)) inv_d = hi;
+        d = 1.0f / inv_d;
+        tx = ha * inv_d;
+        ty = hb * inv_d;
+    } else {
+        tx = pn_kminf(pn_kmaxf(mx * grow, 1e-6f), PN_LVIEW_TAN_MAX);
+        ty = pn_kminf(pn_kmaxf(my * grow, 1e-6f), PN_LVIEW_TAN_MAX);
+        d = 0.0f;
+    }
+    {
+        pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]), f = pn_v3_make(lv->f[0], lv->f[1], lv->f[2]);
+        pn_v3 eye = pn_v3_sub(c, pn_v3_scale(f, d));
+        pn_set3(lv->eye, eye);
+    }
+    lv->tan_half = ty;
+    lv->aspect = tx / ty;
+    lv->znear = d + 1e-5f * diag;
+    if (!(lv->znear > 0.0f)) lv->znear = 1e-30f;
+    w->d = d;
+    w->zmax = zmax;
+    w->tx = tx;
+    w->ty = ty;
+    return 1;
+}
+#endif
 #endif

@@ -66,13 +66,9 @@ static float pn_occ_nearest(const pn_context *ctx, const pn_klight *L, const pn_
     return best;
 }
 
-/* The slicing view and the slice planes from the row bounds (kernels/pn_occtex.h):
- * an area light's centre of projection at d = 1 / max over origins of (|x| - |U|) / (|U| z)
- * and (|y| - |V|) / (|V| z) behind the light centre (the frustum through the light's
- * edges then holds every origin), widened by two texels for rounding, d at most twice the
- * scene diagonal (all origins above the light: nearly orthographic) and at least such that
- * the frustum stays within PN_LVIEW_TAN_MAX; a point light's window fitted to the origins'
- * tans. Returns 0 when no lit origin lies in front of the light (nothing to slice). */
+/* The slicing view (pn_lview_window: the centre of projection behind the light whose
+ * frustum through the light's edges holds every lit origin) and the slice planes. Returns 0
+ * when no lit origin lies in front of the light (nothing to slice). */
 static int pn_occ_window(pn_frame_state *fs, const pn_occ_pools *s, uint32_t res, float *zmax_out)
 {
     pn_context *ctx = fs->ctx;
@@ -80,43 +76,15 @@ static int pn_occ_window(pn_frame_state *fs, const pn_occ_pools *s, uint32_t res
     const pn_klight *L = &K->light;
     pn_kview *lv = &K->lview;
     pn_kocc *o = &K->occ;
-    float mx = 0.0f, my = 0.0f, zmax = 0.0f, tx, ty, grow = 1.0f + 4.0f / (float)res, zmin, diag = ctx->scene_diag;
-    uint32_t y;
-    for (y = 0; y < fs->height; y++) {
-        const float *b = s->box + (size_t)y * PN_LVIEW_BOX;
-        mx = pn_kmaxf(mx, b[0]);
-        my = pn_kmaxf(my, b[1]);
-        zmax = pn_kmaxf(zmax, b[3]);
-    }
-    if (!(zmax > 0.0f)) return 0;
-    if (!L->is_point) {
-        float a = K->lview_ha, bb = K->lview_hb, inv_d = pn_kmaxf(mx / a, my / bb) * grow;
-        float lo = 1.0f / (2.0f * diag), hi = PN_LVIEW_TAN_MAX / pn_kmaxf(a, bb);
-        if (!(inv_d >= lo)) inv_d = lo;
-        if (!(inv_d <= hi)) inv_d = hi;
-        o->d = 1.0f / inv_d;
-        tx = a * inv_d;
-        ty = bb * inv_d;
-        o->sfac_x = (float)res * a / tx;
-        o->sfac_y = (float)res * bb / ty;
-    } else {
-        tx = pn_kminf(pn_kmaxf(mx * grow, 1e-6f), PN_LVIEW_TAN_MAX);
-        ty = pn_kminf(pn_kmaxf(my * grow, 1e-6f), PN_LVIEW_TAN_MAX);
-        o->d = 0.0f;
-        o->sfac_x = 0.0f;
-        o->sfac_y = 0.0f;
-    }
-    {
-        pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]), f = pn_v3_make(lv->f[0], lv->f[1], lv->f[2]);
-        pn_v3 eye = pn_v3_sub(c, pn_v3_scale(f, o->d));
-        lv->eye[0] = eye.x;
-        lv->eye[1] = eye.y;
-        lv->eye[2] = eye.z;
-    }
-    lv->tan_half = ty;
-    lv->aspect = tx / ty;
-    lv->znear = o->d + 1e-5f * diag;
-    if (!(lv->znear > 0.0f)) lv->znear = 1e-30f;
+    float zmax, zmin, diag = ctx->scene_diag;
+    pn_lwin w;
+    if (!pn_lview_window(ctx, s->box, fs->height, res, L, K->lview_ha, K->lview_hb, lv, &w)) return 0;
+    o->d = w.d;
+    zmax = w.zmax;
+    /* Kernel side in texels (pn_occtex.h): the light's half-edge over the window's half-tan,
+     * times the texels. */
+    o->sfac_x = L->is_point ? 0.0f : (float)res * K->lview_ha / w.tx;
+    o->sfac_y = L->is_point ? 0.0f : (float)res * K->lview_hb / w.ty;
     /* Slice planes: nearest geometry to deepest origin. */
     zmin = pn_occ_nearest(ctx, L, lv);
     if (!(zmin <= zmax)) zmin = zmax;
@@ -158,15 +126,7 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
 
     if ((st = pn_occ_begin(fs, &s, res)) != PN_OK) return st;
     pn_light_view(ctx, &K->light, res, &K->lview);
-    if (!K->light.is_point) {
-        pn_v3 U = pn_v3_make(K->light.U[0], K->light.U[1], K->light.U[2]);
-        pn_v3 V = pn_v3_make(K->light.V[0], K->light.V[1], K->light.V[2]);
-        K->lview_ha = pn_ksqrt(pn_v3_dot(U, U));
-        K->lview_hb = pn_ksqrt(pn_v3_dot(V, V));
-    } else {
-        K->lview_ha = 0.0f;
-        K->lview_hb = 0.0f;
-    }
+    pn_light_halves(&K->light, &K->lview_ha, &K->lview_hb);
     o->res = res;
     o->levels = pn_occ_levels(res);
     ctx->occ.map = res;

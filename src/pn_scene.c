@@ -98,3 +98,22 @@ pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_
     ctx->has_scene = 1;
     return PN_OK;
 }
+
+pn_status pn_scene_set_receivers(pn_context *ctx, uint32_t first, uint32_t count)
+{
+    uint32_t t;
+    if (!ctx) return PN_E_INVALID_ARG;
+    if (!ctx->has_scene) return pn_fail(ctx, PN_E_NO_SCENE, "pn_scene_set_receivers: no scene (call pn_scene_set first)");
+    if (first > ctx->tri_count || count > ctx->tri_count - first)
+        return pn_fail(ctx, PN_E_INDEX_RANGE, "pn_scene_set_receivers: triangles %u + %u exceed the scene's %u", first,
+                       count, ctx->tri_count);
+    /* Only the flag byte changes: the BVH, the bounds and every exact algorithm's input
+     * stay as they were. A device port copies the flags again (the version changes). */
+    for (t = 0; t < ctx->tri_count; t++) {
+        uint8_t f = (uint8_t)(ctx->flags[t] & ~PN_TRI_RECEIVER);
+        if (t >= first && t - first < count) f |= (uint8_t)PN_TRI_RECEIVER;
+        ctx->flags[t] = f;
+    }
+    ctx->scene_version++;
+    return PN_OK;
+}

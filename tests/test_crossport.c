@@ -37,6 +37,7 @@ static const struct {
     {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},
     {"srt", PN_ALGO_SRT, PN_BUILD_SRT},
     {"occtex", PN_ALGO_OCCTEX, PN_BUILD_OCCTEX},
+    {"mcsm", PN_ALGO_MCSM, PN_BUILD_MCSM},
 };
 #define PN_X_ALGOS (sizeof(pn_x_algos) / sizeof(pn_x_algos[0]))
 
@@ -135,6 +136,13 @@ static int same_frame(const char *what, const pn_xframe *a, const pn_xframe *b)
     SAME_STAT(occ_slices);
     SAME_STAT(occ_texels_set);
     SAME_STAT(occ_lookups);
+    SAME_STAT(mc_map);
+    SAME_STAT(mc_lit);
+    SAME_STAT(mc_umbra);
+    SAME_STAT(mc_penumbra);
+    SAME_STAT(mc_rays);
+    SAME_STAT(mc_steps);
+    SAME_STAT(mc_capped);
 #undef SAME_STAT
     CHECK_MSG(memcmp(&a->st.gears_mean_tris_per_cell, &b->st.gears_mean_tris_per_cell, sizeof(float)) == 0 &&
                   memcmp(&a->st.gears_mean_pixels_per_cell, &b->st.gears_mean_pixels_per_cell, sizeof(float)) == 0,
@@ -352,6 +360,31 @@ static void test_options(void)
             CHECK(cross(&g_rig, &s.camera, &light, &o, what) == PN_OK);
         }
     }
+    /* Monte Carlo shadow maps: every layer count and search, 1 .. 8 rays, blur off / 1 / 8,
+     * an odd map size, no bias, no classification, another frame key, a point light; the
+     * ground marked receiver-only half the time. */
+    if (pn_build_info() & PN_BUILD_MCSM) {
+        static const uint32_t maps[3] = {64u, 37u, 256u}, rays[4] = {1u, 2u, 3u, 8u},
+                              blurs[3] = {PN_MC_BLUR_OFF, 1u, 8u};
+        for (i = 0; i < 24; i++) {
+            pn_light light = i % 7 == 3 ? point_light(&s.light) : s.light;
+            REQUIRE(pn_scene_set_receivers(g_rig.h.ctx, s.mesh.receiver_first, (i & 1) ? s.mesh.receiver_count : 0u) ==
+                    PN_OK);
+            opts(&o, &s, 40, 40, 16, PN_ALGO_MCSM);
+            o.mc_layers = 1u + (uint32_t)i % 3u;
+            o.mc_search = 1u + (uint32_t)(i / 3) % 2u;
+            o.mc_rays = rays[(i / 2) % 4];
+            o.mc_blur = blurs[(i / 4) % 3];
+            o.mc_map = maps[(i + i / 6) % 3];
+            o.mc_flags = (i % 5 == 2 ? PN_MC_NO_BIAS : 0u) | (i % 6 == 5 ? PN_MC_NO_CLASSIFY : 0u);
+            o.mc_seed = (uint32_t)i * 2654435761u;
+            snprintf(what, sizeof(what), "spheres mcsm layers %u search %u rays %u blur %u map %u flags %u%s%s",
+                     o.mc_layers, o.mc_search, o.mc_rays, o.mc_blur, o.mc_map, o.mc_flags,
+                     i % 7 == 3 ? " point light" : "", (i & 1) ? " receivers" : "");
+            CHECK(cross(&g_rig, &s.camera, &light, &o, what) == PN_OK);
+        }
+        REQUIRE(pn_scene_set_receivers(g_rig.h.ctx, 0u, 0u) == PN_OK);
+    }
     pn_setup_free(&s);
 }
 
@@ -493,7 +526,7 @@ static void test_api(void)
     /* Validation and statuses as pn_render's: no scene yet on a fresh context. */
     {
         pn_xrig fresh;
-        pn_limits lim = {64, 16, 16, 0, 0, 0, 0};
+        pn_limits lim = {64, 16, 16, 0, 0, 0, 0, 0};
         pn_camera cam = {{0, 1, 3}, {0, 0, 0}, {0, 1, 0}, 45.0f};
         pn_light light = {{0, 3, 0}, {0.5f, 0, 0}, {0, 0, 0.5f}};
         static const float quad[12] = {-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};

@@ -8,6 +8,7 @@
 
 #include "pn_mesh.h"
 #include "pn_scenes.h"
+#include "pn_setup.h"
 #include "pn_test.h"
 
 /* ---- small double vector helpers ---- */
@@ -216,6 +217,23 @@ static uint32_t distinct_vertices(const pn_mesh *m, uint32_t t0, uint32_t t1)
 #define ROOM_SHELL_TRIS 10u
 #define ROOM_SHELL_VERTS 8u
 
+/* closed-box (pn_scenes.h): the cube (12 triangles, 8 vertices), the box's surface
+ * without the cavity floor (42 triangles; 24 vertices with the floor's), the cavity
+ * floor (2), the ground (2). The box: outer [-2, 2] x [0.5, 3.5] x [-2, 2], cavity
+ * [-1.75, 1.75] x [0.75, 3.25] x [-1.75, 1.75], the hole |x|, |z| <= 0.25 through the top
+ * slab y in [3.25, 3.5]. */
+#define CB_CUBE_TRIS 12u
+#define CB_CUBE_VERTS 8u
+#define CB_SHELL_TRIS 44u /* cavity floor included */
+#define CB_SHELL_VERTS 24u
+#define CB_OUT 2.0
+#define CB_CAV 1.75
+#define CB_HOLE 0.25
+#define CB_Y0 0.5
+#define CB_FLOOR 0.75
+#define CB_CEIL 3.25
+#define CB_TOP 3.5
+
 static uint32_t expected_triangles(const char *name)
 {
     if (strcmp(name, "square") == 0) return 4u;
@@ -223,6 +241,7 @@ static uint32_t expected_triangles(const char *name)
     if (strcmp(name, "elongated-cube") == 0) return 12u + 2u;
     if (strcmp(name, "thin") == 0) return 2000u + 2u;
     if (strcmp(name, "room") == 0) return ROOM_BOXES * 12u + 3u * 762u + ROOM_SHELL_TRIS + 2u;
+    if (strcmp(name, "closed-box") == 0) return CB_CUBE_TRIS + CB_SHELL_TRIS + 2u;
     return 0u;
 }
 
@@ -232,14 +251,17 @@ static void check_scene(const char *name)
     pn_scene_view v;
     char err[256] = "";
     double lc[3], lu[3], lv[3], n[3], f[3], r[3], up[3], eye[3], target[3], centre[3];
-    double tan_half, min_side = HUGE_VAL, lo[3], hi[3];
+    double tan_half, min_side = HUGE_VAL, lo[3], hi[3], plo[3], phi[3];
     uint32_t i, ground_t0, framed_nv, behind = 0;
-    int finite = 1, in_range = 1, framed = 1, ground_flat = 1, k;
+    int finite = 1, in_range = 1, framed = 1, ground_flat = 1, recv_flat = 1, k;
     int shadow_seen = 0, lit_seen = 0;
     /* The interior scene's ceiling and the top of its walls (the shell's 4 upper corners)
      * lie behind its ceiling light, and its eye is inside the shell, which therefore
      * cannot be in frame: the view frames the furniture (test_room checks the rest). */
     int interior = strcmp(name, "room") == 0;
+    /* closed-box's eye is inside the box: the view frames the cube in it, and the shadow
+     * probes lie on the cavity floor, not the ground (test_closed_box checks the rest). */
+    int boxed = strcmp(name, "closed-box") == 0;
 
     REQUIRE(pn_builtin_scene(name, &m, &v, err, sizeof(err)) == 0);
     CHECK_MSG(m.triangle_count == expected_triangles(name), "%s: %u triangles", name,
@@ -287,6 +309,22 @@ static void check_scene(const char *name)
         tri_normal(nn, cen, &m, i);
         CHECK(nn[1] > 0.0);
     }
+    /* Receivers: a range ending at the last triangle: the ground (room: its floor, which
+     * is its ground), and closed-box's cavity floor before it; each flat, facing +y. */
+    CHECK_MSG(m.receiver_count == (boxed ? 4u : 2u) &&
+                  m.receiver_first == m.triangle_count - m.receiver_count,
+              "%s: receivers [%u, +%u)", name, (unsigned)m.receiver_first,
+              (unsigned)m.receiver_count);
+    for (i = m.receiver_first; i < m.triangle_count && i - m.receiver_first < m.receiver_count; i++) {
+        double nn[3], cen[3];
+        const uint32_t *ix = m.indices + (size_t)i * 3u;
+        float y0 = m.positions[(size_t)ix[0] * 3u + 1u];
+        tri_normal(nn, cen, &m, i);
+        if (!(nn[1] > 0.0) || m.positions[(size_t)ix[1] * 3u + 1u] != y0 ||
+            m.positions[(size_t)ix[2] * 3u + 1u] != y0)
+            recv_flat = 0;
+    }
+    CHECK_MSG(recv_flat, "%s: a receiver is not a flat triangle facing +y", name);
 
     /* Light: orthogonal non-degenerate half-edges, N = u x v points down and toward the
      * scene, every vertex strictly on the emitting side. */
@@ -325,7 +363,8 @@ static void check_scene(const char *name)
 
     /* Camera: every vertex (interior: every furniture vertex, those before the shell's and
      * the floor's) inside the frustum at aspect 1 (so at any wider aspect too). */
-    framed_nv = interior ? m.vertex_count - ROOM_SHELL_VERTS - 4u : m.vertex_count;
+    framed_nv = interior ? m.vertex_count - ROOM_SHELL_VERTS - 4u
+                         : (boxed ? CB_CUBE_VERTS : m.vertex_count);
     f2d(eye, v.eye);
     f2d(target, v.target);
     f2d(up, v.up);
@@ -355,10 +394,15 @@ static void check_scene(const char *name)
     /* Shadows visible: project the centroid of sampled occluder triangles from the light
      * centre onto the ground; that ground point is blocked (the segment passes through
      * the centroid) and at least some of them must be seen from the eye. Also some
-     * ground point that the light centre reaches must be seen. */
+     * ground point that the light centre reaches must be seen (a 4 x 4 grid, then the
+     * point beneath the light centre). closed-box: the cavity floor instead. */
+    for (k = 0; k < 3; k++) {
+        plo[k] = boxed ? -CB_CAV : lo[k];
+        phi[k] = boxed ? CB_CAV : hi[k];
+    }
     {
         uint32_t step = ground_t0 / 64u + 1u, t;
-        double gy = lo[1];
+        double gy = boxed ? CB_FLOOR : lo[1];
         for (t = 0; t < ground_t0; t += step) {
             double a[3], b[3], c[3], cen[3], g[3], s;
             vert(a, &m, m.indices[t * 3u]);
@@ -368,16 +412,20 @@ static void check_scene(const char *name)
             s = (lc[1] - gy) / (lc[1] - cen[1]);
             for (k = 0; k < 3; k++) g[k] = lc[k] + s * (cen[k] - lc[k]);
             g[1] = gy + 1e-6;
-            if (fabs(g[0]) > hi[0] || fabs(g[2]) > hi[2]) continue;
+            if (fabs(g[0]) > phi[0] || fabs(g[2]) > phi[2]) continue;
             if (seg_blocked(&m, g, lc, 0, ground_t0) && !seg_blocked(&m, g, eye, 0, ground_t0)) {
                 shadow_seen++;
             }
         }
-        for (t = 0; t < 16u && !lit_seen; t++) {
+        for (t = 0; t < 17u && !lit_seen; t++) {
             double g[3];
-            g[0] = lo[0] + (hi[0] - lo[0]) * (0.05 + 0.9 * (double)(t % 4u) / 3.0);
+            g[0] = plo[0] + (phi[0] - plo[0]) * (0.05 + 0.9 * (double)(t % 4u) / 3.0);
             g[1] = gy + 1e-6;
-            g[2] = lo[2] + (hi[2] - lo[2]) * (0.05 + 0.9 * (double)(t / 4u) / 3.0);
+            g[2] = plo[2] + (phi[2] - plo[2]) * (0.05 + 0.9 * (double)(t / 4u) / 3.0);
+            if (t == 16u) {
+                g[0] = lc[0];
+                g[2] = lc[2];
+            }
             if (!seg_blocked(&m, g, lc, 0, ground_t0) && !seg_blocked(&m, g, eye, 0, ground_t0)) {
                 lit_seen = 1;
             }
@@ -392,14 +440,21 @@ static void check_scene(const char *name)
 
 static void test_all_scenes(void)
 {
-    const char *const *names = pn_builtin_scene_names();
-    int count = 0;
-    REQUIRE(names != NULL);
+    const char *const *names = pn_builtin_scene_names_all();
+    const char *const *shared = pn_builtin_scene_names();
+    int count = 0, i;
+    REQUIRE(names != NULL && shared != NULL);
     for (; *names != NULL; names++) {
         check_scene(*names);
         count++;
     }
-    CHECK(count == 5);
+    CHECK(count == 6);
+    /* The shared list (what the demo, the golden hashes and the frame tests iterate) is
+     * the first five, without closed-box. */
+    names = pn_builtin_scene_names_all();
+    for (i = 0; shared[i] != NULL; i++) CHECK(names[i] != NULL && strcmp(shared[i], names[i]) == 0);
+    CHECK(i == 5);
+    CHECK(strcmp(names[5], "closed-box") == 0);
 }
 
 static void test_unknown_name(void)
@@ -410,11 +465,13 @@ static void test_unknown_name(void)
     memset(&v, 0x5a, sizeof(v));
     m.positions = (float *)&m; /* garbage that must be overwritten */
     m.triangle_count = 7u;
+    m.receiver_count = 3u;
     CHECK(pn_builtin_scene("no-such-scene", &m, &v, err, sizeof(err)) != 0);
     CHECK(err[0] != '\0');
     CHECK(strstr(err, "no-such-scene") != NULL);
+    CHECK(strstr(err, "closed-box") != NULL);
     CHECK(m.positions == NULL && m.indices == NULL && m.triangle_count == 0u &&
-          m.vertex_count == 0u);
+          m.vertex_count == 0u && m.receiver_count == 0u);
     CHECK(((unsigned char *)&v)[0] == 0x5a); /* view not written on failure */
     CHECK(pn_builtin_scene("no-such-scene", &m, NULL, NULL, 0) != 0);
     CHECK(pn_builtin_scene(NULL, &m, NULL, err, sizeof(err)) != 0);
@@ -425,7 +482,7 @@ static void test_unknown_name(void)
 
 static void test_deterministic(void)
 {
-    const char *const *names = pn_builtin_scene_names();
+    const char *const *names = pn_builtin_scene_names_all();
     for (; *names != NULL; names++) {
         pn_mesh a, b;
         pn_scene_view va, vb;
@@ -709,6 +766,205 @@ static void test_room(void)
     pn_mesh_free(&m);
 }
 
+/* closed-box: is x inside the box's material (the outer box without the cavity and the
+ * hole)? Open on every boundary: the callers stay 1e-3 off the faces. */
+static int cb_material(const double x[3])
+{
+    int in_out = fabs(x[0]) < CB_OUT && fabs(x[2]) < CB_OUT && x[1] > CB_Y0 && x[1] < CB_TOP;
+    int in_cav = fabs(x[0]) < CB_CAV && fabs(x[2]) < CB_CAV && x[1] > CB_FLOOR && x[1] < CB_CEIL;
+    int in_hole = fabs(x[0]) < CB_HOLE && fabs(x[2]) < CB_HOLE && x[1] >= CB_CEIL - 1e-9;
+    return in_out && !in_cav && !in_hole;
+}
+
+/* Light sample (i, j) of k x k of view v. */
+static void light_sample(double S[3], const pn_scene_view *v, int i, int j, int k)
+{
+    double a = (double)(2 * i + 1) / k - 1.0, b = (double)(2 * j + 1) / k - 1.0;
+    int c;
+    for (c = 0; c < 3; c++) S[c] = (double)v->light_center[c] + a * v->light_u[c] + b * v->light_v[c];
+}
+
+/* The leak scene: the box one closed surface of genus 0 facing out of its material, the
+ * hole straight under the light and inside its footprint, the cube standing on the
+ * cavity floor, the eye inside the cavity; and the light gets in through the hole only:
+ * every unblocked segment from a point inside to a light sample crosses the top inside
+ * the hole, the floor beneath the light sees all of it, the cavity's far corners none. */
+static void test_closed_box(void)
+{
+    pn_mesh m;
+    pn_scene_view v;
+    const uint32_t s0 = CB_CUBE_TRIS, s1 = CB_CUBE_TRIS + CB_SHELL_TRIS;
+    const int k = 8;
+    uint32_t t, i, hole_top = 0, hole_ceil = 0;
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    int outward = 1, cube_in = 1, through_hole = 1, c;
+    int probes = 0, lit_probes = 0, lit_samples = 0, wall_lit = 0, under = 0, corner = 0;
+    REQUIRE(pn_builtin_scene("closed-box", &m, &v, NULL, 0) == 0);
+    REQUIRE(m.triangle_count == expected_triangles("closed-box"));
+    CHECK(m.vertex_count == CB_CUBE_VERTS + CB_SHELL_VERTS + 4u);
+    CHECK(m.receiver_first == s1 - 2u && m.receiver_count == 4u);
+
+    /* The cube: closed, outward, 0.5 on a side, standing on the cavity floor, inside. */
+    CHECK(closed_manifold(&m, 0, s0));
+    CHECK(distinct_vertices(&m, 0, s0) == CB_CUBE_VERTS);
+    CHECK(fabs(signed_volume(&m, 0, s0) - 0.125) < 1e-12);
+    for (i = 0; i < CB_CUBE_VERTS; i++) {
+        const float *p = m.positions + (size_t)i * 3u;
+        if (!(fabs(p[0]) < CB_CAV && fabs(p[2]) < CB_CAV && p[1] >= CB_FLOOR && p[1] < CB_CEIL)) cube_in = 0;
+        if (p[1] < lo[1]) lo[1] = p[1];
+    }
+    CHECK(cube_in);
+    CHECK(lo[1] == CB_FLOOR);
+
+    /* The box: one closed, consistently wound surface of genus 0 (V - E + F = 2) on its
+     * own 24 vertices; its volume is the material's (outer - cavity - hole), so it faces
+     * out of the material overall, and every face does locally. */
+    CHECK(closed_manifold(&m, s0, s1));
+    CHECK(distinct_vertices(&m, s0, s1) == CB_SHELL_VERTS);
+    CHECK((int)CB_SHELL_VERTS - (int)(3u * CB_SHELL_TRIS / 2u) + (int)CB_SHELL_TRIS == 2);
+    {
+        double vol = 2.0 * CB_OUT * 2.0 * CB_OUT * (CB_TOP - CB_Y0) -
+                     2.0 * CB_CAV * 2.0 * CB_CAV * (CB_CEIL - CB_FLOOR) -
+                     2.0 * CB_HOLE * 2.0 * CB_HOLE * (CB_TOP - CB_CEIL);
+        CHECK_MSG(fabs(signed_volume(&m, s0, s1) - vol) < 1e-9, "volume %.9f, expected %.9f",
+                  signed_volume(&m, s0, s1), vol);
+    }
+    for (t = s0; t < s1; t++) {
+        double nn[3], cen[3], a[3], b[3];
+        tri_normal(nn, cen, &m, t);
+        normalize3(nn);
+        for (c = 0; c < 3; c++) {
+            a[c] = cen[c] + 1e-3 * nn[c];
+            b[c] = cen[c] - 1e-3 * nn[c];
+        }
+        if (cb_material(a) || !cb_material(b)) outward = 0;
+    }
+    CHECK_MSG(outward, "a face of the box does not face out of its material");
+    for (c = 0; c < 3; c++) {
+        lo[c] = HUGE_VAL;
+        hi[c] = -HUGE_VAL;
+    }
+    for (i = s0 * 3u; i < s1 * 3u; i++) {
+        const float *p = m.positions + (size_t)m.indices[i] * 3u;
+        for (c = 0; c < 3; c++) {
+            if (p[c] < lo[c]) lo[c] = p[c];
+            if (p[c] > hi[c]) hi[c] = p[c];
+        }
+    }
+    CHECK(lo[0] == -CB_OUT && lo[1] == CB_Y0 && lo[2] == -CB_OUT);
+    CHECK(hi[0] == CB_OUT && hi[1] == CB_TOP && hi[2] == CB_OUT);
+    CHECK(m.bbox_min[1] == 0.0f && m.bbox_max[1] == (float)CB_TOP);
+    CHECK(m.bbox_min[0] < -CB_OUT && m.bbox_max[0] > CB_OUT); /* the ground reaches past it */
+
+    /* The hole: 4 corners at the top and 4 at the cavity ceiling, |x| = |z| = 0.25,
+     * centred straight under the light centre and inside the light's footprint. */
+    for (i = CB_CUBE_VERTS; i < CB_CUBE_VERTS + CB_SHELL_VERTS; i++) {
+        const float *p = m.positions + (size_t)i * 3u;
+        if (fabs(p[0]) == CB_HOLE && fabs(p[2]) == CB_HOLE) {
+            if (p[1] == CB_TOP) hole_top++;
+            if (p[1] == CB_CEIL) hole_ceil++;
+        }
+    }
+    CHECK(hole_top == 4u && hole_ceil == 4u);
+    CHECK(v.light_center[0] == 0.0f && v.light_center[2] == 0.0f);
+    CHECK(v.light_center[1] > CB_TOP);
+    for (c = 0; c < 3; c += 2) CHECK(fabs(v.light_u[c]) + fabs(v.light_v[c]) > CB_HOLE);
+    /* The eye: inside the cavity, off its faces. */
+    CHECK(fabs(v.eye[0]) < CB_CAV && fabs(v.eye[2]) < CB_CAV && v.eye[1] > CB_FLOOR &&
+          v.eye[1] < CB_CEIL);
+
+    /* Light gets in through the hole only. Probes on the cavity floor (a 15 x 15 grid)
+     * and on its walls (15 x 9 a wall), 1e-6 off the face, against k x k samples. */
+    for (i = 0; i < 225u + 4u * 135u; i++) {
+        double P[3], a = -1.6 + 3.2 * (double)(i % 15u) / 14.0;
+        int lit = 0, si, sj, wall = i >= 225u;
+        if (!wall) {
+            P[0] = a;
+            P[1] = CB_FLOOR + 1e-6;
+            P[2] = -1.6 + 3.2 * (double)(i / 15u) / 14.0;
+        } else {
+            uint32_t w = (i - 225u) / 135u, r = (i - 225u) % 135u;
+            double along = -1.6 + 3.2 * (double)(r % 15u) / 14.0, d = CB_CAV - 1e-6;
+            P[1] = CB_FLOOR + 0.1 + 2.3 * (double)(r / 15u) / 8.0;
+            P[0] = w == 0 ? d : (w == 1 ? -d : along);
+            P[2] = w == 2 ? d : (w == 3 ? -d : along);
+        }
+        for (sj = 0; sj < k; sj++) {
+            for (si = 0; si < k; si++) {
+                double S[3], f, x, z;
+                light_sample(S, &v, si, sj, k);
+                if (seg_blocked(&m, P, S, 0, m.triangle_count)) continue;
+                lit++;
+                f = (CB_TOP - P[1]) / (S[1] - P[1]);
+                x = P[0] + f * (S[0] - P[0]);
+                z = P[2] + f * (S[2] - P[2]);
+                if (!(fabs(x) <= CB_HOLE && fabs(z) <= CB_HOLE)) through_hole = 0;
+            }
+        }
+        probes++;
+        lit_samples += lit;
+        if (lit > 0) lit_probes++;
+        if (wall && lit > 0) wall_lit++;
+    }
+    CHECK_MSG(through_hole, "light reaches the inside of the box past the hole");
+    CHECK(lit_probes > 0 && lit_probes < probes / 4);
+    CHECK(wall_lit == 0); /* the hole's light falls on the floor (and the cube) only */
+    /* Beneath the light centre: every sample; the cavity floor's corners: none. */
+    for (i = 0; i < 5u; i++) {
+        double P[3] = {0.0, CB_FLOOR + 1e-6, 0.0};
+        int si, sj, n = 0;
+        if (i > 0) {
+            P[0] = (i & 1u) ? 1.7 : -1.7;
+            P[2] = (i & 2u) ? 1.7 : -1.7;
+        }
+        for (sj = 0; sj < k; sj++) {
+            for (si = 0; si < k; si++) {
+                double S[3];
+                light_sample(S, &v, si, sj, k);
+                n += !seg_blocked(&m, P, S, 0, m.triangle_count);
+            }
+        }
+        if (i == 0) under = n;
+        else corner += n;
+    }
+    CHECK(under == k * k);
+    CHECK(corner == 0);
+    fprintf(stderr, "  closed-box: %d/%d probes inside lit (%d samples), none on the walls\n",
+            lit_probes, probes, lit_samples);
+    pn_mesh_free(&m);
+}
+
+/* Receiver ranges through pn_mesh_add_ground and pn_setup_load. */
+static void test_receiver_ranges(void)
+{
+    pn_mesh m;
+    pn_setup s;
+    char err[256];
+    REQUIRE(pn_builtin_scene("elongated-cube", &m, NULL, NULL, 0) == 0);
+    CHECK(m.receiver_first == 12u && m.receiver_count == 2u);
+    /* A range ending at the last triangle takes the new ground in. */
+    REQUIRE(pn_mesh_add_ground(&m, NULL, 0) == 0);
+    CHECK(m.triangle_count == 16u && m.receiver_first == 12u && m.receiver_count == 4u);
+    /* Any other range is replaced by the new ground; so is none. */
+    m.receiver_first = 0u;
+    m.receiver_count = 12u;
+    REQUIRE(pn_mesh_add_ground(&m, NULL, 0) == 0);
+    CHECK(m.triangle_count == 18u && m.receiver_first == 16u && m.receiver_count == 2u);
+    m.receiver_first = 0u;
+    m.receiver_count = 0u;
+    REQUIRE(pn_mesh_add_ground(&m, NULL, 0) == 0);
+    CHECK(m.triangle_count == 20u && m.receiver_first == 18u && m.receiver_count == 2u);
+    pn_mesh_free(&m);
+    CHECK(m.receiver_first == 0u && m.receiver_count == 0u);
+    /* The setup keeps the scene's range, with --ground on extended over the new plane. */
+    REQUIRE(pn_setup_load(&s, "room", 1, -1, err, sizeof(err)) == 0);
+    CHECK(s.mesh.receiver_count == 2u && s.mesh.receiver_first == s.mesh.triangle_count - 2u);
+    pn_setup_free(&s);
+    REQUIRE(pn_setup_load(&s, "closed-box", 1, 1, err, sizeof(err)) == 0);
+    CHECK(s.mesh.triangle_count == 60u && s.mesh.receiver_first == 54u && s.mesh.receiver_count == 6u);
+    pn_setup_free(&s);
+}
+
 /* ---- the square scene and its closed form ---- */
 
 static uint32_t rng_state = 12345u;
@@ -891,6 +1147,8 @@ int main(void)
     RUN(test_box_closed);
     RUN(test_thin_slivers);
     RUN(test_room);
+    RUN(test_closed_box);
+    RUN(test_receiver_ranges);
     RUN(test_square_mesh_matches_params);
     RUN(test_square_closed_form_values);
     RUN(test_square_convergence);

@@ -371,6 +371,150 @@ static void test_no_scene(void)
     pn_host_close(&h2);
 }
 
+/* pn_scene_set_receivers: its statuses, and no effect on any algorithm but MCSM. The
+ * marking itself has no public getter: that a failed call leaves it alone can only be
+ * seen through MCSM frames; here every other algorithm's bytes must not move whatever
+ * the marking, and the scene (its counts and BVH) must not either. */
+static const struct {
+    pn_algo algo;
+    uint32_t build;
+    const char *name;
+} RECV_ALGOS[] = {{PN_ALGO_REFERENCE, PN_BUILD_REFERENCE, "reference"},
+                  {PN_ALGO_GEARS, PN_BUILD_GEARS, "gears"},
+                  {PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE, "raytrace"},
+                  {PN_ALGO_SRT, PN_BUILD_SRT, "srt"},
+                  {PN_ALGO_OCCTEX, PN_BUILD_OCCTEX, "occtex"}};
+#define RECV_N (sizeof(RECV_ALGOS) / sizeof(RECV_ALGOS[0]))
+#define RECV_PIXELS (64u * 64u)
+
+/* Every built algorithm's visibility into vis[a]; 0 if one could not render. */
+static int recv_frames(const pn_setup *s, float vis[RECV_N][RECV_PIXELS])
+{
+    size_t a;
+    for (a = 0; a < RECV_N; a++) {
+        pn_frame_options o = OPT;
+        pn_frame fr;
+        pn_status st;
+        memset(vis[a], 0, sizeof(vis[a]));
+        if (!(pn_build_info() & RECV_ALGOS[a].build)) continue;
+        o.algo = RECV_ALGOS[a].algo;
+        o.eps = s->eps;
+        o.gears_grid = 32;
+        st = pn_render(H.ctx, &s->camera, &s->light, &o, &fr);
+        CHECK_MSG(st == PN_OK, "%s: %s", RECV_ALGOS[a].name, pn_last_error(H.ctx));
+        if (st != PN_OK) return 0;
+        CHECK(fr.width * fr.height == RECV_PIXELS);
+        if (fr.width * fr.height != RECV_PIXELS) return 0;
+        memcpy(vis[a], fr.visibility, sizeof(vis[a]));
+    }
+    return 1;
+}
+
+static int recv_range_error(uint32_t first, uint32_t count)
+{
+    pn_status st = pn_scene_set_receivers(H.ctx, first, count);
+    CHECK_MSG(st == PN_E_INDEX_RANGE, "(%u, %u): status %d", (unsigned)first, (unsigned)count, (int)st);
+    CHECK_MSG(strstr(pn_last_error(H.ctx), "pn_scene_set_receivers") != NULL, "(%u, %u): message '%s'",
+              (unsigned)first, (unsigned)count, pn_last_error(H.ctx));
+    return st == PN_E_INDEX_RANGE;
+}
+
+static void test_receivers(void)
+{
+    static float before[RECV_N][RECV_PIXELS], after[RECV_N][RECV_PIXELS];
+    pn_setup sq, bad;
+    pn_host h2;
+    pn_stats s0, s1;
+    char err[256];
+    uint32_t n;
+    size_t a;
+
+    CHECK(pn_scene_set_receivers(NULL, 0, 0) == PN_E_INVALID_ARG);
+    CHECK(pn_setup_upload(NULL, &S) == PN_E_INVALID_ARG);
+    CHECK(pn_setup_upload(H.ctx, NULL) == PN_E_INVALID_ARG);
+    /* No scene yet: PN_E_NO_SCENE, with a message, whatever the range. */
+    REQUIRE(pn_host_open(&h2, 16, 8, 8, 1, err, sizeof(err)) == 0);
+    CHECK(pn_scene_set_receivers(h2.ctx, 0, 0) == PN_E_NO_SCENE);
+    CHECK(strstr(pn_last_error(h2.ctx), "pn_scene_set_receivers") != NULL);
+    CHECK(pn_scene_set_receivers(h2.ctx, 5, 0xFFFFFFFFu) == PN_E_NO_SCENE);
+    pn_host_close(&h2);
+
+    /* A small scene (the square: occluder 0..1, ground 2..3), set without the marking. */
+    REQUIRE(pn_setup_load(&sq, "square", 1, -1, err, sizeof(err)) == 0);
+    n = sq.mesh.triangle_count;
+    CHECK(n == 4u && sq.mesh.receiver_first == 2u && sq.mesh.receiver_count == 2u);
+    REQUIRE(pn_scene_set(H.ctx, sq.mesh.positions, sq.mesh.vertex_count, sq.mesh.indices, n) == PN_OK);
+    CHECK(pn_get_stats(H.ctx, &s0) == PN_OK);
+    if (!recv_frames(&sq, before)) {
+        pn_setup_free(&sq);
+        return;
+    }
+    {
+        /* The comparisons below mean something: the reference frame has shadow. */
+        uint32_t i, dark = 0, part = 0;
+        for (i = 0; i < RECV_PIXELS; i++) {
+            dark += before[0][i] == 0.0f;
+            part += before[0][i] > 0.0f && before[0][i] < 1.0f;
+        }
+        CHECK(dark > 0u && part > 0u);
+    }
+
+    /* Out of range: first beyond the scene, first + count past it by one, and sums that
+     * wrap around uint32. Each leaves the scene as it was. */
+    recv_range_error(n + 1u, 0);
+    recv_range_error(0xFFFFFFFFu, 0);
+    recv_range_error(0, n + 1u);
+    recv_range_error(1, n);
+    recv_range_error(n, 1);
+    recv_range_error(1, 0xFFFFFFFFu);
+    recv_range_error(0xFFFFFFFFu, 1);
+    recv_range_error(2, 0xFFFFFFFEu);
+    CHECK(pn_get_stats(H.ctx, &s1) == PN_OK);
+    CHECK(s1.triangles == s0.triangles && s1.degenerate_triangles == s0.degenerate_triangles &&
+          s1.bvh_nodes == s0.bvh_nodes && s1.bvh_depth == s0.bvh_depth);
+
+    /* In range: up to the last triangle, empty ranges anywhere up to the end. */
+    CHECK(pn_scene_set_receivers(H.ctx, 0, n) == PN_OK);
+    CHECK(pn_scene_set_receivers(H.ctx, n, 0) == PN_OK);
+    CHECK(pn_scene_set_receivers(H.ctx, 0, 0) == PN_OK);
+    CHECK(pn_scene_set_receivers(H.ctx, n - 1u, 1) == PN_OK);
+    CHECK(pn_scene_set_receivers(H.ctx, 2, 2) == PN_OK); /* the ground */
+    CHECK(pn_get_stats(H.ctx, &s1) == PN_OK);
+    CHECK(s1.triangles == s0.triangles && s1.degenerate_triangles == s0.degenerate_triangles &&
+          s1.bvh_nodes == s0.bvh_nodes && s1.bvh_depth == s0.bvh_depth);
+
+    /* The ground marked: no algorithm but MCSM sees it, to the byte. */
+    if (recv_frames(&sq, after)) {
+        for (a = 0; a < RECV_N; a++)
+            CHECK_MSG(memcmp(before[a], after[a], sizeof(before[a])) == 0, "%s: visibility changed by the marking",
+                      RECV_ALGOS[a].name);
+    }
+    /* A failed call after a marking, then everything marked: the same bytes again. */
+    recv_range_error(3, 2);
+    CHECK(pn_scene_set_receivers(H.ctx, 0, n) == PN_OK);
+    if (recv_frames(&sq, after)) {
+        for (a = 0; a < RECV_N; a++)
+            CHECK_MSG(memcmp(before[a], after[a], sizeof(before[a])) == 0, "%s: visibility changed by marking all",
+                      RECV_ALGOS[a].name);
+    }
+
+    /* pn_setup_upload: the scene, then its range; the range's status when only it fails
+     * (the scene is set by then), pn_scene_set's when the scene fails. */
+    CHECK(pn_setup_upload(H.ctx, &sq) == PN_OK);
+    if (recv_frames(&sq, after)) CHECK(memcmp(before[0], after[0], sizeof(before[0])) == 0);
+    bad = sq;
+    bad.mesh.receiver_first = 3u;
+    bad.mesh.receiver_count = 2u;
+    CHECK(pn_setup_upload(H.ctx, &bad) == PN_E_INDEX_RANGE);
+    CHECK(has_message());
+    CHECK(pn_get_stats(H.ctx, &s1) == PN_OK && s1.triangles == n);
+    bad.mesh.indices = NULL;
+    CHECK(pn_setup_upload(H.ctx, &bad) == PN_E_INVALID_ARG);
+    CHECK(strstr(pn_last_error(H.ctx), "pn_scene_set") != NULL);
+    CHECK(pn_get_stats(H.ctx, &s1) == PN_OK && s1.triangles == n);
+    pn_setup_free(&sq);
+}
+
 static void test_status_strings(void)
 {
     int s;
@@ -404,6 +548,7 @@ int main(void)
     RUN(test_subnormal_triangles);
     RUN(test_float_frames);
     RUN(test_no_scene);
+    RUN(test_receivers);
     RUN(test_status_strings);
     pn_host_close(&H);
     pn_setup_free(&S);

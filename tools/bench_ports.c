@@ -59,7 +59,7 @@ static int build_time(const char *dir, double *build_ms, double *warmup_ms)
     fflush(NULL);
     pid = fork();
     if (pid == 0) {
-        pn_limits lim = {16, 16, 16, 1024, 16, 0, 0};
+        pn_limits lim = {16, 16, 16, 1024, 16, 0, 0, 0};
         size_t bytes;
         void *mem;
         pn_context *ctx;
@@ -124,7 +124,7 @@ static int bench_scene(const char *path, uint32_t w, uint32_t h, uint32_t k, int
     }
     *tris = s.mesh.triangle_count;
     if (pn_host_open(&host, s.mesh.triangle_count, w, h, 2, err, sizeof(err)) != 0 ||
-        pn_scene_set(host.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) != PN_OK ||
+        pn_setup_upload(host.ctx, &s) != PN_OK ||
         pn_cl_open(host.ctx, NULL, &cl) != PN_OK) {
         fprintf(stderr, "bench_ports: %s: %s\n", path, host.ctx ? pn_last_error(host.ctx) : err);
         pn_setup_free(&s);

@@ -302,8 +302,7 @@ static void job_run(scene_state *ss, job *j, const pn_light *light, int rep)
     if (j->kind == JOB_SCENE_SET) {
         pn_stats st;
         pn_setup *s = &ss->s;
-        if (pn_scene_set(ss->h.ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices,
-                         s->mesh.triangle_count) != PN_OK) {
+        if (pn_setup_upload(ss->h.ctx, s) != PN_OK) {
             snprintf(j->err, sizeof(j->err), "pn_scene_set: %s", pn_last_error(ss->h.ctx));
             j->ok = 0;
             return;
@@ -538,8 +537,7 @@ static int scene_open(const bench_opts *o, scene_state *ss, const char *source, 
     ss->port = port;
     ss->threads = (uint32_t)port_threads(o, port);
     if (pn_host_open(&ss->h, ss->s.mesh.triangle_count, max_size, max_size, (int)ss->threads, err, sizeof(err)) != 0 ||
-        pn_scene_set(ss->h.ctx, ss->s.mesh.positions, ss->s.mesh.vertex_count, ss->s.mesh.indices,
-                     ss->s.mesh.triangle_count) != PN_OK) {
+        pn_setup_upload(ss->h.ctx, &ss->s) != PN_OK) {
         progress("%s: %s", source, ss->h.ctx ? pn_last_error(ss->h.ctx) : err);
         return 1;
     }

@@ -33,12 +33,13 @@ static const pn_algo_name pn_algos[] = {
     {"gears", PN_ALGO_GEARS, PN_BUILD_GEARS},
     {"srt", PN_ALGO_SRT, PN_BUILD_SRT},
     {"occtex", PN_ALGO_OCCTEX, PN_BUILD_OCCTEX},
+    {"mcsm", PN_ALGO_MCSM, PN_BUILD_MCSM},
     {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},
 };
 #define PN_ALGO_COUNT (sizeof(pn_algos) / sizeof(pn_algos[0]))
 /* The demo renders the first entries only: raytrace is a baseline with the reference's bits
  * by construction and the slowest of all (k^2 rays per pixel); the benchmark measures it. */
-#define PN_DEMO_ALGO_COUNT 4u
+#define PN_DEMO_ALGO_COUNT 5u
 
 static void usage(FILE *f)
 {
@@ -54,6 +55,8 @@ static void usage(FILE *f)
             "                  [--srt-map N] [--srt-delta D] [--srt-no-conservative] [--srt-force-pip]\n"
             "                  [--occ-slices N] [--occ-map N] [--occ-filter nbuffer|sat|mipmap]\n"
             "                  [--occ-combine product|max|sum] [--occ-leak-fix]\n"
+            "                  [--mc-layers 1|2|3] [--mc-search linear|hier] [--mc-rays N] [--mc-blur N|off]\n"
+            "                  [--mc-map N] [--mc-no-bias] [--mc-no-classify] [--mc-seed N]\n"
             "                  --out image.png [--vis vis.pfm] [--ids ids.bin] [--stats stats.json]\n"
             "  penumbra demo [--out DIR] [--size WxH] [--k K] [--threads N]\n"
             "  penumbra info\n"
@@ -203,6 +206,13 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
             st->occ_map, st->occ_slices, (unsigned long long)st->occ_texels_set, (unsigned long long)st->occ_lookups);
     fprintf(f, "  \"ms_occ_slice\": %.3f,\n  \"ms_occ_filter\": %.3f,\n  \"ms_occ_lookup\": %.3f,\n",
             (double)st->occ_ns_slice * 1e-6, (double)st->occ_ns_filter * 1e-6, (double)st->occ_ns_lookup * 1e-6);
+    fprintf(f, "  \"mc_map\": %u,\n  \"mc_lit\": %u,\n  \"mc_umbra\": %u,\n  \"mc_penumbra\": %u,\n",
+            st->mc_map, st->mc_lit, st->mc_umbra, st->mc_penumbra);
+    fprintf(f, "  \"mc_rays\": %llu,\n  \"mc_steps\": %llu,\n  \"mc_capped\": %u,\n", (unsigned long long)st->mc_rays,
+            (unsigned long long)st->mc_steps, st->mc_capped);
+    fprintf(f, "  \"ms_mc_layers\": %.3f,\n  \"ms_mc_nbuffer\": %.3f,\n  \"ms_mc_rays\": %.3f,\n  \"ms_mc_blur\": %.3f,\n",
+            (double)st->mc_ns_layers * 1e-6, (double)st->mc_ns_nbuffer * 1e-6, (double)st->mc_ns_rays * 1e-6,
+            (double)st->mc_ns_blur * 1e-6);
     fprintf(f, "  \"mean_visibility\": %.9g\n}\n", mean);
     return fclose(f) != 0;
 }
@@ -301,6 +311,22 @@ static int cmd_render(int argc, char **argv)
             else BAD(a);
         }
         else if (strcmp(a, "--occ-leak-fix") == 0) opt.occ_flags |= PN_OCC_LEAK_FIX;
+        else if (strcmp(a, "--mc-layers") == 0) { NEED_ARG; opt.mc_layers = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--mc-search") == 0) {
+            NEED_ARG;
+            if (strcmp(v, "linear") == 0) opt.mc_search = PN_MC_SEARCH_LINEAR;
+            else if (strcmp(v, "hier") == 0) opt.mc_search = PN_MC_SEARCH_HIER;
+            else BAD(a);
+        }
+        else if (strcmp(a, "--mc-rays") == 0) { NEED_ARG; opt.mc_rays = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--mc-blur") == 0) {
+            NEED_ARG;
+            opt.mc_blur = strcmp(v, "off") == 0 ? PN_MC_BLUR_OFF : (uint32_t)strtoul(v, NULL, 10);
+        }
+        else if (strcmp(a, "--mc-map") == 0) { NEED_ARG; opt.mc_map = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--mc-no-bias") == 0) opt.mc_flags |= PN_MC_NO_BIAS;
+        else if (strcmp(a, "--mc-no-classify") == 0) opt.mc_flags |= PN_MC_NO_CLASSIFY;
+        else if (strcmp(a, "--mc-seed") == 0) { NEED_ARG; opt.mc_seed = (uint32_t)strtoul(v, NULL, 10); }
         else if (strcmp(a, "--threads") == 0) { NEED_ARG; threads = atoi(v); if (threads < 1) BAD(a); }
         else if (strcmp(a, "--out") == 0) { NEED_ARG; out = v; }
         else if (strcmp(a, "--vis") == 0) { NEED_ARG; vis = v; }
@@ -348,7 +374,7 @@ static int cmd_render(int argc, char **argv)
     h.threads.progress = 1;
     h.threads.label = "render";
     memset(&cp, 0, sizeof(cp));
-    if ((rs = pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count)) != PN_OK) {
+    if ((rs = pn_setup_upload(h.ctx, &s)) != PN_OK) {
         fprintf(stderr, "penumbra: scene rejected: %s (%s)\n", pn_last_error(h.ctx), pn_status_str(rs));
         goto fail;
     }
@@ -449,8 +475,7 @@ static int cmd_demo(int argc, char **argv)
         tmp = (uint8_t *)malloc(n * 4);
         kept = (uint8_t *)malloc(n * 8);
         memset(&cp, 0, sizeof(cp));
-        if (!ref || !tmp || !kept || pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices,
-                                                  s.mesh.triangle_count) != PN_OK) {
+        if (!ref || !tmp || !kept || pn_setup_upload(h.ctx, &s) != PN_OK) {
             fprintf(stderr, "penumbra: %s: %s\n", names[si], h.ctx ? pn_last_error(h.ctx) : "out of memory");
             rc = 1;
         }

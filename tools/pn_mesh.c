@@ -157,6 +157,15 @@ int pn_mesh_add_ground(pn_mesh *mesh, char *err, size_t err_size)
     idx[0] = v0;      idx[1] = v0 + 3u; idx[2] = v0 + 2u;
     idx[3] = v0;      idx[4] = v0 + 2u; idx[5] = v0 + 1u;
 
+    /* The receiver range: contiguous by definition, so it can take the new ground in only
+     * when it ends where the ground begins. */
+    if (mesh->receiver_count > 0u && mesh->receiver_first <= mesh->triangle_count &&
+        mesh->receiver_count == mesh->triangle_count - mesh->receiver_first) {
+        mesh->receiver_count += 2u;
+    } else {
+        mesh->receiver_first = mesh->triangle_count;
+        mesh->receiver_count = 2u;
+    }
     mesh->vertex_count += 4u;
     mesh->triangle_count += 2u;
     return 0;

@@ -1,7 +1,9 @@
 /* pn_scenes.c - built-in procedural scenes (see pn_scenes.h).
  *
  * Layout of every mesh: the scene's own geometry first, in the order described at each
- * builder, then the ground (two triangles, four vertices) last. Tests rely on it.
+ * builder, then the ground (two triangles, four vertices) last. Tests rely on it. The
+ * receiver range (pn_mesh.receiver_*) ends at the last triangle: the ground, and for
+ * closed-box the box's inner floor just before it (pn_sc_receivers_next before them).
  *
  * Determinism: all randomness comes from an integer hash (lowbias32) of (seed, counter);
  * positions are computed in double and rounded to float once. The sphere and sliver
@@ -29,6 +31,7 @@ typedef struct pn_sc_builder {
     float *pos;
     uint32_t *idx;
     uint32_t nv, nt, cap_v, cap_t;
+    uint32_t recv_first, recv_count; /* the mesh's receiver range (pn_mesh.h) */
     int overflow;
 } pn_sc_builder;
 
@@ -74,6 +77,13 @@ static void pn_sc_tri(pn_sc_builder *b, uint32_t a, uint32_t c1, uint32_t c2)
     b->idx[(size_t)t * 3u + 1u] = c1;
     b->idx[(size_t)t * 3u + 2u] = c2;
     b->nt++;
+}
+
+/* The next `count` triangles pushed are the scene's receivers (pn_mesh.receiver_*). */
+static void pn_sc_receivers_next(pn_sc_builder *b, uint32_t count)
+{
+    b->recv_first = b->nt;
+    b->recv_count = count;
 }
 
 /* Quad a-b-c-d in CCW order seen from outside, split along a-c. */
@@ -270,6 +280,7 @@ static int pn_sc_build_square(pn_sc_builder *b, pn_scene_view *v)
         return 1;
     }
     pn_sc_hsquare(b, 0.0, p.occluder_y, 0.0, p.occluder_half);
+    pn_sc_receivers_next(b, 2u);
     pn_sc_hsquare(b, 0.0, p.ground_y, 0.0, p.ground_half);
     /* From (0, 9, 9) the occluder hides the ground at z in about [-3.2, -1.9], beyond the
      * whole shadow (|x|, |z| < 1.5); the whole ground is in frame. */
@@ -293,6 +304,7 @@ static int pn_sc_build_spheres(pn_sc_builder *b, pn_scene_view *v)
             pn_sc_sphere(b, (double)(ix - 4), 1.5, (double)(iz - 4), 0.4);
         }
     }
+    pn_sc_receivers_next(b, 2u);
     pn_sc_hsquare(b, 0.0, 0.0, 0.0, 7.0);
     pn_sc_view(v, 0.0f, 14.0f, 15.0f, -0.5f, 52.0f, 8.0f, 2.0f);
     return 0;
@@ -317,6 +329,7 @@ static int pn_sc_build_elongated_cube(pn_sc_builder *b, pn_scene_view *v)
         return 1;
     }
     pn_sc_box(b, lo, hi);
+    pn_sc_receivers_next(b, 2u);
     pn_sc_hsquare(b, 0.0, 0.0, 0.0, 5.0);
     /* Low enough (about 18 degrees above the ground at the box) that the line of sight to
      * the ground point beneath the box passes under it, through the 1-unit gap. */
@@ -383,6 +396,7 @@ static int pn_sc_build_thin(pn_sc_builder *b, pn_scene_view *v)
         a2 = pn_sc_vertex(b, px + half_len * d[0], py + half_len * d[1], pz + half_len * d[2]);
         pn_sc_tri(b, a0, a1, a2);
     }
+    pn_sc_receivers_next(b, 2u);
     pn_sc_hsquare(b, 0.0, 0.0, 0.0, 6.0);
     pn_sc_view(v, 0.0f, 12.0f, 13.0f, -0.5f, 52.0f, 6.0f, 0.25f);
     return 0;
@@ -493,6 +507,7 @@ static int pn_sc_build_room(pn_sc_builder *b, pn_scene_view *v)
     pn_sc_sphere(b, -0.5, 2.24, -2.8, 0.15);
     pn_sc_sphere(b, -1.5, 0.25, 0.9, 0.25);
     pn_sc_box_ex(b, shell_lo, shell_hi, 0.0, 1);
+    pn_sc_receivers_next(b, 2u);
     pn_sc_hsquare(b, 0.0, 0.0, 0.0, 3.0);
     /* From the front-right corner toward the back-left one: every furniture vertex in frame
      * (not the shell, which surrounds the eye). */
@@ -501,21 +516,148 @@ static int pn_sc_build_room(pn_sc_builder *b, pn_scene_view *v)
     return 0;
 }
 
+/* Quad a-b-c-d (a convex planar polygon in either winding), split along a-c, wound so
+ * that its normal has a positive component along dir. */
+static void pn_sc_quad_toward(pn_sc_builder *b, uint32_t a, uint32_t c1, uint32_t c2, uint32_t d,
+                              const double dir[3])
+{
+    double p[3][3], e1[3], e2[3], n[3];
+    const uint32_t q[3] = {a, c1, c2};
+    int i, k;
+    if (b->overflow) {
+        return;
+    }
+    for (i = 0; i < 3; i++) {
+        for (k = 0; k < 3; k++) p[i][k] = (double)b->pos[(size_t)q[i] * 3u + (size_t)k];
+    }
+    for (k = 0; k < 3; k++) {
+        e1[k] = p[1][k] - p[0][k];
+        e2[k] = p[2][k] - p[0][k];
+    }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    if (n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2] > 0.0) {
+        pn_sc_quad(b, a, c1, c2, d);
+    } else {
+        pn_sc_quad(b, a, d, c2, c1);
+    }
+}
+
+/* Four vertices at height y on the square |x|, |z| = h, in cyclic order around y. */
+static void pn_sc_ring(pn_sc_builder *b, uint32_t out[4], double y, double h)
+{
+    static const double sx[4] = {-1.0, 1.0, 1.0, -1.0}, sz[4] = {-1.0, -1.0, 1.0, 1.0};
+    int i;
+    for (i = 0; i < 4; i++) out[i] = pn_sc_vertex(b, sx[i] * h, y, sz[i] * h);
+}
+
+/* The four side quads between two rings of pn_sc_ring (same cyclic order), each wound to
+ * face away from the y axis (sign > 0) or toward it (sign < 0). */
+static void pn_sc_ring_sides(pn_sc_builder *b, const uint32_t lo[4], const uint32_t hi[4],
+                             double sign)
+{
+    int i;
+    for (i = 0; i < 4; i++) {
+        int j = (i + 1) & 3;
+        const float *p = b->pos + (size_t)lo[i] * 3u, *q = b->pos + (size_t)lo[j] * 3u;
+        double dir[3];
+        dir[0] = sign * ((double)p[0] + (double)q[0]);
+        dir[1] = 0.0;
+        dir[2] = sign * ((double)p[2] + (double)q[2]);
+        pn_sc_quad_toward(b, lo[i], lo[j], hi[j], hi[i], dir);
+    }
+}
+
+/* The flat square annulus between two concentric rings at one height, facing +y (up > 0)
+ * or -y: four trapezoids, eight triangles. */
+static void pn_sc_ring_annulus(pn_sc_builder *b, const uint32_t outer[4], const uint32_t inner[4],
+                               double up)
+{
+    const double dir[3] = {0.0, up, 0.0};
+    int i;
+    for (i = 0; i < 4; i++) {
+        int j = (i + 1) & 3;
+        pn_sc_quad_toward(b, outer[i], outer[j], inner[j], inner[i], dir);
+    }
+}
+
+/* closed-box: light leaks of shadow maps. A hollow box, walls 0.25 thick, outer
+ * [-2, 2] x [0.5, 3.5] x [-2, 2], cavity [-1.75, 1.75] x [0.75, 3.25] x [-1.75, 1.75],
+ * floating 0.5 over the ground, with one 0.5 x 0.5 square hole (|x|, |z| <= 0.25) through
+ * its top straight under the 1 x 1 light at y = 7.5. The box is a solid: one closed,
+ * consistently wound surface (the outside, the hole's four walls, the cavity), every
+ * normal pointing out of the material (into the cavity on the cavity's faces), so the
+ * only light inside comes through the hole: a soft spot on the cavity floor around
+ * (0, 0.75, 0), part of it shadowed by a 0.5 cube standing on the floor beside the centre
+ * ([0.25, 0.75] x [0.75, 1.25] x [-0.5, 0]). Everything else inside is dark (visibility 0
+ * in the exact algorithms); a lit pixel there is a leak. The eye is inside the cavity,
+ * high in one corner, looking down at the floor: every pixel is the cavity's floor, its
+ * walls or the cube.
+ * Vertices: cube 8, cavity 8 (the floor's ring, then the ceiling's), the hole's rings at
+ * the cavity ceiling (y = 3.25) and at the top (y = 3.5), the outside 8 (bottom ring, top
+ * ring), the ground 4. Triangles: cube (12), the box surface without the cavity floor
+ * (outside: sides 8, bottom 2, top 8; hole walls 8; cavity: walls 8, ceiling 8), the
+ * cavity floor (2), the ground (2); the receivers are the cavity floor and the ground. */
+static int pn_sc_build_closed_box(pn_sc_builder *b, pn_scene_view *v)
+{
+    static const double cube_lo[3] = {0.25, 0.75, -0.5}, cube_hi[3] = {0.75, 1.25, 0.0};
+    static const double up[3] = {0.0, 1.0, 0.0}, down[3] = {0.0, -1.0, 0.0};
+    uint32_t cav_lo[4], cav_hi[4], hole_lo[4], hole_hi[4], out_lo[4], out_hi[4];
+    if (pn_sc_builder_init(b, 8u + 8u + 8u + 8u + 4u, 12u + 18u + 8u + 18u + 2u) != 0) {
+        return 1;
+    }
+    pn_sc_box(b, cube_lo, cube_hi);
+    pn_sc_ring(b, cav_lo, 0.75, 1.75);
+    pn_sc_ring(b, cav_hi, 3.25, 1.75);
+    pn_sc_ring(b, hole_lo, 3.25, 0.25);
+    pn_sc_ring(b, hole_hi, 3.5, 0.25);
+    pn_sc_ring(b, out_lo, 0.5, 2.0);
+    pn_sc_ring(b, out_hi, 3.5, 2.0);
+    /* Outside: four sides, the bottom, the top around the hole. */
+    pn_sc_ring_sides(b, out_lo, out_hi, 1.0);
+    pn_sc_quad_toward(b, out_lo[0], out_lo[1], out_lo[2], out_lo[3], down);
+    pn_sc_ring_annulus(b, out_hi, hole_hi, 1.0);
+    /* The hole's walls face its axis; the cavity's faces face its inside. */
+    pn_sc_ring_sides(b, hole_lo, hole_hi, -1.0);
+    pn_sc_ring_sides(b, cav_lo, cav_hi, -1.0);
+    pn_sc_ring_annulus(b, cav_hi, hole_lo, -1.0);
+    pn_sc_receivers_next(b, 4u);
+    pn_sc_quad_toward(b, cav_lo[0], cav_lo[1], cav_lo[2], cav_lo[3], up);
+    pn_sc_hsquare(b, 0.0, 0.0, 0.0, 5.0);
+    pn_sc_view(v, 1.5f, 3.0f, 1.5f, 0.75f, 70.0f, 7.5f, 0.5f);
+    pn_sc_set3(v->target, -0.5f, 0.75f, -0.5f);
+    return 0;
+}
+
 /* ---- Public entry points -------------------------------------------------------------- */
 
 typedef int (*pn_sc_build_fn)(pn_sc_builder *b, pn_scene_view *v);
 
+/* pn_sc_all_names indexes pn_sc_builders; pn_sc_names is its first PN_SC_SHARED entries
+ * (the set every frame test, the demo and the benchmark iterate). */
+#define PN_SC_SHARED 5
 static const char *const pn_sc_names[] = {"square", "spheres", "elongated-cube", "thin", "room",
                                            NULL};
+static const char *const pn_sc_all_names[] = {"square", "spheres", "elongated-cube", "thin",
+                                               "room", "closed-box", NULL};
 static const pn_sc_build_fn pn_sc_builders[] = {
     pn_sc_build_square,
     pn_sc_build_spheres,
     pn_sc_build_elongated_cube,
     pn_sc_build_thin,
     pn_sc_build_room,
+    pn_sc_build_closed_box,
 };
+/* Compile-time checks of the three tables' lengths (a negative array size fails). */
+#define PN_SC_LEN(a) (sizeof(a) / sizeof((a)[0]))
+typedef char pn_sc_check_shared[PN_SC_LEN(pn_sc_names) == PN_SC_SHARED + 1 ? 1 : -1];
+typedef char
+    pn_sc_check_builders[PN_SC_LEN(pn_sc_builders) + 1 == PN_SC_LEN(pn_sc_all_names) ? 1 : -1];
 
 const char *const *pn_builtin_scene_names(void) { return pn_sc_names; }
+
+const char *const *pn_builtin_scene_names_all(void) { return pn_sc_all_names; }
 
 int pn_builtin_scene(const char *name, pn_mesh *out, pn_scene_view *view, char *err,
                      size_t err_size)
@@ -533,15 +675,15 @@ int pn_builtin_scene(const char *name, pn_mesh *out, pn_scene_view *view, char *
         pn_tools_err(err, err_size, "pn_builtin_scene: name is NULL");
         return 1;
     }
-    for (i = 0; pn_sc_names[i] != NULL; i++) {
-        if (strcmp(name, pn_sc_names[i]) == 0) {
+    for (i = 0; pn_sc_all_names[i] != NULL; i++) {
+        if (strcmp(name, pn_sc_all_names[i]) == 0) {
             break;
         }
     }
-    if (pn_sc_names[i] == NULL) {
+    if (pn_sc_all_names[i] == NULL) {
         pn_tools_err(err, err_size,
                       "unknown built-in scene '%s' (known: square, spheres, elongated-cube, "
-                      "thin, room)",
+                      "thin, room, closed-box)",
                       name);
         return 2;
     }
@@ -564,6 +706,8 @@ int pn_builtin_scene(const char *name, pn_mesh *out, pn_scene_view *view, char *
     out->vertex_count = b.nv;
     out->indices = b.idx;
     out->triangle_count = b.nt;
+    out->receiver_first = b.recv_first;
+    out->receiver_count = b.recv_count;
     pn_mesh_update_bbox(out);
     if (view != NULL) {
         *view = v;

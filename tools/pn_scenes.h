@@ -24,9 +24,25 @@
  *                   chairs, a bookcase of books, an open stair with thin balusters and
  *                   three spheres (4002 triangles): many occluders behind one another, and
  *                   no background (the camera is inside).
+ *   closed-box      light leaks (58 triangles): a hollow box with walls 0.25 thick (outer
+ *                   4 x 3 x 4, floating 0.5 over the ground) and one 0.5 x 0.5 square hole
+ *                   through its top straight under a 1 x 1 light; a 0.5 cube stands on the
+ *                   cavity floor at the edge of the spot the hole lets in. Everything inside
+ *                   but that spot is dark; the camera is inside, looking down at the floor,
+ *                   so a shadow map's leaks show as lit pixels where the reference has 0.
+ *                   Not in pn_builtin_scene_names() (see there).
+ *
+ * Receivers (pn_mesh.receiver_first/count): every scene's range ends at its last
+ * triangle and holds its pure receivers, floors with nothing beneath them (closed-box's
+ * cavity floor: only the box's own bottom slab):
+ *   square, spheres, elongated-cube, thin   the ground: the last 2 triangles;
+ *   room                                    the floor only (the last 2): the ceiling and
+ *                                           the walls (the 10 before it) are left out;
+ *   closed-box                              the cavity floor and the ground: the last 4.
  *
  * Meshes: indexed, shared vertices wherever a surface is closed (spheres, box), CCW
- * winding with outward normals (open sheets face +y; room's shell faces into the room),
+ * winding with outward normals (open sheets face +y; room's shell faces into the room;
+ * closed-box's surface faces out of its material, so into the cavity inside it),
  * bbox filled over all vertices (ground included). Deterministic: the same name gives the
  * same mesh on every run. */
 #ifndef PN_TOOLS_SCENES_H
@@ -43,7 +59,9 @@ extern "C" {
 /* Default view and light for a built-in scene. Camera fields follow pn_camera (fov is
  * vertical, degrees); light fields follow pn_light. The view frames every vertex of the
  * scene at aspect ratio 1 (and therefore at any wider aspect); room's eye is inside the
- * room, so there it frames every vertex of the furniture, and the shell fills the rest. */
+ * room, so there it frames every vertex of the furniture, and the shell fills the rest;
+ * closed-box's eye is inside the box's cavity and frames the cube and the spot under the
+ * hole, the cavity's floor and walls filling the rest. */
 typedef struct pn_scene_view {
     float eye[3], target[3], up[3], fov_deg;
     float light_center[3], light_u[3], light_v[3]; /* half-edges; N = normalize(u x v)
@@ -58,8 +76,14 @@ typedef struct pn_scene_view {
 int pn_builtin_scene(const char *name, pn_mesh *out, pn_scene_view *view, char *err,
                      size_t err_size);
 
-/* NULL-terminated list of the scene names, for --help and tests. Static storage. */
+/* NULL-terminated list of the shared scene names: square, spheres, elongated-cube, thin,
+ * room; the set the demo, the golden hashes (tests/test_golden.c), the benchmark and the
+ * per-algorithm frame tests iterate. Static storage. */
 const char *const *pn_builtin_scene_names(void);
+
+/* NULL-terminated list of every name pn_builtin_scene() knows: the shared ones, then the
+ * special-purpose scenes (closed-box), for --help and tests/test_scenes.c. Static storage. */
+const char *const *pn_builtin_scene_names_all(void);
 
 /* ---- The analytic `square` scene ------------------------------------------------------ */
 

@@ -98,6 +98,15 @@ void pn_setup_free(pn_setup *s)
     memset(s, 0, sizeof(*s));
 }
 
+pn_status pn_setup_upload(pn_context *ctx, const pn_setup *s)
+{
+    pn_status st;
+    if (ctx == NULL || s == NULL) return PN_E_INVALID_ARG;
+    st = pn_scene_set(ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices, s->mesh.triangle_count);
+    if (st != PN_OK) return st;
+    return pn_scene_set_receivers(ctx, s->mesh.receiver_first, s->mesh.receiver_count);
+}
+
 int pn_host_open(pn_host *h, uint32_t max_triangles, uint32_t max_w, uint32_t max_h, int threads,
                  char *err, size_t err_size)
 {

@@ -42,6 +42,13 @@ void pn_setup_auto_view(const float bmin[3], const float bmax[3], pn_camera *cam
 
 void pn_setup_free(pn_setup *s);
 
+/* Hands the setup's scene to the library: pn_scene_set with the mesh, then
+ * pn_scene_set_receivers with the mesh's receiver range (count 0 marks none). Returns
+ * PN_OK or the first failing status (pn_last_error(ctx) has its message; PN_E_INVALID_ARG
+ * without one for a NULL ctx or s); after a failed pn_scene_set the receivers are not
+ * touched. */
+pn_status pn_setup_upload(pn_context *ctx, const pn_setup *s);
+
 /* A library context on the heap, sized for the given limits, with the pthread
  * parallel-for (threads <= 0: all cores) and the monotonic clock installed. */
 typedef struct pn_host {

@@ -31,6 +31,14 @@
 #error "PN_OCCTEX_MAP_MAX must be in 8 .. 4096"
 #endif
 
+#if PN_ENABLE_MCSM != 0 && PN_ENABLE_MCSM != 1
+#error "PN_ENABLE_MCSM must be 0 or 1"
+#endif
+
+#if PN_MCSM_MAP_MAX < 8 || PN_MCSM_MAP_MAX > 2048
+#error "PN_MCSM_MAP_MAX must be in 8 .. 2048"
+#endif
+
 #if PN_GEARS_GRID_MAX < 1 || PN_GEARS_GRID_MAX > 1024
 #error "PN_GEARS_GRID_MAX must be in 1 .. 1024"
 #endif

@@ -67,6 +67,24 @@
 #define PN_OCCTEX_MAP_MAX 512u
 #endif
 
+/* Monte Carlo shadow maps (Curtis 2009): near / far depth layers seen from behind the light,
+ * an N-buffer of them, and n x n hashed jittered rays per pixel traced through the layers,
+ * then a depth-aware blur. Approximate (its error against the reference is in
+ * docs/bench/RESULTS.md). Costs the pools below. */
+#ifndef PN_ENABLE_MCSM
+#define PN_ENABLE_MCSM 1
+#endif
+
+/* Largest depth-layer resolution per axis (frame option mc_map, default the smaller of 512
+ * and this; pn_limits.mc_map_max lowers it per context). The N-buffer is the method's main
+ * memory cost (the thesis says so, and limits its maps to 1024): 12 bytes per texel per
+ * level (min near, max far, max near as floats), floor(log2 res) + 1 levels, level 0 being
+ * the layers themselves: 30 MiB at 512, 132 MiB at 1024. Plus 4 bytes per pixel (the
+ * blur's other buffer) and 16 per row. Range 8 .. 2048. */
+#ifndef PN_MCSM_MAP_MAX
+#define PN_MCSM_MAP_MAX 512u
+#endif
+
 /* ---- Limits (they size the arena; see pn_arena_size()). ------------------------------ */
 
 /* Largest triangle count a scene may have, including any ground plane the caller adds.

@@ -37,7 +37,7 @@
  *   one call at a time per context.
  *
  * USAGE
- *   pn_limits lim = { 100000, 512, 512, 0, 0, 0, 0 };  // max triangles, width, height; the rest default
+ *   pn_limits lim = { 100000, 512, 512, 0, 0, 0, 0, 0 };  // max triangles, width, height; the rest default
  *   size_t bytes; pn_arena_size(&lim, &bytes);
  *   void *mem = my_alloc(bytes);             // or static uint8_t mem[PN_ARENA_BYTES_MAX(...)]
  *   pn_context *ctx; pn_init(&ctx, mem, bytes, &lim);
@@ -120,6 +120,7 @@ typedef struct pn_limits {
     uint32_t gears_grid_max; /* largest GEARS grid resolution; 0: PN_GEARS_GRID_MAX */
     uint32_t srt_map_max;    /* largest SRT shadow map per axis; 0: PN_SRT_MAP_MAX */
     uint32_t occ_map_max;    /* largest occlusion texture per axis; 0: PN_OCCTEX_MAP_MAX */
+    uint32_t mc_map_max;     /* largest Monte Carlo depth layer per axis; 0: PN_MCSM_MAP_MAX */
 } pn_limits;
 
 /* Limits equal to the compile-time maxima. */
@@ -137,7 +138,16 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
 #define PN_ARENA_BYTES_MAX(t, w, h)                                                         \
     ((size_t)(17u * 1024u) + (size_t)(t) * 112u + (size_t)(w) * (size_t)(h) * 40u +          \
      (size_t)(h) * 16u + 32u * (size_t)PN_ARENA_ALIGN + PN_GEARS_BYTES_MAX(t, w, h) +      \
-     PN_SRT_BYTES_MAX(t, w, h) + PN_OCCTEX_BYTES_MAX(t, w, h))
+     PN_SRT_BYTES_MAX(t, w, h) + PN_OCCTEX_BYTES_MAX(t, w, h) + PN_MCSM_BYTES_MAX(t, w, h))
+#if PN_ENABLE_MCSM
+/* Monte Carlo shadow-map frame pools at the default map maximum: per texel 12 per N-buffer
+ * level (12 bound floor(log2 2048) + 1 = 12); per pixel 4; per row 32 + 16; the rest 64. */
+#define PN_MCSM_BYTES_MAX(t, w, h)                                                          \
+    ((size_t)PN_MCSM_MAP_MAX * (size_t)PN_MCSM_MAP_MAX * 144u + (size_t)(w) * (size_t)(h) * 4u + \
+     (size_t)(h) * 48u + 64u)
+#else
+#define PN_MCSM_BYTES_MAX(t, w, h) ((size_t)0)
+#endif
 #if PN_ENABLE_OCCTEX
 /* Occlusion-texture frame pools at the default map maximum: per texel 4 (slice bits) and
  * 4 per filter level (14 bound floor(log2 4096) + 1 = 13); per row 32; the rest 64. */
@@ -205,6 +215,15 @@ pn_status pn_set_clock(pn_context *ctx, pn_clock_fn clock, void *user);
 pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_count,
                        const uint32_t *indices, uint32_t triangle_count);
 
+/* Marks triangles [first, first + count) of the current scene as receivers only: they
+ * cast no shadow into the depth layers of PN_ALGO_MCSM (Curtis 2009 requires "pure
+ * receivers", such as a ground plane, to stay out of the layers, which model occluders as
+ * solids). Every other algorithm, the reference included, treats them like any triangle.
+ * Replaces the previous marking; count = 0 clears it; pn_scene_set clears it too.
+ * Statuses: PN_E_INVALID_ARG (NULL ctx), PN_E_NO_SCENE, PN_E_INDEX_RANGE (first + count
+ * beyond the scene's triangles; nothing is changed). */
+pn_status pn_scene_set_receivers(pn_context *ctx, uint32_t first, uint32_t count);
+
 /* ---- Frame -------------------------------------------------------------------------- */
 
 typedef struct pn_camera {
@@ -226,8 +245,10 @@ typedef enum pn_algo {
     PN_ALGO_RAYTRACE = 2, /* k^2 single shadow rays per pixel; same bits as the reference */
     PN_ALGO_SRT = 3,      /* selective ray tracing: a shadow map, exact masks only for the
                              potentially incorrect pixels (approximate) */
-    PN_ALGO_OCCTEX = 4    /* occlusion textures: slices parallel to the light, box-filtered
+    PN_ALGO_OCCTEX = 4,   /* occlusion textures: slices parallel to the light, box-filtered
                              and combined by probability (approximate) */
+    PN_ALGO_MCSM = 5      /* Monte Carlo shadow maps: hashed jittered rays traced through
+                             depth layers with an N-buffer, then blurred (approximate) */
 } pn_algo;
 
 typedef struct pn_frame_options {
@@ -259,6 +280,19 @@ typedef struct pn_frame_options {
     uint32_t occ_flags;    /* PN_OCC_LEAK_FIX: a fragment marks the next slice too (paper
                               §3.4; off by default: measured, it does not reduce leaks here
                               and doubles planar occluders) */
+    /* PN_ALGO_MCSM (0 everywhere is the recommended configuration) */
+    uint32_t mc_layers;    /* depth layers: 1 (near only), 2 (near, far) or 3 (near, far and
+                              the eye's depth, Algorithm 1); 0: 2 */
+    uint32_t mc_search;    /* PN_MC_SEARCH_*; 0: PN_MC_SEARCH_HIER */
+    uint32_t mc_rays;      /* n: n x n jittered rays per pixel, 1 .. 8; 0: 3 */
+    uint32_t mc_blur;      /* depth-aware blur radius in pixels, 1 .. 8, or PN_MC_BLUR_OFF;
+                              0: 3 */
+    uint32_t mc_map;       /* depth-layer texels per axis, 8 .. limits.mc_map_max; 0: the
+                              smaller of 512 and the limit */
+    uint32_t mc_flags;     /* PN_MC_NO_BIAS: no adaptive bias (eq. 3.2); PN_MC_NO_CLASSIFY:
+                              no penumbra classification, early-outs or ray shortening
+                              (every ray searched whole) */
+    uint32_t mc_seed;      /* frame key of the sample hash (Appendix A's key) */
 } pn_frame_options;
 
 #define PN_SRT_NO_CONSERVATIVE 0x1u
@@ -272,6 +306,12 @@ typedef struct pn_frame_options {
 #define PN_OCC_COMBINE_MAX 2u     /* 1 - max I_k */
 #define PN_OCC_COMBINE_SUM 3u     /* max(0, 1 - sum I_k) */
 #define PN_OCC_LEAK_FIX 0x1u
+/* How a Monte Carlo ray is traced through the depth layers (Curtis 2009 §3.3, §3.5). */
+#define PN_MC_SEARCH_LINEAR 1u /* texel-spaced steps, binary refinement on transitions */
+#define PN_MC_SEARCH_HIER 2u   /* hierarchical search through the N-buffer (Algorithm 2) */
+#define PN_MC_BLUR_OFF 0xFFFFFFFFu
+#define PN_MC_NO_BIAS 0x1u
+#define PN_MC_NO_CLASSIFY 0x2u
 
 /* 512x512, k = 16, reference, eps = 1e-4, albedo 0.8, ambient 0.1, dark blue background. */
 void pn_frame_options_default(pn_frame_options *opt);
@@ -354,6 +394,16 @@ typedef struct pn_stats {
     /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: slicing (window, depth range,
      * rasterization), pre-filtering (every slice), lookups and combination */
     uint64_t occ_ns_slice, occ_ns_filter, occ_ns_lookup;
+    /* Monte Carlo shadow maps, last frame */
+    uint32_t mc_map;             /* depth-layer texels per axis */
+    uint32_t mc_lit, mc_umbra, mc_penumbra; /* lit pixels the classification called fully lit,
+                                    umbra, or potentially in penumbra (rays traced) */
+    uint64_t mc_rays;            /* rays searched through the layers (after the early-outs) */
+    uint64_t mc_steps;           /* search steps: N-buffer boxes or linear samples looked up */
+    uint32_t mc_capped;          /* searches stopped by the step cap (taken as unblocked) */
+    /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: layers (window, rasterization),
+     * N-buffer, rays (classification and search), blur */
+    uint64_t mc_ns_layers, mc_ns_nbuffer, mc_ns_rays, mc_ns_blur;
 } pn_stats;
 
 pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);
@@ -364,6 +414,7 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);
 #define PN_BUILD_RAYTRACE 0x4u
 #define PN_BUILD_SRT 0x8u
 #define PN_BUILD_OCCTEX 0x10u
+#define PN_BUILD_MCSM 0x20u
 #define PN_BUILD_PORT_SCALAR 0x100u
 uint32_t pn_build_info(void);
 

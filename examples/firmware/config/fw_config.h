@@ -9,7 +9,8 @@
  * 32 x 32 image of at most 64 triangles, masks up to k = 8, a GEARS grid of at most 16
  * cells per axis and 4096 (triangle, cell) pairs per pass (more pairs are tiled, so the
  * result does not depend on it), and a 64 x 64 shadow map for selective ray tracing
- * (its default 2048 x 2048 alone would reserve 48 MiB). */
+ * (its default 2048 x 2048 alone would reserve 48 MiB); 64 x 64 occlusion textures and
+ * 32 x 32 Monte Carlo depth layers (their N-buffer: 72 KiB). */
 #ifndef FW_CONFIG_H
 #define FW_CONFIG_H
 
@@ -22,5 +23,6 @@
 #define PN_GEARS_PAIRS 4096u
 #define PN_SRT_MAP_MAX 64u
 #define PN_OCCTEX_MAP_MAX 64u
+#define PN_MCSM_MAP_MAX 32u
 
 #endif

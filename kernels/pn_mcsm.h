@@ -1,0 +1,602 @@
+/* pn_mcsm.h - Monte Carlo shadow maps (Curtis 2009, "Real-time soft shadows on the GPU via
+ * Monte Carlo sampling"): the work items of the frame in src/pn_mcsm.c.
+ *
+ * Frame of reference. The light frame of pn_lview.h: origin at the light centre c, axes
+ * lview's r, u, f (an area light: U^, V^, N), depth z along f. The depth layers are seen
+ * from a centre of projection d behind the light centre whose frustum passes through the
+ * light's edges and holds every lit shadow-ray origin (pn_lview_window; the thesis' eq. 3.1
+ * places the projection point so that "the entire light fits within the view frustum"):
+ * then every segment from a point of the light to an origin projects inside the layers
+ * (§3, "every point along the ray projects to a point in the interior of the depth map").
+ * A point light has d = 0: its one ray projects to a single texel (a shadow-map test).
+ *
+ * Layers (§3.3). Over the fragments of every triangle not marked receiver-only
+ * (pn_scene_set_receivers; §3.3 requires pure receivers to stay out), in front of the light
+ * plane, each texel keeps the nearest depth (near layer) and the farthest (far layer).
+ * The thesis renders the far layer from back faces with the depth test reversed; keeping
+ * the farthest fragment of any facing is the same for closed meshes and keeps a single
+ * open sheet (a quad occluder) an occluder of zero thickness instead of none. A texel's
+ * occupied interval is [near, far]: the volume between the layers is taken as solid.
+ * Empty texels: near = +inf, far = -inf.
+ *
+ * N-buffer (§3.5; kernels/pn_nbuffer.h). Three channels per texel and level: min near,
+ * max far, max near; level 0 is the layers (max near = near).
+ *
+ * Rays (§3, §3.1). Ray i of pixel (x, y) goes from a point S of the light, jittered in cell
+ * i of an n x n grid by the reduced 16-step MD5 of Appendix A (pn_md5r, seeded by the pixel
+ * coordinates and the ray index, keyed by the frame key), to the pixel's shadow-ray origin
+ * E (pn_shadow_origin), pulled back toward S by the adaptive bias of eq. 3.2. On the ray,
+ * X(t) = S + t (E - S), its depth is t z_E (S is at depth 0), and its image in the layers is
+ * a straight segment. A ray is blocked when
+ *   one layer:  some point of it lies at or behind the near layer of its texel;
+ *   two layers: some point lies in its texel's [near, far];
+ *   three layers: the same, unless that point is seen from the eye (in front of the
+ *     G-buffer's depth at its pixel: empty space, Algorithm 1).
+ * Visibility = unblocked rays / n^2, then the screen-space blur.
+ *
+ * Early-outs and shortening (§3.6, §3.7), all but the umbra test consistent with the
+ * model above: a ray toward a light point behind the pixel's own plane is blocked (the
+ * horizon of invariant 6 and the thesis' first early-out); a pixel whose origin lies no
+ * deeper than the smallest near depth of the region every ray can reach (eq. 3.3, refined
+ * twice from the whole map's minimum) is lit; with one or two layers, a pixel whose every
+ * ray ends behind the largest near depth of that region is umbra (the thesis' test; with
+ * two layers it assumes solid occluders, with three it is off, as the thesis says); a ray
+ * whose end lies inside a texel's interval is blocked; a ray whose own region has no near
+ * depth before its end is unblocked; rays start at the region's smallest near depth and,
+ * with two or more layers, end at its largest far depth.
+ *
+ * Searches. Linear (§3.3): samples one texel apart in the layers' image, each in front of,
+ * inside or behind its texel's interval; a change between in front and behind is refined
+ * by bisection (PN_MC_BISECT steps), and a bracket that ends within one texel, in front at
+ * its start and behind at its end, crossed that texel's interval: blocked. Hierarchical
+ * (Algorithm 2): a box of 2^l texels placed at the current point toward the ray's end; if
+ * the ray's depths inside the box meet the box's [min near, max far], step to the depth
+ * min near and descend (at level 0: blocked), else step past the box and ascend. Every
+ * search is capped at PN_MC_STEP_CAP(res) steps (counted; the ray then counts as
+ * unblocked). Points whose image lies beyond the map (origins the window had to leave out,
+ * beyond PN_LVIEW_TAN_MAX) see no occluder.
+ *
+ * Blur (§3). A separable filter over the visibility buffer, binomial weights C(2r, r + i)
+ * (a Gaussian of variance r / 2 in integers, so no exp), each neighbour's weight divided
+ * by 1 + |its depth - the centre's| blur_depth / centre depth (the thesis' depth-sensitive
+ * filter, "inversely proportional to the difference ... plus 1", in relative depth);
+ * background neighbours take no part. Taps summed in a fixed order.
+ *
+ * Every float operation is the same on both ports (no contraction, correctly rounded
+ * divide and sqrt, integer hashing and exact int-to-float conversions for the samples). */
+#ifndef PN_MCSM_H
+#define PN_MCSM_H
+
+#include "pn_lview.h"
+#include "pn_nbuffer.h"
+#include "pn_predicate.h"
+#include "pn_raster.h"
+
+#define PN_MC_S_LINEAR 1u
+#define PN_MC_S_HIER 2u
+#define PN_MC_F_NO_BIAS 1u
+#define PN_MC_F_NO_CLASSIFY 2u
+#define PN_MC_RAYS_MAX 8u
+#define PN_MC_BLUR_MAX 8u
+/* Bisection steps of the linear search's refinement (1/256 of a texel). */
+#define PN_MC_BISECT 8u
+/* Steps one search may take. */
+#define PN_MC_STEP_CAP(res) (8u * (res) + 64u)
+/* The smallest cosine the adaptive bias divides by (eq. 3.2: "n . l must be limited to
+ * some small, non-zero value"). */
+#define PN_MC_COS_MIN 0.05f
+/* Relative slack of a depth bound turned into a ray parameter (t = z / z_E): the rounding
+ * of t z_E must not move a ray's crossing of a plane occluder (near = far) out of the
+ * searched range. */
+#define PN_MC_T_SLACK 2.4e-7f
+/* The smallest step of the hierarchical search, as a fraction of the searched range (taken
+ * only where rounding leaves no exit after the current point). */
+#define PN_MC_T_STEP 2.44140625e-4f
+/* Texels from a box side within which a point whose exit rounds to before it is taken to
+ * lie on that side. */
+#define PN_MC_ON_EDGE 1e-2f
+/* Per-row class counters (pool mc_words, PN_MC_WORDS per row). */
+#define PN_MC_WORD_LIT 0u
+#define PN_MC_WORD_UMBRA 1u
+#define PN_MC_WORD_PENUMBRA 2u
+#define PN_MC_WORD_CAPPED 3u
+#define PN_MC_WORDS 4u
+
+/* ---- The sample hash: Appendix A's reduced MD5 ------------------------------------------- */
+
+/* One of the sixteen steps as the appendix writes them: F of the working state t (the
+ * appendix's tD), message word m, constant c, rotation s; then the state rotates
+ * (tD = tD.yzwx) and is added into the digest. */
+PN_KFN void pn_md5r_step(uint32_t *t, uint32_t *dg, uint32_t F, uint32_t m, uint32_t c, uint32_t s)
+{
+    uint32_t r = t[0] + F + m + c, x = t[1] + ((r << s) + (r >> (32u - s)));
+    t[0] = t[1];
+    t[1] = t[2];
+    t[2] = t[3];
+    t[3] = x;
+    dg[0] += t[0];
+    dg[1] += t[1];
+    dg[2] += t[2];
+    dg[3] += t[3];
+}
+
+#define PN_MD5R_F1(t) (((t)[0] & (t)[1]) | (~(t)[0] & (t)[2]))
+#define PN_MD5R_F2(t) (((t)[2] & (t)[0]) | (~(t)[2] & (t)[1]))
+#define PN_MD5R_F3(t) ((t)[0] ^ (t)[1] ^ (t)[2])
+#define PN_MD5R_F4(t) ((t)[1] ^ ((t)[0] | ~(t)[2]))
+
+/* md5rand(seed, key) of Appendix A: 16 steps (four per round function); the message words
+ * the appendix leaves commented out are zero. */
+PN_KFN void pn_md5r(const uint32_t *seed, uint32_t key, uint32_t *out)
+{
+    uint32_t d0 = seed[0] ^ key, d1 = seed[1] ^ key, d2 = seed[2] ^ key, d3 = seed[3] ^ key, t[4];
+    out[0] = 0x01234567u;
+    out[1] = 0x89ABCDEFu;
+    out[2] = 0xFEDCBA98u;
+    out[3] = 0x76543210u;
+    t[0] = out[0];
+    t[1] = out[1];
+    t[2] = out[2];
+    t[3] = out[3];
+    pn_md5r_step(t, out, PN_MD5R_F1(t), d0, 0xD76AA478u, 7u);
+    pn_md5r_step(t, out, PN_MD5R_F1(t), d1, 0xE8C7B757u, 12u);
+    pn_md5r_step(t, out, PN_MD5R_F1(t), d2, 0x242070DBu, 17u);
+    pn_md5r_step(t, out, PN_MD5R_F1(t), d3, 0xC1BDCEEFu, 22u);
+    pn_md5r_step(t, out, PN_MD5R_F2(t), d1, 0xF61E2562u, 5u);
+    pn_md5r_step(t, out, PN_MD5R_F2(t), 0u, 0xC040B341u, 9u);
+    pn_md5r_step(t, out, PN_MD5R_F2(t), 0u, 0x265E5A52u, 14u);
+    pn_md5r_step(t, out, PN_MD5R_F2(t), d0, 0xE9B6C7ABu, 20u);
+    pn_md5r_step(t, out, PN_MD5R_F3(t), 0u, 0xFFFA3942u, 4u);
+    pn_md5r_step(t, out, PN_MD5R_F3(t), 0u, 0x8771F681u, 11u);
+    pn_md5r_step(t, out, PN_MD5R_F3(t), 0u, 0x6D9D6122u, 16u);
+    pn_md5r_step(t, out, PN_MD5R_F3(t), 0u, 0xFDE5380Cu, 23u);
+    pn_md5r_step(t, out, PN_MD5R_F4(t), d0, 0xF4292244u, 6u);
+    pn_md5r_step(t, out, PN_MD5R_F4(t), 0u, 0x432AFF98u, 10u);
+    pn_md5r_step(t, out, PN_MD5R_F4(t), 0u, 0xAB9423A7u, 15u);
+    pn_md5r_step(t, out, PN_MD5R_F4(t), 0u, 0xFC93A039u, 21u);
+}
+
+/* Jittered sample of ray (i, j) of the n x n grid for pixel (x, y): light coordinates
+ * (a, b) in [-1, 1)^2 (the light point c + a U + b V), from the hash's first two words (24
+ * bits each, converted exactly). */
+PN_KFN void pn_mc_sample(uint32_t x, uint32_t y, uint32_t i, uint32_t j, uint32_t n, uint32_t key, float *a, float *b)
+{
+    uint32_t seed[4], h[4];
+    seed[0] = x;
+    seed[1] = y;
+    seed[2] = j * n + i;
+    seed[3] = 0x9E3779B9u;
+    pn_md5r(seed, key, h);
+    *a = 2.0f * (((float)i + (float)(h[0] >> 8) * 5.9604644775390625e-8f) / (float)n) - 1.0f;
+    *b = 2.0f * (((float)j + (float)(h[1] >> 8) * 5.9604644775390625e-8f) / (float)n) - 1.0f;
+}
+
+/* ---- Layers ------------------------------------------------------------------------------ */
+
+/* Band `band` of PN_RASTER_BAND texel rows of level 0: cleared, then every fragment of every
+ * occluder (not receiver-only) in front of the light plane takes part in its texel's near
+ * and far; then max near := near. */
+PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris, PN_CONST uint8_t *flags,
+                       PN_CONST uint32_t *rows, uint32_t tri_count, uint32_t band, PN_GLOBAL float *nb)
+{
+    uint32_t y0 = band * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND - 1u, t, y, x;
+    pn_v3 f = pn_v3_make(v->f[0], v->f[1], v->f[2]);
+    if (y1 >= v->height) y1 = v->height - 1u;
+    for (y = y0; y <= y1; y++)
+        for (x = 0; x < v->width; x++) {
+            PN_GLOBAL float *T = nb + ((size_t)y * v->width + x) * PN_NB_MM;
+            T[0] = PN_KINF;
+            T[1] = -PN_KINF;
+        }
+    for (t = 0; t < tri_count; t++) {
+        pn_raster_tri rt;
+        if (flags[t] & PN_TRI_RECEIVER) continue;
+        if (!pn_raster_tri_setup(v, tris, rows, t, y0, y1, &rt)) continue;
+        for (y = rt.y0; y <= rt.y1; y++) {
+            int32_t xi;
+            for (xi = rt.x0; xi <= rt.x1; xi++) {
+                float tt, z;
+                pn_v3 dir;
+                PN_GLOBAL float *T;
+                if (!pn_raster_tri_hit(v, &rt, (uint32_t)xi, y, &tt, &dir)) continue;
+                z = tt * pn_v3_dot(dir, f) - mc->d;
+                if (!(z > 0.0f)) continue;
+                T = nb + ((size_t)y * v->width + (uint32_t)xi) * PN_NB_MM;
+                T[0] = pn_kminf(T[0], z);
+                T[1] = pn_kmaxf(T[1], z);
+            }
+        }
+    }
+    for (y = y0; y <= y1; y++)
+        for (x = 0; x < v->width; x++) {
+            PN_GLOBAL float *T = nb + ((size_t)y * v->width + x) * PN_NB_MM;
+            T[2] = T[0];
+        }
+}
+
+/* ---- One pixel's rays ----------------------------------------------------------------------- */
+
+/* What the per-pixel work reads. */
+typedef struct pn_mc_ctx {
+    const pn_kview *view, *lv;
+    const pn_klight *L;
+    const pn_kmc *mc;
+    PN_CONST float *nb;    /* N-buffer levels */
+    PN_CONST float *depth; /* G-buffer depth (third layer) */
+    float tx, ty;          /* the layers' window half-tans */
+    uint32_t steps;        /* search steps so far */
+    uint32_t capped;       /* searches stopped at the cap */
+} pn_mc_ctx;
+
+/* A ray in the light frame from (xs, ys, 0) to (xe, ye, ze). */
+typedef struct pn_mc_ray {
+    float xs, ys, xe, ye, ze;
+} pn_mc_ray;
+
+PN_KFN pn_v3 pn_mc_at(const pn_mc_ray *r, float t)
+{
+    return pn_v3_make(r->xs + t * (r->xe - r->xs), r->ys + t * (r->ye - r->ys), t * r->ze);
+}
+
+/* Image of a light-frame point in the layers, continuous texel coordinates. */
+PN_KFN void pn_mc_proj(const pn_mc_ctx *m, pn_v3 p, float *px, float *py)
+{
+    pn_project_camera(m->lv, pn_v3_make(p.x, p.y, p.z + m->mc->d), px, py);
+}
+
+/* Level-0 texel holding a light-frame point (clamped to the map); *outside: the point's
+ * image lies beyond the map (the window left it out: nothing is known there). */
+PN_KFN PN_CONST float *pn_mc_texel(const pn_mc_ctx *m, pn_v3 p, int *outside)
+{
+    float px, py, R = (float)m->mc->res;
+    int32_t last = (int32_t)m->mc->res - 1;
+    pn_mc_proj(m, p, &px, &py);
+    *outside = !(px >= 0.0f && py >= 0.0f && px < R && py < R);
+    return m->nb + ((size_t)pn_kfloor_clamp(py, 0, last) * m->mc->res + (size_t)pn_kfloor_clamp(px, 0, last)) * PN_NB_MM;
+}
+
+/* Third layer: whether the light-frame point p is seen from the eye (in front of the
+ * G-buffer's depth at its pixel, or over the background): empty space. */
+PN_KFN int pn_mc_seen(const pn_mc_ctx *m, pn_v3 p)
+{
+    const pn_kview *v = m->view;
+    pn_v3 X = pn_v3_make(m->L->c[0] + p.x * m->lv->r[0] + p.y * m->lv->u[0] + p.z * m->lv->f[0],
+                         m->L->c[1] + p.x * m->lv->r[1] + p.y * m->lv->u[1] + p.z * m->lv->f[1],
+                         m->L->c[2] + p.x * m->lv->r[2] + p.y * m->lv->u[2] + p.z * m->lv->f[2]);
+    pn_v3 cam = pn_to_camera(v, X), rel;
+    float px, py, dd;
+    uint32_t ix, iy;
+    if (!(cam.z > v->znear)) return 0;
+    pn_project_camera(v, cam, &px, &py);
+    if (!(px >= 0.0f && py >= 0.0f && px < (float)v->width && py < (float)v->height)) return 0;
+    ix = (uint32_t)pn_kfloor_clamp(px, 0, (int32_t)v->width - 1);
+    iy = (uint32_t)pn_kfloor_clamp(py, 0, (int32_t)v->height - 1);
+    dd = m->depth[(size_t)iy * v->width + ix];
+    rel = pn_v3_sub(X, pn_view_eye(v));
+    return pn_v3_dot(rel, rel) < dd * dd * 0.9998f;
+}
+
+/* Where a point stands against its texel's interval. */
+#define PN_MC_FRONT 0
+#define PN_MC_INSIDE 1
+#define PN_MC_BEHIND 2
+PN_KFN int pn_mc_state(const pn_mc_ctx *m, pn_v3 p)
+{
+    int out;
+    PN_CONST float *T = pn_mc_texel(m, p, &out);
+    if (out) return PN_MC_FRONT;
+    if (m->mc->layers == 1u) return p.z >= T[0] ? PN_MC_INSIDE : PN_MC_FRONT;
+    if (p.z < T[0]) return PN_MC_FRONT;
+    if (p.z > T[1]) return PN_MC_BEHIND;
+    if (m->mc->layers == 3u && pn_mc_seen(m, p)) return PN_MC_FRONT;
+    return PN_MC_INSIDE;
+}
+
+PN_KFN int pn_mc_same_texel(const pn_mc_ctx *m, pn_v3 a, pn_v3 b)
+{
+    int oa, ob;
+    return pn_mc_texel(m, a, &oa) == pn_mc_texel(m, b, &ob) && !oa && !ob;
+}
+
+/* Linear search over [t0, t1] (§3.3): 1 when blocked. */
+PN_KFN int pn_mc_linear(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
+{
+    float ax, ay, bx, by, w0 = t0 * r->ze + m->mc->d, w1 = t1 * r->ze + m->mc->d, tp = t0;
+    uint32_t n, i, k;
+    int sp = PN_MC_FRONT;
+    pn_mc_proj(m, pn_mc_at(r, t0), &ax, &ay);
+    pn_mc_proj(m, pn_mc_at(r, t1), &bx, &by);
+    n = (uint32_t)pn_kceil_clamp(pn_kmaxf(pn_kfabs(bx - ax), pn_kfabs(by - ay)), 1, (int32_t)PN_MC_STEP_CAP(m->mc->res));
+    for (i = 0; i <= n; i++) {
+        /* Texel-uniform steps: the fraction q of the image segment is the fraction
+         * q w0 / (q w0 + (1 - q) w1) of the ray (w: depth from the centre of projection). */
+        float q = (float)i / (float)n, den = q * w0 + (1.0f - q) * w1;
+        float t = den > 0.0f ? t0 + (t1 - t0) * (q * w0 / den) : t0 + (t1 - t0) * q;
+        int s = pn_mc_state(m, pn_mc_at(r, t));
+        m->steps++;
+        if (s == PN_MC_INSIDE) return 1;
+        if (i > 0u && s != sp) {
+            /* Refine the transition (in front <-> behind). */
+            float ta = tp, tb = t;
+            for (k = 0; k < PN_MC_BISECT; k++) {
+                float tm = 0.5f * (ta + tb);
+                int sm = pn_mc_state(m, pn_mc_at(r, tm));
+                m->steps++;
+                if (sm == PN_MC_INSIDE) return 1;
+                if (sm == sp)
+                    ta = tm;
+                else
+                    tb = tm;
+            }
+            if (sp == PN_MC_FRONT && pn_mc_same_texel(m, pn_mc_at(r, ta), pn_mc_at(r, tb))) return 1;
+        }
+        sp = s;
+        tp = t;
+    }
+    return 0;
+}
+
+/* The ray parameter where its image crosses texel column X (row Y): the image's x is
+ * (x / ((z + d) tx) + 1) res / 2 and y is (1 - y / ((z + d) ty)) res / 2. +inf if never. */
+PN_KFN float pn_mc_t_col(const pn_mc_ctx *m, const pn_mc_ray *r, float X)
+{
+    float k = (2.0f * X / (float)m->mc->res - 1.0f) * m->tx, den = (r->xe - r->xs) - k * r->ze;
+    return den != 0.0f ? (k * m->mc->d - r->xs) / den : PN_KINF;
+}
+PN_KFN float pn_mc_t_row(const pn_mc_ctx *m, const pn_mc_ray *r, float Y)
+{
+    float k = (1.0f - 2.0f * Y / (float)m->mc->res) * m->ty, den = (r->ye - r->ys) - k * r->ze;
+    return den != 0.0f ? (k * m->mc->d - r->ys) / den : PN_KINF;
+}
+
+/* Hierarchical search over [t0, t1] (Algorithm 2): 1 when blocked. */
+PN_KFN int pn_mc_hier(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
+{
+    const pn_kmc *mc = m->mc;
+    float ax, ay, bx, by, dx, dy, t = t0;
+    uint32_t l = 0u, iter, cap = PN_MC_STEP_CAP(mc->res);
+    pn_mc_proj(m, pn_mc_at(r, t0), &ax, &ay);
+    pn_mc_proj(m, pn_mc_at(r, t1), &bx, &by);
+    dx = bx - ax;
+    dy = by - ay;
+    /* One level below a box that holds the whole image (the early-out looked that up). */
+    while (l + 1u < mc->levels && (float)(1u << l) < pn_kmaxf(pn_kfabs(dx), pn_kfabs(dy))) l++;
+    if (l > 0u) l--;
+    if (!(t0 < t1)) return pn_mc_state(m, pn_mc_at(r, t0)) == PN_MC_INSIDE; /* one point */
+    for (iter = 0; iter < cap; iter++) {
+        float px, py, te, zlo, zhi, step, v[PN_NB_MM];
+        int32_t B, X0, Y0;
+        int hit;
+        if (!(t < t1)) return 0;
+        pn_mc_proj(m, pn_mc_at(r, t), &px, &py);
+        B = 1 << l;
+        /* The box of side B holding the current point and reaching toward the ray's end. */
+        X0 = dx >= 0.0f ? pn_kfloor_clamp(px, -(1 << 24), 1 << 24) : pn_kceil_clamp(px, -(1 << 24), 1 << 24) - B;
+        Y0 = dy >= 0.0f ? pn_kfloor_clamp(py, -(1 << 24), 1 << 24) : pn_kceil_clamp(py, -(1 << 24), 1 << 24) - B;
+        /* Where the ray leaves the box. A point rounded onto the box's far side (its exit
+         * not after it) belongs to the next box along that axis; if rounding still leaves
+         * no exit after it, the search moves on by a step that float can represent. */
+        step = pn_kmaxf((t1 - t0) * PN_MC_T_STEP, t * PN_MC_T_SLACK);
+        te = t1;
+        if (dx != 0.0f) {
+            float xb = (float)(dx > 0.0f ? X0 + B : X0), tc = pn_mc_t_col(m, r, xb);
+            if (!(tc > t) && pn_kfabs(px - xb) < PN_MC_ON_EDGE) {
+                X0 += dx > 0.0f ? 1 : -1;
+                tc = pn_mc_t_col(m, r, (float)(dx > 0.0f ? X0 + B : X0));
+            } else if (!(tc > t)) {
+                tc = PN_KINF; /* the image never reaches that side (it tends to a vanishing point) */
+            }
+            te = pn_kminf(te, tc > t ? tc : t + step);
+        }
+        if (dy != 0.0f) {
+            float yb = (float)(dy > 0.0f ? Y0 + B : Y0), tr = pn_mc_t_row(m, r, yb);
+            if (!(tr > t) && pn_kfabs(py - yb) < PN_MC_ON_EDGE) {
+                Y0 += dy > 0.0f ? 1 : -1;
+                tr = pn_mc_t_row(m, r, (float)(dy > 0.0f ? Y0 + B : Y0));
+            } else if (!(tr > t)) {
+                tr = PN_KINF;
+            }
+            te = pn_kminf(te, tr > t ? tr : t + step);
+        }
+        pn_nb_mm_empty(v);
+        pn_nb_mm_box(m->nb, mc->res, l, X0, Y0, v);
+        m->steps++;
+        zlo = t * r->ze;
+        zhi = te * r->ze;
+        hit = mc->layers == 1u ? zhi >= v[0] : (zhi >= v[0] && zlo <= v[1]);
+        if (hit && l == 0u && (X0 < 0 || Y0 < 0 || X0 >= (int32_t)mc->res || Y0 >= (int32_t)mc->res))
+            hit = 0; /* a texel beyond the map: nothing is known there */
+        if (hit) {
+            if (l == 0u) {
+                if (mc->layers == 3u) {
+                    float a = pn_kmaxf(t, v[0] / r->ze), b = pn_kminf(te, v[1] / r->ze);
+                    if (pn_mc_seen(m, pn_mc_at(r, 0.5f * (a + b)))) {
+                        t = te;
+                        if (l + 1u < mc->levels) l++;
+                        continue;
+                    }
+                }
+                return 1;
+            }
+            /* No point of the ray before depth min near can be inside. */
+            t = pn_kmaxf(t, v[0] / r->ze * (1.0f - PN_MC_T_SLACK));
+            l--;
+        } else {
+            t = te;
+            if (l + 1u < mc->levels) l++;
+        }
+    }
+    m->capped++;
+    return 0;
+}
+
+/* Bounds of the layers over the texel box around two image points (one texel of margin
+ * for rounding). */
+PN_KFN void pn_mc_region(const pn_mc_ctx *m, float ax, float ay, float bx, float by, float *v)
+{
+    int32_t lim = 1 << 24;
+    pn_nb_mm_rect(m->nb, m->mc->res, m->mc->levels, pn_kfloor_clamp(pn_kminf(ax, bx), -lim, lim) - 1,
+                  pn_kfloor_clamp(pn_kminf(ay, by), -lim, lim) - 1, pn_kceil_clamp(pn_kmaxf(ax, bx), -lim, lim) + 1,
+                  pn_kceil_clamp(pn_kmaxf(ay, by), -lim, lim) + 1, v);
+}
+
+/* Pixel classes (the counters). */
+#define PN_MC_CLASS_NONE 0u
+#define PN_MC_CLASS_LIT 1u
+#define PN_MC_CLASS_UMBRA 2u
+#define PN_MC_CLASS_PENUMBRA 3u
+
+/* Visibility of one lit G-buffer pixel (x, y): point P, unit normal nrm, shadow-ray origin O.
+ * *cls: its class; *rays: rays searched. */
+PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 O, uint32_t *cls, uint32_t *rays)
+{
+    const pn_kmc *mc = m->mc;
+    const pn_klight *L = m->L;
+    pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]), E = pn_lview_frame(m->lv, L, O), toc = pn_v3_sub(c, O);
+    pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]), V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
+    float ze = E.z, bias = 0.0f, zlo = 0.0f, zhi = PN_KINF, q[PN_NB_MM], cosv, lt;
+    uint32_t n = L->is_point ? 1u : mc->rays, i, j, open = 0u;
+    int classify = !(mc->flags & PN_MC_F_NO_CLASSIFY);
+    *rays = 0u;
+    *cls = PN_MC_CLASS_PENUMBRA;
+    if (pn_v3_dot(nrm, toc) < 0.0f) nrm = pn_v3_scale(nrm, -1.0f);
+    if (!(ze > 0.0f)) { /* the origin is on or behind the light plane */
+        *cls = PN_MC_CLASS_UMBRA;
+        return 0.0f;
+    }
+    lt = pn_ksqrt(pn_v3_dot(toc, toc));
+    cosv = lt > 0.0f ? pn_v3_dot(nrm, toc) / lt : 1.0f;
+    if (!(mc->flags & PN_MC_F_NO_BIAS)) bias = mc->bias_k * (ze + mc->d) / pn_kmaxf(cosv, PN_MC_COS_MIN);
+    if (classify && !L->is_point) {
+        /* Penumbra classification (§3.6): the region every ray can reach at depth zb
+         * (eq. 3.3; a square of sfac (ze - zb) / (ze (zb + d)) texels around the image of
+         * E's segment to the light centre at that depth), its smallest near depth the next
+         * zb, twice, from the whole map's. */
+        uint32_t it;
+        float zb;
+        pn_nb_mm_rect(m->nb, mc->res, mc->levels, 0, 0, (int32_t)mc->res, (int32_t)mc->res, q);
+        zb = q[0];
+        for (it = 0; it < 2u && zb < ze; it++) {
+            float s = mc->sfac * (ze - zb) / (ze * (zb + mc->d)), cx, cy, fr = zb / ze;
+            pn_mc_proj(m, pn_v3_make(E.x * fr, E.y * fr, zb), &cx, &cy);
+            pn_mc_region(m, cx - 0.5f * s, cy - 0.5f * s, cx + 0.5f * s, cy + 0.5f * s, q);
+            zb = pn_kmaxf(zb, q[0]);
+        }
+        if (!(zb < ze)) {
+            *cls = PN_MC_CLASS_LIT;
+            n = 0u; /* every ray unblocked but for the horizon */
+        } else if (mc->layers <= 2u && ze - bias > q[2]) {
+            *cls = PN_MC_CLASS_UMBRA;
+            return 0.0f;
+        } else {
+            zlo = zb;
+            if (mc->layers >= 2u) zhi = q[1];
+        }
+    }
+    if (n == 0u) {
+        /* Lit: only the horizon blocks. The rays' light points, as they would be drawn. */
+        uint32_t k = mc->rays, vis = 0u;
+        for (j = 0; j < k; j++)
+            for (i = 0; i < k; i++) {
+                float a, b;
+                pn_v3 S;
+                pn_mc_sample(x, y, i, j, k, mc->seed, &a, &b);
+                S = pn_v3_add(c, pn_v3_add(pn_v3_scale(U, a), pn_v3_scale(V, b)));
+                vis += pn_v3_dot(pn_v3_sub(S, O), nrm) > 0.0f;
+            }
+        return (float)vis / (float)(k * k);
+    }
+    for (j = 0; j < n; j++)
+        for (i = 0; i < n; i++) {
+            float a = 0.0f, b = 0.0f, len, tend, t0, t1;
+            pn_v3 S, Sl;
+            pn_mc_ray r;
+            if (!L->is_point) pn_mc_sample(x, y, i, j, n, mc->seed, &a, &b);
+            S = pn_v3_add(c, pn_v3_add(pn_v3_scale(U, a), pn_v3_scale(V, b)));
+            if (!(pn_v3_dot(pn_v3_sub(S, O), nrm) > 0.0f)) continue; /* behind P's own plane */
+            Sl = pn_lview_frame(m->lv, L, S);
+            r.xs = Sl.x;
+            r.ys = Sl.y;
+            r.xe = E.x;
+            r.ye = E.y;
+            r.ze = ze;
+            len = pn_ksqrt(pn_v3_dot(pn_v3_sub(O, S), pn_v3_sub(O, S)));
+            tend = len > bias ? 1.0f - bias / len : 0.0f;
+            if (!(tend > 0.0f)) {
+                open++;
+                continue;
+            }
+            if (L->is_point) {
+                /* One texel holds the whole ray: a shadow-map test. */
+                int out;
+                PN_CONST float *T = pn_mc_texel(m, pn_mc_at(&r, tend), &out);
+                float zend = tend * ze;
+                int blocked = !out && (mc->layers == 1u ? zend >= T[0] : zend >= T[0] && T[1] >= 0.0f);
+                if (blocked && mc->layers == 3u) {
+                    float za = pn_kmaxf(T[0], 0.0f), zb2 = pn_kminf(T[1], zend);
+                    blocked = !pn_mc_seen(m, pn_mc_at(&r, 0.5f * (za + zb2) / ze));
+                }
+                *rays += 1u;
+                m->steps++;
+                open += !blocked;
+                continue;
+            }
+            t0 = zlo / ze * (1.0f - PN_MC_T_SLACK);
+            t1 = pn_kminf(tend, zhi / ze * (1.0f + PN_MC_T_SLACK));
+            if (classify) {
+                /* The ray's end inside a texel's interval: blocked with one lookup. */
+                int s = pn_mc_state(m, pn_mc_at(&r, tend));
+                m->steps++;
+                if (s == PN_MC_INSIDE) continue;
+                if (t0 < t1) {
+                    /* The ray's own region (§3.7): nothing before its end, or shortened. */
+                    float ax, ay, bx, by;
+                    pn_mc_proj(m, pn_mc_at(&r, t0), &ax, &ay);
+                    pn_mc_proj(m, pn_mc_at(&r, t1), &bx, &by);
+                    pn_mc_region(m, ax, ay, bx, by, q);
+                    m->steps++;
+                    t0 = pn_kmaxf(t0, q[0] / ze * (1.0f - PN_MC_T_SLACK));
+                    if (mc->layers >= 2u) t1 = pn_kminf(t1, q[1] / ze * (1.0f + PN_MC_T_SLACK));
+                }
+            }
+            if (!(t0 <= t1)) {
+                open++;
+                continue;
+            }
+            *rays += 1u;
+            if (!(mc->search == PN_MC_S_LINEAR ? pn_mc_linear(m, &r, t0, t1) : pn_mc_hier(m, &r, t0, t1))) open++;
+        }
+    return (float)open / (float)(n * n);
+}
+
+/* ---- Blur ------------------------------------------------------------------------------------ */
+
+/* Pixel (x, y) of one direction of the separable blur: src into dst. */
+PN_KFN void pn_mc_blur_pixel(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t x, uint32_t y, uint32_t vertical,
+                             PN_CONST uint32_t *ids, PN_CONST float *depth, PN_CONST float *src, PN_GLOBAL float *dst)
+{
+    size_t pix = (size_t)y * W + x;
+    float dc, sum = 0.0f, wsum = 0.0f, k;
+    int32_t i, r = (int32_t)mc->blur;
+    if (ids[pix] == 0xFFFFFFFFu) {
+        dst[pix] = src[pix];
+        return;
+    }
+    dc = depth[pix];
+    k = mc->blur_depth / dc;
+    for (i = -r; i <= r; i++) {
+        int32_t xx = vertical ? (int32_t)x : (int32_t)x + i, yy = vertical ? (int32_t)y + i : (int32_t)y;
+        size_t q;
+        float dd, w;
+        if (xx < 0 || yy < 0 || xx >= (int32_t)W || yy >= (int32_t)H) continue;
+        q = (size_t)yy * W + (uint32_t)xx;
+        if (ids[q] == 0xFFFFFFFFu) continue;
+        dd = depth[q] - dc;
+        w = mc->blur_w[i < 0 ? -i : i] / (1.0f + pn_kfabs(dd) * k);
+        sum += w * src[q];
+        wsum += w;
+    }
+    dst[pix] = sum / wsum;
+}
+
+#endif

@@ -1,0 +1,143 @@
+/* pn_nbuffer.h - the N-buffer (Decoret 2005), the one builder and lookup of the library:
+ * the occlusion textures pre-filter a slice with it (integer counts, summed), the Monte
+ * Carlo shadow maps search their depth layers with it (min / max per channel).
+ *
+ * Layout. Level l of a res x res texture holds, at texel x (per axis), the reduction over
+ * the box of level-0 texels [x, x + 1) (l = 0) or [x + 1 - 2^(l-1), x + 1 + 2^(l-1))
+ * (l >= 1): boxes of side 2^l centred on lattice point x + 1 (Curtis 2009 §3.5 moves
+ * Decoret's lower-left texels to the centre, which keeps information near the edges).
+ * Level l >= 1 is built from level l - 1 by four lookups at offsets a, b per axis
+ * (pn_nb_offsets); texels outside the texture are the reduction's identity. Levels are
+ * stored one after another, res^2 texels each.
+ *
+ * Lookups. pn_nb_index gives the texel of level l whose box starts at level-0 texel X;
+ * clamped to the texture, the box it returns still holds the in-texture part of the box
+ * asked for (a superset: conservative for min / max bounds). pn_nb_rect bounds any
+ * rectangle with four boxes. */
+#ifndef PN_NBUFFER_H
+#define PN_NBUFFER_H
+
+#include "pn_kmath.h"
+
+/* Offsets of the four level-(l-1) boxes that make the level-l box of texel x (l >= 1). */
+PN_KFN void pn_nb_offsets(uint32_t l, int32_t *a, int32_t *b)
+{
+    *a = l == 1u ? 0 : -(int32_t)(1u << (l - 2u));
+    *b = l == 1u ? 1 : (int32_t)(1u << (l - 2u));
+}
+
+/* Level l's texel whose box starts at level-0 texel X, clamped to [0, res). */
+PN_KFN int32_t pn_nb_index(uint32_t l, int32_t X, uint32_t res)
+{
+    int32_t i = l == 0u ? X : X - 1 + (int32_t)(1u << (l - 1u));
+    return pn_kmaxi(0, pn_kmini(i, (int32_t)res - 1));
+}
+
+/* Row y of summed level l >= 1 (uint32 counts, levels of res^2 in lv). */
+PN_KFN void pn_nb_sum_row(uint32_t res, uint32_t l, uint32_t y, PN_GLOBAL uint32_t *lv)
+{
+    int32_t a, b, ya, yb;
+    uint32_t x;
+    PN_CONST uint32_t *lo = lv + (size_t)(l - 1u) * res * res;
+    PN_GLOBAL uint32_t *out = lv + (size_t)l * res * res + (size_t)y * res;
+    pn_nb_offsets(l, &a, &b);
+    ya = (int32_t)y + a;
+    yb = (int32_t)y + b;
+    for (x = 0; x < res; x++) {
+        int32_t xa = (int32_t)x + a, xb = (int32_t)x + b;
+        uint32_t v = 0u;
+        if (ya >= 0 && ya < (int32_t)res) {
+            PN_CONST uint32_t *r = lo + (size_t)ya * res;
+            if (xa >= 0) v += r[xa];
+            if (xb < (int32_t)res) v += r[xb];
+        }
+        if (yb >= 0 && yb < (int32_t)res) {
+            PN_CONST uint32_t *r = lo + (size_t)yb * res;
+            if (xa >= 0) v += r[xa];
+            if (xb < (int32_t)res) v += r[xb];
+        }
+        out[x] = v;
+    }
+}
+
+/* Min / max texels: three floats, {min of channel 0, max of channel 1, max of channel 2}
+ * (the Monte Carlo shadow maps: min near, max far, max near). Identity: {+inf, -inf, -inf}. */
+#define PN_NB_MM 3u
+
+PN_KFN void pn_nb_mm_empty(float *v)
+{
+    v[0] = PN_KINF;
+    v[1] = -PN_KINF;
+    v[2] = -PN_KINF;
+}
+
+PN_KFN void pn_nb_mm_add(float *v, PN_CONST float *t)
+{
+    v[0] = pn_kminf(v[0], t[0]);
+    v[1] = pn_kmaxf(v[1], t[1]);
+    v[2] = pn_kmaxf(v[2], t[2]);
+}
+
+/* Row y of min / max level l >= 1 (levels of res^2 texels of PN_NB_MM floats in lv). */
+PN_KFN void pn_nb_mm_row(uint32_t res, uint32_t l, uint32_t y, PN_GLOBAL float *lv)
+{
+    int32_t a, b, ya, yb;
+    uint32_t x;
+    PN_CONST float *lo = lv + (size_t)(l - 1u) * res * res * PN_NB_MM;
+    PN_GLOBAL float *out = lv + ((size_t)l * res * res + (size_t)y * res) * PN_NB_MM;
+    pn_nb_offsets(l, &a, &b);
+    ya = (int32_t)y + a;
+    yb = (int32_t)y + b;
+    for (x = 0; x < res; x++) {
+        int32_t xa = (int32_t)x + a, xb = (int32_t)x + b;
+        float v[PN_NB_MM];
+        pn_nb_mm_empty(v);
+        if (ya >= 0 && ya < (int32_t)res) {
+            PN_CONST float *r = lo + (size_t)ya * res * PN_NB_MM;
+            if (xa >= 0) pn_nb_mm_add(v, r + (size_t)xa * PN_NB_MM);
+            if (xb < (int32_t)res) pn_nb_mm_add(v, r + (size_t)xb * PN_NB_MM);
+        }
+        if (yb >= 0 && yb < (int32_t)res) {
+            PN_CONST float *r = lo + (size_t)yb * res * PN_NB_MM;
+            if (xa >= 0) pn_nb_mm_add(v, r + (size_t)xa * PN_NB_MM);
+            if (xb < (int32_t)res) pn_nb_mm_add(v, r + (size_t)xb * PN_NB_MM);
+        }
+        out[(size_t)x * PN_NB_MM + 0u] = v[0];
+        out[(size_t)x * PN_NB_MM + 1u] = v[1];
+        out[(size_t)x * PN_NB_MM + 2u] = v[2];
+    }
+}
+
+/* The min / max box of level l starting at level-0 texel (X, Y), added into v. */
+PN_KFN void pn_nb_mm_box(PN_CONST float *lv, uint32_t res, uint32_t l, int32_t X, int32_t Y, float *v)
+{
+    size_t i = (size_t)l * res * res + (size_t)pn_nb_index(l, Y, res) * res + (size_t)pn_nb_index(l, X, res);
+    pn_nb_mm_add(v, lv + i * PN_NB_MM);
+}
+
+/* Bounds over the texel rectangle [x0, x1) x [y0, y1) (clamped to the texture; empty: the
+ * identity) from four boxes of the smallest level l with 2^(l+1) >= its longer side (at
+ * most the top level, whose four boxes cover the texture): a superset, so the bounds are
+ * conservative; exact when both sides are 2^l .. 2^(l+1). */
+PN_KFN void pn_nb_mm_rect(PN_CONST float *lv, uint32_t res, uint32_t levels, int32_t x0, int32_t y0, int32_t x1,
+                          int32_t y1, float *v)
+{
+    int32_t w, h, s;
+    uint32_t l = 0u;
+    pn_nb_mm_empty(v);
+    x0 = pn_kmaxi(x0, 0);
+    y0 = pn_kmaxi(y0, 0);
+    x1 = pn_kmini(x1, (int32_t)res);
+    y1 = pn_kmini(y1, (int32_t)res);
+    if (x1 <= x0 || y1 <= y0) return;
+    w = x1 - x0;
+    h = y1 - y0;
+    while (l + 1u < levels && (2 << l) < pn_kmaxi(w, h)) l++;
+    s = 1 << l;
+    pn_nb_mm_box(lv, res, l, x0, y0, v);
+    pn_nb_mm_box(lv, res, l, pn_kmaxi(x1 - s, x0), y0, v);
+    pn_nb_mm_box(lv, res, l, x0, pn_kmaxi(y1 - s, y0), v);
+    pn_nb_mm_box(lv, res, l, pn_kmaxi(x1 - s, x0), pn_kmaxi(y1 - s, y0), v);
+}
+
+#endif

@@ -1,0 +1,133 @@
+/* pn_mcsm.c - the Monte Carlo shadow maps' whole frame (sequence in pn_mcsm_frame.h): the
+ * layers' view, then the passes of kernels/pn_mcsm.h between them, run on the frame's port.
+ * Written once: both ports run this sequence. */
+#include <string.h>
+
+#include "pn_device.h"
+#include "pn_mcsm_frame.h"
+#include "pn_passes.h"
+
+#if PN_ENABLE_MCSM
+
+/* The kernels' copies of the public constants (kernels/ does not include penumbra.h). */
+typedef char pn_mc_consts_agree[PN_MC_S_LINEAR == PN_MC_SEARCH_LINEAR && PN_MC_S_HIER == PN_MC_SEARCH_HIER &&
+                                        PN_MC_F_NO_BIAS == PN_MC_NO_BIAS && PN_MC_F_NO_CLASSIFY == PN_MC_NO_CLASSIFY &&
+                                        PN_MC_RAYS_MAX == 8u && PN_MC_BLUR_MAX + 1u <= 12u &&
+                                        PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS && PN_MC_WORDS == 4u
+                                    ? 1
+                                    : -1];
+
+typedef struct pn_mc_pools {
+    float *box;      /* [height * PN_LVIEW_BOX]: row bounds (kernels/pn_lview.h) */
+    float *nb;       /* [levels * res^2 * PN_NB_MM]: the N-buffer, level 0 the layers */
+    float *tmp;      /* [width * height]: the blur's other buffer */
+    uint32_t *words; /* [height * PN_MC_WORDS]: class counters per row */
+} pn_mc_pools;
+
+static pn_status pn_mc_begin(pn_frame_state *fs, pn_mc_pools *s, uint32_t res)
+{
+    pn_context *ctx = fs->ctx;
+    pn_kpools *P = &fs->P;
+    size_t px = (size_t)fs->width * fs->height;
+    /* Same pools, same order as pn_mc_pools() in src/pn_arena.c. */
+    if (!(s->box = (float *)pn_frame_alloc(ctx, fs->height, 4u * PN_LVIEW_BOX_FLOATS, "mcsm row bounds")) ||
+        !(s->nb = (float *)pn_frame_alloc(ctx, (size_t)pn_occ_levels(res) * res * res, 4u * PN_NB_MM, "mcsm N-buffer")) ||
+        !(s->tmp = (float *)pn_frame_alloc(ctx, px, 4u, "mcsm blur buffer")) ||
+        !(s->words = (uint32_t *)pn_frame_alloc(ctx, fs->height, 4u * PN_MC_WORDS, "mcsm counters")))
+        return PN_E_POOL_EXHAUSTED;
+    P->lview_box = pn_dev_off(ctx, s->box);
+    P->mc_nb = pn_dev_off(ctx, s->nb);
+    P->mc_tmp = pn_dev_off(ctx, s->tmp);
+    P->mc_words = pn_dev_off(ctx, s->words);
+    memset(&ctx->mc, 0, sizeof(ctx->mc));
+    return PN_OK;
+}
+
+/* Binomial blur weights C(2r, r + i), i = 0 .. r, as floats (exact: at most C(16, 8)). */
+static void pn_mc_weights(pn_kmc *mc)
+{
+    uint32_t r = mc->blur, i, row[2u * PN_MC_BLUR_MAX + 1u], n, k;
+    for (i = 0; i < 12u; i++) mc->blur_w[i] = 0.0f;
+    if (r == 0u) return;
+    /* Pascal's row 2r, built in place. */
+    for (k = 0; k <= 2u * r; k++) row[k] = 0u;
+    row[0] = 1u;
+    for (n = 1; n <= 2u * r; n++)
+        for (k = n; k > 0u; k--) row[k] += row[k - 1u];
+    for (i = 0; i <= r; i++) mc->blur_w[i] = (float)row[r + i];
+}
+
+pn_status pn_mcsm_frame(pn_frame_state *fs)
+{
+    pn_context *ctx = fs->ctx;
+    pn_kparams *K = &fs->K;
+    pn_kmc *mc = &K->mc;
+    pn_mc_pools s;
+    pn_lwin w;
+    uint32_t res = fs->mc_map, npix = fs->width * fs->height, l, y;
+    uint64_t t0 = pn_dev_timestamp(fs), t1;
+    int front;
+    pn_status st;
+
+    if ((st = pn_mc_begin(fs, &s, res)) != PN_OK) return st;
+    pn_light_view(ctx, &K->light, res, &K->lview);
+    pn_light_halves(&K->light, &K->lview_ha, &K->lview_hb);
+    mc->res = res;
+    mc->levels = pn_occ_levels(res);
+    mc->blur_depth = 100.0f; /* 1% of the centre's depth away: half the weight */
+    pn_mc_weights(mc);
+    ctx->mc.map = res;
+
+    if ((st = pn_dev_fill(fs, s.words, fs->height * PN_MC_WORDS, 0u)) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_LVIEW_BOUNDS, fs->height)) != PN_OK ||
+        (st = pn_dev_to_host(fs, s.box, (size_t)fs->height * 4u * PN_LVIEW_BOX)) != PN_OK)
+        return st;
+    front = pn_lview_window(ctx, s.box, fs->height, res, &K->light, K->lview_ha, K->lview_hb, &K->lview, &w);
+    if (front) {
+        mc->d = w.d;
+        mc->sfac = K->light.is_point ? 0.0f : (float)res * K->lview_ha / w.tx;
+        /* eq. 3.2: half a texel's diagonal at depth z + d, sqrt(2) z tan(fov / 2) / w. */
+        mc->bias_k = 1.41421356f * pn_kmaxf(w.tx, w.ty) / (float)res;
+        /* Layers, then the N-buffer above them. */
+        if ((st = pn_dev_run(fs, PN_K_LMAP_ROWS, ctx->tri_count)) != PN_OK ||
+            (st = pn_dev_run(fs, PN_K_MC_BAND, (res + PN_RASTER_BAND - 1u) / PN_RASTER_BAND)) != PN_OK)
+            return st;
+        t1 = pn_dev_timestamp(fs);
+        ctx->mc.ns_layers = t1 - t0;
+        t0 = t1;
+        for (l = 1; l < mc->levels; l++) {
+            mc->level = l;
+            if ((st = pn_dev_run(fs, PN_K_MC_NBUF, res)) != PN_OK) return st;
+        }
+        t1 = pn_dev_timestamp(fs);
+        ctx->mc.ns_nbuffer = t1 - t0;
+        t0 = t1;
+    }
+    /* Without an origin in front of the light no pixel reads the layers: every pixel is
+     * background (1) or unlit (0). */
+    if ((st = pn_dev_run(fs, PN_K_MC_PIXEL, npix)) != PN_OK) return st;
+    t1 = pn_dev_timestamp(fs);
+    ctx->mc.ns_rays = t1 - t0;
+    t0 = t1;
+    if (front && mc->blur > 0u) {
+        if ((st = pn_dev_run(fs, PN_K_MC_BLUR_H, npix)) != PN_OK || (st = pn_dev_run(fs, PN_K_MC_BLUR_V, npix)) != PN_OK)
+            return st;
+        ctx->mc.ns_blur = pn_dev_timestamp(fs) - t0;
+    }
+    if ((st = pn_dev_to_host(fs, s.words, (size_t)fs->height * 4u * PN_MC_WORDS)) != PN_OK ||
+        (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_shadow_counters))) != PN_OK)
+        return st;
+    for (y = 0; y < fs->height; y++) {
+        const uint32_t *wd = s.words + (size_t)y * PN_MC_WORDS;
+        const pn_shadow_counters *c = (const pn_shadow_counters *)fs->counters + y;
+        ctx->mc.lit += wd[PN_MC_WORD_LIT];
+        ctx->mc.umbra += wd[PN_MC_WORD_UMBRA];
+        ctx->mc.penumbra += wd[PN_MC_WORD_PENUMBRA];
+        ctx->mc.capped += wd[PN_MC_WORD_CAPPED];
+        ctx->mc.rays += c->candidates;
+        ctx->mc.steps += c->nodes;
+    }
+    return PN_OK;
+}
+
+#endif

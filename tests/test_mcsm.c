@@ -1,0 +1,290 @@
+/* PN_ALGO_MCSM (Monte Carlo shadow maps): what it promises and what it is built from.
+ *
+ * 1. The sample hash is Appendix A's reduced MD5: three known answers (computed by an
+ *    independent transcription of the appendix), and every jittered sample lies in its own
+ *    cell of the n x n grid, with different pixels drawing different samples.
+ * 2. Accuracy on `square` (one planar occluder, the ground marked receiver-only) against
+ *    the reference at k = 32 with the recommended options: RMSE within the issue's goal of
+ *    0.05; marking the ground receiver-only lowers the error (the thesis requires pure
+ *    receivers out of the layers).
+ * 3. It converges like Monte Carlo: without the blur, 8 x 8 rays have at most half the
+ *    RMSE of 1 x 1 on `square` (slope -1/2 in the ray count would give an eighth).
+ * 4. The classification and early-outs only save work: with one layer every one of them
+ *    is exact for the layers' model, so hierarchical frames with and without them are the
+ *    same bytes; they trace fewer rays.
+ * 5. Determinism: the same bytes from 1 and 2 threads and two runs; another frame key
+ *    gives other bytes.
+ * 6. Options and pools: every option outside its range is PN_E_INVALID_ARG with a message;
+ *    a context whose mc_map_max is 64 has a smaller arena and renders at that size; the
+ *    stats add up (lit + umbra + penumbra = lit pixels, rays <= penumbra x n^2) and with a
+ *    clock the stage times lie inside the shadow pass.
+ * The thesis' claims, on every scene, are the benchmark's (docs/bench/RESULTS.md). */
+#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "penumbra/penumbra.h"
+#include "pn_mcsm.h"
+#include "pn_scenes.h"
+#include "pn_setup.h"
+#include "pn_test.h"
+#include "pn_test_render.h"
+
+#define W 128u
+#define H 96u
+
+static float g_ref[W * H], g_a[W * H], g_b[W * H];
+
+static void test_hash(void)
+{
+    static const uint32_t seeds[3][5] = {{0u, 0u, 0u, 0u, 0u}, {1u, 2u, 3u, 4u, 5u}, {17u, 42u, 5u, 0x9E3779B9u, 0xDEADBEEFu}};
+    static const uint32_t want[3][4] = {{0x9849996Eu, 0x61C2B03Bu, 0x4663DBEFu, 0xFE85C476u},
+                                        {0x76FD5E8Cu, 0x43C49748u, 0x8C86C915u, 0x731FF2D4u},
+                                        {0x8C1C53C3u, 0x467EF752u, 0xC339D58Du, 0xC2BB4AE5u}};
+    uint32_t i, n, x, y, same = 0u, total = 0u;
+    for (i = 0; i < 3u; i++) {
+        uint32_t out[4];
+        pn_md5r(seeds[i], seeds[i][4], out);
+        CHECK_MSG(memcmp(out, want[i], sizeof(out)) == 0, "md5r %u: %08x %08x %08x %08x", i, out[0], out[1], out[2],
+                  out[3]);
+    }
+    for (n = 1; n <= 8u; n++)
+        for (y = 0; y < 16u; y++)
+            for (x = 0; x < 16u; x++) {
+                uint32_t a, b;
+                for (b = 0; b < n; b++)
+                    for (a = 0; a < n; a++) {
+                        float u, v, u2, v2;
+                        pn_mc_sample(x, y, a, b, n, 7u, &u, &v);
+                        CHECK_MSG(u >= 2.0f * (float)a / (float)n - 1.0f && u <= 2.0f * (float)(a + 1u) / (float)n - 1.0f &&
+                                      v >= 2.0f * (float)b / (float)n - 1.0f && v <= 2.0f * (float)(b + 1u) / (float)n - 1.0f,
+                                  "sample (%u, %u) of %u at pixel (%u, %u) is (%g, %g), outside its cell", a, b, n, x, y, u,
+                                  v);
+                        pn_mc_sample(x + 1u, y, a, b, n, 7u, &u2, &v2);
+                        same += u == u2 && v == v2;
+                        total++;
+                    }
+            }
+    CHECK_MSG(same == 0u, "%u of %u samples equal their right neighbour's", same, total);
+}
+
+static int open_scene(const char *name, pn_setup *s, pn_host *h, int threads, int receivers)
+{
+    char err[256];
+    if (pn_setup_load(s, name, 1, -1, err, sizeof(err)) != 0) {
+        CHECK_MSG(0, "loading %s: %s", name, err);
+        return 0;
+    }
+    if (pn_host_open(h, s->mesh.triangle_count, W, H, threads, err, sizeof(err)) != 0) {
+        CHECK_MSG(0, "context: %s", err);
+        pn_setup_free(s);
+        return 0;
+    }
+    if (pn_scene_set(h->ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices, s->mesh.triangle_count) != PN_OK ||
+        pn_scene_set_receivers(h->ctx, s->mesh.receiver_first, receivers ? s->mesh.receiver_count : 0u) != PN_OK) {
+        CHECK_MSG(0, "%s: %s", name, pn_last_error(h->ctx));
+        pn_host_close(h);
+        pn_setup_free(s);
+        return 0;
+    }
+    return 1;
+}
+
+static void mc_opts(pn_frame_options *o, uint32_t layers, uint32_t search, uint32_t rays, uint32_t blur, uint32_t flags)
+{
+    pn_frame_options_default(o);
+    o->width = W;
+    o->height = H;
+    o->k = 32;
+    o->algo = PN_ALGO_MCSM;
+    o->mc_layers = layers;
+    o->mc_search = search;
+    o->mc_rays = rays;
+    o->mc_blur = blur;
+    o->mc_flags = flags;
+}
+
+static double rmse(const float *a, const float *b)
+{
+    double se = 0.0;
+    size_t i;
+    for (i = 0; i < (size_t)W * H; i++) se += ((double)a[i] - b[i]) * ((double)a[i] - b[i]);
+    return sqrt(se / (double)(W * H));
+}
+
+static void test_square(void)
+{
+    pn_setup s;
+    pn_host h;
+    pn_frame_options o;
+    double e_def, e_norecv, e1, e8;
+    if (!open_scene("square", &s, &h, 2, 1)) return;
+    CHECK_MSG(s.mesh.receiver_count > 0u, "square marks no receiver");
+    REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_REFERENCE, W, H, 32, 1, g_ref, NULL) == 0);
+    mc_opts(&o, 0u, 0u, 0u, 0u, 0u);
+    REQUIRE(render_opt(&h, &s, &s.light, &o, g_a, NULL, NULL) == 0);
+    e_def = rmse(g_ref, g_a);
+    /* Convergence, blur off. */
+    mc_opts(&o, 0u, 0u, 1u, PN_MC_BLUR_OFF, 0u);
+    REQUIRE(render_opt(&h, &s, &s.light, &o, g_b, NULL, NULL) == 0);
+    e1 = rmse(g_ref, g_b);
+    mc_opts(&o, 0u, 0u, 8u, PN_MC_BLUR_OFF, 0u);
+    REQUIRE(render_opt(&h, &s, &s.light, &o, g_b, NULL, NULL) == 0);
+    e8 = rmse(g_ref, g_b);
+    /* The same frame with the ground in the layers. */
+    REQUIRE(pn_scene_set_receivers(h.ctx, 0u, 0u) == PN_OK);
+    mc_opts(&o, 0u, 0u, 0u, 0u, 0u);
+    REQUIRE(render_opt(&h, &s, &s.light, &o, g_b, NULL, NULL) == 0);
+    e_norecv = rmse(g_ref, g_b);
+    fprintf(stderr, "square: RMSE default %.4f, ground in the layers %.4f; blur off 1x1 %.4f, 8x8 %.4f\n", e_def,
+            e_norecv, e1, e8);
+    CHECK_MSG(e_def <= 0.05, "square RMSE %.4f above the goal 0.05", e_def);
+    CHECK_MSG(e_def < e_norecv, "receivers marked: RMSE %.4f, not below %.4f without", e_def, e_norecv);
+    CHECK_MSG(e8 <= 0.5 * e1, "64 rays RMSE %.4f, 1 ray %.4f: not halved", e8, e1);
+    pn_host_close(&h);
+    pn_setup_free(&s);
+}
+
+/* With one layer, the classification and every early-out are exact for the model. */
+static void test_classify_exact(void)
+{
+    static const char *const scenes[3] = {"spheres", "elongated-cube", "thin"};
+    int i;
+    for (i = 0; i < 3; i++) {
+        pn_setup s;
+        pn_host h;
+        pn_frame_options o;
+        pn_stats a, b;
+        size_t p, diff = 0;
+        if (!open_scene(scenes[i], &s, &h, 2, 1)) return;
+        mc_opts(&o, 1u, PN_MC_SEARCH_HIER, 3u, PN_MC_BLUR_OFF, 0u);
+        REQUIRE(render_opt(&h, &s, &s.light, &o, g_a, NULL, &a) == 0);
+        o.mc_flags = PN_MC_NO_CLASSIFY;
+        REQUIRE(render_opt(&h, &s, &s.light, &o, g_b, NULL, &b) == 0);
+        for (p = 0; p < (size_t)W * H; p++) {
+            if (g_a[p] != g_b[p] && getenv("PN_MC_DEBUG")) fprintf(stderr, "  pixel %zu: %g vs %g\n", p, g_a[p], g_b[p]);
+            diff += g_a[p] != g_b[p];
+        }
+        fprintf(stderr, "%s one layer: %zu pixels differ with the classification off; rays %llu -> %llu\n", scenes[i],
+                diff, (unsigned long long)a.mc_rays, (unsigned long long)b.mc_rays);
+        CHECK_MSG(diff == 0u, "%s: %zu pixels differ", scenes[i], diff);
+        CHECK_MSG(a.mc_rays < b.mc_rays, "%s: classification traced %llu rays, %llu without", scenes[i],
+                  (unsigned long long)a.mc_rays, (unsigned long long)b.mc_rays);
+        CHECK_MSG(b.mc_lit == 0u && b.mc_umbra == 0u, "%s: no classification, yet %u lit / %u umbra", scenes[i], b.mc_lit,
+                  b.mc_umbra);
+        pn_host_close(&h);
+        pn_setup_free(&s);
+    }
+}
+
+static void test_determinism_and_stats(void)
+{
+    pn_setup s;
+    pn_host h1, h2;
+    pn_frame_options o;
+    pn_stats st;
+    static const size_t stages[3] = {offsetof(pn_stats, mc_ns_layers), offsetof(pn_stats, mc_ns_nbuffer),
+                                     offsetof(pn_stats, mc_ns_rays)};
+    if (!open_scene("spheres", &s, &h1, 1, 1)) return;
+    pn_setup_free(&s);
+    if (!open_scene("spheres", &s, &h2, 2, 1)) return;
+    mc_opts(&o, 0u, 0u, 0u, 0u, 0u);
+    REQUIRE(render_opt(&h1, &s, &s.light, &o, g_a, NULL, &st) == 0);
+    REQUIRE(render_opt(&h2, &s, &s.light, &o, g_b, NULL, NULL) == 0);
+    CHECK_MSG(memcmp(g_a, g_b, sizeof(g_a)) == 0, "1 and 2 threads differ");
+    REQUIRE(render_opt(&h2, &s, &s.light, &o, g_b, NULL, NULL) == 0);
+    CHECK_MSG(memcmp(g_a, g_b, sizeof(g_a)) == 0, "two runs differ");
+    CHECK_MSG(st.mc_lit + st.mc_umbra + st.mc_penumbra == st.lit_pixels, "classes %u + %u + %u, lit pixels %u",
+              st.mc_lit, st.mc_umbra, st.mc_penumbra, st.lit_pixels);
+    CHECK_MSG(st.mc_penumbra > 0u && st.mc_lit > 0u && st.mc_umbra > 0u, "classes %u / %u / %u", st.mc_lit, st.mc_umbra,
+              st.mc_penumbra);
+    CHECK_MSG(st.mc_rays <= (uint64_t)st.mc_penumbra * 9u && st.mc_rays > 0u, "rays %llu for %u penumbra pixels",
+              (unsigned long long)st.mc_rays, st.mc_penumbra);
+    CHECK_MSG(st.mc_map == 512u && st.shadow_candidates == st.mc_rays && st.mc_capped == 0u,
+              "map %u, candidates %llu, capped %u", st.mc_map, (unsigned long long)st.shadow_candidates, st.mc_capped);
+    o.mc_seed = 12345u;
+    REQUIRE(render_opt(&h2, &s, &s.light, &o, g_b, NULL, NULL) == 0);
+    CHECK_MSG(memcmp(g_a, g_b, sizeof(g_a)) != 0, "another frame key gave the same bytes");
+    {
+        pn_camera cam = s.camera;
+        o.mc_seed = 0u;
+        o.eps = s.eps;
+        REQUIRE(pn_set_clock(h1.ctx, NULL, NULL) == PN_OK);
+        check_stage_times(h1.ctx, &cam, &s.light, &o, stages, &st);
+    }
+    pn_host_close(&h1);
+    pn_host_close(&h2);
+    pn_setup_free(&s);
+}
+
+static void test_options_and_pools(void)
+{
+    pn_setup s;
+    pn_host h;
+    pn_frame_options o;
+    pn_frame fr;
+    pn_limits lim;
+    size_t big, small;
+    uint8_t *mem;
+    pn_context *ctx;
+    int i;
+    if (!open_scene("elongated-cube", &s, &h, 1, 1)) return;
+    for (i = 0; i < 7; i++) {
+        mc_opts(&o, 0u, 0u, 0u, 0u, 0u);
+        o.eps = s.eps;
+        switch (i) {
+        case 0: o.mc_layers = 4u; break;
+        case 1: o.mc_search = 3u; break;
+        case 2: o.mc_rays = 9u; break;
+        case 3: o.mc_blur = 9u; break;
+        case 4: o.mc_map = 7u; break;
+        case 5: o.mc_map = 1024u; break; /* above the limit (512) */
+        default: o.mc_flags = 4u; break;
+        }
+        CHECK_MSG(pn_render(h.ctx, &s.camera, &s.light, &o, &fr) == PN_E_INVALID_ARG && pn_last_error(h.ctx)[0] != '\0',
+                  "bad option %d accepted", i);
+    }
+    pn_host_close(&h);
+    memset(&lim, 0, sizeof(lim));
+    lim.max_triangles = s.mesh.triangle_count;
+    lim.max_width = W;
+    lim.max_height = H;
+    lim.gears_pairs = 1000u; /* the others small: the frame region holds the largest */
+    lim.gears_grid_max = 16u;
+    lim.srt_map_max = 64u;
+    lim.occ_map_max = 64u;
+    REQUIRE(pn_arena_size(&lim, &big) == PN_OK);
+    lim.mc_map_max = 64u;
+    REQUIRE(pn_arena_size(&lim, &small) == PN_OK);
+    CHECK_MSG(small < big, "mc_map_max 64: %zu bytes, default %zu", small, big);
+    mem = (uint8_t *)malloc(small);
+    REQUIRE(mem != NULL);
+    REQUIRE(pn_init(&ctx, mem, small, &lim) == PN_OK);
+    REQUIRE(pn_scene_set(ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
+    mc_opts(&o, 0u, 0u, 0u, 0u, 0u);
+    o.eps = s.eps;
+    CHECK_MSG(pn_render(ctx, &s.camera, &s.light, &o, &fr) == PN_OK, "%s", pn_last_error(ctx));
+    {
+        pn_stats st;
+        CHECK(pn_get_stats(ctx, &st) == PN_OK && st.mc_map == 64u);
+    }
+    o.mc_map = 65u;
+    CHECK(pn_render(ctx, &s.camera, &s.light, &o, &fr) == PN_E_INVALID_ARG);
+    free(mem);
+    pn_setup_free(&s);
+}
+
+int main(void)
+{
+    if (!(pn_build_info() & PN_BUILD_MCSM)) {
+        fprintf(stderr, "PN_ALGO_MCSM not compiled in\n");
+        return 0;
+    }
+    RUN(test_hash);
+    RUN(test_square);
+    RUN(test_classify_exact);
+    RUN(test_determinism_and_stats);
+    RUN(test_options_and_pools);
+    return pn_test_summary();
+}

@@ -35,8 +35,11 @@
  * Visibility = unblocked rays / n^2, then the screen-space blur.
  *
  * Early-outs and shortening (§3.6, §3.7), all but the umbra test consistent with the
- * model above: a ray toward a light point behind the pixel's own plane is blocked (the
- * horizon of invariant 6 and the thesis' first early-out); a pixel whose origin lies no
+ * model above: a ray toward a light point behind the pixel's surface, as its winding
+ * orients it, is blocked (the thesis' first early-out, "the surface normal faces opposite
+ * the ray"; the horizon of invariant 6 for consistently wound meshes; unlike the exact
+ * algorithms, which turn the normal toward the light and let the mesh itself block, the
+ * layers cannot show a surface its own back side); a pixel whose origin lies no
  * deeper than the smallest near depth of the region every ray can reach (eq. 3.3, refined
  * twice from the whole map's minimum) is lit; with one or two layers, a pixel whose every
  * ray ends behind the largest near depth of that region is umbra (the thesis' test; with
@@ -60,7 +63,8 @@
  * (a Gaussian of variance r / 2 in integers, so no exp), each neighbour's weight divided
  * by 1 + |its depth - the centre's| blur_depth / centre depth (the thesis' depth-sensitive
  * filter, "inversely proportional to the difference ... plus 1", in relative depth);
- * background neighbours take no part. Taps summed in a fixed order.
+ * background neighbours and neighbours across a crease (normals more than about 37
+ * degrees apart: the normal sensitivity the thesis recommends) take no part. Taps summed in a fixed order.
  *
  * Every float operation is the same on both ports (no contraction, correctly rounded
  * divide and sqrt, integer hashing and exact int-to-float conversions for the samples). */
@@ -84,7 +88,7 @@
 #define PN_MC_STEP_CAP(res) (8u * (res) + 64u)
 /* The smallest cosine the adaptive bias divides by (eq. 3.2: "n . l must be limited to
  * some small, non-zero value"). */
-#define PN_MC_COS_MIN 0.05f
+#define PN_MC_COS_MIN 0.25f
 /* Relative slack of a depth bound turned into a ray parameter (t = z / z_E): the rounding
  * of t z_E must not move a ray's crossing of a plane occluder (near = far) out of the
  * searched range. */
@@ -95,6 +99,9 @@
 /* Texels from a box side within which a point whose exit rounds to before it is taken to
  * lie on that side. */
 #define PN_MC_ON_EDGE 1e-2f
+/* Neighbours whose normal is more than about 37 degrees off the centre's take no part in
+ * its blur. */
+#define PN_MC_BLUR_COS 0.8f
 /* Per-row class counters (pool mc_words, PN_MC_WORDS per row). */
 #define PN_MC_WORD_LIT 0u
 #define PN_MC_WORD_UMBRA 1u
@@ -459,13 +466,15 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
     int classify = !(mc->flags & PN_MC_F_NO_CLASSIFY);
     *rays = 0u;
     *cls = PN_MC_CLASS_PENUMBRA;
-    if (pn_v3_dot(nrm, toc) < 0.0f) nrm = pn_v3_scale(nrm, -1.0f);
+    /* nrm stays the winding's normal: a ray toward a light point behind it is blocked (the
+     * thesis' first early-out). The layers cannot show a surface's own back side, so a
+     * face turned away from the light would otherwise be lit through its own solid. */
     if (!(ze > 0.0f)) { /* the origin is on or behind the light plane */
         *cls = PN_MC_CLASS_UMBRA;
         return 0.0f;
     }
     lt = pn_ksqrt(pn_v3_dot(toc, toc));
-    cosv = lt > 0.0f ? pn_v3_dot(nrm, toc) / lt : 1.0f;
+    cosv = lt > 0.0f ? pn_kfabs(pn_v3_dot(nrm, toc)) / lt : 1.0f;
     if (!(mc->flags & PN_MC_F_NO_BIAS)) bias = mc->bias_k * (ze + mc->d) / pn_kmaxf(cosv, PN_MC_COS_MIN);
     if (classify && !L->is_point) {
         /* Penumbra classification (§3.6): the region every ray can reach at depth zb
@@ -573,15 +582,18 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
 
 /* Pixel (x, y) of one direction of the separable blur: src into dst. */
 PN_KFN void pn_mc_blur_pixel(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t x, uint32_t y, uint32_t vertical,
-                             PN_CONST uint32_t *ids, PN_CONST float *depth, PN_CONST float *src, PN_GLOBAL float *dst)
+                             PN_CONST uint32_t *ids, PN_CONST float *depth, PN_CONST float *nrm, PN_CONST float *src,
+                             PN_GLOBAL float *dst)
 {
     size_t pix = (size_t)y * W + x;
     float dc, sum = 0.0f, wsum = 0.0f, k;
     int32_t i, r = (int32_t)mc->blur;
+    pn_v3 nc;
     if (ids[pix] == 0xFFFFFFFFu) {
         dst[pix] = src[pix];
         return;
     }
+    nc = pn_v3_load(nrm + pix * 3u);
     dc = depth[pix];
     k = mc->blur_depth / dc;
     for (i = -r; i <= r; i++) {
@@ -591,6 +603,8 @@ PN_KFN void pn_mc_blur_pixel(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t 
         if (xx < 0 || yy < 0 || xx >= (int32_t)W || yy >= (int32_t)H) continue;
         q = (size_t)yy * W + (uint32_t)xx;
         if (ids[q] == 0xFFFFFFFFu) continue;
+        /* Normal sensitivity (the thesis' "robust implementation"): no blur across a crease. */
+        if (!(pn_v3_dot(nc, pn_v3_load(nrm + q * 3u)) >= PN_MC_BLUR_COS)) continue;
         dd = depth[q] - dc;
         w = mc->blur_w[i < 0 ? -i : i] / (1.0f + pn_kfabs(dd) * k);
         sum += w * src[q];

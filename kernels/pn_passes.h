@@ -475,14 +475,14 @@ PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
 PN_KFN void pn_e_mc_blur_h(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
     pn_mc_blur_pixel(&K->mc, K->view.width, K->view.height, pix % K->view.width, pix / K->view.width, 0u,
-                     PN_POOL(const uint32_t, tri_id), PN_POOL(const float, depth), PN_POOL(const float, vis),
-                     PN_POOL(float, mc_tmp));
+                     PN_POOL(const uint32_t, tri_id), PN_POOL(const float, depth), PN_POOL(const float, nrm),
+                     PN_POOL(const float, vis), PN_POOL(float, mc_tmp));
 }
 PN_KFN void pn_e_mc_blur_v(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
     pn_mc_blur_pixel(&K->mc, K->view.width, K->view.height, pix % K->view.width, pix / K->view.width, 1u,
-                     PN_POOL(const uint32_t, tri_id), PN_POOL(const float, depth), PN_POOL(const float, mc_tmp),
-                     PN_POOL(float, vis));
+                     PN_POOL(const uint32_t, tri_id), PN_POOL(const float, depth), PN_POOL(const float, nrm),
+                     PN_POOL(const float, mc_tmp), PN_POOL(float, vis));
 }
 #endif
 

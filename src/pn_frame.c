@@ -399,13 +399,13 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
 #endif
 #if PN_ENABLE_MCSM
     /* Defaults: the configuration docs/bench/RESULTS.md recommends ("Monte Carlo shadow
-     * maps"): two layers, hierarchical search, 3 x 3 rays, blur radius 3, 512^2 layers. */
+     * maps"): two layers, hierarchical search, 3 x 3 rays, blur radius 2, 512^2 layers. */
     fs.mc_map = opt->mc_map ? opt->mc_map : pn_mc_map_max(&ctx->limits);
     if (!opt->mc_map && fs.mc_map > 512u) fs.mc_map = 512u;
     fs.K.mc.layers = opt->mc_layers ? opt->mc_layers : 2u;
     fs.K.mc.search = opt->mc_search ? opt->mc_search : PN_MC_SEARCH_HIER;
     fs.K.mc.rays = opt->mc_rays ? opt->mc_rays : 3u;
-    fs.K.mc.blur = opt->mc_blur == PN_MC_BLUR_OFF ? 0u : opt->mc_blur ? opt->mc_blur : 3u;
+    fs.K.mc.blur = opt->mc_blur == PN_MC_BLUR_OFF ? 0u : opt->mc_blur ? opt->mc_blur : 2u;
     fs.K.mc.flags = opt->mc_flags;
     fs.K.mc.seed = opt->mc_seed;
 #endif

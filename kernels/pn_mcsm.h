@@ -503,8 +503,16 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
         }
     }
     if (n == 0u) {
-        /* Lit: only the horizon blocks. The rays' light points, as they would be drawn. */
-        uint32_t k = mc->rays, vis = 0u;
+        /* Lit: only the horizon blocks. A light wholly in front of (behind) the surface
+         * leaves every ray open (blocked): the sample points are convex combinations of the
+         * corners. Otherwise the rays' light points, as they would be drawn. */
+        uint32_t k = mc->rays, vis = 0u, front = 0u, c4;
+        for (c4 = 0; c4 < 4u; c4++) {
+            pn_v3 S = pn_v3_add(c, pn_v3_add(pn_v3_scale(U, (c4 & 1u) ? 1.0f : -1.0f), pn_v3_scale(V, (c4 & 2u) ? 1.0f : -1.0f)));
+            front += pn_v3_dot(pn_v3_sub(S, O), nrm) > 0.0f;
+        }
+        if (front == 4u) return 1.0f;
+        if (front == 0u) return 0.0f;
         for (j = 0; j < k; j++)
             for (i = 0; i < k; i++) {
                 float a, b;

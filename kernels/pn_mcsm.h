@@ -35,11 +35,11 @@
  * Visibility = unblocked rays / n^2, then the screen-space blur.
  *
  * Early-outs and shortening (§3.6, §3.7), all but the umbra test consistent with the
- * model above: a ray toward a light point behind the pixel's surface, as its winding
- * orients it, is blocked (the thesis' first early-out, "the surface normal faces opposite
- * the ray"; the horizon of invariant 6 for consistently wound meshes; unlike the exact
- * algorithms, which turn the normal toward the light and let the mesh itself block, the
- * layers cannot show a surface its own back side); a pixel whose origin lies no
+ * model above: a pixel whose surface, as its winding orients it, faces away from the light
+ * centre is umbra (the thesis' first early-out, per fragment; for a closed mesh the exact
+ * algorithms' convention gives the same, and the layers cannot show a surface its own back
+ * side), and a ray toward a light point behind the surface's plane is blocked (the horizon
+ * of invariant 6); a pixel whose origin lies no
  * deeper than the smallest near depth of the region every ray can reach (eq. 3.3, refined
  * twice from the whole map's minimum) is lit; with one or two layers, a pixel whose every
  * ray ends behind the largest near depth of that region is umbra (the thesis' test; with
@@ -466,15 +466,20 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
     int classify = !(mc->flags & PN_MC_F_NO_CLASSIFY);
     *rays = 0u;
     *cls = PN_MC_CLASS_PENUMBRA;
-    /* nrm stays the winding's normal: a ray toward a light point behind it is blocked (the
-     * thesis' first early-out). The layers cannot show a surface's own back side, so a
-     * face turned away from the light would otherwise be lit through its own solid. */
-    if (!(ze > 0.0f)) { /* the origin is on or behind the light plane */
+    /* A surface whose winding turns it away from the light centre is umbra: the thesis'
+     * first early-out, "the surface normal faces opposite the ray", per fragment toward the
+     * light centre (§3.7 allows it), which is what the exact algorithms' convention gives a
+     * closed mesh (the normal turned toward the light puts the origin inside the solid,
+     * whose own faces then block every sample). The layers cannot show a surface its own
+     * back side, so without it such a face is lit through its own solid. Otherwise nrm
+     * faces the light centre, and a ray toward a light point behind its plane is blocked
+     * (invariant 6's horizon). An origin on or behind the light plane sees no light. */
+    if (!(ze > 0.0f) || pn_v3_dot(nrm, toc) < 0.0f) {
         *cls = PN_MC_CLASS_UMBRA;
         return 0.0f;
     }
     lt = pn_ksqrt(pn_v3_dot(toc, toc));
-    cosv = lt > 0.0f ? pn_kfabs(pn_v3_dot(nrm, toc)) / lt : 1.0f;
+    cosv = lt > 0.0f ? pn_v3_dot(nrm, toc) / lt : 1.0f;
     if (!(mc->flags & PN_MC_F_NO_BIAS)) bias = mc->bias_k * (ze + mc->d) / pn_kmaxf(cosv, PN_MC_COS_MIN);
     if (classify && !L->is_point) {
         /* Penumbra classification (§3.6): the region every ray can reach at depth zb

@@ -26,9 +26,21 @@ if [ -f "$scenes/spot.glb" ]; then
 fi
 for section in '## Headline' '## Per port' '## Embree 3 baseline' '## Cost vs output resolution' \
                '## Cost vs mask resolution' '## Cost vs light size' '## Cost vs GEARS grid' \
-               '## GEARS grid efficiency' '## Memory' '## Accuracy' '## Gallery'; do
+               '## GEARS grid efficiency' '## Memory' '## Accuracy' '## Gallery' \
+               '## Monte Carlo shadow maps' '### MCSM: convergence' '### MCSM: light leaks on closed-box' \
+               '### MCSM: cost against the depth-layer' '### MCSM: cost against the image size' \
+               "### MCSM: the issue's goal"; do
   check grep -q "^$section" "$md"
 done
+# MCSM (when compiled in): a claims row per scene, and the leak table's closed-box, a scene of
+# that table only.
+if ! grep -q '^| square | MCSM | n/a | n/a | n/a | not compiled in |' "$md"; then
+  for s in square elongated-cube; do
+    check grep -q "^| $s | default (2 layers, hierarchical" "$md"
+  done
+  check grep -q '^| closed-box | MCSM | 3 layers | [0-9]' "$md"
+fi
+check test "$(grep -c '^| closed-box | [0-9]' "$md")" -eq 0
 # Exact algorithms match the reference byte for byte, and our recomputed masks reproduce it.
 check grep -q 'exact: byte-identical' "$md"
 check test "$(grep -c 'DIFFERS' "$md")" -eq 0
@@ -41,7 +53,7 @@ else
   check test "$(grep -c '^| [a-z-]* | 16 | [0-9]' "$md")" -ge 3   # mask agreement rows
 fi
 if command -v gnuplot >/dev/null 2>&1; then
-  for p in speedup sweep_resolution sweep_k sweep_light sweep_grid; do
+  for p in speedup sweep_resolution sweep_k sweep_light sweep_grid mc_convergence; do
     check test -s "$work/$p.png"
   done
   [ -f "$scenes/spot.glb" ] && check test -s "$work/gallery/spot.png"

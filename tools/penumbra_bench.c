@@ -8,7 +8,7 @@
  * count are printed with the tables. Timing lives here, never in tests.
  *
  * usage: penumbra_bench [--out DIR] [--scenes DIR] [--quick] [--only a,b] [--reps N]
- *                       [--threads N] [--sweep-scenes a,b] [--label TEXT]
+ *                       [--threads N] [--sweep-scenes a,b] [--label TEXT] (usage() has all)
  * See tools/bench.sh (make bench / make bench-quick) for how it is run. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
@@ -51,6 +51,7 @@ static const bench_algo algos[] = {
 #endif
     {"SRT", PN_ALGO_SRT, PN_BUILD_SRT, 0, 1},
     {"occtex", PN_ALGO_OCCTEX, PN_BUILD_OCCTEX, 0, 1},
+    {"MCSM", PN_ALGO_MCSM, PN_BUILD_MCSM, 0, 1},
 };
 #define NALGO ((int)(sizeof(algos) / sizeof(algos[0])))
 #define A_REF 0
@@ -139,6 +140,10 @@ typedef struct bench_opts {
     double slow_s;
     uint32_t size, k, grid;
     uint32_t srt_big; /* the SRT section's second image size (0: no SRT section) */
+    uint32_t mc_map[6], n_mc_map;       /* the MCSM speed table's depth-layer resolutions */
+    uint32_t mc_screen[4], n_mc_screen; /* ...and its image sizes */
+    uint32_t mc_map_max;                /* the largest of them this build allows */
+    int mc_map_cut;                     /* map sizes left out: pn_limits do not allow them */
     uint32_t sweep_res[8], n_res, sweep_k[8], n_k, sweep_grid[8], n_grid;
     float sweep_light[8];
     uint32_t n_light;
@@ -259,6 +264,14 @@ typedef struct scene_state {
         int pt;
     } xpt[24];
     int nxpt;
+    /* the reference at k = 32 (main point's size, area light), rendered once on demand */
+    float *ref32_vis;
+    int ref32_done;
+    char ref32_err[256];
+    /* the MCSM default of its claims run, for its goal table */
+    double mc_ms, mc_rmse;
+    pn_stats mc_st;
+    int mc_ok;
 } scene_state;
 
 static void job_lib(job *j, int algo, const pn_frame_options *opt, int keep)
@@ -457,6 +470,12 @@ enum {
     SEC_OCC_CLAIMS,
     SEC_OCC_SPEED,
     SEC_OCC_LIGHT,
+    SEC_MC_CLAIMS,
+    SEC_MC_CONV,
+    SEC_MC_LEAKS,
+    SEC_MC_MAP,
+    SEC_MC_SCREEN,
+    SEC_MC_GOAL,
     SEC_GALLERY,
     SEC_COUNT
 };
@@ -471,6 +490,10 @@ typedef struct report {
     double hmin, hmax; /* range of the headline ratios */
     int sweep_scenes;
     char sweep_names[MAX_SCENES][128];
+    int mc_conv_scenes;                  /* scenes with an MCSM convergence data file */
+    char mc_conv_names[MAX_SCENES][128];
+    double mc_conv_top;                  /* largest RMSE of the convergence plot */
+    int mc_goal_n, mc_goal[3];           /* shared scenes; of which meet each part of the goal */
 } report;
 
 static void sec(report *r, int s, const char *fmt, ...)
@@ -555,6 +578,7 @@ static void scene_close(scene_state *ss)
     pn_embree_close(ss->emb);
     pn_gbuf_free(&ss->g);
     free(ss->ref_vis);
+    free(ss->ref32_vis);
     pn_host_close(&ss->h);
     pn_setup_free(&ss->s);
 }
@@ -1036,6 +1060,105 @@ static void sweep(const bench_opts *o, report *r, scene_state *ss, int kind, pn_
 
 /* ---- The report ----------------------------------------------------------------------- */
 
+/* ---- Shared by the approximate algorithms' sections ---------------------------------------- */
+
+/* Index in algos[] of the algorithm whose section this is, or -1 when it is not compiled in
+ * or not selected (--algos): then its section is left out. */
+static int section_algo(const bench_opts *o, pn_algo algo)
+{
+    int a;
+    for (a = 0; a < NALGO; a++)
+        if (algos[a].algo == algo)
+            return (pn_build_info() & algos[a].build_flag) && in_list(o->algos, algos[a].name) ? a : -1;
+    return -1;
+}
+
+/* The fastest exact algorithm among per-algorithm shadow-pass medians (NaN: not run);
+ * -1: none. */
+static int fastest_exact(const double *ms)
+{
+    int a, best = -1;
+    for (a = 0; a < NALGO; a++)
+        if (algos[a].exact && ms[a] == ms[a] && (best < 0 || ms[a] < ms[best])) best = a;
+    return best;
+}
+
+/* The reference's visibility at k = 32, the main point's size, area light: rendered once per
+ * scene (one frame: only its bits are used) for the sections that measure an approximate
+ * algorithm's own error, not the k = 16 reference's. NULL when it failed (ss->ref32_err). */
+static const float *ref32(const bench_opts *o, scene_state *ss)
+{
+    pn_frame_options opt;
+    job j;
+    if (ss->ref32_done) return ss->ref32_vis;
+    ss->ref32_done = 1;
+    base_options(o, ss, &opt);
+    job_lib(&j, A_REF, &opt, 1);
+    j.opt.k = 32;
+    progress("  %s: reference at k = 32", ss->s.name);
+    job_run(ss, &j, &ss->s.light, 0);
+    if (!j.ok) snprintf(ss->ref32_err, sizeof(ss->ref32_err), "%s", j.err);
+    ss->ref32_vis = j.vis;
+    j.vis = NULL;
+    job_free(&j);
+    return ss->ref32_vis;
+}
+
+/* Pixels of a at least 0.25 brighter than ref: light leaks (a shadow that light shines
+ * through, not a penumbra's slope); with the arguments swapped, pixels 0.25 too dark. */
+static size_t px_brighter(const float *a, const float *ref, size_t n)
+{
+    size_t i, c = 0;
+    if (!a || !ref) return 0;
+    for (i = 0; i < n; i++) c += a[i] > ref[i] + 0.25f;
+    return c;
+}
+
+static void front_add(char *b, size_t n, size_t *len, const char *name)
+{
+    int w;
+    if (*len >= n) return;
+    w = snprintf(b + *len, n - *len, "%s%s", *len ? ", " : "no: ", name);
+    if (w > 0) *len += (size_t)w;
+}
+
+/* Whether (ms, rmse) lies on the front of the time-vs-error chart: no algorithm at the main
+ * point but `self`, not Embree, and no configuration point (ss->xpt) whose label does not
+ * start with `own` is both faster and more accurate. b: "yes", or "no: " and the points that
+ * are ("n/a" without a time or an error). */
+static int chart_front(const scene_state *ss, int self, const char *own, double ms, double rmse, char *b, size_t n)
+{
+    size_t len = 0, lo = strlen(own);
+    int a, i;
+    if (!(ms == ms) || !(rmse == rmse)) {
+        snprintf(b, n, "n/a");
+        return 0;
+    }
+    for (a = 0; a < NALGO; a++)
+        if (a != self && ss->pt_ms[a] == ss->pt_ms[a] && ss->pt_ms[a] < ms && (a == A_REF ? 0.0 : ss->pt_rmse[a]) < rmse)
+            front_add(b, n, &len, algos[a].name);
+    if (ss->emb_ms == ss->emb_ms && ss->emb_ms < ms && ss->emb_rmse < rmse) front_add(b, n, &len, "Embree");
+    for (i = 0; i < ss->nxpt; i++)
+        if (strncmp(ss->xpt[i].label, own, lo) != 0 && ss->xpt[i].ms < ms && ss->xpt[i].rmse < rmse)
+            front_add(b, n, &len, ss->xpt[i].label);
+    if (len == 0) snprintf(b, n, "yes");
+    return len == 0;
+}
+
+/* Adds a configuration's point to the time-vs-error chart (its RMSE against the main point's
+ * reference). */
+static void chart_point(scene_state *ss, const char *algo, const char *cfg, const job *j, int pt)
+{
+    size_t n = (size_t)j->opt.width * j->opt.height;
+    accuracy acc = compare_vis(j->vis, ss->ref_vis, n);
+    if (!j->ok || !acc.ok || ss->nxpt >= (int)(sizeof(ss->xpt) / sizeof(ss->xpt[0]))) return;
+    snprintf(ss->xpt[ss->nxpt].label, sizeof(ss->xpt[ss->nxpt].label), "%s %s", algo, cfg);
+    ss->xpt[ss->nxpt].ms = job_pass(j);
+    ss->xpt[ss->nxpt].rmse = acc.rmse;
+    ss->xpt[ss->nxpt].pt = pt;
+    ss->nxpt++;
+}
+
 /* ---- Selective ray tracing (issue 15): accuracy, speed, what it can save ------------------ */
 
 /* The configurations measured: the default (what --algo srt renders) and the main
@@ -1109,29 +1232,15 @@ static void srt_speed_row(report *r, const scene_state *ss, const char *light, u
         srt->st.lit_pixels ? 100.0 * srt->st.srt_pip / (double)srt->st.lit_pixels : 0.0, c[6], c[5]);
 }
 
-/* The fastest exact algorithm among per-algorithm shadow-pass medians (NaN: not run);
- * -1: none. */
-static int srt_fastest(const double *ms)
-{
-    int a, best = -1;
-    for (a = 0; a < NALGO; a++)
-        if (algos[a].exact && ms[a] == ms[a] && (best < 0 || ms[a] < ms[best])) best = a;
-    return best;
-}
-
 static void srt_section(const bench_opts *o, report *r, scene_state *ss)
 {
     static const char *light_name[2] = {"area, k = 16", "point"};
     pn_frame_options opt;
     pn_light lights[2];
     job jobs[NALGO + SRT_CFGS], big[2];
-    int li, i, a, nj, a_srt = -1;
-    size_t n;
+    int li, i, a, nj, a_srt = section_algo(o, PN_ALGO_SRT);
     base_options(o, ss, &opt);
-    n = (size_t)opt.width * opt.height;
-    for (a = 0; a < NALGO; a++)
-        if (algos[a].algo == PN_ALGO_SRT) a_srt = a;
-    if (a_srt < 0 || !(pn_build_info() & algos[a_srt].build_flag) || !in_list(o->algos, algos[a_srt].name)) return;
+    if (a_srt < 0) return;
     lights[0] = ss->s.light;
     lights[1] = ss->s.light;
     memset(lights[1].u, 0, sizeof(lights[1].u));
@@ -1164,7 +1273,7 @@ static void srt_section(const bench_opts *o, report *r, scene_state *ss)
         for (a = 0; a < NALGO; a++) ms[a] = li == 0 ? ss->pt_ms[a] : NAN;
         for (i = 0; i < nj - SRT_CFGS; i++) ms[jobs[i].algo] = job_pass(&jobs[i]);
         ref = li == 0 ? ss->ref_vis : jobs[0].algo == A_REF ? jobs[0].vis : NULL;
-        fastest_algo = srt_fastest(ms);
+        fastest_algo = fastest_exact(ms);
         exact_ms = fastest_algo >= 0 ? ms[fastest_algo] : NAN;
         exact_name = fastest_algo >= 0 ? algos[fastest_algo].name : "none";
         for (i = 0; i < SRT_CFGS; i++)
@@ -1174,16 +1283,7 @@ static void srt_section(const bench_opts *o, report *r, scene_state *ss)
 
         if (li == 0) {
             /* The time-vs-error chart's points (tradeoff_chart): the SRT configurations. */
-            for (i = 0; i < SRT_CFGS && ss->nxpt < (int)(sizeof(ss->xpt) / sizeof(ss->xpt[0])); i++) {
-                const job *j = &jobs[nj - SRT_CFGS + i];
-                accuracy acc = compare_vis(j->vis, ref, n);
-                if (!j->ok || !acc.ok) continue;
-                snprintf(ss->xpt[ss->nxpt].label, sizeof(ss->xpt[ss->nxpt].label), "SRT %s", srt_cfgs[i].name);
-                ss->xpt[ss->nxpt].ms = job_pass(j);
-                ss->xpt[ss->nxpt].rmse = acc.rmse;
-                ss->xpt[ss->nxpt].pt = 9;
-                ss->nxpt++;
-            }
+            for (i = 0; i < SRT_CFGS; i++) chart_point(ss, "SRT", srt_cfgs[i].name, &jobs[nj - SRT_CFGS + i], 9);
 
             /* What SRT can save: the reference's per-pixel cost by class. */
             if (ss->g.pos && ref) {
@@ -1254,7 +1354,8 @@ static void tradeoff_chart(const bench_opts *o, report *r, scene_state *ss)
      * square, configurations: their section's) and legend entry. */
     fprintf(t, "# label shadow_ms rmse (%ux%u, k = %u, area light)\n", o->size, o->size, o->k);
     for (a = 0; a < NALGO; a++)
-        if (ss->pt_ms[a] == ss->pt_ms[a] && algos[a].algo != PN_ALGO_SRT && algos[a].algo != PN_ALGO_OCCTEX) {
+        if (ss->pt_ms[a] == ss->pt_ms[a] && algos[a].algo != PN_ALGO_SRT && algos[a].algo != PN_ALGO_OCCTEX &&
+            algos[a].algo != PN_ALGO_MCSM) {
             fprintf(t, "\"%s\" %.6g %.6g\n", algos[a].name, ss->pt_ms[a], a == A_REF ? 0.0 : ss->pt_rmse[a]);
             snprintf(label[np], sizeof(label[np]), "%s", algos[a].name);
             pt[np++] = algos[a].exact ? 7 : 13;
@@ -1311,16 +1412,6 @@ static const struct {
 #define OCC_LIGHTS 5
 static const float occ_light_scale[OCC_LIGHTS] = {0.25f, 0.5f, 1.0f, 2.0f, 4.0f};
 
-/* Light leaks: pixels at least 0.25 brighter than the reference (a shadow that light
- * shines through, not a penumbra's slope). */
-static size_t occ_leaks(const float *a, const float *ref, size_t n)
-{
-    size_t i, c = 0;
-    if (!a || !ref) return 0;
-    for (i = 0; i < n; i++) c += a[i] > ref[i] + 0.25f;
-    return c;
-}
-
 static void occ_stages(char *b, size_t n, const job *j)
 {
     char c[3][20];
@@ -1333,80 +1424,60 @@ static void occ_stages(char *b, size_t n, const job *j)
 static void occ_section(const bench_opts *o, report *r, scene_state *ss)
 {
     pn_frame_options opt;
-    job jobs[1 + OCC_CFGS], cfg16[OCC_CFGS], big, lights[OCC_LIGHTS];
-    int i, a, a_occ = -1, fastest = -1;
+    job jobs[OCC_CFGS], cfg16[OCC_CFGS], big, lights[OCC_LIGHTS];
+    int i, a, a_occ = section_algo(o, PN_ALGO_OCCTEX), fastest;
     size_t n;
     double occ_ms, occ_rmse;
+    const float *ref;
     char c[8][64];
     base_options(o, ss, &opt);
     n = (size_t)opt.width * opt.height;
-    for (a = 0; a < NALGO; a++)
-        if (algos[a].algo == PN_ALGO_OCCTEX) a_occ = a;
-    if (a_occ < 0 || !(pn_build_info() & algos[a_occ].build_flag) || !in_list(o->algos, algos[a_occ].name)) return;
+    if (a_occ < 0) return;
 
     /* Claims: every configuration against a k = 32 reference (the paper's claims are about
      * the filtered occlusion; a finer reference shows its error, not the reference's). */
-    job_lib(&jobs[0], A_REF, &opt, 1);
-    jobs[0].opt.k = 32;
+    ref = ref32(o, ss);
     for (i = 0; i < OCC_CFGS; i++) {
-        job_lib(&jobs[1 + i], a_occ, &opt, 1);
-        jobs[1 + i].opt.k = 32;
-        jobs[1 + i].opt.occ_filter = occ_cfgs[i].filter;
-        jobs[1 + i].opt.occ_combine = occ_cfgs[i].combine;
-        jobs[1 + i].opt.occ_slices = occ_cfgs[i].slices;
-        jobs[1 + i].opt.occ_flags = occ_cfgs[i].flags;
-        cfg16[i] = jobs[1 + i];
+        job_lib(&jobs[i], a_occ, &opt, 1);
+        jobs[i].opt.k = 32;
+        jobs[i].opt.occ_filter = occ_cfgs[i].filter;
+        jobs[i].opt.occ_combine = occ_cfgs[i].combine;
+        jobs[i].opt.occ_slices = occ_cfgs[i].slices;
+        jobs[i].opt.occ_flags = occ_cfgs[i].flags;
+        cfg16[i] = jobs[i];
         cfg16[i].opt.k = opt.k;
     }
-    progress("  %s: occlusion textures, k = 32 reference and %d configurations", ss->s.name, OCC_CFGS);
-    run_jobs(o, ss, jobs, 1 + OCC_CFGS, &ss->s.light);
+    progress("  %s: occlusion textures, %d configurations at k = 32", ss->s.name, OCC_CFGS);
+    run_jobs(o, ss, jobs, OCC_CFGS, &ss->s.light);
     for (i = 0; i < OCC_CFGS; i++) {
-        const job *j = &jobs[1 + i];
-        accuracy acc = compare_vis(j->vis, jobs[0].vis, n);
+        const job *j = &jobs[i];
+        accuracy acc = compare_vis(j->vis, ref, n);
         if (!j->ok || !acc.ok) {
             sec(r, SEC_OCC_CLAIMS, "| %s | %s | n/a | n/a | n/a | n/a | n/a | %s |\n", ss->s.name, occ_cfgs[i].name,
-                j->ok ? jobs[0].err : j->err);
+                j->ok ? ss->ref32_err : j->err);
             continue;
         }
         fmt_ms(c[0], sizeof(c[0]), job_pass(j));
         occ_stages(c[1], sizeof(c[1]), j);
         sec(r, SEC_OCC_CLAIMS, "| %s | %s | %.5f | %.4f | %zu | %s | %s | %llu / %llu |\n", ss->s.name,
-            occ_cfgs[i].name, acc.rmse, acc.max_err, occ_leaks(j->vis, jobs[0].vis, n), c[0], c[1],
+            occ_cfgs[i].name, acc.rmse, acc.max_err, px_brighter(j->vis, ref, n), c[0], c[1],
             (unsigned long long)j->st.occ_texels_set, (unsigned long long)j->st.occ_lookups);
     }
-    for (i = 0; i < 1 + OCC_CFGS; i++) job_free(&jobs[i]);
+    for (i = 0; i < OCC_CFGS; i++) job_free(&jobs[i]);
 
     /* The configurations at the main point's k against its reference: the chart's points. */
     progress("  %s: occlusion textures, %d configurations at k = %u", ss->s.name, OCC_CFGS, opt.k);
     run_jobs(o, ss, cfg16, OCC_CFGS, &ss->s.light);
-    for (i = 0; i < OCC_CFGS && ss->nxpt < (int)(sizeof(ss->xpt) / sizeof(ss->xpt[0])); i++) {
-        accuracy acc = compare_vis(cfg16[i].vis, ss->ref_vis, n);
-        if (!cfg16[i].ok || !acc.ok) continue;
-        snprintf(ss->xpt[ss->nxpt].label, sizeof(ss->xpt[ss->nxpt].label), "occtex %s", occ_cfgs[i].name);
-        ss->xpt[ss->nxpt].ms = job_pass(&cfg16[i]);
-        ss->xpt[ss->nxpt].rmse = acc.rmse;
-        ss->xpt[ss->nxpt].pt = 11;
-        ss->nxpt++;
-    }
+    for (i = 0; i < OCC_CFGS; i++) chart_point(ss, "occtex", occ_cfgs[i].name, &cfg16[i], 11);
 
     /* Speed at the main point: against the fastest exact algorithm of the same run, and
      * whether anything on the chart is both faster and more accurate. */
-    for (a = 0; a < NALGO; a++)
-        if (algos[a].exact && ss->pt_ms[a] == ss->pt_ms[a] && (fastest < 0 || ss->pt_ms[a] < ss->pt_ms[fastest])) fastest = a;
+    fastest = fastest_exact(ss->pt_ms);
     occ_ms = job_pass(&cfg16[0]);
     occ_rmse = compare_vis(cfg16[0].vis, ss->ref_vis, n).rmse;
     {
-        char front[256] = "yes";
-        int len = 0;
-        for (a = 0; a < NALGO; a++)
-            if (a != a_occ && ss->pt_ms[a] == ss->pt_ms[a] && ss->pt_ms[a] < occ_ms &&
-                (a == A_REF ? 0.0 : ss->pt_rmse[a]) < occ_rmse)
-                len += snprintf(front + len, sizeof(front) - (size_t)len, "%s%s", len ? ", " : "no: ", algos[a].name);
-        if (ss->emb_ms == ss->emb_ms && ss->emb_ms < occ_ms && ss->emb_rmse < occ_rmse)
-            len += snprintf(front + len, sizeof(front) - (size_t)len, "%sEmbree", len ? ", " : "no: ");
-        for (i = 0; i < ss->nxpt; i++)
-            if (strncmp(ss->xpt[i].label, "occtex", 6) != 0 && ss->xpt[i].ms < occ_ms && ss->xpt[i].rmse < occ_rmse)
-                len += snprintf(front + len, sizeof(front) - (size_t)len, "%s%s", len ? ", " : "no: ", ss->xpt[i].label);
+        char front[512];
+        chart_front(ss, a_occ, "occtex", occ_ms, occ_rmse, front, sizeof(front));
         fmt_ms(c[0], sizeof(c[0]), fastest >= 0 ? ss->pt_ms[fastest] : NAN);
         fmt_ms(c[1], sizeof(c[1]), occ_ms);
         occ_stages(c[2], sizeof(c[2]), &cfg16[0]);
@@ -1461,6 +1532,341 @@ static void occ_section(const bench_opts *o, report *r, scene_state *ss)
         }
         sec(r, SEC_OCC_LIGHT, "%s\n", row);
     }
+}
+
+/* ---- Monte Carlo shadow maps (Curtis 2009) ---------------------------------------------------- */
+
+/* A configuration: 0 in a field is the library's default (penumbra.h: 2 layers, hierarchical
+ * search, 3x3 rays, its blur radius, map 512, adaptive bias). */
+typedef struct mc_cfg {
+    const char *name;
+    uint32_t layers, search, rays, blur, flags, map;
+} mc_cfg;
+
+/* The claims table: the default (what --algo mcsm renders; the thesis' preferred version) and
+ * one change of it per row; the thesis' other version is three layers with linear/binary
+ * search. "Two layers, hierarchical, blur off" is the blur-off row. */
+#define MC_CFGS 7
+static const mc_cfg mc_cfgs[MC_CFGS] = {
+    {"default (2 layers, hierarchical, 3x3 rays, default blur)", 0u, 0u, 0u, 0u, 0u, 0u},
+    {"1 layer, linear", 1u, PN_MC_SEARCH_LINEAR, 0u, 0u, 0u, 0u},
+    {"2 layers, linear/binary", 2u, PN_MC_SEARCH_LINEAR, 0u, 0u, 0u, 0u},
+    {"3 layers, linear/binary", 3u, PN_MC_SEARCH_LINEAR, 0u, 0u, 0u, 0u},
+    {"2x2 rays", 0u, 0u, 2u, 0u, 0u, 0u},
+    {"4x4 rays", 0u, 0u, 4u, 0u, 0u, 0u},
+    {"blur off (2 layers, hierarchical)", 0u, 0u, 0u, PN_MC_BLUR_OFF, 0u, 0u},
+};
+/* The leak table on closed-box (hierarchical search, 3x3 rays, the default blur throughout). */
+#define MC_LEAK_CFGS 5
+static const mc_cfg mc_leak_cfgs[MC_LEAK_CFGS] = {
+    {"1 layer", 1u, 0u, 0u, 0u, 0u, 0u},
+    {"2 layers (default)", 2u, 0u, 0u, 0u, 0u, 0u},
+    {"3 layers", 3u, 0u, 0u, 0u, 0u, 0u},
+    {"2 layers, no bias", 2u, 0u, 0u, 0u, PN_MC_NO_BIAS, 0u},
+    {"1 layer, no bias", 1u, 0u, 0u, 0u, PN_MC_NO_BIAS, 0u},
+};
+#define MC_RAYS_MAX 8 /* mc_rays: n x n rays, n in 1 .. 8 (penumbra.h) */
+#define MC_GOAL_RMSE 0.05
+#define MC_GOAL_SPEED 5.0
+
+static void mc_job(job *j, int a_mc, const pn_frame_options *opt, const mc_cfg *c, int keep)
+{
+    job_lib(j, a_mc, opt, keep);
+    j->opt.mc_layers = c->layers;
+    j->opt.mc_search = c->search;
+    j->opt.mc_rays = c->rays;
+    j->opt.mc_blur = c->blur;
+    j->opt.mc_flags = c->flags;
+    j->opt.mc_map = c->map;
+}
+
+static void mc_stages(char *b, size_t n, const job *j)
+{
+    char c[4][20];
+    fmt_ms(c[0], sizeof(c[0]), j->st.mc_ns_layers / 1e6);
+    fmt_ms(c[1], sizeof(c[1]), j->st.mc_ns_nbuffer / 1e6);
+    fmt_ms(c[2], sizeof(c[2]), j->st.mc_ns_rays / 1e6);
+    fmt_ms(c[3], sizeof(c[3]), j->st.mc_ns_blur / 1e6);
+    snprintf(b, n, "%s / %s / %s / %s", c[0], c[1], c[2], c[3]);
+}
+
+/* A speed cell: "ms (layers / N-buffer / rays / blur)". */
+static void mc_cell(char *b, size_t n, const job *j)
+{
+    char ms[32], st[96];
+    if (!j->ok) {
+        snprintf(b, n, "n/a (%.200s)", j->err);
+        return;
+    }
+    fmt_ms(ms, sizeof(ms), job_pass(j));
+    mc_stages(st, sizeof(st), j);
+    snprintf(b, n, "%s (%s)", ms, st);
+}
+
+/* Claims: every configuration against the k = 32 reference, with its leaks, over-dark pixels
+ * and statistics; its points on the time-vs-error chart. Runs before occ_section so that
+ * both sections judge the chart's front on the same points. The frame of PN_ALGO_MCSM does
+ * not depend on k (it computes no mask): the frames rendered at the main point's k are its
+ * frames at k = 32, compared with both references. */
+static void mc_claims(const bench_opts *o, report *r, scene_state *ss)
+{
+    pn_frame_options opt;
+    job jobs[MC_CFGS];
+    const float *ref;
+    int i, a_mc = section_algo(o, PN_ALGO_MCSM);
+    size_t n;
+    char c[2][96];
+    ss->mc_ok = 0;
+    if (a_mc < 0) return;
+    base_options(o, ss, &opt);
+    n = (size_t)opt.width * opt.height;
+    ref = ref32(o, ss);
+    for (i = 0; i < MC_CFGS; i++) mc_job(&jobs[i], a_mc, &opt, &mc_cfgs[i], 1);
+    progress("  %s: MCSM, %d configurations", ss->s.name, MC_CFGS);
+    run_jobs(o, ss, jobs, MC_CFGS, &ss->s.light);
+    for (i = 0; i < MC_CFGS; i++) {
+        const job *j = &jobs[i];
+        accuracy acc = compare_vis(j->vis, ref, n);
+        if (!j->ok || !acc.ok) {
+            sec(r, SEC_MC_CLAIMS, "| %s | %s | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a | %s |\n", ss->s.name,
+                mc_cfgs[i].name, j->ok ? ss->ref32_err : j->err);
+            continue;
+        }
+        fmt_ms(c[0], sizeof(c[0]), job_pass(j));
+        mc_stages(c[1], sizeof(c[1]), j);
+        sec(r, SEC_MC_CLAIMS, "| %s | %s | %.5f | %.4f | %zu | %zu | %s | %s | %u / %u / %u | %llu | %.1f | %u |\n",
+            ss->s.name, mc_cfgs[i].name, acc.rmse, acc.max_err, px_brighter(j->vis, ref, n), px_brighter(ref, j->vis, n),
+            c[0], c[1], j->st.mc_lit, j->st.mc_umbra, j->st.mc_penumbra, (unsigned long long)j->st.mc_rays,
+            j->st.mc_rays ? (double)j->st.mc_steps / (double)j->st.mc_rays : 0.0, j->st.mc_capped);
+    }
+    for (i = 0; i < MC_CFGS; i++) chart_point(ss, "MCSM", mc_cfgs[i].name, &jobs[i], 15);
+    if (jobs[0].ok && jobs[0].vis && ss->ref_vis) {
+        ss->mc_ok = 1;
+        ss->mc_ms = job_pass(&jobs[0]);
+        ss->mc_rmse = compare_vis(jobs[0].vis, ss->ref_vis, n).rmse;
+        ss->mc_st = jobs[0].st;
+    }
+    for (i = 0; i < MC_CFGS; i++) job_free(&jobs[i]);
+}
+
+/* Least-squares slope of log y against log rays over points [0, m) (point i: (i + 1)^2 rays). */
+static double loglog_slope(const double *y, int m)
+{
+    double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+    int i;
+    for (i = 0; i < m; i++) {
+        double x = log((double)(i + 1) * (i + 1)), ly = log(y[i]);
+        sx += x;
+        sy += ly;
+        sxx += x * x;
+        sxy += x * ly;
+    }
+    return m >= 2 ? (m * sxy - sx * sy) / (m * sxx - sx * sx) : NAN;
+}
+
+/* Convergence: blur off, default layers and search, n x n rays for n = 1 .. 8, against the
+ * k = 32 reference; one frame each (only the error is reported). */
+static void mc_convergence(const bench_opts *o, report *r, scene_state *ss, int a_mc)
+{
+    pn_frame_options opt;
+    const float *ref = ref32(o, ss);
+    double rmse[MC_RAYS_MAX], ex[MC_RAYS_MAX], lo = NAN;
+    char data[2048], row[1024];
+    int dl = 0, len, i, fl = -1, m = 0, me = 0;
+    size_t npx;
+    base_options(o, ss, &opt);
+    npx = (size_t)opt.width * opt.height;
+    progress("  %s: MCSM convergence, 1 .. %d rays per pixel", ss->s.name, MC_RAYS_MAX * MC_RAYS_MAX);
+    dl += snprintf(data + dl, sizeof(data) - (size_t)dl,
+                   "# mc_convergence %s: n rays rmse (blur off, 2 layers, hierarchical; k = 32 reference)\n", ss->s.name);
+    len = snprintf(row, sizeof(row), "| %s |", ss->s.name);
+    for (i = 0; i < MC_RAYS_MAX; i++) {
+        mc_cfg cfg = {"", 0u, 0u, (uint32_t)(i + 1), PN_MC_BLUR_OFF, 0u, 0u};
+        job j;
+        accuracy acc;
+        mc_job(&j, a_mc, &opt, &cfg, 1);
+        job_run(ss, &j, &ss->s.light, 0);
+        acc = compare_vis(j.vis, ref, npx);
+        rmse[i] = j.ok && acc.ok ? acc.rmse : NAN;
+        if (!j.ok) progress("    %d rays: %s", (i + 1) * (i + 1), j.err);
+        job_free(&j);
+        if (rmse[i] == rmse[i]) {
+            len += snprintf(row + len, sizeof(row) - (size_t)len, " %.5f |", rmse[i]);
+            dl += snprintf(data + dl, sizeof(data) - (size_t)dl, "%d %d %.6g\n", i + 1, (i + 1) * (i + 1), rmse[i]);
+            if (!(lo <= rmse[i])) {
+                lo = rmse[i];
+                fl = i;
+            }
+            if (rmse[i] > r->mc_conv_top) r->mc_conv_top = rmse[i];
+        } else {
+            len += snprintf(row + len, sizeof(row) - (size_t)len, " n/a |");
+        }
+    }
+    /* Before the floor: from one ray on, the points still over twice the floor (there the
+     * floor flattens the local slope by at most a quarter). The excess over the floor,
+     * sqrt(RMSE^2 - floor^2) (independent errors add in quadrature), from one ray on while
+     * the RMSE is over 1.1 floors: the sampling error's own slope where the floor hides it. */
+    while (fl >= 0 && m < MC_RAYS_MAX && rmse[m] == rmse[m] && rmse[m] > 2.0 * lo) m++;
+    for (; fl >= 0 && me < MC_RAYS_MAX && rmse[me] == rmse[me] && rmse[me] > 1.1 * lo; me++)
+        ex[me] = sqrt(rmse[me] * rmse[me] - lo * lo);
+    if (m >= 2)
+        len += snprintf(row + len, sizeof(row) - (size_t)len, " %.2f (1 .. %d rays) |", loglog_slope(rmse, m), m * m);
+    else if (fl >= 0)
+        len += snprintf(row + len, sizeof(row) - (size_t)len, " n/a (under twice the floor from %d rays) |", (m + 1) * (m + 1));
+    else len += snprintf(row + len, sizeof(row) - (size_t)len, " n/a |");
+    if (me >= 2)
+        len += snprintf(row + len, sizeof(row) - (size_t)len, " %.2f (1 .. %d rays) |", loglog_slope(ex, me), me * me);
+    else len += snprintf(row + len, sizeof(row) - (size_t)len, " n/a |");
+    if (fl >= 0) snprintf(row + len, sizeof(row) - (size_t)len, " %.5f (%d rays) |", lo, (fl + 1) * (fl + 1));
+    else snprintf(row + len, sizeof(row) - (size_t)len, " n/a |");
+    sec(r, SEC_MC_CONV, "%s\n", row);
+    write_data(o, "mc_convergence", ss->s.name, data);
+    if (fl >= 0 && r->mc_conv_scenes < MAX_SCENES)
+        snprintf(r->mc_conv_names[r->mc_conv_scenes++], sizeof(r->mc_conv_names[0]), "%s", ss->s.name);
+}
+
+/* The speed tables (thesis Tables 4.1-4.4 as analogues) and the goal's row. */
+static void mcsm_section(const bench_opts *o, report *r, scene_state *ss)
+{
+    static const uint32_t search[2] = {PN_MC_SEARCH_HIER, PN_MC_SEARCH_LINEAR};
+    static const char *search_name[2] = {"hierarchical", "linear/binary"};
+    pn_frame_options opt;
+    job jobs[2 * 2 * 6];
+    int a_mc = section_algo(o, PN_ALGO_MCSM), fastest, s, n, v, nj, i, front;
+    char cell[256], row[2048], c[6][64], fr[512];
+    double ratio;
+    if (a_mc < 0) return;
+    base_options(o, ss, &opt);
+    mc_convergence(o, r, ss, a_mc);
+
+    /* (a) depth-layer resolution x rays x search at the main point's size. */
+    nj = 0;
+    for (s = 0; s < 2; s++)
+        for (n = 2; n <= 3; n++)
+            for (v = 0; v < (int)o->n_mc_map; v++) {
+                mc_cfg cfg = {"", 0u, search[s], (uint32_t)n, 0u, 0u, o->mc_map[v]};
+                mc_job(&jobs[nj++], a_mc, &opt, &cfg, 0);
+            }
+    progress("  %s: MCSM, %d map resolutions x rays x search", ss->s.name, (int)o->n_mc_map);
+    run_jobs(o, ss, jobs, nj, &ss->s.light);
+    for (s = 0, i = 0; s < 2; s++)
+        for (n = 2; n <= 3; n++) {
+            int rl = snprintf(row, sizeof(row), "| %s | %s | %dx%d |", s == 0 && n == 2 ? ss->s.name : "", search_name[s], n, n);
+            for (v = 0; v < (int)o->n_mc_map; v++, i++) {
+                mc_cell(cell, sizeof(cell), &jobs[i]);
+                rl += snprintf(row + rl, sizeof(row) - (size_t)rl, " %s |", cell);
+            }
+            sec(r, SEC_MC_MAP, "%s\n", row);
+        }
+    for (i = 0; i < nj; i++) job_free(&jobs[i]);
+
+    /* (b) image size x rays, hierarchical, at the default map (512). */
+    nj = 0;
+    for (n = 2; n <= 3; n++)
+        for (v = 0; v < (int)o->n_mc_screen; v++) {
+            mc_cfg cfg = {"", 0u, PN_MC_SEARCH_HIER, (uint32_t)n, 0u, 0u, 0u};
+            pn_frame_options os = opt;
+            os.width = os.height = o->mc_screen[v];
+            mc_job(&jobs[nj++], a_mc, &os, &cfg, 0);
+        }
+    progress("  %s: MCSM, %d image sizes x rays", ss->s.name, (int)o->n_mc_screen);
+    run_jobs(o, ss, jobs, nj, &ss->s.light);
+    for (n = 2, i = 0; n <= 3; n++) {
+        int rl = snprintf(row, sizeof(row), "| %s | hierarchical | %dx%d |", n == 2 ? ss->s.name : "", n, n);
+        for (v = 0; v < (int)o->n_mc_screen; v++, i++) {
+            mc_cell(cell, sizeof(cell), &jobs[i]);
+            rl += snprintf(row + rl, sizeof(row) - (size_t)rl, " %s |", cell);
+        }
+        sec(r, SEC_MC_SCREEN, "%s\n", row);
+    }
+    for (i = 0; i < nj; i++) job_free(&jobs[i]);
+
+    /* The goal: the default (its claims run) against the fastest exact algorithm at the main
+     * point, its RMSE against the main point's reference, and the chart's front. */
+    fastest = fastest_exact(ss->pt_ms);
+    if (!ss->mc_ok) {
+        sec(r, SEC_MC_GOAL, "| %s | %u | %ux%u | %s | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a | n/a |\n", ss->s.name,
+            ss->s.mesh.triangle_count, opt.width, opt.height, fastest >= 0 ? algos[fastest].name : "none");
+        return;
+    }
+    ratio = fastest >= 0 ? ss->pt_ms[fastest] / ss->mc_ms : NAN;
+    front = chart_front(ss, a_mc, "MCSM", ss->mc_ms, ss->mc_rmse, fr, sizeof(fr));
+    fmt_ms(c[0], sizeof(c[0]), fastest >= 0 ? ss->pt_ms[fastest] : NAN);
+    fmt_ms(c[1], sizeof(c[1]), ss->mc_ms);
+    {
+        job t;
+        memset(&t, 0, sizeof(t));
+        t.st = ss->mc_st;
+        mc_stages(c[2], sizeof(c[2]), &t);
+    }
+    fmt_ratio(c[3], sizeof(c[3]), fastest >= 0 ? ss->pt_ms[fastest] : NAN, ss->mc_ms);
+    sec(r, SEC_MC_GOAL, "| %s | %u | %ux%u | %s | %s | %s | %s | %s | %.4f | %s | %s | %s | %s |\n", ss->s.name,
+        ss->s.mesh.triangle_count, opt.width, opt.height, fastest >= 0 ? algos[fastest].name : "none", c[0], c[1], c[2],
+        c[3], ss->mc_rmse, fr, ss->mc_rmse <= MC_GOAL_RMSE ? "yes" : "no",
+        ratio >= MC_GOAL_SPEED ? "yes" : ratio == ratio ? "no" : "n/a", front ? "yes" : "no");
+    if (!ss->s.builtin) {
+        r->mc_goal_n++;
+        r->mc_goal[0] += ss->mc_rmse <= MC_GOAL_RMSE;
+        r->mc_goal[1] += ratio >= MC_GOAL_SPEED;
+        r->mc_goal[2] += front;
+    }
+}
+
+/* Light leaks on the built-in closed-box (a closed thick box, one hole under the light; not
+ * one of pn_builtin_scene_names(), so it appears in this table only): the MCSM layer
+ * configurations, and the occlusion textures' and SRT's defaults, against the k = 32
+ * reference at the main point's size. */
+static void mcsm_leaks(const bench_opts *o, report *r)
+{
+    scene_state ss;
+    pn_frame_options opt;
+    job jobs[MC_LEAK_CFGS + 2];
+    const char *algo_name[MC_LEAK_CFGS + 2], *cfg_name[MC_LEAK_CFGS + 2];
+    const float *ref;
+    int a_mc = section_algo(o, PN_ALGO_MCSM), a_occ = section_algo(o, PN_ALGO_OCCTEX), a_srt = section_algo(o, PN_ALGO_SRT);
+    int i, nj = 0;
+    size_t n;
+    char c[32];
+    if (a_mc < 0) return;
+    progress("[closed-box] MCSM light leaks");
+    if (scene_open(o, &ss, "closed-box", 1, &ports[0], o->size) != 0) {
+        sec(r, SEC_MC_LEAKS, "| closed-box | MCSM | n/a | n/a | n/a | n/a | n/a | n/a (the scene did not load) |\n");
+        scene_close(&ss);
+        return;
+    }
+    base_options(o, &ss, &opt);
+    n = (size_t)opt.width * opt.height;
+    ref = ref32(o, &ss);
+    for (i = 0; i < MC_LEAK_CFGS; i++) {
+        algo_name[nj] = algos[a_mc].name;
+        cfg_name[nj] = mc_leak_cfgs[i].name;
+        mc_job(&jobs[nj++], a_mc, &opt, &mc_leak_cfgs[i], 1);
+    }
+    if (a_occ >= 0) {
+        algo_name[nj] = algos[a_occ].name;
+        cfg_name[nj] = "default";
+        job_lib(&jobs[nj++], a_occ, &opt, 1);
+    }
+    if (a_srt >= 0) {
+        algo_name[nj] = algos[a_srt].name;
+        cfg_name[nj] = "default";
+        job_lib(&jobs[nj++], a_srt, &opt, 1);
+    }
+    run_jobs(o, &ss, jobs, nj, &ss.s.light);
+    for (i = 0; i < nj; i++) {
+        const job *j = &jobs[i];
+        accuracy acc = compare_vis(j->vis, ref, n);
+        if (!j->ok || !acc.ok) {
+            sec(r, SEC_MC_LEAKS, "| closed-box | %s | %s | n/a | n/a | n/a | n/a | n/a (%s) |\n", algo_name[i], cfg_name[i],
+                j->ok ? ss.ref32_err : j->err);
+            continue;
+        }
+        fmt_ms(c, sizeof(c), job_pass(j));
+        sec(r, SEC_MC_LEAKS, "| closed-box | %s | %s | %zu | %zu | %.5f | %.4f | %s |\n", algo_name[i], cfg_name[i],
+            px_brighter(j->vis, ref, n), px_brighter(ref, j->vis, n), acc.rmse, acc.max_err, c);
+    }
+    for (i = 0; i < nj; i++) job_free(&jobs[i]);
+    scene_close(&ss);
 }
 
 static void machine(char *b, size_t n)
@@ -1569,6 +1975,38 @@ static void report_open(report *r, const bench_opts *o)
     sec(r, SEC_OCC_LIGHT, "\n| --- |");
     for (v = 0; v < OCC_LIGHTS; v++) sec(r, SEC_OCC_LIGHT, " ---: |");
     sec(r, SEC_OCC_LIGHT, "\n");
+    sec(r, SEC_MC_CLAIMS,
+        "| scene | configuration | RMSE | max error | leaks (pixels >= 0.25 brighter) | over-dark (>= 0.25 darker) | ms | "
+        "layers / N-buffer / rays / blur ms | lit / umbra / penumbra pixels | rays searched | steps per ray | "
+        "capped searches |\n"
+        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    sec(r, SEC_MC_CONV, "| scene |");
+    for (v = 1; v <= MC_RAYS_MAX; v++) sec(r, SEC_MC_CONV, " %d ray%s |", v * v, v > 1 ? "s" : "");
+    sec(r, SEC_MC_CONV, " slope before the floor | slope of the excess over the floor | floor |\n| --- |");
+    for (v = 0; v < MC_RAYS_MAX + 3; v++) sec(r, SEC_MC_CONV, " ---: |");
+    sec(r, SEC_MC_CONV, "\n");
+    sec(r, SEC_MC_LEAKS,
+        "| scene | algorithm | configuration | leaks (pixels >= 0.25 brighter) | over-dark (>= 0.25 darker) | RMSE | "
+        "max error | ms |\n"
+        "| --- | --- | --- | ---: | ---: | ---: | ---: | ---: |\n");
+    sec(r, SEC_MC_MAP, "| scene | search | rays |");
+    for (v = 0; v < (int)o->n_mc_map; v++)
+        sec(r, SEC_MC_MAP, " map %ux%u: ms (layers / N-buffer / rays / blur) |", o->mc_map[v], o->mc_map[v]);
+    sec(r, SEC_MC_MAP, "\n| --- | --- | --- |");
+    for (v = 0; v < (int)o->n_mc_map; v++) sec(r, SEC_MC_MAP, " ---: |");
+    sec(r, SEC_MC_MAP, "\n");
+    sec(r, SEC_MC_SCREEN, "| scene | search | rays |");
+    for (v = 0; v < (int)o->n_mc_screen; v++)
+        sec(r, SEC_MC_SCREEN, " %ux%u: ms (layers / N-buffer / rays / blur) |", o->mc_screen[v], o->mc_screen[v]);
+    sec(r, SEC_MC_SCREEN, "\n| --- | --- | --- |");
+    for (v = 0; v < (int)o->n_mc_screen; v++) sec(r, SEC_MC_SCREEN, " ---: |");
+    sec(r, SEC_MC_SCREEN, "\n");
+    sec(r, SEC_MC_GOAL,
+        "| scene | triangles | size | fastest exact | its ms | MCSM ms | layers / N-buffer / rays / blur ms | "
+        "MCSM vs fastest exact | RMSE (k = %u) | on the chart's front | RMSE <= %.2f | >= %.0fx the fastest exact | "
+        "on the front |\n"
+        "| --- | ---: | --- | --- | ---: | ---: | ---: | ---: | ---: | --- | --- | --- | --- |\n",
+        o->k, MC_GOAL_RMSE, MC_GOAL_SPEED);
     fprintf(r->plots, "# Generated by penumbra_bench: run `gnuplot plots.gp` in this directory (tools/bench.sh does).\n"
                       "# The gallery panels it reads from work/ are removed afterwards; make bench recreates them.\n");
 }
@@ -1602,6 +2040,26 @@ static void plot_sweeps(report *r, const bench_opts *o)
         }
         fprintf(r->plots, "\nunset logscale x\nunset logscale y\n");
     }
+}
+
+/* MCSM's convergence: every scene's RMSE against rays per pixel, log-log, with the slopes of
+ * plain (-1/2) and stratified (-3/4) sampling through the largest error for scale. */
+static void plot_mc_convergence(report *r)
+{
+    int i;
+    if (r->mc_conv_scenes == 0) return;
+    fprintf(r->plots,
+            "\n# MCSM convergence\nset terminal pngcairo noenhanced size 900,560 font 'sans,10'\n"
+            "set output 'mc_convergence.png'\nset title 'MCSM: RMSE against rays per pixel (blur off, k = 32 "
+            "reference)'\nset xlabel 'rays per pixel (log scale)'\nset ylabel 'RMSE (log scale)'\nset logscale xy\n"
+            "set xrange [0.8:80]\nset grid\nset key outside right top\nplot ");
+    for (i = 0; i < r->mc_conv_scenes; i++)
+        fprintf(r->plots, "'data/mc_convergence_%s.dat' using 2:3 with linespoints lw 2 pt 7 lc %d title '%s', \\\n     ",
+                r->mc_conv_names[i], i + 1, r->mc_conv_names[i]);
+    fprintf(r->plots,
+            "%g * x**-0.5 with lines dt 2 lc rgb 'black' title 'slope -1/2', %g * x**-0.75 with lines dt 3 "
+            "lc rgb 'gray40' title 'slope -3/4'\nunset logscale xy\nset xrange [*:*]\nreset\n",
+            r->mc_conv_top, r->mc_conv_top);
 }
 
 static void plot_headline(report *r, const bench_opts *o)
@@ -1681,12 +2139,61 @@ static const struct {
     {SEC_OCC_SPEED, "### Occlusion textures: speed against the other algorithms",
      "The default configuration at the main point (k as in the headline) and at the SRT section's second size. "
      "Fastest exact: of reference, GEARS and raytrace in this run; fastest other: of every other algorithm of the "
-     "library. On the chart's front: no point of the time-vs-error chart (every algorithm, Embree, the SRT and "
-     "occlusion-texture configurations) is both faster and more accurate; otherwise the points that are. The "
+     "library. On the chart's front: no point of the time-vs-error chart (every algorithm, Embree, the SRT, "
+     "occlusion-texture and MCSM configurations) is both faster and more accurate; otherwise the points that are. The "
      "issue's goal: faster than every other algorithm on every shared scene, on the front on half of the scenes."},
     {SEC_OCC_LIGHT, "### Occlusion textures: cost against light size",
      "The default at the main point with the light's half-edges scaled (1: the scene's light). The paper claims "
      "the cost does not depend on the light's size."},
+    {SEC_MC_CLAIMS, "## Monte Carlo shadow maps (Curtis 2009): the thesis' claims",
+     "Every configuration against a k = 32 reference at the main point's size (area light): the default (what "
+     "`--algo mcsm` renders: near and far depth layers of 512x512 texels seen from behind the light, hierarchical "
+     "search through their N-buffer, 3x3 jittered rays per pixel, the depth-aware blur at its default radius "
+     "(`mc_blur` = 0, penumbra.h)) and one change of "
+     "it per row; three layers with linear/binary search (texel-spaced steps, bisection on a transition) is the "
+     "thesis' other version. ms: the shadow pass's median; the stages are the last repetition's (layers: window and "
+     "rasterization of the occluders; N-buffer: its levels; rays: classification and search; blur). Leaks: pixels "
+     "at least 0.25 brighter than the reference; over-dark: at least 0.25 darker (the over-extended umbrae of the "
+     "thesis' §4.1). Lit / umbra / penumbra: lit pixels the classification (eq. 3.3) called fully lit, umbra, or "
+     "potentially in penumbra (only these trace rays); rays searched: rays traced through the layers after the "
+     "early-outs; steps per ray: N-buffer boxes or linear samples per searched ray; capped: searches stopped by the "
+     "step cap, taken as unblocked (each a possible leak). The frame does not depend on k: the same frames against "
+     "the main point's reference are MCSM's points on the time-vs-error chart."},
+    {SEC_MC_CONV, "### MCSM: convergence with the rays per pixel",
+     "RMSE against the k = 32 reference with the blur off (two layers, hierarchical search), n x n jittered rays "
+     "per pixel for n = 1 .. 8; one frame each. Floor: the smallest RMSE (normally at 64 rays), the error more rays "
+     "do not remove (the layers' model of the occluders, their resolution, the bias). Slope: the least-squares "
+     "slope of log RMSE against log rays over the points before the floor (from one ray on, those with an RMSE more "
+     "than twice the floor, where the floor flattens the slope by at most a quarter). Where the floor comes early "
+     "that leaves fewer than two points; the excess over the floor, sqrt(RMSE^2 - floor^2) (independent errors add "
+     "in quadrature), fitted from one ray on while the RMSE is over 1.1 floors, is the sampling error's own slope "
+     "there. A slope of -1/2 is plain Monte Carlo: independent samples, whose error falls as one "
+     "over the square root of their number. These rays are jittered, one in each cell of an n x n grid on the "
+     "light, and stratified samples can fall faster: down to -3/4 where a shadow edge crosses the light (the "
+     "pixel's variance then falls as rays^-3/2), faster still where the visibility varies smoothly over it."},
+    {SEC_MC_LEAKS, "### MCSM: light leaks on closed-box",
+     "The built-in `closed-box` (a closed box with walls 0.25 thick, one 0.5 x 0.5 hole in its top under the "
+     "light, the eye inside; in this table only) at the main point's size against its k = 32 reference: inside, "
+     "everything is dark but what the hole lets through, so a pixel at least 0.25 brighter than the reference is a "
+     "leak. The MCSM rows use the hierarchical search, 3x3 rays and the default blur; no bias: without the adaptive bias of "
+     "eq. 3.2. The occlusion textures' and SRT's defaults on the same frame for comparison."},
+    {SEC_MC_MAP, "### MCSM: cost against the depth-layer resolution (thesis Tables 4.1 and 4.2)",
+     "Shadow pass ms (median) at the main point's size with the default blur, per search and rays per pixel, and the stages "
+     "of the last repetition. The thesis measured frames per second on a GPU at 1024x768 (hierarchical 3x3: 37, 34, "
+     "21 fps on the dragon at 256, 512, 1024; linear/binary 3x3: 12, 11, 10): hierarchical search faster than "
+     "linear/binary at every resolution and more sensitive to it, the N-buffer's construction \"likely the largest "
+     "component\" of that sensitivity."},
+    {SEC_MC_SCREEN, "### MCSM: cost against the image size (thesis Tables 4.3 and 4.4)",
+     "Shadow pass ms (median), hierarchical search, 512x512 layers, the default blur, square images; the stages of the last "
+     "repetition. The thesis: \"the screen resolution directly affects the number of rays that must be traced\", "
+     "so the rays and blur stages should grow with the pixels, the layers and N-buffer not."},
+    {SEC_MC_GOAL, "### MCSM: the issue's goal",
+     "The default (its run of the claims table) against the fastest exact algorithm of the main point (of reference, "
+     "GEARS and raytrace), its RMSE against the main point's reference, and the chart's front judged as for the "
+     "occlusion textures (no point of the time-vs-error chart but MCSM's own configurations is both faster and "
+     "more accurate; otherwise the points that are). The issue's goal: with 3x3 rays and two hierarchical layers, "
+     "an RMSE of at most 0.05 against the reference and at least 5x faster than the fastest exact algorithm on "
+     "every shared scene, and on the chart's front on at least half of the shared scenes."},
 };
 
 static void print_report(report *r, const bench_opts *o, FILE *out, const char *mach, const char *emb_info, int threads,
@@ -1748,6 +2255,18 @@ static void print_report(report *r, const bench_opts *o, FILE *out, const char *
         if (sw == SEC_ACCURACY) fprintf(out, "## Accuracy against the reference (%ux%u, k = %u)\n\n", o->size, o->size, o->k);
         else fprintf(out, "%s\n\n", notes[s].heading);
         fprintf(out, "%s\n%s\n\n", r->buf[sw], notes[s].note);
+        if (sw == SEC_MC_CONV && r->mc_conv_scenes)
+            fprintf(out, "![MCSM: RMSE against rays per pixel](mc_convergence.png)\n\n");
+        if (sw == SEC_MC_MAP && o->mc_map_cut && section_algo(o, PN_ALGO_MCSM) >= 0)
+            fprintf(out, "Larger maps (the thesis' 1024; 2048) need a build with PN_MCSM_MAP_MAX raised "
+                         "(include/penumbra/config.h; pn_arena_size refuses them in this build, whose largest here is "
+                         "%u; the N-buffer takes 132 MiB at 1024).\n\n",
+                    o->mc_map_max);
+        if (sw == SEC_MC_GOAL && r->mc_goal_n)
+            fprintf(out, "Over the %d shared scene%s of this run: RMSE at most %.2f on %d, at least %.0fx on %d (the "
+                         "goal: all); on the front on %d (the goal: at least %d).\n\n",
+                    r->mc_goal_n, r->mc_goal_n > 1 ? "s" : "", MC_GOAL_RMSE, r->mc_goal[0], MC_GOAL_SPEED,
+                    r->mc_goal[1], r->mc_goal[2], (r->mc_goal_n + 1) / 2);
     }
     fprintf(out, "## Time against error\n\nPer scene, %ux%u, k = %u, area light: each algorithm's shadow pass "
                  "(median, this run) against the RMSE of its visibility to the reference's. Exact algorithms sit at 0; "
@@ -1807,13 +2326,13 @@ static void usage(void)
 {
     fprintf(stderr,
             "usage: penumbra_bench [--out DIR] [--scenes DIR] [--quick] [--only a,b] [--sweep-scenes a,b]\n"
-            "                      [--algos reference,GEARS,raytrace,SRT,occtex,embree] [--ports N] [--lean]\n"
+            "                      [--algos reference,GEARS,raytrace,SRT,occtex,MCSM,embree] [--ports N] [--lean]\n"
             "                      [--reps N] [--reps-slow N] [--slow-seconds S] [--threads N] [--size N] [--k K]\n"
             "                      [--sweep-res a,b] [--sweep-k a,b] [--sweep-grid a,b] [--srt-size N]\n"
-            "                      [--label TEXT]\n"
+            "                      [--mc-maps a,b] [--mc-screens a,b] [--label TEXT]\n"
             "Prints Markdown tables and writes DIR/RESULTS.md, DIR/data/*.dat, DIR/plots.gp (gnuplot) and\n"
             "the gallery panels under DIR/work/. Scenes: the built-ins and every .glb in --scenes\n"
-            "(default: $PN_SCENES_DIR).\n");
+            "(default: $PN_SCENES_DIR); the MCSM leak table's closed-box when --only names it or is absent.\n");
 }
 
 int main(int argc, char **argv)
@@ -1863,6 +2382,8 @@ int main(int argc, char **argv)
         else if (strcmp(a, "--sweep-res") == 0) o.n_res = (uint32_t)parse_list(argv[++i], o.sweep_res, 8);
         else if (strcmp(a, "--sweep-k") == 0) o.n_k = (uint32_t)parse_list(argv[++i], o.sweep_k, 8);
         else if (strcmp(a, "--sweep-grid") == 0) o.n_grid = (uint32_t)parse_list(argv[++i], o.sweep_grid, 8);
+        else if (strcmp(a, "--mc-maps") == 0) o.n_mc_map = (uint32_t)parse_list(argv[++i], o.mc_map, 6);
+        else if (strcmp(a, "--mc-screens") == 0) o.n_mc_screen = (uint32_t)parse_list(argv[++i], o.mc_screen, 4);
         else {
             usage();
             return 2;
@@ -1871,7 +2392,7 @@ int main(int argc, char **argv)
     if (o.quick) {
         /* A small subset that still runs every code path: CI-friendly (well under two
          * minutes on two cores). */
-        if (!o.only) o.only = "square,elongated-cube,spot";
+        if (!o.only) o.only = "square,elongated-cube,spot,closed-box";
         o.sweep_scenes = "spot";
         o.size = 128;
         o.srt_big = 256;
@@ -1882,12 +2403,36 @@ int main(int argc, char **argv)
         o.n_light = 2;
         o.sweep_light[0] = 1.0f;
         o.sweep_light[1] = 4.0f;
+        if (!o.n_mc_map) o.n_mc_map = (uint32_t)parse_list("128,256", o.mc_map, 6);
+        if (!o.n_mc_screen) o.n_mc_screen = (uint32_t)parse_list("128,256", o.mc_screen, 4);
     } else {
         if (!o.n_res) o.n_res = (uint32_t)parse_list("256,512,1024,1280", o.sweep_res, 8);
         if (!o.n_k) o.n_k = (uint32_t)parse_list("4,8,16,32", o.sweep_k, 8);
         if (!o.n_grid) o.n_grid = (uint32_t)parse_list("32,64,128,256", o.sweep_grid, 8);
         o.n_light = 5;
         for (i = 0; i < 5; i++) o.sweep_light[i] = (float)(i + 1);
+        if (!o.n_mc_map) o.n_mc_map = (uint32_t)parse_list("128,256,512,1024,2048", o.mc_map, 6);
+        if (!o.n_mc_screen) o.n_mc_screen = (uint32_t)parse_list("256,512,1024", o.mc_screen, 4);
+    }
+    {
+        /* MCSM maps that this build's pn_limits do not allow (pn_arena_size refuses an
+         * mc_map_max over PN_MCSM_MAP_MAX) are left out; the report says so. */
+        pn_limits lim;
+        size_t bytes;
+        uint32_t v, nm = 0;
+        memset(&lim, 0, sizeof(lim));
+        lim.max_triangles = 1;
+        lim.max_width = lim.max_height = 8;
+        for (v = 0; v < o.n_mc_map; v++) {
+            lim.mc_map_max = o.mc_map[v];
+            if (o.mc_map[v] >= 8u && pn_arena_size(&lim, &bytes) == PN_OK) {
+                o.mc_map[nm++] = o.mc_map[v];
+                if (o.mc_map[v] > o.mc_map_max) o.mc_map_max = o.mc_map[v];
+            } else {
+                o.mc_map_cut = 1;
+            }
+        }
+        o.n_mc_map = nm;
     }
     if (o.reps < 1 || o.reps > MAX_REPS || o.reps_slow < 1 || o.reps_slow > MAX_REPS) {
         fprintf(stderr, "penumbra_bench: --reps must be 1..%d\n", MAX_REPS);
@@ -1962,6 +2507,9 @@ int main(int argc, char **argv)
                 scene_state ss;
                 uint32_t max_size = o.size;
                 if (p == 0 && !o.lean && o.srt_big > max_size) max_size = o.srt_big;
+                if (p == 0 && !o.lean && section_algo(&o, PN_ALGO_MCSM) >= 0)
+                    for (uint32_t v = 0; v < o.n_mc_screen; v++)
+                        if (o.mc_screen[v] > max_size) max_size = o.mc_screen[v];
                 if (p == 0 && sweepable)
                     for (uint32_t v = 0; v < o.n_res; v++)
                         if (o.sweep_res[v] > max_size) max_size = o.sweep_res[v];
@@ -1973,7 +2521,9 @@ int main(int argc, char **argv)
                 if (p == 0 && hd) headline_data(hd, &r, &ss);
                 if (p == 0 && !o.lean) {
                     srt_section(&o, &r, &ss);
+                    mc_claims(&o, &r, &ss); /* before occ_section: its points are on the front's chart */
                     occ_section(&o, &r, &ss);
+                    mcsm_section(&o, &r, &ss);
                     tradeoff_chart(&o, &r, &ss);
                 }
                 if (p == 0 && sweepable) {
@@ -1988,8 +2538,10 @@ int main(int argc, char **argv)
         }
         if (hd) fclose(hd);
     }
+    if (!o.lean && in_list(o.only, "closed-box")) mcsm_leaks(&o, &r);
     plot_sweeps(&r, &o);
     plot_headline(&r, &o);
+    plot_mc_convergence(&r);
 
     snprintf(path, sizeof(path), "%s/RESULTS.md", o.out_dir);
     f = fopen(path, "w");

@@ -397,7 +397,8 @@ typedef struct pn_stats {
     /* Monte Carlo shadow maps, last frame */
     uint32_t mc_map;             /* depth-layer texels per axis */
     uint32_t mc_lit, mc_umbra, mc_penumbra; /* lit pixels the classification called fully lit,
-                                    umbra, or potentially in penumbra (rays traced) */
+                                    umbra (with those whose surface faces away from the
+                                    light centre), or potentially in penumbra (rays traced) */
     uint64_t mc_rays;            /* rays searched through the layers (after the early-outs) */
     uint64_t mc_steps;           /* search steps: N-buffer boxes or linear samples looked up */
     uint32_t mc_capped;          /* searches stopped by the step cap (taken as unblocked) */

@@ -2074,7 +2074,9 @@ static void plot_headline(report *r, const bench_opts *o)
             "set label 1 'goal 10x' at graph 0.01, first 10 offset 0,0.6 tc rgb 'red'\n"
             "plot 'data/headline.dat' using 2:xtic(1) title 'vs reference', '' using 3 title 'vs Embree'%s\n"
             "unset arrow 1\nunset arrow 2\nunset label 1\nunset logscale y\nset xtics norotate\nset yrange [*:*]\n",
-            o->size, o->size, o->k, r->hmin / 1.5, r->hmax * 1.5, A_RT >= 0 ? ", '' using 4 title 'vs raytrace'" : "");
+            o->size, o->size, o->k, r->hmin / 1.5, r->hmax * 1.5,
+            /* A column with no point (raytrace compiled out or not selected) stops gnuplot. */
+            A_RT >= 0 && in_list(o->algos, algos[A_RT].name) ? ", '' using 4 title 'vs raytrace'" : "");
 }
 
 /* The sections after the headline, in order: heading and the note that explains the

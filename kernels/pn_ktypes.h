@@ -67,9 +67,8 @@ typedef struct pn_kmc {
     float d;          /* centre of projection behind the light centre (0: point light) */
     float sfac;       /* res * d: a region's side in texels is sfac (z - zb) / (z (zb + d)) */
     float bias_k;     /* adaptive bias (eq. 3.2) per unit of (z + d) / cos */
-    float zmin;       /* smallest near-layer depth over the whole map (+inf: no occluder) */
     float blur_depth; /* blur: a neighbour's weight / (1 + |depth - centre| blur_depth / centre) */
-    float pad0, pad1, pad2;
+    float pad0, pad1, pad2, pad3;
     uint32_t res;     /* texels per axis */
     uint32_t levels;  /* N-buffer levels: floor(log2 res) + 1 */
     uint32_t level;   /* the level an N-buffer pass builds */
@@ -79,7 +78,7 @@ typedef struct pn_kmc {
     uint32_t blur;    /* blur radius in pixels, 0 .. 8 (0: off) */
     uint32_t flags;   /* PN_MC_F_* */
     uint32_t seed;    /* frame key of the sample hash */
-    uint32_t pad3, pad4, pad5;
+    uint32_t pad4, pad5, pad6;
     float blur_w[12]; /* binomial weights C(2r, r + i), i = 0 .. r */
 } pn_kmc;
 

@@ -15,7 +15,8 @@
  *   % 18, 12 filter % 5, 13 combination % 5, 14 flags & 3 (out-of-range values included);
  *   Monte Carlo builds: the same bits the layers' limit, 11 layers % 5, 12 search % 4, 13 rays
  *   % 10, 14 bits 0..2 flags, bits 3..7 blur % 11 (31: off); 6 bit 128: the second half of
- *   the triangles receiver-only (pn_scene_set_receivers), and a call out of range first
+ *   the triangles receiver-only (pn_scene_set_receivers), and a call out of range first;
+ *   penumbra-wedge builds: 12 % 4 the mode (3 invalid); algo 6 is PN_ALGO_WEDGES
  *   then floats: eye[3] target[3] up[3] fov, light c[3] u[3] v[3], eps albedo ambient;
  *   4 background bytes; vertex count * 3 floats; triangle count * 3 uint32 indices.
  *
@@ -24,8 +25,8 @@
  * status the function does not document; PN_E_POOL_EXHAUSTED only for algorithms whose
  * pools may not fit a frame); failures leave a message and do not touch out-parameters;
  * the library writes only inside the block it was given; caller arrays
- * are unchanged; a frame has visibility in {0, 1/k^2, ..., 1} (occlusion textures and
- * Monte Carlo shadow maps: in [0, 1]), background pixels at
+ * are unchanged; a frame has visibility in {0, 1/k^2, ..., 1} (occlusion textures, Monte
+ * Carlo shadow maps and penumbra wedges: in [0, 1]), background pixels at
  * visibility 1 / PN_NO_TRIANGLE / +inf depth / the background colour, ids below the
  * triangle count and unit normals; and rendering again, after scribbling over the
  * caller's arrays and under a reversed work-item schedule, gives the same bytes. Within
@@ -145,6 +146,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     opt.mc_blur = (h[14] >> 3) == 31u ? PN_MC_BLUR_OFF : (uint32_t)(h[14] >> 3) % 11u;
     opt.mc_seed = h[15];
 #endif
+#ifdef PN_BUILD_WEDGES
+    opt.wg_mode = h[12] % 4u; /* 3: invalid */
+#endif
     take(&r, &cam, sizeof cam);
     take(&r, &light, sizeof light);
     take(&r, shade, sizeof shade);
@@ -222,6 +226,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                                        opt.occ_combine > 3u || (opt.occ_flags & ~PN_OCC_LEAK_FIX)))
         must |= BIT(PN_E_INVALID_ARG);
 #endif
+#ifdef PN_BUILD_WEDGES
+    if (opt.algo == PN_ALGO_WEDGES && opt.wg_mode > PN_WG_MODE_ADDITIVE) must |= BIT(PN_E_INVALID_ARG);
+#endif
 #ifdef PN_BUILD_MCSM
     if (opt.algo == PN_ALGO_MCSM && (opt.mc_layers > 3u || opt.mc_search > 2u || opt.mc_rays > 8u ||
                                      (opt.mc_blur > 8u && opt.mc_blur != PN_MC_BLUR_OFF) || (opt.mc_flags & 4u)))
@@ -291,7 +298,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             float vi = out.visibility[i];
             const float *nr = out.normal + 3u * i;
             FUZZ_CHECK(vi >= 0.0f && vi <= 1.0f, "pixel %zu visibility %g", i, vi);
-            FUZZ_CHECK(opt.algo == PN_ALGO_OCCTEX || opt.algo == PN_ALGO_MCSM || (point ? vi == 0.0f || vi == 1.0f : vi * kk == floorf(vi * kk)),
+            FUZZ_CHECK(opt.algo == PN_ALGO_OCCTEX || opt.algo == PN_ALGO_MCSM || opt.algo == PN_ALGO_WEDGES || (point ? vi == 0.0f || vi == 1.0f : vi * kk == floorf(vi * kk)),
                        "pixel %zu visibility %g: not a multiple of 1/k^2 (k %u)", i, vi, k);
             if (out.tri_id[i] == PN_NO_TRIANGLE) {
                 FUZZ_CHECK(vi == 1.0f && out.depth[i] == INFINITY && !memcmp(out.rgba + 4u * i, opt.background, 4u),

@@ -42,7 +42,8 @@ typedef ulong uint64_t;
  * ports size their private arrays alike. */
 #if !defined(PN_MASK_WORDS_MAX) || !defined(PN_BVH_STACK) || !defined(PN_ENABLE_REFERENCE) || \
     !defined(PN_ENABLE_RAYTRACE) || !defined(PN_ENABLE_GEARS) || !defined(PN_ENABLE_SRT) || !defined(PN_SRT_MAP_MAX) || \
-    !defined(PN_ENABLE_OCCTEX) || !defined(PN_OCCTEX_MAP_MAX) || !defined(PN_ENABLE_MCSM)
+    !defined(PN_ENABLE_OCCTEX) || !defined(PN_OCCTEX_MAP_MAX) || !defined(PN_ENABLE_MCSM) || \
+    !defined(PN_ENABLE_WEDGES)
 #error "OpenCL build options must define PN_MASK_WORDS_MAX, PN_BVH_STACK and PN_ENABLE_* (ports/opencl does)"
 #endif
 #else
@@ -53,7 +54,8 @@ typedef ulong uint64_t;
  * option the kernels read is added here (and to the #error list above). */
 #define PN_KERNEL_CONFIG(X) \
     X(PN_MASK_WORDS_MAX) X(PN_BVH_STACK) X(PN_ENABLE_REFERENCE) X(PN_ENABLE_RAYTRACE) X(PN_ENABLE_GEARS) \
-    X(PN_ENABLE_SRT) X(PN_SRT_MAP_MAX) X(PN_ENABLE_OCCTEX) X(PN_OCCTEX_MAP_MAX) X(PN_ENABLE_MCSM)
+    X(PN_ENABLE_SRT) X(PN_SRT_MAP_MAX) X(PN_ENABLE_OCCTEX) X(PN_OCCTEX_MAP_MAX) X(PN_ENABLE_MCSM) \
+    X(PN_ENABLE_WEDGES)
 #define PN_KFN static inline
 #define PN_KFN_HOT static inline __attribute__((always_inline))
 #define PN_KFN_COLD static __attribute__((noinline, cold))

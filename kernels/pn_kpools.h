@@ -25,6 +25,9 @@ typedef struct pn_kpools {
     uint64_t mc_nb, mc_tmp, mc_words;
     /* frame: selective ray tracing (src/pn_srt.c) */
     uint64_t lmap_depth, lmap_id, lmap_cons, srt_tile_w, srt_tile_h, srt_tile_mask, srt_words, pip_off, pip_list;
+    /* persistent: the scene's connectivity (src/pn_connect.c); frame: penumbra wedges */
+    uint64_t wg_hedge, wg_run, wg_tcomp;
+    uint64_t wg_tcast, wg_soff, wg_sil, wg_poff, wg_pairs, wg_sorted, wg_toff;
 } pn_kpools;
 
 /* A tile of GEARS grid cells: grid rows [r0, r1] and columns [x0, x1] of one face. */
@@ -47,6 +50,7 @@ typedef struct pn_kparams {
     float lview_ha, lview_hb;
     pn_kocc occ;
     pn_kmc mc;
+    pn_kwg wg;
     /* selective ray tracing: the classification's constants */
     float srt_delta, srt_alpha, srt_reach_u, srt_reach_v; /* reach: texels per unit splat weight */
     float srt_wmax; /* largest splat weight 1/z of the map's edge texels */

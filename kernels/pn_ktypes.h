@@ -82,6 +82,17 @@ typedef struct pn_kmc {
     float blur_w[12]; /* binomial weights C(2r, r + i), i = 0 .. r */
 } pn_kmc;
 
+/* Penumbra wedges' frame constants (kernels/pn_wedges.h; src/pn_wedges.c sets them). */
+typedef struct pn_kwg {
+    uint32_t mode;    /* PN_WG_M_BLEND or PN_WG_M_ADD */
+    uint32_t runs;    /* edges of the scene (src/pn_connect.c) */
+    uint32_t sils;    /* silhouette edges this frame */
+    uint32_t tiles_x; /* screen tiles per row */
+    float hmax;       /* the greatest height above the light plane, (X - c).N, of any point a
+                         pixel's shadow origin may take: the scene box's, widened */
+    float pad0, pad1, pad2;
+} pn_kwg;
+
 /* Triangle flags (one byte each). */
 #define PN_TRI_DEGENERATE 1u
 /* Receiver only (pn_scene_set_receivers): casts no shadow into the Monte Carlo shadow

@@ -131,6 +131,34 @@ static int pn_mc_pools(const pn_limits *l, uint64_t *off)
 #endif
 }
 
+/* The penumbra wedges' frame pools; the frame region also holds pn_connect_build's
+ * scratch (24 bytes a triangle) at pn_scene_set. */
+static int pn_wg_pools(const pn_limits *l, uint64_t *off)
+{
+#if PN_ENABLE_WEDGES
+    uint64_t start = *off, weld = start, tiles = pn_wg_tiles_of(l->max_width, l->max_height);
+    size_t dummy;
+    /* pn_wedges_frame() in src/pn_wedges.c allocates exactly these, in this order. */
+    if (!(pn_bump(off, l->max_triangles, 4u, &dummy) &&                        /* casting */
+          pn_bump(off, 3u * (uint64_t)l->max_triangles + 1u, 4u, &dummy) &&    /* silhouette slots */
+          pn_bump(off, pn_wg_sil_max(l), PN_WG_SIL_BYTES, &dummy) &&           /* silhouettes */
+          pn_bump(off, (uint64_t)pn_wg_sil_max(l) + 1u, 4u, &dummy) &&         /* pair offsets */
+          pn_bump(off, pn_wg_pairs_max(l), 8u, &dummy) &&                      /* pairs */
+          pn_bump(off, pn_wg_pairs_max(l), 4u, &dummy) &&                      /* tile lists */
+          pn_bump(off, tiles + 1u, 4u, &dummy) &&                              /* tile offsets */
+          pn_bump(off, tiles, 4u, &dummy) &&                                   /* sort scratch */
+          pn_bump(&weld, 6u * (uint64_t)l->max_triangles, 4u, &dummy)))         /* welding */
+        return 0;
+    (void)start;
+    if (weld > *off) *off = weld;
+    return 1;
+#else
+    (void)l;
+    (void)off;
+    return 1;
+#endif
+}
+
 pn_status pn_carve(const pn_limits *l, pn_layout *out)
 {
     uint64_t off = 0, frame_start;
@@ -148,23 +176,29 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
         !pn_bump(&off, 2u * (uint64_t)l->max_triangles, sizeof(pn_kbvh_node), &lay.nodes) ||
         !pn_bump(&off, l->max_triangles, sizeof(uint32_t), &lay.index) ||
         !pn_bump(&off, PN_PORT_SCRATCH_WORDS, sizeof(uint32_t), &lay.scratch) ||
+        !pn_bump(&off, PN_ENABLE_WEDGES ? 3u * (uint64_t)l->max_triangles : 0u, sizeof(uint32_t), &lay.wg_hedge) ||
+        !pn_bump(&off, PN_ENABLE_WEDGES ? 3u * (uint64_t)l->max_triangles + 1u : 0u, sizeof(uint32_t), &lay.wg_run) ||
+        !pn_bump(&off, PN_ENABLE_WEDGES ? (uint64_t)l->max_triangles : 0u, sizeof(uint32_t), &lay.wg_tcomp) ||
         !pn_bump(&off, 0u, 1u, &lay.frame))
         return PN_E_LIMIT;
     frame_start = off;
     {
         /* The common pools, then the largest of GEARS', SRT's and the occlusion textures'
          * (one algorithm a frame). */
-        uint64_t common = off, a, b, c, m;
+        uint64_t common = off, a, b, c, m, w;
         if (!pn_frame_pools_common(l, &common)) return PN_E_LIMIT;
         a = common;
         b = common;
         c = common;
         m = common;
-        if (!pn_gears_pools(l, &a) || !pn_srt_pools(l, &b) || !pn_occ_pools(l, &c) || !pn_mc_pools(l, &m))
+        w = common;
+        if (!pn_gears_pools(l, &a) || !pn_srt_pools(l, &b) || !pn_occ_pools(l, &c) || !pn_mc_pools(l, &m) ||
+            !pn_wg_pools(l, &w))
             return PN_E_LIMIT;
         off = a > b ? a : b;
         off = off > c ? off : c;
         off = off > m ? off : m;
+        off = off > w ? off : w;
     }
     /* Round the end so the last pool's alignment padding is inside the region. */
     if (!pn_bump(&off, 0u, 1u, &lay.end)) return PN_E_LIMIT;
@@ -225,6 +259,20 @@ uint32_t pn_gears_pairs_max(const pn_limits *l) { return l->gears_pairs ? l->gea
 uint32_t pn_srt_map_max(const pn_limits *l) { return l->srt_map_max ? l->srt_map_max : PN_SRT_MAP_MAX; }
 uint32_t pn_occ_map_max(const pn_limits *l) { return l->occ_map_max ? l->occ_map_max : PN_OCCTEX_MAP_MAX; }
 uint32_t pn_mc_map_max(const pn_limits *l) { return l->mc_map_max ? l->mc_map_max : PN_MCSM_MAP_MAX; }
+uint32_t pn_wg_tiles_of(uint32_t width, uint32_t height)
+{
+    return ((width + 15u) / 16u) * ((height + 15u) / 16u);
+}
+uint32_t pn_wg_sil_max(const pn_limits *l)
+{
+    uint64_t edges = 3u * (uint64_t)l->max_triangles;
+    return edges < PN_WEDGES_SIL_MAX ? (uint32_t)edges : PN_WEDGES_SIL_MAX;
+}
+uint32_t pn_wg_pairs_max(const pn_limits *l)
+{
+    uint64_t most = (uint64_t)pn_wg_tiles_of(l->max_width, l->max_height) * pn_wg_sil_max(l);
+    return most < PN_WEDGES_PAIRS ? (uint32_t)most : PN_WEDGES_PAIRS;
+}
 uint32_t pn_occ_levels(uint32_t res)
 {
     uint32_t l = 1u;
@@ -277,6 +325,11 @@ pn_status pn_init(pn_context **out_ctx, void *memory, size_t bytes, const pn_lim
     ctx->nodes = (pn_kbvh_node *)(void *)(base + lay.nodes);
     ctx->tri_index = (uint32_t *)(void *)(base + lay.index);
     ctx->scratch = (uint32_t *)(void *)(base + lay.scratch);
+#if PN_ENABLE_WEDGES
+    ctx->wg_hedge = (uint32_t *)(void *)(base + lay.wg_hedge);
+    ctx->wg_run = (uint32_t *)(void *)(base + lay.wg_run);
+    ctx->wg_tcomp = (uint32_t *)(void *)(base + lay.wg_tcomp);
+#endif
     ctx->frame = base + lay.frame;
     *out_ctx = ctx;
     return PN_OK;

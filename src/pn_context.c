@@ -161,6 +161,21 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out)
     s.occ_ns_slice = ctx->occ.ns_slice;
     s.occ_ns_filter = ctx->occ.ns_filter;
     s.occ_ns_lookup = ctx->occ.ns_lookup;
+    s.wg_vertices = ctx->wg.vertices;
+    s.wg_edges = ctx->wg.runs;
+    s.wg_open_edges = ctx->wg.open_edges;
+    s.wg_nonmanifold_edges = ctx->wg.nonmanifold;
+    s.wg_objects = ctx->wg.components;
+    s.wg_closed_objects = ctx->wg.closed;
+    s.wg_silhouettes = ctx->wg.sils;
+    s.wg_pairs = ctx->wg.pairs;
+    s.wg_evaluated = ctx->wg.evaluated;
+    s.wg_touched = ctx->wg.touched;
+    s.wg_hard_blockers = ctx->wg.hard_blockers;
+    s.wg_hard_overflow = ctx->wg.hard_overflow;
+    s.wg_ns_silhouettes = ctx->wg.ns_silhouettes;
+    s.wg_ns_binning = ctx->wg.ns_binning;
+    s.wg_ns_pixels = ctx->wg.ns_pixels;
     s.mc_map = ctx->mc.map;
     s.mc_lit = ctx->mc.lit;
     s.mc_umbra = ctx->mc.umbra;
@@ -196,6 +211,9 @@ uint32_t pn_build_info(void)
 #endif
 #if PN_ENABLE_MCSM
     f |= PN_BUILD_MCSM;
+#endif
+#if PN_ENABLE_WEDGES
+    f |= PN_BUILD_WEDGES;
 #endif
     return f;
 }

@@ -8,6 +8,7 @@
 #include "pn_srt_frame.h"
 #include "pn_mcsm_frame.h"
 #include "pn_occtex_frame.h"
+#include "pn_wedges_frame.h"
 #include "pn_kmath.h"
 #include "pn_passes.h"
 
@@ -255,6 +256,14 @@ static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
 #else
         return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_MCSM is not compiled in (PN_ENABLE_MCSM 0)");
 #endif
+    case PN_ALGO_WEDGES:
+#if PN_ENABLE_WEDGES
+        if (o->wg_mode > PN_WG_MODE_ADDITIVE)
+            return pn_fail(ctx, PN_E_INVALID_ARG, "wg_mode = %u; it must be 0 or a PN_WG_MODE_*", o->wg_mode);
+        return PN_OK;
+#else
+        return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_WEDGES is not compiled in (PN_ENABLE_WEDGES 0)");
+#endif
     }
     return pn_fail(ctx, PN_E_INVALID_ARG, "unknown algorithm %u", (uint32_t)o->algo);
 }
@@ -272,6 +281,12 @@ static pn_status pn_scene_to_device(pn_frame_state *fs)
         (st = pn_dev_to_device(fs, ctx->nodes, (size_t)ctx->bvh_nodes * sizeof(pn_kbvh_node))) != PN_OK ||
         (st = pn_dev_to_device(fs, ctx->tri_index, (size_t)ctx->bvh_tris * sizeof(uint32_t))) != PN_OK)
         return st;
+#if PN_ENABLE_WEDGES
+    if ((st = pn_dev_to_device(fs, ctx->wg_hedge, (size_t)ctx->wg.hedges * sizeof(uint32_t))) != PN_OK ||
+        (st = pn_dev_to_device(fs, ctx->wg_run, ((size_t)ctx->wg.runs + 1u) * sizeof(uint32_t))) != PN_OK ||
+        (st = pn_dev_to_device(fs, ctx->wg_tcomp, (size_t)ctx->tri_count * sizeof(uint32_t))) != PN_OK)
+        return st;
+#endif
     sc->version = ctx->scene_version;
     sc->valid = 1;
     sc->uploads++;
@@ -320,6 +335,9 @@ static pn_status pn_shadow(pn_frame_state *fs)
 #if PN_ENABLE_MCSM
     case PN_ALGO_MCSM: st = pn_mcsm_frame(fs); break;
 #endif
+#if PN_ENABLE_WEDGES
+    case PN_ALGO_WEDGES: st = pn_wedges_frame(fs); break;
+#endif
     default: return pn_fail(fs->ctx, PN_E_UNSUPPORTED, "algorithm %u not available", fs->algo);
     }
     if (st != PN_OK || (st = pn_dev_to_host(fs, fs->vis, (size_t)npix * sizeof(float))) != PN_OK) return st;
@@ -343,6 +361,11 @@ static void pn_frame_pool_offsets(pn_frame_state *fs)
     P->flags = pn_dev_off(ctx, ctx->flags);
     P->nodes = pn_dev_off(ctx, ctx->nodes);
     P->index = pn_dev_off(ctx, ctx->tri_index);
+#if PN_ENABLE_WEDGES
+    P->wg_hedge = pn_dev_off(ctx, ctx->wg_hedge);
+    P->wg_run = pn_dev_off(ctx, ctx->wg_run);
+    P->wg_tcomp = pn_dev_off(ctx, ctx->wg_tcomp);
+#endif
     P->depth = pn_dev_off(ctx, fs->depth);
     P->tri_id = pn_dev_off(ctx, fs->tri_id);
     P->pos = pn_dev_off(ctx, fs->pos);
@@ -408,6 +431,9 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     fs.K.mc.blur = opt->mc_blur == PN_MC_BLUR_OFF ? 0u : opt->mc_blur ? opt->mc_blur : 2u;
     fs.K.mc.flags = opt->mc_flags;
     fs.K.mc.seed = opt->mc_seed;
+#endif
+#if PN_ENABLE_WEDGES
+    fs.K.wg.mode = opt->wg_mode ? opt->wg_mode : PN_WG_MODE_BLEND;
 #endif
 
     px = (size_t)opt->width * opt->height;

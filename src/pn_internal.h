@@ -21,6 +21,9 @@ typedef struct pn_layout {
     size_t nodes;     /* 2 * max_triangles BVH nodes */
     size_t index;     /* max_triangles uint32: BVH leaf order */
     size_t scratch;   /* PN_PORT_SCRATCH_WORDS uint32: port scratch */
+    size_t wg_hedge;  /* 3 max_triangles uint32: half-edges by edge (penumbra wedges) */
+    size_t wg_run;    /* 3 max_triangles + 1 uint32: first half-edge of each edge */
+    size_t wg_tcomp;  /* max_triangles uint32: object of each triangle */
     size_t frame;     /* start of the per-frame region */
     size_t frame_cap; /* its size: the sum of the largest frame pools */
     size_t end;       /* frame + frame_cap */
@@ -68,6 +71,7 @@ struct pn_context {
     pn_kbvh_node *nodes;
     uint32_t *tri_index;
     uint32_t *scratch;
+    uint32_t *wg_hedge, *wg_run, *wg_tcomp; /* NULL without PN_ENABLE_WEDGES */
     /* frame region: a bump allocator rewound at every frame */
     uint8_t *frame;
     size_t frame_top;
@@ -106,6 +110,13 @@ struct pn_context {
         uint32_t map, lit, umbra, penumbra, capped;
         uint64_t rays, steps, ns_layers, ns_nbuffer, ns_rays, ns_blur;
     } mc;
+    struct {
+        /* connectivity (pn_connect.c) */
+        uint32_t vertices, hedges, runs, components, closed, open_edges, nonmanifold;
+        /* last frame */
+        uint32_t sils, hard_overflow;
+        uint64_t pairs, evaluated, touched, hard_blockers, ns_silhouettes, ns_binning, ns_pixels;
+    } wg;
     char message[256];
 };
 
@@ -115,6 +126,13 @@ uint32_t pn_gears_grid_max(const pn_limits *l);
 uint32_t pn_srt_map_max(const pn_limits *l);
 uint32_t pn_occ_map_max(const pn_limits *l);
 uint32_t pn_mc_map_max(const pn_limits *l);
+/* Penumbra wedges: the silhouette and (tile, wedge) pair pools of a context, and the
+ * screen tiles of a frame. */
+uint32_t pn_wg_sil_max(const pn_limits *l);
+uint32_t pn_wg_pairs_max(const pn_limits *l);
+uint32_t pn_wg_tiles_of(uint32_t width, uint32_t height);
+/* Floats of a silhouette record (kernels/pn_wedges.h pn_wsil). */
+#define PN_WG_SIL_BYTES 32u
 /* Occlusion textures: N-buffer / mipmap levels of a res^2 texture (floor(log2 res) + 1), and
  * the words of the one-slice filter pool (the largest of the three filters). */
 uint32_t pn_occ_levels(uint32_t res);
@@ -153,6 +171,10 @@ void pn_frame_rewind(pn_context *ctx, size_t mark);
 pn_status pn_fail(pn_context *ctx, pn_status status, const char *fmt, ...);
 uint64_t pn_now(const pn_context *ctx);
 void pn_run(pn_context *ctx, uint32_t count, pn_task_fn fn, void *task);
+
+/* pn_connect.c: the scene's welded vertices, objects and edges (the frame region is its
+ * scratch: call outside a frame). */
+void pn_connect_build(pn_context *ctx);
 
 /* pn_bvh_build.c */
 pn_status pn_bvh_build(pn_context *ctx);

@@ -95,6 +95,9 @@ pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_
     st = pn_bvh_build(ctx);
     ctx->pass_ns[PN_PASS_BVH_BUILD] = pn_now(ctx) - t0;
     if (st != PN_OK) return st;
+#if PN_ENABLE_WEDGES
+    pn_connect_build(ctx);
+#endif
     ctx->has_scene = 1;
     return PN_OK;
 }

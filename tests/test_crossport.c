@@ -38,6 +38,7 @@ static const struct {
     {"srt", PN_ALGO_SRT, PN_BUILD_SRT},
     {"occtex", PN_ALGO_OCCTEX, PN_BUILD_OCCTEX},
     {"mcsm", PN_ALGO_MCSM, PN_BUILD_MCSM},
+    {"wedges", PN_ALGO_WEDGES, PN_BUILD_WEDGES},
 };
 #define PN_X_ALGOS (sizeof(pn_x_algos) / sizeof(pn_x_algos[0]))
 
@@ -143,6 +144,12 @@ static int same_frame(const char *what, const pn_xframe *a, const pn_xframe *b)
     SAME_STAT(mc_rays);
     SAME_STAT(mc_steps);
     SAME_STAT(mc_capped);
+    SAME_STAT(wg_silhouettes);
+    SAME_STAT(wg_pairs);
+    SAME_STAT(wg_evaluated);
+    SAME_STAT(wg_touched);
+    SAME_STAT(wg_hard_blockers);
+    SAME_STAT(wg_hard_overflow);
 #undef SAME_STAT
     CHECK_MSG(memcmp(&a->st.gears_mean_tris_per_cell, &b->st.gears_mean_tris_per_cell, sizeof(float)) == 0 &&
                   memcmp(&a->st.gears_mean_pixels_per_cell, &b->st.gears_mean_pixels_per_cell, sizeof(float)) == 0,
@@ -384,6 +391,16 @@ static void test_options(void)
             CHECK(cross(&g_rig, &s.camera, &light, &o, what) == PN_OK);
         }
         REQUIRE(pn_scene_set_receivers(g_rig.h.ctx, 0u, 0u) == PN_OK);
+    }
+    /* Penumbra wedges: blended and additive, area and point light. */
+    if (pn_build_info() & PN_BUILD_WEDGES) {
+        for (i = 0; i < 4; i++) {
+            pn_light light = i >= 2 ? point_light(&s.light) : s.light;
+            opts(&o, &s, 40, 40, 16, PN_ALGO_WEDGES);
+            o.wg_mode = (i & 1) ? PN_WG_MODE_ADDITIVE : PN_WG_MODE_BLEND;
+            snprintf(what, sizeof(what), "spheres wedges mode %u%s", o.wg_mode, i >= 2 ? " point light" : "");
+            CHECK(cross(&g_rig, &s.camera, &light, &o, what) == PN_OK);
+        }
     }
     pn_setup_free(&s);
 }

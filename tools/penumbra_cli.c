@@ -34,12 +34,13 @@ static const pn_algo_name pn_algos[] = {
     {"srt", PN_ALGO_SRT, PN_BUILD_SRT},
     {"occtex", PN_ALGO_OCCTEX, PN_BUILD_OCCTEX},
     {"mcsm", PN_ALGO_MCSM, PN_BUILD_MCSM},
+    {"wedges", PN_ALGO_WEDGES, PN_BUILD_WEDGES},
     {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},
 };
 #define PN_ALGO_COUNT (sizeof(pn_algos) / sizeof(pn_algos[0]))
 /* The demo renders the first entries only: raytrace is a baseline with the reference's bits
  * by construction and the slowest of all (k^2 rays per pixel); the benchmark measures it. */
-#define PN_DEMO_ALGO_COUNT 5u
+#define PN_DEMO_ALGO_COUNT 6u
 
 static void usage(FILE *f)
 {
@@ -57,6 +58,7 @@ static void usage(FILE *f)
             "                  [--occ-combine product|max|sum] [--occ-leak-fix]\n"
             "                  [--mc-layers 1|2|3] [--mc-search linear|hier] [--mc-rays N] [--mc-blur N|off]\n"
             "                  [--mc-map N] [--mc-no-bias] [--mc-no-classify] [--mc-seed N]\n"
+            "                  [--wg-mode blend|additive]\n"
             "                  --out image.png [--vis vis.pfm] [--ids ids.bin] [--stats stats.json]\n"
             "  penumbra demo [--out DIR] [--size WxH] [--k K] [--threads N]\n"
             "  penumbra info\n"
@@ -327,6 +329,12 @@ static int cmd_render(int argc, char **argv)
         else if (strcmp(a, "--mc-no-bias") == 0) opt.mc_flags |= PN_MC_NO_BIAS;
         else if (strcmp(a, "--mc-no-classify") == 0) opt.mc_flags |= PN_MC_NO_CLASSIFY;
         else if (strcmp(a, "--mc-seed") == 0) { NEED_ARG; opt.mc_seed = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--wg-mode") == 0) {
+            NEED_ARG;
+            if (strcmp(v, "blend") == 0) opt.wg_mode = PN_WG_MODE_BLEND;
+            else if (strcmp(v, "additive") == 0) opt.wg_mode = PN_WG_MODE_ADDITIVE;
+            else BAD(a);
+        }
         else if (strcmp(a, "--threads") == 0) { NEED_ARG; threads = atoi(v); if (threads < 1) BAD(a); }
         else if (strcmp(a, "--out") == 0) { NEED_ARG; out = v; }
         else if (strcmp(a, "--vis") == 0) { NEED_ARG; vis = v; }

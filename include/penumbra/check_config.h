@@ -39,6 +39,18 @@
 #error "PN_MCSM_MAP_MAX must be in 8 .. 2048"
 #endif
 
+#if PN_ENABLE_WEDGES != 0 && PN_ENABLE_WEDGES != 1
+#error "PN_ENABLE_WEDGES must be 0 or 1"
+#endif
+
+#if PN_WEDGES_SIL_MAX < 64 || PN_WEDGES_SIL_MAX > (1 << 24)
+#error "PN_WEDGES_SIL_MAX must be in 64 .. 2^24"
+#endif
+
+#if PN_WEDGES_PAIRS < 1024 || PN_WEDGES_PAIRS > (1 << 28)
+#error "PN_WEDGES_PAIRS must be in 1024 .. 2^28"
+#endif
+
 #if PN_GEARS_GRID_MAX < 1 || PN_GEARS_GRID_MAX > 1024
 #error "PN_GEARS_GRID_MAX must be in 1 .. 1024"
 #endif

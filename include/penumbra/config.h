@@ -85,6 +85,30 @@
 #define PN_MCSM_MAP_MAX 512u
 #endif
 
+/* Penumbra wedges (Akenine-Moller and Assarsson 2002) with the overlap blending of Forest
+ * et al. 2006: silhouette edges seen from the light centre, their wedges binned to screen
+ * tiles, per pixel the occluded light area of each object blended over the light's four
+ * quadrants. Approximate. Costs per triangle of persistent arena 28 bytes (half-edges,
+ * edge runs, objects) and, at pn_scene_set, 24 bytes of the frame region for the welding;
+ * per frame the pools below. */
+#ifndef PN_ENABLE_WEDGES
+#define PN_ENABLE_WEDGES 1
+#endif
+
+/* Largest silhouette-edge count of a frame (32 + 4 bytes each; a context holds at most
+ * 3 x max_triangles, every edge). A frame with more fails PN_E_POOL_EXHAUSTED, naming it.
+ * Range 64 .. 2^24. */
+#ifndef PN_WEDGES_SIL_MAX
+#define PN_WEDGES_SIL_MAX (1u << 18)
+#endif
+
+/* Largest (screen tile, wedge) pair count of a frame (12 bytes each; a context holds at
+ * most tiles x silhouettes, tiles being 16 x 16 pixels). A frame with more fails
+ * PN_E_POOL_EXHAUSTED, naming it. Range 1024 .. 2^28. */
+#ifndef PN_WEDGES_PAIRS
+#define PN_WEDGES_PAIRS (1u << 22)
+#endif
+
 /* ---- Limits (they size the arena; see pn_arena_size()). ------------------------------ */
 
 /* Largest triangle count a scene may have, including any ground plane the caller adds.

@@ -138,7 +138,18 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
 #define PN_ARENA_BYTES_MAX(t, w, h)                                                         \
     ((size_t)(17u * 1024u) + (size_t)(t) * 112u + (size_t)(w) * (size_t)(h) * 40u +          \
      (size_t)(h) * 16u + 32u * (size_t)PN_ARENA_ALIGN + PN_GEARS_BYTES_MAX(t, w, h) +      \
-     PN_SRT_BYTES_MAX(t, w, h) + PN_OCCTEX_BYTES_MAX(t, w, h) + PN_MCSM_BYTES_MAX(t, w, h))
+     PN_SRT_BYTES_MAX(t, w, h) + PN_OCCTEX_BYTES_MAX(t, w, h) + PN_MCSM_BYTES_MAX(t, w, h) +     \
+     PN_WEDGES_BYTES_MAX(t, w, h))
+#if PN_ENABLE_WEDGES
+/* Penumbra-wedge pools: persistent per triangle 28 (+ 3 x 64 alignment); the frame per
+ * triangle 4 + 12 + 4 (casting, slots) or 24 (welding at pn_scene_set), counted both; per
+ * silhouette 36, per pair 12, per tile 8 (tiles <= pixels); the rest 64. */
+#define PN_WEDGES_BYTES_MAX(t, w, h)                                                        \
+    ((size_t)(t) * 68u + 256u + (size_t)PN_WEDGES_SIL_MAX * 36u + (size_t)PN_WEDGES_PAIRS * 12u + \
+     (size_t)(w) * (size_t)(h) * 8u + 64u)
+#else
+#define PN_WEDGES_BYTES_MAX(t, w, h) ((size_t)0)
+#endif
 #if PN_ENABLE_MCSM
 /* Monte Carlo shadow-map frame pools at the default map maximum: per texel 12 per N-buffer
  * level (12 bound floor(log2 2048) + 1 = 12); per pixel 4; per row 32 + 16; the rest 64. */
@@ -247,8 +258,10 @@ typedef enum pn_algo {
                              potentially incorrect pixels (approximate) */
     PN_ALGO_OCCTEX = 4,   /* occlusion textures: slices parallel to the light, box-filtered
                              and combined by probability (approximate) */
-    PN_ALGO_MCSM = 5      /* Monte Carlo shadow maps: hashed jittered rays traced through
+    PN_ALGO_MCSM = 5,     /* Monte Carlo shadow maps: hashed jittered rays traced through
                              depth layers with an N-buffer, then blurred (approximate) */
+    PN_ALGO_WEDGES = 6    /* penumbra wedges: soft shadow volumes from the silhouettes seen
+                             by the light centre, overlaps blended (approximate) */
 } pn_algo;
 
 typedef struct pn_frame_options {
@@ -293,7 +306,13 @@ typedef struct pn_frame_options {
                               no penumbra classification, early-outs or ray shortening
                               (every ray searched whole) */
     uint32_t mc_seed;      /* frame key of the sample hash (Appendix A's key) */
+    /* PN_ALGO_WEDGES (0 is the recommended configuration) */
+    uint32_t wg_mode;      /* PN_WG_MODE_BLEND (Forest et al. 2006's overlap blending) or
+                              PN_WG_MODE_ADDITIVE (the classic sum); 0: PN_WG_MODE_BLEND */
 } pn_frame_options;
+
+#define PN_WG_MODE_BLEND 1u
+#define PN_WG_MODE_ADDITIVE 2u
 
 #define PN_SRT_NO_CONSERVATIVE 0x1u
 #define PN_SRT_FORCE_PIP 0x2u
@@ -405,6 +424,24 @@ typedef struct pn_stats {
     /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: layers (window, rasterization),
      * N-buffer, rays (classification and search), blur */
     uint64_t mc_ns_layers, mc_ns_nbuffer, mc_ns_rays, mc_ns_blur;
+    /* Penumbra wedges: the scene's connectivity (at pn_scene_set) */
+    uint32_t wg_vertices;        /* distinct vertex positions after welding */
+    uint32_t wg_edges;           /* edges (distinct vertex pairs of non-degenerate triangles) */
+    uint32_t wg_open_edges;      /* edges with one triangle: silhouettes from every view */
+    uint32_t wg_nonmanifold_edges; /* edges with three or more triangles, or two winding
+                                    the same way */
+    uint32_t wg_objects, wg_closed_objects; /* triangles joined by shared vertices */
+    /* ...and the last frame */
+    uint32_t wg_silhouettes;     /* silhouette edges seen from the light centre (= wedges) */
+    uint64_t wg_pairs;           /* (screen tile, wedge) pairs binned */
+    uint64_t wg_evaluated;       /* (pixel, wedge) pairs evaluated */
+    uint64_t wg_touched;         /* ...of which the edge covered some of the light: the pixels
+                                    touched per wedge are wg_touched / wg_silhouettes */
+    uint64_t wg_hard_blockers;   /* triangles found blocking the pixels' centre rays */
+    uint32_t wg_hard_overflow;   /* pixels with more than 16 objects blocking the centre
+                                    whose wedges reach them (taken as umbra) */
+    /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: silhouettes, binning, pixels */
+    uint64_t wg_ns_silhouettes, wg_ns_binning, wg_ns_pixels;
 } pn_stats;
 
 pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);
@@ -416,6 +453,7 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);
 #define PN_BUILD_SRT 0x8u
 #define PN_BUILD_OCCTEX 0x10u
 #define PN_BUILD_MCSM 0x20u
+#define PN_BUILD_WEDGES 0x40u
 #define PN_BUILD_PORT_SCALAR 0x100u
 uint32_t pn_build_info(void);
 

@@ -10,7 +10,10 @@
  * cells per axis and 4096 (triangle, cell) pairs per pass (more pairs are tiled, so the
  * result does not depend on it), and a 64 x 64 shadow map for selective ray tracing
  * (its default 2048 x 2048 alone would reserve 48 MiB); 64 x 64 occlusion textures and
- * 32 x 32 Monte Carlo depth layers (their N-buffer: 72 KiB). */
+ * 32 x 32 Monte Carlo depth layers (their N-buffer: 72 KiB); penumbra wedges with room for
+ * every edge of 64 triangles as a silhouette (192) and every (tile, wedge) pair of a 32 x 32
+ * image (4 tiles: 768 of the 1024 pairs reserved; the default 2^22 pairs alone would be
+ * 48 MiB). */
 #ifndef FW_CONFIG_H
 #define FW_CONFIG_H
 
@@ -24,5 +27,7 @@
 #define PN_SRT_MAP_MAX 64u
 #define PN_OCCTEX_MAP_MAX 64u
 #define PN_MCSM_MAP_MAX 32u
+#define PN_WEDGES_SIL_MAX 192u
+#define PN_WEDGES_PAIRS 1024u
 
 #endif

@@ -1,0 +1,594 @@
+/* pn_wedges.h - PN_ALGO_WEDGES: soft shadow volumes by penumbra wedges (Akenine-Moller and
+ * Assarsson 2002) with the overlap blending of Forest, Barthe and Paulin 2006 (the frame is
+ * src/pn_wedges.c; connectivity is built at pn_scene_set by src/pn_connect.c).
+ *
+ * ---- What a pixel computes --------------------------------------------------------------
+ * Light coordinates: a point X has u = (X - c).U / |U|^2, v = (X - c).V / |V|^2 (the light is
+ * [-1, 1]^2, its centre the origin) and height h = (X - c).N. Seen from the pixel's shadow
+ * origin O, an occluder covers the region S of the light that its silhouette loop projects
+ * to. With f the indicator of S, the covered area is
+ *     A = f(0) |L| + sum over silhouette edges e of s_e area(L behind e from the centre),
+ * where "behind e from the centre" is the set of light points x whose segment from the
+ * centre crosses the projected edge, and s_e = +1 when that crossing enters S (O is on the
+ * outer side of the plane through the centre and e: the outer half-wedge), -1 when it
+ * leaves (the inner half-wedge). f(0), the hard shadow of the centre, is what the paper's
+ * shadow-volume stencil computes; here it is the exact centre sample (pn_predicate.h) of a
+ * BVH walk from O (pn_ray_walk), one per pixel, noting which objects block it.
+ *
+ * Silhouettes are those seen from the light centre (the method's approximation): an edge
+ * whose adjacent "casting" triangles do not cancel. A closed object casts with its
+ * triangles facing the centre; an open one (an edge with one triangle, or more than two, or
+ * two of the same winding) with all of them, each turned to face the centre. An edge's
+ * weight is the net count of casting triangles winding along it (1 on a closed mesh).
+ *
+ * Blending (the paper's section 3): the light is cut radially into its four quadrants; per
+ * object ("silhouette") and quadrant, its occluded area A_s and a rectangle B_s bounding
+ * the occluded region; per pixel the final A_f, B_f take each object in turn:
+ *     eps = (A_f / |B_f|) (A_s / |B_s|) |B_f n B_s|,  A_f += A_s - eps,  B_f = box(B_f u B_s).
+ * The classic combination (PN_WG_MODE_ADDITIVE) adds the A_s. Visibility is
+ * 1 - sum of A_f / |L|, clamped to [0, 1], times the fraction of the k x k light samples in
+ * front of the pixel's own plane (the horizon, as every algorithm applies).
+ *
+ * Bounds of an object's occluded region in a quadrant (reflected to Q = [0,1]^2, the centre
+ * at its corner): the box of the regions behind its outer edges; when the centre is
+ * occluded, also the box of the centre and its inner edges' end points and of the sectors
+ * of Q that no inner edge covers (the occluded part lies in front of the inner edges: the
+ * paper's "maximum in X and Y of the occluding edges"). Its inner edges are taken to cover
+ * one angular range, from the least to the greatest angle any of them reaches.
+ *
+ * Order: each pixel takes the silhouette edges of its screen tile (PN_WG_TILE^2 pixels) in
+ * ascending edge order, which groups them by object (edges are numbered object by object),
+ * so its sums run in one order on every port. */
+#ifndef PN_WEDGES_H
+#define PN_WEDGES_H
+
+#include "pn_raster.h"
+#include "pn_raytrace.h"
+
+#define PN_WG_TILE 16u
+#define PN_WG_REV 0x80000000u    /* half-edge: traverses its edge from the higher vertex id */
+#define PN_WG_CLOSED 0x80000000u /* triangle's object: closed (every edge two opposite windings) */
+#define PN_WG_HARD_MAX 16u       /* objects blocking the centre a pixel keeps track of */
+#define PN_WG_TNEAR (1.0f / 1024.0f) /* the local near plane: a tenth of a percent of O's height */
+#define PN_WG_M_BLEND 1u
+#define PN_WG_M_ADD 2u
+/* Casting codes per triangle (pn_wg_facing). */
+#define PN_WG_CAST_NONE 0u
+#define PN_WG_CAST_AS_IS 1u
+#define PN_WG_CAST_FLIPPED 2u
+
+/* A silhouette edge: half-edge h (triangle h / 3, its edge h % 3 from vertex h % 3 to the
+ * next) | PN_WG_REV when the silhouette runs the other way; weight; object; its wedge's
+ * screen tiles [x0, x1] x [y0, y1] (x0 > x1: none). */
+typedef struct pn_wsil {
+    uint32_t h, w, comp, pad, x0, y0, x1, y1;
+} pn_wsil;
+
+/* ---- Per triangle and per edge ----------------------------------------------------------- */
+
+/* How triangle t casts: PN_WG_CAST_AS_IS (it faces the centre), _FLIPPED (an open object's
+ * triangle facing away: it casts turned round) or _NONE. */
+PN_KFN uint32_t pn_wg_facing(const pn_klight *L, PN_CONST float *tris, PN_CONST uint8_t *flags,
+                             PN_CONST uint32_t *tcomp, uint32_t t)
+{
+    PN_CONST float *p = tris + (size_t)t * 9u;
+    pn_v3 A = pn_v3_make(p[0], p[1], p[2]), B = pn_v3_make(p[3], p[4], p[5]), C = pn_v3_make(p[6], p[7], p[8]);
+    float s;
+    if (flags[t] & PN_TRI_DEGENERATE) return PN_WG_CAST_NONE;
+    s = pn_v3_dot(pn_tri_cross(A, B, C), pn_v3_sub(pn_light_c(L), A));
+    if (s > 0.0f) return PN_WG_CAST_AS_IS;
+    if (s < 0.0f && !(tcomp[t] & PN_WG_CLOSED)) return PN_WG_CAST_FLIPPED;
+    return PN_WG_CAST_NONE;
+}
+
+/* Net winding of edge run r's casting triangles: > 0 along the run's canonical direction
+ * (lower vertex id first), < 0 against it, 0 when they cancel (no silhouette). */
+PN_KFN int32_t pn_wg_run_winding(PN_CONST uint32_t *hedge, PN_CONST uint32_t *run, PN_CONST uint32_t *tcast, uint32_t r)
+{
+    int32_t m = 0;
+    uint32_t i;
+    for (i = run[r]; i < run[r + 1u]; i++) {
+        uint32_t h = hedge[i], cast = tcast[(h & ~PN_WG_REV) / 3u];
+        int32_t s = (h & PN_WG_REV) ? -1 : 1;
+        if (cast == PN_WG_CAST_NONE) continue;
+        m += cast == PN_WG_CAST_FLIPPED ? -s : s;
+    }
+    return m;
+}
+
+/* The silhouette's end points in its direction. */
+PN_KFN void pn_wg_ends(PN_CONST float *tris, uint32_t h, pn_v3 *a, pn_v3 *b)
+{
+    uint32_t he = h & ~PN_WG_REV, t = he / 3u, e = he % 3u, f = e == 2u ? 0u : e + 1u;
+    PN_CONST float *p = tris + (size_t)t * 9u;
+    pn_v3 x = pn_v3_make(p[3u * e], p[3u * e + 1u], p[3u * e + 2u]), y = pn_v3_make(p[3u * f], p[3u * f + 1u], p[3u * f + 2u]);
+    *a = (h & PN_WG_REV) ? y : x;
+    *b = (h & PN_WG_REV) ? x : y;
+}
+
+/* Screen position of eye-relative point or direction d; 0 when it is not in front. */
+PN_KFN int pn_wg_screen(const pn_kview *v, pn_v3 d, float *px, float *py)
+{
+    pn_v3 f = pn_v3_make(v->f[0], v->f[1], v->f[2]), r = pn_v3_make(v->r[0], v->r[1], v->r[2]);
+    pn_v3 u = pn_v3_make(v->u[0], v->u[1], v->u[2]);
+    float z = pn_v3_dot(d, f);
+    if (!(z > 1e-6f * pn_v3_l1(d))) return 0;
+    *px = (pn_v3_dot(d, r) / (z * v->tan_half * v->aspect) + 1.0f) * 0.5f * (float)v->width;
+    *py = (1.0f - pn_v3_dot(d, u) / (z * v->tan_half)) * 0.5f * (float)v->height;
+    return 1;
+}
+
+/* The screen tiles the wedge of edge a b may reach. The wedge is the set of points
+ * y + s (y - l), y on the edge, l on the light, s >= 0. A point at height h above the
+ * light plane has h(y + s (y - l)) = (1 + s) h(y), so the part of the wedge no higher than
+ * hmax ends on that plane at l + (hmax / h(y)) (y - l): for a fixed l a segment between the
+ * images of a and b (a central projection), affine in l for a fixed y, so every such point
+ * lies in the hull of the eight images of a and b from the light's corners. The wedge's
+ * reach is in the hull of those and a, b; its image in the screen's, when all ten are in
+ * front of the eye (else the whole screen, as for an edge not wholly in front of the light).
+ * Widened by two pixels. */
+PN_KFN void pn_wg_tiles(const pn_kview *v, const pn_klight *L, float hmax, pn_v3 a, pn_v3 b, uint32_t *x0, uint32_t *y0,
+                        uint32_t *x1, uint32_t *y1)
+{
+    pn_v3 eye = pn_view_eye(v), c = pn_light_c(L), U = pn_light_U(L), V = pn_light_V(L), d[10];
+    pn_v3 N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
+    float lo_x = PN_KINF, lo_y = PN_KINF, hi_x = -PN_KINF, hi_y = -PN_KINF, px, py;
+    float ha = pn_v3_dot(pn_v3_sub(a, c), N), hb = pn_v3_dot(pn_v3_sub(b, c), N);
+    uint32_t tw = (v->width + PN_WG_TILE - 1u) / PN_WG_TILE, th = (v->height + PN_WG_TILE - 1u) / PN_WG_TILE, i;
+    int all = ha > 0.0f && hb > 0.0f && hmax >= ha && hmax >= hb;
+    d[0] = pn_v3_sub(a, eye);
+    d[1] = pn_v3_sub(b, eye);
+    for (i = 0; all && i < 4u; i++) {
+        pn_v3 l = pn_v3_add(pn_v3_add(c, pn_v3_scale(U, (i & 1u) ? 1.0f : -1.0f)), pn_v3_scale(V, (i & 2u) ? 1.0f : -1.0f));
+        d[2u + 2u * i] = pn_v3_sub(pn_v3_add(l, pn_v3_scale(pn_v3_sub(a, l), hmax / ha)), eye);
+        d[3u + 2u * i] = pn_v3_sub(pn_v3_add(l, pn_v3_scale(pn_v3_sub(b, l), hmax / hb)), eye);
+    }
+    for (i = 0; all && i < 10u; i++) {
+        if (!pn_wg_screen(v, d[i], &px, &py)) {
+            all = 0;
+            break;
+        }
+        lo_x = pn_kminf(lo_x, px);
+        lo_y = pn_kminf(lo_y, py);
+        hi_x = pn_kmaxf(hi_x, px);
+        hi_y = pn_kmaxf(hi_y, py);
+    }
+    if (!all) {
+        *x0 = 0u;
+        *y0 = 0u;
+        *x1 = tw - 1u;
+        *y1 = th - 1u;
+        return;
+    }
+    lo_x -= 2.0f;
+    lo_y -= 2.0f;
+    hi_x += 2.0f;
+    hi_y += 2.0f;
+    if (!(hi_x >= 0.0f && hi_y >= 0.0f && lo_x < (float)v->width && lo_y < (float)v->height)) {
+        *x0 = 1u;
+        *x1 = 0u;
+        *y0 = 1u;
+        *y1 = 0u;
+        return;
+    }
+    *x0 = (uint32_t)pn_kfloor_clamp(lo_x / (float)PN_WG_TILE, 0, (int32_t)tw - 1);
+    *y0 = (uint32_t)pn_kfloor_clamp(lo_y / (float)PN_WG_TILE, 0, (int32_t)th - 1);
+    *x1 = (uint32_t)pn_kfloor_clamp(hi_x / (float)PN_WG_TILE, 0, (int32_t)tw - 1);
+    *y1 = (uint32_t)pn_kfloor_clamp(hi_y / (float)PN_WG_TILE, 0, (int32_t)th - 1);
+}
+
+/* Edge run r: its silhouette record at slot (when its winding is non-zero) and the count
+ * of its (tile, edge) pairs into npairs[slot]. */
+PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN_CONST float *tris, PN_CONST uint32_t *hedge,
+                           PN_CONST uint32_t *run, PN_CONST uint32_t *tcast, PN_CONST uint32_t *tcomp, uint32_t r,
+                           uint32_t slot, PN_GLOBAL pn_wsil *sil, PN_GLOBAL uint32_t *npairs)
+{
+    int32_t m = pn_wg_run_winding(hedge, run, tcast, r);
+    uint32_t h0 = hedge[run[r]], rev0 = (h0 & PN_WG_REV) != 0u, x0, y0, x1, y1;
+    PN_GLOBAL pn_wsil *s = sil + slot;
+    pn_v3 a, b;
+    if (m == 0) return;
+    /* The silhouette runs along the canonical direction iff m > 0; the half-edge does iff
+     * it is not reversed. */
+    s->h = (h0 & ~PN_WG_REV) | (((m > 0) == (rev0 != 0u)) ? PN_WG_REV : 0u);
+    s->w = (uint32_t)(m > 0 ? m : -m);
+    s->comp = tcomp[(h0 & ~PN_WG_REV) / 3u] & ~PN_WG_CLOSED;
+    s->pad = 0u;
+    pn_wg_ends(tris, s->h, &a, &b);
+    pn_wg_tiles(v, L, hmax, a, b, &x0, &y0, &x1, &y1);
+    s->x0 = x0;
+    s->y0 = y0;
+    s->x1 = x1;
+    s->y1 = y1;
+    npairs[slot] = x0 > x1 ? 0u : (x1 - x0 + 1u) * (y1 - y0 + 1u);
+}
+
+/* Silhouette s: its (tile, s) pairs from `at` on, tiles in ascending order. */
+PN_KFN void pn_wg_scatter(const pn_kview *v, PN_CONST pn_wsil *sil, uint32_t s, uint32_t at, PN_GLOBAL uint32_t *pairs)
+{
+    uint32_t tw = (v->width + PN_WG_TILE - 1u) / PN_WG_TILE, x, y;
+    PN_CONST pn_wsil *e = sil + s;
+    if (e->x0 > e->x1) return;
+    for (y = e->y0; y <= e->y1; y++)
+        for (x = e->x0; x <= e->x1; x++) {
+            pairs[2u * at] = y * tw + x;
+            pairs[2u * at + 1u] = s;
+            at++;
+        }
+}
+
+/* ---- Per pixel ----------------------------------------------------------------------------- */
+
+/* A box in a quadrant's frame; empty when x0 > x1. */
+typedef struct pn_wbox {
+    float x0, y0, x1, y1;
+} pn_wbox;
+
+PN_KFN pn_wbox pn_wbox_empty(void)
+{
+    pn_wbox b;
+    b.x0 = 1.0f;
+    b.y0 = 1.0f;
+    b.x1 = 0.0f;
+    b.y1 = 0.0f;
+    return b;
+}
+
+PN_KFN pn_wbox pn_wbox_full(void)
+{
+    pn_wbox b;
+    b.x0 = 0.0f;
+    b.y0 = 0.0f;
+    b.x1 = 1.0f;
+    b.y1 = 1.0f;
+    return b;
+}
+
+PN_KFN void pn_wbox_add(pn_wbox *b, float x, float y)
+{
+    if (b->x0 > b->x1) {
+        b->x0 = x;
+        b->x1 = x;
+        b->y0 = y;
+        b->y1 = y;
+        return;
+    }
+    b->x0 = pn_kminf(b->x0, x);
+    b->y0 = pn_kminf(b->y0, y);
+    b->x1 = pn_kmaxf(b->x1, x);
+    b->y1 = pn_kmaxf(b->y1, y);
+}
+
+PN_KFN pn_wbox pn_wbox_union(pn_wbox a, pn_wbox b)
+{
+    if (a.x0 > a.x1) return b;
+    if (b.x0 > b.x1) return a;
+    pn_wbox_add(&a, b.x0, b.y0);
+    pn_wbox_add(&a, b.x1, b.y1);
+    return a;
+}
+
+PN_KFN float pn_wbox_area(pn_wbox b) { return b.x0 > b.x1 ? 0.0f : (b.x1 - b.x0) * (b.y1 - b.y0); }
+
+PN_KFN float pn_wbox_overlap(pn_wbox a, pn_wbox b)
+{
+    float w = pn_kminf(a.x1, b.x1) - pn_kmaxf(a.x0, b.x0), h = pn_kminf(a.y1, b.y1) - pn_kmaxf(a.y0, b.y0);
+    if (a.x0 > a.x1 || b.x0 > b.x1 || !(w > 0.0f) || !(h > 0.0f)) return 0.0f;
+    return w * h;
+}
+
+/* One object's state in one quadrant while its edges are summed. */
+typedef struct pn_wpart {
+    float a;       /* signed occluded area so far (the quadrant's area is 1) */
+    pn_wbox outer; /* box of the regions behind its outer edges */
+    pn_wbox ends;  /* box of the centre and its inner edges' end points */
+    float smin, smax; /* angular range its inner edges cover, as the boundary parameter */
+} pn_wpart;
+
+/* The boundary parameter of a point on Q's far boundary (x = 1 or y = 1): 0 at (1, 0),
+ * 1 at the corner, 2 at (0, 1); increasing with the angle from the centre. */
+PN_KFN float pn_wg_bparam(float x, float y) { return x >= y ? y : 2.0f - x; }
+
+PN_KFN void pn_wg_bpoint(float s, float *x, float *y)
+{
+    *x = s <= 1.0f ? 1.0f : 2.0f - s;
+    *y = s <= 1.0f ? s : 1.0f;
+}
+
+/* Clips segment p q to Q = [0, 1]^2 (Liang and Barsky); 0 when nothing is left. */
+PN_KFN int pn_wg_clip(float *px, float *py, float *qx, float *qy)
+{
+    float t0 = 0.0f, t1 = 1.0f, dx = *qx - *px, dy = *qy - *py, pk[4], qk[4], x0, y0;
+    uint32_t i;
+    pk[0] = -dx;
+    qk[0] = *px;
+    pk[1] = dx;
+    qk[1] = 1.0f - *px;
+    pk[2] = -dy;
+    qk[2] = *py;
+    pk[3] = dy;
+    qk[3] = 1.0f - *py;
+    for (i = 0; i < 4u; i++) {
+        if (pk[i] == 0.0f) {
+            if (qk[i] < 0.0f) return 0;
+            continue;
+        }
+        {
+            float r = qk[i] / pk[i];
+            if (pk[i] < 0.0f)
+                t0 = pn_kmaxf(t0, r);
+            else
+                t1 = pn_kminf(t1, r);
+        }
+    }
+    if (!(t0 <= t1)) return 0;
+    x0 = *px;
+    y0 = *py;
+    *px = pn_kminf(pn_kmaxf(x0 + t0 * dx, 0.0f), 1.0f);
+    *py = pn_kminf(pn_kmaxf(y0 + t0 * dy, 0.0f), 1.0f);
+    *qx = pn_kminf(pn_kmaxf(x0 + t1 * dx, 0.0f), 1.0f);
+    *qy = pn_kminf(pn_kmaxf(y0 + t1 * dy, 0.0f), 1.0f);
+    return 1;
+}
+
+/* Edge p q (in Q's frame) with sign sg (+1 outer, -1 inner) and weight w into part P.
+ * Returns 1 when it covers a non-zero area of the quadrant. */
+PN_KFN int pn_wg_part_edge(pn_wpart *P, float px, float py, float qx, float qy, float sg, float w)
+{
+    float cr, mp, mq, Px, Py, Qx, Qy, cone, area, sp, sq;
+    int kin;
+    if (!pn_wg_clip(&px, &py, &qx, &qy)) return 0;
+    cr = px * qy - py * qx;
+    if (cr == 0.0f) return 0; /* seen edge-on from the centre */
+    if (cr < 0.0f) {          /* p at the smaller angle */
+        float tx = px, ty = py;
+        px = qx;
+        py = qy;
+        qx = tx;
+        qy = ty;
+        cr = -cr;
+    }
+    mp = pn_kmaxf(px, py);
+    mq = pn_kmaxf(qx, qy);
+    if (!(mp > 0.0f && mq > 0.0f)) return 0;
+    Px = px / mp;
+    Py = py / mp;
+    Qx = qx / mq;
+    Qy = qy / mq;
+    sp = pn_wg_bparam(Px, Py);
+    sq = pn_wg_bparam(Qx, Qy);
+    kin = sp < 1.0f && sq > 1.0f; /* the corner (1, 1) strictly inside the angle */
+    cone = kin ? 0.5f * ((Px - Py) + (Qy - Qx)) : 0.5f * (Px * Qy - Py * Qx);
+    area = pn_kmaxf(cone - 0.5f * cr, 0.0f);
+    if (!(area > 0.0f)) return 0;
+    P->a += sg * w * area;
+    if (sg > 0.0f) {
+        pn_wbox_add(&P->outer, px, py);
+        pn_wbox_add(&P->outer, qx, qy);
+        pn_wbox_add(&P->outer, Px, Py);
+        pn_wbox_add(&P->outer, Qx, Qy);
+        if (kin) pn_wbox_add(&P->outer, 1.0f, 1.0f);
+    } else {
+        pn_wbox_add(&P->ends, px, py);
+        pn_wbox_add(&P->ends, qx, qy);
+        P->smin = pn_kminf(P->smin, sp);
+        P->smax = pn_kmaxf(P->smax, sq);
+    }
+    return 1;
+}
+
+/* The box of Q's sector between boundary parameters s0 < s1 (with the centre). */
+PN_KFN pn_wbox pn_wg_sector(float s0, float s1)
+{
+    pn_wbox b = pn_wbox_empty();
+    float x, y;
+    if (!(s1 > s0)) return b;
+    pn_wbox_add(&b, 0.0f, 0.0f);
+    pn_wg_bpoint(s0, &x, &y);
+    pn_wbox_add(&b, x, y);
+    pn_wg_bpoint(s1, &x, &y);
+    pn_wbox_add(&b, x, y);
+    if (s0 < 1.0f && s1 > 1.0f) pn_wbox_add(&b, 1.0f, 1.0f);
+    return b;
+}
+
+/* One object's occluded area (clamped to [0, 1]) and box in a quadrant, hard = its centre
+ * occluded. */
+PN_KFN float pn_wg_part_end(const pn_wpart *P, int hard, pn_wbox *B)
+{
+    float a = pn_kminf(pn_kmaxf(P->a, 0.0f), 1.0f);
+    pn_wbox b = P->outer;
+    if (hard) {
+        pn_wbox e = P->ends;
+        pn_wbox_add(&e, 0.0f, 0.0f);
+        if (P->smin > P->smax) { /* no inner edge: the whole quadrant */
+            e = pn_wbox_full();
+        } else {
+            e = pn_wbox_union(e, pn_wg_sector(0.0f, P->smin));
+            e = pn_wbox_union(e, pn_wg_sector(P->smax, 2.0f));
+        }
+        b = pn_wbox_union(b, e);
+    }
+    if (a > 0.0f && !(pn_wbox_area(b) > 0.0f)) b = pn_wbox_full(); /* rounding: keep it a bound */
+    *B = b;
+    return a;
+}
+
+/* The blend of an object's (as, bs) into the final (af, bf) of a quadrant. */
+PN_KFN void pn_wg_blend(uint32_t mode, float as, pn_wbox bs, float *af, pn_wbox *bf)
+{
+    float ba, bb, ov, e;
+    if (!(as > 0.0f)) return;
+    if (mode == PN_WG_M_ADD || !(*af > 0.0f)) {
+        *af += as;
+        *bf = pn_wbox_union(*bf, bs);
+        return;
+    }
+    ba = pn_wbox_area(*bf);
+    bb = pn_wbox_area(bs);
+    ov = pn_wbox_overlap(*bf, bs);
+    e = (ba > 0.0f && bb > 0.0f) ? pn_kminf(*af / ba, 1.0f) * pn_kminf(as / bb, 1.0f) * ov : 0.0f;
+    *af += as - e;
+    *bf = pn_wbox_union(*bf, bs);
+}
+
+/* Per-pixel light frame. */
+typedef struct pn_wframe {
+    pn_v3 c, U, V, N;
+    float iu, iv; /* 1 / |U|^2, 1 / |V|^2 */
+    float uo, vo, ho;
+} pn_wframe;
+
+/* Edge a b of weight w seen from O into the object's four parts. Returns 1 when it covers
+ * some of the light. */
+PN_KFN int pn_wg_edge(const pn_wframe *F, pn_v3 O, pn_v3 a, pn_v3 b, float w, pn_wpart *parts)
+{
+    pn_v3 ac = pn_v3_sub(a, F->c), bc = pn_v3_sub(b, F->c);
+    float ta = 1.0f - pn_v3_dot(ac, F->N) / F->ho, tb = 1.0f - pn_v3_dot(bc, F->N) / F->ho;
+    float ua = pn_v3_dot(ac, F->U) * F->iu, va = pn_v3_dot(ac, F->V) * F->iv;
+    float ub = pn_v3_dot(bc, F->U) * F->iu, vb = pn_v3_dot(bc, F->V) * F->iv;
+    float l0 = 0.0f, l1 = 1.0f, dt = tb - ta, t0, t1, pu, pv, qu, qv, sg;
+    int any = 0;
+    uint32_t q;
+    /* The local near plane and the light plane: keep t in [PN_WG_TNEAR, 1]. */
+    if (dt != 0.0f) {
+        float la = (PN_WG_TNEAR - ta) / dt, lb = (1.0f - ta) / dt;
+        if (dt > 0.0f) {
+            l0 = pn_kmaxf(l0, la);
+            l1 = pn_kminf(l1, lb);
+        } else {
+            l0 = pn_kmaxf(l0, lb);
+            l1 = pn_kminf(l1, la);
+        }
+    } else if (!(ta >= PN_WG_TNEAR && ta <= 1.0f)) {
+        return 0;
+    }
+    if (!(l0 < l1)) return 0;
+    t0 = pn_kmaxf(ta + l0 * dt, PN_WG_TNEAR);
+    t1 = pn_kmaxf(ta + l1 * dt, PN_WG_TNEAR);
+    pu = F->uo + ((ua + l0 * (ub - ua)) - F->uo) / t0;
+    pv = F->vo + ((va + l0 * (vb - va)) - F->vo) / t0;
+    qu = F->uo + ((ua + l1 * (ub - ua)) - F->uo) / t1;
+    qv = F->vo + ((va + l1 * (vb - va)) - F->vo) / t1;
+    if (pn_kmaxf(pu, qu) <= -1.0f || pn_kminf(pu, qu) >= 1.0f || pn_kmaxf(pv, qv) <= -1.0f || pn_kminf(pv, qv) >= 1.0f)
+        return 0;
+    /* Inner when O lies on the casting triangles' side of the plane through the centre and
+     * the edge: the same sign det(a - c, b - c, v - c) < 0 their third vertex v gives. */
+    sg = pn_v3_dot(pn_v3_cross(ac, bc), pn_v3_sub(O, F->c)) < 0.0f ? -1.0f : 1.0f;
+    for (q = 0; q < 4u; q++) {
+        float sx = (q == 0u || q == 3u) ? 1.0f : -1.0f, sy = q < 2u ? 1.0f : -1.0f;
+        any |= pn_wg_part_edge(parts + q, sx * pu, sy * pv, sx * qu, sy * qv, sg, w);
+    }
+    return any;
+}
+
+/* Whether object s has an edge in list[lo, hi) (ascending edges, so ascending objects). */
+PN_KFN int pn_wg_listed(PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t lo, uint32_t hi, uint32_t s)
+{
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2u, c = sil[list[mid]].comp;
+        if (c == s) return 1;
+        if (c < s)
+            lo = mid + 1u;
+        else
+            hi = mid;
+    }
+    return 0;
+}
+
+/* Visibility of one lit pixel (shadow origin O, own triangle own, tile edges list[lo, hi)).
+ * Counters: candidates = edges evaluated, blocking = edges covering some of the light,
+ * nodes = blockers of the centre ray, overflow = more than PN_WG_HARD_MAX objects listed
+ * in the tile block the centre (taken as umbra). */
+PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mode, PN_CONST float *tris,
+                         PN_CONST pn_kbvh_node *nodes, PN_CONST uint32_t *tri_index, PN_CONST uint32_t *tcomp,
+                         PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t lo, uint32_t hi,
+                         pn_shadow_counters *cnt)
+{
+    uint32_t hard[PN_WG_HARD_MAX], nhard = 0u, t, i, q;
+    float af[4];
+    pn_wbox bf[4];
+    pn_klight Lc = *L;
+    pn_ray_origin X;
+    pn_ray R;
+    pn_ray_walk W;
+    pn_wframe F;
+    float occ;
+
+    /* The centre: which objects block it (exactly). */
+    Lc.k = 1u;
+    {
+        float blo[3], bhi[3];
+        pn_ray_node_box(nodes, blo, bhi);
+        pn_ray_origin_make(O, &Lc, blo, bhi, &X);
+    }
+    pn_ray_chain(&X, nodes);
+    pn_ray_make(&X, &Lc, 0, 0, &R);
+    pn_ray_walk_begin(&W, &X, &R, nodes);
+    for (;;) {
+        pn_shadow_counters rc = {0u, 0u, 0u, 0u, 0u};
+        uint32_t s, j;
+        t = pn_ray_walk_next(&W, &R, own, tris, nodes, tri_index, &Lc, &rc);
+        if (t == PN_RAY_NONE) break;
+        cnt->nodes++;
+        s = tcomp[t] & ~PN_WG_CLOSED;
+        /* An object whose wedges do not reach this tile covers the whole light. */
+        if (L->is_point || !pn_wg_listed(sil, list, lo, hi, s)) return 0.0f;
+        for (j = 0; j < nhard && hard[j] != s; j++) {
+        }
+        if (j < nhard) continue;
+        if (nhard == PN_WG_HARD_MAX) {
+            cnt->overflow++;
+            return 0.0f;
+        }
+        hard[nhard++] = s;
+    }
+    if (L->is_point) return 1.0f;
+
+    F.c = pn_light_c(L);
+    F.U = pn_light_U(L);
+    F.V = pn_light_V(L);
+    F.N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
+    F.iu = 1.0f / pn_v3_dot(F.U, F.U);
+    F.iv = 1.0f / pn_v3_dot(F.V, F.V);
+    {
+        pn_v3 oc = pn_v3_sub(O, F.c);
+        F.uo = pn_v3_dot(oc, F.U) * F.iu;
+        F.vo = pn_v3_dot(oc, F.V) * F.iv;
+        F.ho = pn_v3_dot(oc, F.N);
+    }
+    for (q = 0; q < 4u; q++) {
+        af[q] = 0.0f;
+        bf[q] = pn_wbox_empty();
+    }
+    i = lo;
+    while (i < hi) {
+        uint32_t s = sil[list[i]].comp, j;
+        int h = 0;
+        pn_wpart parts[4];
+        for (j = 0; j < nhard; j++) h |= hard[j] == s;
+        for (q = 0; q < 4u; q++) {
+            parts[q].a = h ? 1.0f : 0.0f;
+            parts[q].outer = pn_wbox_empty();
+            parts[q].ends = pn_wbox_empty();
+            parts[q].smin = 2.0f;
+            parts[q].smax = 0.0f;
+        }
+        for (; i < hi && sil[list[i]].comp == s; i++) {
+            PN_CONST pn_wsil *e = sil + list[i];
+            pn_v3 a, b;
+            cnt->candidates++;
+            pn_wg_ends(tris, e->h, &a, &b);
+            if (pn_wg_edge(&F, O, a, b, (float)e->w, parts)) cnt->blocking++;
+        }
+        for (q = 0; q < 4u; q++) {
+            pn_wbox bs;
+            float as = pn_wg_part_end(parts + q, h, &bs);
+            pn_wg_blend(mode, as, bs, af + q, bf + q);
+        }
+    }
+    occ = (pn_kminf(af[0], 1.0f) + pn_kminf(af[1], 1.0f)) + (pn_kminf(af[2], 1.0f) + pn_kminf(af[3], 1.0f));
+    return pn_kminf(pn_kmaxf(1.0f - 0.25f * occ, 0.0f), 1.0f);
+}
+
+#endif

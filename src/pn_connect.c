@@ -1,0 +1,193 @@
+/* pn_connect.c - the scene's connectivity for the penumbra wedges, built once at
+ * pn_scene_set (kernels/pn_wedges.h reads it every frame):
+ *
+ *   weld     triangle corners with the same position (bits, -0 as +0) get one vertex id:
+ *            glTF files split vertices by normal and texture coordinate;
+ *   objects  triangles joined by shared vertices (union-find, by smaller id), numbered in
+ *            the order of their first triangle; an object is closed when every edge of it
+ *            has exactly two triangles winding it opposite ways;
+ *   edges    the half-edges of non-degenerate triangles sorted by (object, lower vertex id,
+ *            higher vertex id), ties by half-edge id: an edge is a run of equal keys.
+ *
+ * Sorting is LSD radix by bytes over the caller's arena: the half-edge and run pools
+ * themselves, and the frame region (free between frames) for the vertex ids and the
+ * union-find, 24 bytes a triangle, which pn_carve reserves. No recursion, no allocation. */
+#include <string.h>
+
+#include "pn_internal.h"
+
+#if PN_ENABLE_WEDGES
+#include "pn_wedges.h"
+
+typedef struct pn_cn {
+    const float *tris;
+    const uint32_t *canon; /* corner -> vertex id */
+    const uint32_t *comp;  /* triangle -> object */
+} pn_cn;
+
+static uint32_t pn_cn_fbits(float v)
+{
+    uint32_t b;
+    memcpy(&b, &v, sizeof(b));
+    return b == 0x80000000u ? 0u : b;
+}
+
+/* Key word `which` of an item: 0..2 a corner's z, y, x; 3..5 a half-edge's higher vertex,
+ * lower vertex, object. */
+static uint32_t pn_cn_key(const pn_cn *c, uint32_t which, uint32_t item)
+{
+    uint32_t t, e, x, y;
+    if (which < 3u) return pn_cn_fbits(c->tris[(size_t)item * 3u + (2u - which)]);
+    t = item / 3u;
+    e = item % 3u;
+    if (which == 5u) return c->comp[t];
+    x = c->canon[(size_t)t * 3u + e];
+    y = c->canon[(size_t)t * 3u + (e == 2u ? 0u : e + 1u)];
+    if (which == 3u) return x > y ? x : y;
+    return x < y ? x : y;
+}
+
+/* Stable sort of (*a)[0, n) by key word `which`, bytes least significant first, through
+ * *b; the sorted items end in *a (the pointers swap). */
+static void pn_cn_radix(const pn_cn *c, uint32_t which, uint32_t **a, uint32_t **b, uint32_t n)
+{
+    uint32_t count[256], shift, i, d;
+    for (shift = 0; shift < 32u; shift += 8u) {
+        uint32_t sum = 0, *t;
+        for (d = 0; d < 256u; d++) count[d] = 0;
+        for (i = 0; i < n; i++) count[(pn_cn_key(c, which, (*a)[i]) >> shift) & 255u]++;
+        for (d = 0; d < 256u && count[d] != n; d++) {
+        }
+        if (d < 256u) continue; /* one digit: already in order */
+        for (d = 0; d < 256u; d++) {
+            uint32_t k = count[d];
+            count[d] = sum;
+            sum += k;
+        }
+        for (i = 0; i < n; i++) {
+            uint32_t v = (*a)[i];
+            (*b)[count[(pn_cn_key(c, which, v) >> shift) & 255u]++] = v;
+        }
+        t = *a;
+        *a = *b;
+        *b = t;
+    }
+}
+
+static uint32_t pn_cn_find(uint32_t *parent, uint32_t x)
+{
+    while (parent[x] != x) {
+        parent[x] = parent[parent[x]];
+        x = parent[x];
+    }
+    return x;
+}
+
+static void pn_cn_union(uint32_t *parent, uint32_t x, uint32_t y)
+{
+    x = pn_cn_find(parent, x);
+    y = pn_cn_find(parent, y);
+    if (x < y)
+        parent[y] = x;
+    else if (y < x)
+        parent[x] = y;
+}
+
+void pn_connect_build(pn_context *ctx)
+{
+    uint32_t T = ctx->tri_count, n = 3u * T, i, t, nv = 0, ncomp = 0, nh = 0, nr = 0;
+    uint32_t *hedge = ctx->wg_hedge, *run = ctx->wg_run, *tcomp = ctx->wg_tcomp;
+    uint32_t *canon = (uint32_t *)(void *)ctx->frame, *parent = canon + n, *a, *b;
+    pn_cn c;
+    c.tris = ctx->tris;
+    c.canon = canon;
+    c.comp = tcomp;
+
+    /* Weld: corners sorted by position, one id per distinct position. */
+    for (i = 0; i < n; i++) hedge[i] = i;
+    a = hedge;
+    b = run;
+    pn_cn_radix(&c, 0u, &a, &b, n);
+    pn_cn_radix(&c, 1u, &a, &b, n);
+    pn_cn_radix(&c, 2u, &a, &b, n);
+    for (i = 0; i < n; i++) {
+        if (i > 0u) {
+            const float *p = ctx->tris + (size_t)a[i] * 3u, *q = ctx->tris + (size_t)a[i - 1u] * 3u;
+            if (pn_cn_fbits(p[0]) != pn_cn_fbits(q[0]) || pn_cn_fbits(p[1]) != pn_cn_fbits(q[1]) ||
+                pn_cn_fbits(p[2]) != pn_cn_fbits(q[2]))
+                nv++;
+        }
+        canon[a[i]] = nv;
+    }
+    nv++;
+
+    /* Objects: union-find over vertex ids, then labels by first triangle. */
+    for (i = 0; i < nv; i++) parent[i] = i;
+    for (t = 0; t < T; t++) {
+        if (ctx->flags[t] & PN_TRI_DEGENERATE) continue;
+        pn_cn_union(parent, canon[3u * t], canon[3u * t + 1u]);
+        pn_cn_union(parent, canon[3u * t], canon[3u * t + 2u]);
+    }
+    for (i = 0; i < nv; i++) hedge[i] = 0xFFFFFFFFu; /* label per root */
+    for (t = 0; t < T; t++) {
+        uint32_t r = pn_cn_find(parent, canon[3u * t]);
+        if (hedge[r] == 0xFFFFFFFFu) hedge[r] = ncomp++;
+        tcomp[t] = hedge[r];
+    }
+
+    /* Edges: the half-edges of non-degenerate triangles with two distinct vertices, by
+     * (object, lower, higher); ties keep half-edge order (the sort is stable). */
+    for (i = 0; i < n; i++) {
+        t = i / 3u;
+        if (ctx->flags[t] & PN_TRI_DEGENERATE) continue;
+        if (pn_cn_key(&c, 3u, i) == pn_cn_key(&c, 4u, i)) continue;
+        hedge[nh++] = i;
+    }
+    a = hedge;
+    b = run;
+    pn_cn_radix(&c, 3u, &a, &b, nh);
+    pn_cn_radix(&c, 4u, &a, &b, nh);
+    pn_cn_radix(&c, 5u, &a, &b, nh);
+    if (a != hedge) memcpy(hedge, a, (size_t)nh * sizeof(uint32_t));
+
+    /* Runs, and which objects are open (parent reused as a flag per object). */
+    for (i = 0; i < ncomp; i++) parent[i] = 0u;
+    ctx->wg.open_edges = 0;
+    ctx->wg.nonmanifold = 0;
+    i = 0;
+    while (i < nh) {
+        uint32_t j = i + 1u, h = hedge[i], lo = pn_cn_key(&c, 4u, h), hi = pn_cn_key(&c, 3u, h), s = tcomp[h / 3u];
+        while (j < nh && pn_cn_key(&c, 4u, hedge[j]) == lo && pn_cn_key(&c, 3u, hedge[j]) == hi &&
+               tcomp[hedge[j] / 3u] == s)
+            j++;
+        run[nr++] = i;
+        if (j - i == 1u) {
+            ctx->wg.open_edges++;
+            parent[s] = 1u;
+        } else {
+            uint32_t x0 = canon[hedge[i]], x1 = canon[hedge[i + 1u]];
+            /* two windings the opposite way: the half-edges start at different vertices */
+            if (j - i != 2u || x0 == x1) {
+                ctx->wg.nonmanifold++;
+                parent[s] = 1u;
+            }
+        }
+        i = j;
+    }
+    run[nr] = nh;
+    /* Direction flags, now that the keys are no longer needed. */
+    for (i = 0; i < nh; i++) {
+        uint32_t h = hedge[i];
+        if (pn_cn_key(&c, 4u, h) != canon[h]) hedge[i] = h | PN_WG_REV;
+    }
+    ctx->wg.closed = 0;
+    for (i = 0; i < ncomp; i++) ctx->wg.closed += parent[i] == 0u;
+    for (t = 0; t < T; t++)
+        if (parent[tcomp[t]] == 0u) tcomp[t] |= PN_WG_CLOSED;
+    ctx->wg.hedges = nh;
+    ctx->wg.runs = nr;
+    ctx->wg.components = ncomp;
+    ctx->wg.vertices = nv;
+}
+
+#endif

@@ -1,0 +1,143 @@
+/* pn_wedges.c - the penumbra wedges' whole frame (sequence in pn_wedges_frame.h), run on
+ * the frame's port. Written once: both ports run this sequence. */
+#include <string.h>
+
+#include "pn_device.h"
+#include "pn_passes.h"
+#include "pn_wedges_frame.h"
+
+#if PN_ENABLE_WEDGES
+
+typedef char pn_wg_consts_agree[PN_WG_M_BLEND == PN_WG_MODE_BLEND && PN_WG_M_ADD == PN_WG_MODE_ADDITIVE &&
+                                        sizeof(pn_wsil) == PN_WG_SIL_BYTES
+                                    ? 1
+                                    : -1];
+
+typedef struct pn_wg_pools {
+    uint32_t *tcast;  /* [T] how each triangle casts */
+    uint32_t *soff;   /* [runs + 1] silhouette flags -> slots */
+    pn_wsil *sil;     /* [sil_cap] */
+    uint32_t *poff;   /* [sil_cap + 1] pair counts -> offsets */
+    uint32_t *pairs;  /* [pair_cap * 2] (tile, silhouette) */
+    uint32_t *sorted; /* [pair_cap] silhouettes by tile */
+    uint32_t *toff;   /* [tiles + 1] */
+    uint32_t *tscr;   /* [tiles] sort scratch */
+} pn_wg_pools;
+
+static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
+{
+    pn_context *ctx = fs->ctx;
+    pn_kpools *P = &fs->P;
+    const pn_limits *l = &ctx->limits;
+    uint32_t tiles = pn_wg_tiles_of(fs->width, fs->height);
+    /* Same pools, same order as pn_wg_pools() in src/pn_arena.c (sized for this frame). */
+    if (!(s->tcast = (uint32_t *)pn_frame_alloc(ctx, ctx->tri_count, 4u, "wedges triangle casting")) ||
+        !(s->soff = (uint32_t *)pn_frame_alloc(ctx, (size_t)ctx->wg.runs + 1u, 4u, "wedges silhouette slots")) ||
+        !(s->sil = (pn_wsil *)pn_frame_alloc(ctx, pn_wg_sil_max(l), sizeof(pn_wsil), "wedges silhouettes")) ||
+        !(s->poff = (uint32_t *)pn_frame_alloc(ctx, (size_t)pn_wg_sil_max(l) + 1u, 4u, "wedges pair offsets")) ||
+        !(s->pairs = (uint32_t *)pn_frame_alloc(ctx, pn_wg_pairs_max(l), 8u, "wedges tile pairs")) ||
+        !(s->sorted = (uint32_t *)pn_frame_alloc(ctx, pn_wg_pairs_max(l), 4u, "wedges tile lists")) ||
+        !(s->toff = (uint32_t *)pn_frame_alloc(ctx, (size_t)tiles + 1u, 4u, "wedges tile offsets")) ||
+        !(s->tscr = (uint32_t *)pn_frame_alloc(ctx, tiles, 4u, "wedges sort scratch")))
+        return PN_E_POOL_EXHAUSTED;
+    P->wg_tcast = pn_dev_off(ctx, s->tcast);
+    P->wg_soff = pn_dev_off(ctx, s->soff);
+    P->wg_sil = pn_dev_off(ctx, s->sil);
+    P->wg_poff = pn_dev_off(ctx, s->poff);
+    P->wg_pairs = pn_dev_off(ctx, s->pairs);
+    P->wg_sorted = pn_dev_off(ctx, s->sorted);
+    P->wg_toff = pn_dev_off(ctx, s->toff);
+    ctx->wg.sils = 0;
+    ctx->wg.pairs = 0;
+    ctx->wg.touched = 0;
+    ctx->wg.evaluated = 0;
+    ctx->wg.hard_blockers = 0;
+    ctx->wg.hard_overflow = 0;
+    ctx->wg.ns_silhouettes = 0;
+    ctx->wg.ns_binning = 0;
+    ctx->wg.ns_pixels = 0;
+    return PN_OK;
+}
+
+pn_status pn_wedges_frame(pn_frame_state *fs)
+{
+    pn_context *ctx = fs->ctx;
+    pn_kparams *K = &fs->K;
+    pn_wg_pools s;
+    uint32_t T = ctx->tri_count, R = ctx->wg.runs, npix = fs->width * fs->height, y, nsil = 0, npairs = 0;
+    uint32_t tiles = pn_wg_tiles_of(fs->width, fs->height);
+    uint64_t t0 = pn_dev_timestamp(fs), t1;
+    pn_status st;
+
+    if ((st = pn_wg_begin(fs, &s)) != PN_OK) return st;
+    K->wg.runs = R;
+    {
+        /* The highest point of the scene box above the light plane, widened by the shadow
+         * origins' offset and a relative margin for the rounding of the heights. */
+        float hm = 0.0f, e = 0.0f;
+        uint32_t q;
+        for (q = 0; q < 8u; q++) {
+            float x = (q & 1u) ? ctx->scene_max[0] : ctx->scene_min[0], yy = (q & 2u) ? ctx->scene_max[1] : ctx->scene_min[1];
+            float z = (q & 4u) ? ctx->scene_max[2] : ctx->scene_min[2];
+            float h = (x - K->light.c[0]) * K->light.N[0] + (yy - K->light.c[1]) * K->light.N[1] +
+                      (z - K->light.c[2]) * K->light.N[2];
+            float m = (x < 0.0f ? -x : x) + (yy < 0.0f ? -yy : yy) + (z < 0.0f ? -z : z);
+            if (h > hm) hm = h;
+            if (m > e) e = m;
+        }
+        K->wg.hmax = hm + 2.0f * K->light.eps + 1e-5f * (hm + e);
+    }
+    K->wg.tiles_x = (fs->width + PN_WG_TILE - 1u) / PN_WG_TILE;
+    if (!K->light.is_point && R > 0u) {
+        if ((st = pn_dev_run(fs, PN_K_WG_CAST, T)) != PN_OK || (st = pn_dev_run(fs, PN_K_WG_SIL_FLAG, R)) != PN_OK ||
+            (st = pn_dev_scan(fs, s.soff, R)) != PN_OK || (st = pn_dev_to_host(fs, s.soff + R, 4u)) != PN_OK)
+            return st;
+        nsil = s.soff[R];
+        if (nsil > pn_wg_sil_max(&ctx->limits))
+            return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
+                           "wedges: %u silhouette edges; the silhouette pool holds %u (PN_WEDGES_SIL_MAX)", nsil,
+                           pn_wg_sil_max(&ctx->limits));
+        ctx->wg.sils = nsil;
+        if (nsil > 0u) {
+            if ((st = pn_dev_run(fs, PN_K_WG_SIL_MAKE, R)) != PN_OK || (st = pn_dev_scan(fs, s.poff, nsil)) != PN_OK ||
+                (st = pn_dev_to_host(fs, s.poff + nsil, 4u)) != PN_OK)
+                return st;
+            npairs = s.poff[nsil];
+        }
+    }
+    t1 = pn_dev_timestamp(fs);
+    ctx->wg.ns_silhouettes = t1 - t0;
+    t0 = t1;
+    if (npairs > pn_wg_pairs_max(&ctx->limits))
+        return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
+                       "wedges: %u (tile, wedge) pairs; the pair pool holds %u (PN_WEDGES_PAIRS)", npairs,
+                       pn_wg_pairs_max(&ctx->limits));
+    ctx->wg.pairs = npairs;
+    K->wg.sils = nsil;
+    if (npairs > 0u) {
+        /* Pairs are scattered in silhouette order, so each tile's silhouettes ascend: the
+         * sort by tile is the one stable order on every port. */
+        if ((st = pn_dev_run(fs, PN_K_WG_SCATTER, nsil)) != PN_OK ||
+            (st = pn_dev_sort_pairs(fs, s.pairs, npairs, tiles, s.sorted, s.toff, s.tscr)) != PN_OK)
+            return st;
+    } else if ((st = pn_dev_fill(fs, s.toff, tiles + 1u, 0u)) != PN_OK) {
+        return st;
+    }
+    t1 = pn_dev_timestamp(fs);
+    ctx->wg.ns_binning = t1 - t0;
+    t0 = t1;
+    if ((st = pn_dev_run(fs, PN_K_WG_PIXEL, npix)) != PN_OK ||
+        (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_shadow_counters))) != PN_OK)
+        return st;
+    ctx->wg.ns_pixels = pn_dev_timestamp(fs) - t0;
+    for (y = 0; y < fs->height; y++) {
+        const pn_shadow_counters *c = (const pn_shadow_counters *)fs->counters + y;
+        ctx->wg.evaluated += c->candidates;
+        ctx->wg.touched += c->blocking;
+        ctx->wg.hard_blockers += c->nodes;
+        ctx->wg.hard_overflow += c->overflow;
+    }
+    return PN_OK;
+}
+
+#endif

@@ -16,7 +16,8 @@
  *   Monte Carlo builds: the same bits the layers' limit, 11 layers % 5, 12 search % 4, 13 rays
  *   % 10, 14 bits 0..2 flags, bits 3..7 blur % 11 (31: off); 6 bit 128: the second half of
  *   the triangles receiver-only (pn_scene_set_receivers), and a call out of range first;
- *   penumbra-wedge builds: 12 % 4 the mode (3 invalid); algo 6 is PN_ALGO_WEDGES
+ *   penumbra-wedge builds: 12 % 4 the mode (3 invalid), 13 x 16 the pair pool (0: default);
+ *   algo 6 is PN_ALGO_WEDGES
  *   then floats: eye[3] target[3] up[3] fov, light c[3] u[3] v[3], eps albedo ambient;
  *   4 background bytes; vertex count * 3 floats; triangle count * 3 uint32 indices.
  *
@@ -148,6 +149,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 #endif
 #ifdef PN_BUILD_WEDGES
     opt.wg_mode = h[12] % 4u; /* 3: invalid */
+    lim.wg_pairs = (uint32_t)h[13] * 16u; /* below a frame's pairs now and then */
 #endif
     take(&r, &cam, sizeof cam);
     take(&r, &light, sizeof light);

@@ -57,12 +57,24 @@
 #define PN_WG_CAST_AS_IS 1u
 #define PN_WG_CAST_FLIPPED 2u
 
-/* A silhouette edge: half-edge h (triangle h / 3, its edge h % 3 from vertex h % 3 to the
- * next) | PN_WG_REV when the silhouette runs the other way; weight; object; its wedge's
- * screen tiles [x0, x1] x [y0, y1] (x0 > x1: none). */
+/* A silhouette edge a -> b: half-edge h (triangle h / 3, its edge h % 3 from vertex h % 3
+ * to the next) | PN_WG_REV when the silhouette runs the other way; weight; object; its
+ * wedge's screen tiles [x0, x1] x [y0, y1] (x0 > x1: none); and what every pixel needs of
+ * it, computed once: a and b in light coordinates (u, v, h: pn_wg_light) and the normal
+ * (a - c) x (b - c) of the plane through the light centre and the edge. */
 typedef struct pn_wsil {
     uint32_t h, w, comp, pad, x0, y0, x1, y1;
+    float ua, va, ha, ub, vb, hb, nx, ny, nz, pad1, pad2, pad3;
 } pn_wsil;
+
+/* Light coordinates of X: u = (X - c).U / |U|^2, v = (X - c).V / |V|^2, h = (X - c).N. */
+PN_KFN void pn_wg_light(const pn_klight *L, pn_v3 X, float *u, float *v, float *h)
+{
+    pn_v3 U = pn_light_U(L), V = pn_light_V(L), xc = pn_v3_sub(X, pn_light_c(L));
+    *u = pn_v3_dot(xc, U) * (1.0f / pn_v3_dot(U, U));
+    *v = pn_v3_dot(xc, V) * (1.0f / pn_v3_dot(V, V));
+    *h = pn_v3_dot(xc, pn_v3_make(L->N[0], L->N[1], L->N[2]));
+}
 
 /* ---- Per triangle and per edge ----------------------------------------------------------- */
 
@@ -196,6 +208,24 @@ PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN
     s->pad = 0u;
     pn_wg_ends(tris, s->h, &a, &b);
     pn_wg_tiles(v, L, hmax, a, b, &x0, &y0, &x1, &y1);
+    {
+        pn_v3 c = pn_light_c(L), n = pn_v3_cross(pn_v3_sub(a, c), pn_v3_sub(b, c));
+        float u, vv, h;
+        pn_wg_light(L, a, &u, &vv, &h);
+        s->ua = u;
+        s->va = vv;
+        s->ha = h;
+        pn_wg_light(L, b, &u, &vv, &h);
+        s->ub = u;
+        s->vb = vv;
+        s->hb = h;
+        s->nx = n.x;
+        s->ny = n.y;
+        s->nz = n.z;
+        s->pad1 = 0.0f;
+        s->pad2 = 0.0f;
+        s->pad3 = 0.0f;
+    }
     s->x0 = x0;
     s->y0 = y0;
     s->x1 = x1;
@@ -432,54 +462,93 @@ PN_KFN void pn_wg_blend(uint32_t mode, float as, pn_wbox bs, float *af, pn_wbox 
     *bf = pn_wbox_union(*bf, bs);
 }
 
-/* Per-pixel light frame. */
+/* Per-pixel light frame: O in light coordinates, 1 / its height, O - c. */
 typedef struct pn_wframe {
-    pn_v3 c, U, V, N;
-    float iu, iv; /* 1 / |U|^2, 1 / |V|^2 */
-    float uo, vo, ho;
+    float uo, vo, iho;
+    pn_v3 oc;
 } pn_wframe;
 
-/* Edge a b of weight w seen from O into the object's four parts. Returns 1 when it covers
- * some of the light. */
-PN_KFN int pn_wg_edge(const pn_wframe *F, pn_v3 O, pn_v3 a, pn_v3 b, float w, pn_wpart *parts)
+/* Silhouette e seen from O: its projection p q onto the light (p[0..3] = pu, pv, qu, qv)
+ * and sign (+1 outer, -1 inner); 0 when it misses the light. */
+PN_KFN int pn_wg_project(const pn_wframe *F, PN_CONST pn_wsil *e, float *p, float *sgn)
 {
-    pn_v3 ac = pn_v3_sub(a, F->c), bc = pn_v3_sub(b, F->c);
-    float ta = 1.0f - pn_v3_dot(ac, F->N) / F->ho, tb = 1.0f - pn_v3_dot(bc, F->N) / F->ho;
-    float ua = pn_v3_dot(ac, F->U) * F->iu, va = pn_v3_dot(ac, F->V) * F->iv;
-    float ub = pn_v3_dot(bc, F->U) * F->iu, vb = pn_v3_dot(bc, F->V) * F->iv;
-    float l0 = 0.0f, l1 = 1.0f, dt = tb - ta, t0, t1, pu, pv, qu, qv, sg;
-    int any = 0;
-    uint32_t q;
-    /* The local near plane and the light plane: keep t in [PN_WG_TNEAR, 1]. */
-    if (dt != 0.0f) {
-        float la = (PN_WG_TNEAR - ta) / dt, lb = (1.0f - ta) / dt;
-        if (dt > 0.0f) {
-            l0 = pn_kmaxf(l0, la);
-            l1 = pn_kminf(l1, lb);
+    float ta = 1.0f - e->ha * F->iho, tb = 1.0f - e->hb * F->iho, ua = e->ua, va = e->va, ub = e->ub, vb = e->vb;
+    float l0 = 0.0f, l1 = 1.0f, dt = tb - ta, t0 = ta, t1 = tb, pu, pv, qu, qv, sg, ra, rb;
+    /* The local near plane and the light plane: keep t in [PN_WG_TNEAR, 1] (most edges lie
+     * wholly between them: no clipping). */
+    if (!(ta >= PN_WG_TNEAR && tb >= PN_WG_TNEAR && ta <= 1.0f && tb <= 1.0f)) {
+        if (dt != 0.0f) {
+            float la = (PN_WG_TNEAR - ta) / dt, lb = (1.0f - ta) / dt;
+            if (dt > 0.0f) {
+                l0 = pn_kmaxf(l0, la);
+                l1 = pn_kminf(l1, lb);
+            } else {
+                l0 = pn_kmaxf(l0, lb);
+                l1 = pn_kminf(l1, la);
+            }
         } else {
-            l0 = pn_kmaxf(l0, lb);
-            l1 = pn_kminf(l1, la);
+            return 0; /* parallel to the light, outside the slab */
         }
-    } else if (!(ta >= PN_WG_TNEAR && ta <= 1.0f)) {
-        return 0;
+        if (!(l0 < l1)) return 0;
+        t0 = pn_kmaxf(ta + l0 * dt, PN_WG_TNEAR);
+        t1 = pn_kmaxf(ta + l1 * dt, PN_WG_TNEAR);
+        ub = ua + l1 * (ub - ua);
+        vb = va + l1 * (vb - va);
+        ua = ua + l0 * (e->ub - ua);
+        va = va + l0 * (e->vb - va);
     }
-    if (!(l0 < l1)) return 0;
-    t0 = pn_kmaxf(ta + l0 * dt, PN_WG_TNEAR);
-    t1 = pn_kmaxf(ta + l1 * dt, PN_WG_TNEAR);
-    pu = F->uo + ((ua + l0 * (ub - ua)) - F->uo) / t0;
-    pv = F->vo + ((va + l0 * (vb - va)) - F->vo) / t0;
-    qu = F->uo + ((ua + l1 * (ub - ua)) - F->uo) / t1;
-    qv = F->vo + ((va + l1 * (vb - va)) - F->vo) / t1;
-    if (pn_kmaxf(pu, qu) <= -1.0f || pn_kminf(pu, qu) >= 1.0f || pn_kmaxf(pv, qv) <= -1.0f || pn_kminf(pv, qv) >= 1.0f)
-        return 0;
+    {
+        /* Most edges project beside the light: decide that without dividing, pu <= -1 being
+         * ua - uo <= (-1 - uo) t0 for t0 > 0 (and so on). */
+        float nua = ua - F->uo, nva = va - F->vo, nub = ub - F->uo, nvb = vb - F->vo;
+        if ((nua <= (-1.0f - F->uo) * t0 && nub <= (-1.0f - F->uo) * t1) ||
+            (nua >= (1.0f - F->uo) * t0 && nub >= (1.0f - F->uo) * t1) ||
+            (nva <= (-1.0f - F->vo) * t0 && nvb <= (-1.0f - F->vo) * t1) ||
+            (nva >= (1.0f - F->vo) * t0 && nvb >= (1.0f - F->vo) * t1))
+            return 0;
+        ra = 1.0f / t0;
+        rb = 1.0f / t1;
+        pu = F->uo + nua * ra;
+        pv = F->vo + nva * ra;
+        qu = F->uo + nub * rb;
+        qv = F->vo + nvb * rb;
+    }
     /* Inner when O lies on the casting triangles' side of the plane through the centre and
      * the edge: the same sign det(a - c, b - c, v - c) < 0 their third vertex v gives. */
-    sg = pn_v3_dot(pn_v3_cross(ac, bc), pn_v3_sub(O, F->c)) < 0.0f ? -1.0f : 1.0f;
+    sg = (e->nx * F->oc.x + e->ny * F->oc.y) + e->nz * F->oc.z < 0.0f ? -1.0f : 1.0f;
+    p[0] = pu;
+    p[1] = pv;
+    p[2] = qu;
+    p[3] = qv;
+    *sgn = sg;
+    return 1;
+}
+
+/* A projected edge (pn_wg_project) of weight w into the object's four parts. Returns 1
+ * when it covers some of the light. */
+PN_KFN int pn_wg_edge_parts(const float *p, float sg, float w, pn_wpart *parts)
+{
+    int any = 0;
+    uint32_t q;
     for (q = 0; q < 4u; q++) {
         float sx = (q == 0u || q == 3u) ? 1.0f : -1.0f, sy = q < 2u ? 1.0f : -1.0f;
-        any |= pn_wg_part_edge(parts + q, sx * pu, sy * pv, sx * qu, sy * qv, sg, w);
+        any |= pn_wg_part_edge(parts + q, sx * p[0], sy * p[1], sx * p[2], sy * p[3], sg, w);
     }
     return any;
+}
+
+/* An object's four parts before its first edge: all of the light occluded when its centre
+ * is (hard), none otherwise. */
+PN_KFN void pn_wg_parts_init(pn_wpart *parts, int hard)
+{
+    uint32_t q;
+    for (q = 0; q < 4u; q++) {
+        parts[q].a = hard ? 1.0f : 0.0f;
+        parts[q].outer = pn_wbox_empty();
+        parts[q].ends = pn_wbox_empty();
+        parts[q].smin = 2.0f;
+        parts[q].smax = 0.0f;
+    }
 }
 
 /* Whether object s has an edge in list[lo, hi) (ascending edges, so ascending objects). */
@@ -545,17 +614,11 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
     }
     if (L->is_point) return 1.0f;
 
-    F.c = pn_light_c(L);
-    F.U = pn_light_U(L);
-    F.V = pn_light_V(L);
-    F.N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
-    F.iu = 1.0f / pn_v3_dot(F.U, F.U);
-    F.iv = 1.0f / pn_v3_dot(F.V, F.V);
     {
-        pn_v3 oc = pn_v3_sub(O, F.c);
-        F.uo = pn_v3_dot(oc, F.U) * F.iu;
-        F.vo = pn_v3_dot(oc, F.V) * F.iv;
-        F.ho = pn_v3_dot(oc, F.N);
+        float ho;
+        pn_wg_light(L, O, &F.uo, &F.vo, &ho);
+        F.iho = 1.0f / ho;
+        F.oc = pn_v3_sub(O, pn_light_c(L));
     }
     for (q = 0; q < 4u; q++) {
         af[q] = 0.0f;
@@ -564,23 +627,25 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
     i = lo;
     while (i < hi) {
         uint32_t s = sil[list[i]].comp, j;
-        int h = 0;
+        int h = 0, started;
         pn_wpart parts[4];
         for (j = 0; j < nhard; j++) h |= hard[j] == s;
-        for (q = 0; q < 4u; q++) {
-            parts[q].a = h ? 1.0f : 0.0f;
-            parts[q].outer = pn_wbox_empty();
-            parts[q].ends = pn_wbox_empty();
-            parts[q].smin = 2.0f;
-            parts[q].smax = 0.0f;
-        }
+        started = h;
+        if (h) pn_wg_parts_init(parts, 1);
         for (; i < hi && sil[list[i]].comp == s; i++) {
             PN_CONST pn_wsil *e = sil + list[i];
-            pn_v3 a, b;
+            float p[4], sg;
             cnt->candidates++;
-            pn_wg_ends(tris, e->h, &a, &b);
-            if (pn_wg_edge(&F, O, a, b, (float)e->w, parts)) cnt->blocking++;
+            if (!pn_wg_project(&F, e, p, &sg)) continue;
+            if (!started) {
+                pn_wg_parts_init(parts, 0);
+                started = 1;
+            }
+            if (pn_wg_edge_parts(p, sg, (float)e->w, parts)) cnt->blocking++;
         }
+        /* An object none of whose edges reaches the light from here, its centre seen:
+         * nothing to add. */
+        if (!started) continue;
         for (q = 0; q < 4u; q++) {
             pn_wbox bs;
             float as = pn_wg_part_end(parts + q, h, &bs);

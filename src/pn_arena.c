@@ -168,7 +168,7 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
         l->gears_pairs > (1u << 28) || l->gears_grid_max > 1024u || l->srt_map_max > PN_SRT_MAP_MAX ||
         (l->srt_map_max != 0u && l->srt_map_max < 8u) || l->occ_map_max > PN_OCCTEX_MAP_MAX ||
         (l->occ_map_max != 0u && l->occ_map_max < 8u) || l->mc_map_max > PN_MCSM_MAP_MAX ||
-        (l->mc_map_max != 0u && l->mc_map_max < 8u))
+        (l->mc_map_max != 0u && l->mc_map_max < 8u) || l->wg_pairs > PN_WEDGES_PAIRS)
         return PN_E_LIMIT;
     if (!pn_bump(&off, 1u, sizeof(pn_context), &lay.ctx) ||
         !pn_bump(&off, l->max_triangles, 9u * sizeof(float), &lay.tris) ||
@@ -253,6 +253,7 @@ void pn_limits_max(pn_limits *limits)
     limits->srt_map_max = 0;
     limits->occ_map_max = 0;
     limits->mc_map_max = 0;
+    limits->wg_pairs = 0;
 }
 
 uint32_t pn_gears_pairs_max(const pn_limits *l) { return l->gears_pairs ? l->gears_pairs : PN_GEARS_PAIRS; }
@@ -271,7 +272,8 @@ uint32_t pn_wg_sil_max(const pn_limits *l)
 uint32_t pn_wg_pairs_max(const pn_limits *l)
 {
     uint64_t most = (uint64_t)pn_wg_tiles_of(l->max_width, l->max_height) * pn_wg_sil_max(l);
-    return most < PN_WEDGES_PAIRS ? (uint32_t)most : PN_WEDGES_PAIRS;
+    uint32_t cap = l->wg_pairs ? l->wg_pairs : PN_WEDGES_PAIRS;
+    return most < cap ? (uint32_t)most : cap;
 }
 uint32_t pn_occ_levels(uint32_t res)
 {

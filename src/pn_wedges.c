@@ -110,7 +110,8 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
     t0 = t1;
     if (npairs > pn_wg_pairs_max(&ctx->limits))
         return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
-                       "wedges: %u (tile, wedge) pairs; the pair pool holds %u (PN_WEDGES_PAIRS)", npairs,
+                       "wedges: the frame needs %u (tile, wedge) pairs; the pair pool holds %u "
+                       "(pn_limits.wg_pairs, PN_WEDGES_PAIRS)", npairs,
                        pn_wg_pairs_max(&ctx->limits));
     ctx->wg.pairs = npairs;
     K->wg.sils = nsil;

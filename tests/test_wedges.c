@@ -17,7 +17,10 @@
  *    parts of it from the ground below both; there the blended RMSE and MAE are below the
  *    classic sum's. On `spheres` (neighbours hide mostly different parts) it is no worse.
  * 6. Determinism and options: the same bytes from 1 and 2 threads; an unknown mode is
- *    PN_E_INVALID_ARG; the stats add up. */
+ *    PN_E_INVALID_ARG; the stats add up.
+ * 7. A (tile, wedge) pair pool too small for the frame (pn_limits.wg_pairs) fails with
+ *    PN_E_POOL_EXHAUSTED naming it, writes nothing outside the arena nor the frame
+ *    out-parameter, and a smaller pool makes a smaller arena. */
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -330,6 +333,64 @@ static void test_blend_stacked(void)
     pn_setup_free(&s);
 }
 
+/* A pair pool too small for the frame: PN_E_POOL_EXHAUSTED naming the pool and the count
+ * the frame needed, nothing written outside the arena, the previous frame's buffers as
+ * they were; a smaller pool shrinks the arena. */
+static void test_short_pool(void)
+{
+    enum { GUARD = 4096 };
+    pn_setup s;
+    pn_limits lim, big;
+    pn_context *ctx;
+    pn_frame_options o;
+    pn_frame fr, fr2;
+    pn_stats st;
+    size_t bytes, bytes_big, i;
+    uint8_t *raw;
+    char err[256];
+    int guard_ok = 1;
+    if (pn_setup_load(&s, "spheres", 1, -1, err, sizeof(err)) != 0) {
+        CHECK_MSG(0, "loading spheres: %s", err);
+        return;
+    }
+    pn_limits_max(&lim);
+    lim.max_triangles = s.mesh.triangle_count;
+    lim.max_width = W;
+    lim.max_height = H;
+    lim.gears_pairs = 4096u;
+    lim.gears_grid_max = 16u;
+    lim.srt_map_max = 64u;
+    lim.occ_map_max = 64u;
+    lim.mc_map_max = 64u;
+    big = lim;
+    lim.wg_pairs = 2000u;
+    REQUIRE(pn_arena_size(&lim, &bytes) == PN_OK && pn_arena_size(&big, &bytes_big) == PN_OK);
+    CHECK_MSG(bytes < bytes_big, "wg_pairs 2000: arena %zu, not below the default's %zu", bytes, bytes_big);
+    raw = (uint8_t *)malloc(bytes + GUARD);
+    REQUIRE(raw != NULL);
+    memset(raw, 0x5A, bytes + GUARD);
+    REQUIRE(pn_init(&ctx, raw, bytes, &lim) == PN_OK);
+    REQUIRE(pn_scene_set(ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
+    wg_opts(&o, 0u);
+    o.eps = s.eps;
+    /* A frame that fits (another algorithm), then the one that does not. */
+    o.algo = PN_ALGO_REFERENCE;
+    o.k = 4;
+    REQUIRE(pn_render(ctx, &s.camera, &s.light, &o, &fr) == PN_OK);
+    memcpy(g_a, fr.visibility, sizeof(g_a));
+    o.algo = PN_ALGO_WEDGES;
+    fr2 = fr;
+    CHECK(pn_render(ctx, &s.camera, &s.light, &o, &fr2) == PN_E_POOL_EXHAUSTED);
+    fprintf(stderr, "short pair pool: %s\n", pn_last_error(ctx));
+    CHECK(strstr(pn_last_error(ctx), "pair pool") != NULL && strstr(pn_last_error(ctx), "wg_pairs") != NULL);
+    CHECK_MSG(memcmp(&fr2, &fr, sizeof(fr)) == 0, "the frame out-parameter was written on failure");
+    for (i = 0; i < GUARD; i++) guard_ok &= raw[bytes + i] == 0x5A;
+    CHECK_MSG(guard_ok, "bytes after the arena were written");
+    CHECK(pn_get_stats(ctx, &st) == PN_OK && st.arena_high_water <= st.arena_carved);
+    free(raw);
+    pn_setup_free(&s);
+}
+
 int main(void)
 {
     if (!(pn_build_info() & PN_BUILD_WEDGES)) {
@@ -341,5 +402,6 @@ int main(void)
     RUN(test_point_light);
     RUN(test_blend_spheres);
     RUN(test_blend_stacked);
+    RUN(test_short_pool);
     return pn_test_summary();
 }

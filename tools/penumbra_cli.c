@@ -215,6 +215,15 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
     fprintf(f, "  \"ms_mc_layers\": %.3f,\n  \"ms_mc_nbuffer\": %.3f,\n  \"ms_mc_rays\": %.3f,\n  \"ms_mc_blur\": %.3f,\n",
             (double)st->mc_ns_layers * 1e-6, (double)st->mc_ns_nbuffer * 1e-6, (double)st->mc_ns_rays * 1e-6,
             (double)st->mc_ns_blur * 1e-6);
+    fprintf(f, "  \"wg_vertices\": %u,\n  \"wg_edges\": %u,\n  \"wg_open_edges\": %u,\n  \"wg_nonmanifold_edges\": %u,\n",
+            st->wg_vertices, st->wg_edges, st->wg_open_edges, st->wg_nonmanifold_edges);
+    fprintf(f, "  \"wg_objects\": %u,\n  \"wg_closed_objects\": %u,\n  \"wg_silhouettes\": %u,\n  \"wg_pairs\": %llu,\n",
+            st->wg_objects, st->wg_closed_objects, st->wg_silhouettes, (unsigned long long)st->wg_pairs);
+    fprintf(f, "  \"wg_evaluated\": %llu,\n  \"wg_touched\": %llu,\n  \"wg_hard_blockers\": %llu,\n  \"wg_hard_overflow\": %u,\n",
+            (unsigned long long)st->wg_evaluated, (unsigned long long)st->wg_touched,
+            (unsigned long long)st->wg_hard_blockers, st->wg_hard_overflow);
+    fprintf(f, "  \"ms_wg_silhouettes\": %.3f,\n  \"ms_wg_binning\": %.3f,\n  \"ms_wg_pixels\": %.3f,\n",
+            (double)st->wg_ns_silhouettes * 1e-6, (double)st->wg_ns_binning * 1e-6, (double)st->wg_ns_pixels * 1e-6);
     fprintf(f, "  \"mean_visibility\": %.9g\n}\n", mean);
     return fclose(f) != 0;
 }

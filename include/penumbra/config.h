@@ -95,7 +95,7 @@
 #define PN_ENABLE_WEDGES 1
 #endif
 
-/* Largest silhouette-edge count of a frame (32 + 4 bytes each; a context holds at most
+/* Largest silhouette-edge count of a frame (80 + 4 bytes each; a context holds at most
  * 3 x max_triangles, every edge). A frame with more fails PN_E_POOL_EXHAUSTED, naming it.
  * Range 64 .. 2^24. */
 #ifndef PN_WEDGES_SIL_MAX

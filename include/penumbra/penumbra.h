@@ -37,7 +37,7 @@
  *   one call at a time per context.
  *
  * USAGE
- *   pn_limits lim = { 100000, 512, 512, 0, 0, 0, 0, 0 };  // max triangles, width, height; the rest default
+ *   pn_limits lim = { 100000, 512, 512, 0, 0, 0, 0, 0, 0 };  // max triangles, width, height; the rest default
  *   size_t bytes; pn_arena_size(&lim, &bytes);
  *   void *mem = my_alloc(bytes);             // or static uint8_t mem[PN_ARENA_BYTES_MAX(...)]
  *   pn_context *ctx; pn_init(&ctx, mem, bytes, &lim);
@@ -121,6 +121,9 @@ typedef struct pn_limits {
     uint32_t srt_map_max;    /* largest SRT shadow map per axis; 0: PN_SRT_MAP_MAX */
     uint32_t occ_map_max;    /* largest occlusion texture per axis; 0: PN_OCCTEX_MAP_MAX */
     uint32_t mc_map_max;     /* largest Monte Carlo depth layer per axis; 0: PN_MCSM_MAP_MAX */
+    uint32_t wg_pairs;       /* penumbra wedges' (screen tile, wedge) pair pool, at most
+                                PN_WEDGES_PAIRS; 0: PN_WEDGES_PAIRS. A frame needing more
+                                fails PN_E_POOL_EXHAUSTED with the count it needed */
 } pn_limits;
 
 /* Limits equal to the compile-time maxima. */
@@ -143,9 +146,9 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
 #if PN_ENABLE_WEDGES
 /* Penumbra-wedge pools: persistent per triangle 28 (+ 3 x 64 alignment); the frame per
  * triangle 4 + 12 + 4 (casting, slots) or 24 (welding at pn_scene_set), counted both; per
- * silhouette 36, per pair 12, per tile 8 (tiles <= pixels); the rest 64. */
+ * silhouette 84, per pair 12, per tile 8 (tiles <= pixels); the rest 64. */
 #define PN_WEDGES_BYTES_MAX(t, w, h)                                                        \
-    ((size_t)(t) * 68u + 256u + (size_t)PN_WEDGES_SIL_MAX * 36u + (size_t)PN_WEDGES_PAIRS * 12u + \
+    ((size_t)(t) * 68u + 256u + (size_t)PN_WEDGES_SIL_MAX * 84u + (size_t)PN_WEDGES_PAIRS * 12u + \
      (size_t)(w) * (size_t)(h) * 8u + 64u)
 #else
 #define PN_WEDGES_BYTES_MAX(t, w, h) ((size_t)0)

@@ -401,21 +401,19 @@ PN_KFN uint32_t pn_ray_tri(const pn_ray *R, const pn_klight *L, PN_CONST float *
 
 typedef struct pn_ray_walk {
     uint32_t stack[PN_BVH_STACK];
-    uint32_t sp, node, q, leaf, done;
-    float eb; /* the current leaf's bound, -1 until computed */
+    uint32_t sp, node, done;
+    uint32_t q; /* the next triangle of the current node when it is a leaf left at a blocker */
 } pn_ray_walk;
 
 /* The chain first: its nodes are entered at t = 0, the nearest of their children; their
  * other children are tested and pushed. The walk starts at the chain's end. */
-PN_KFN void pn_ray_walk_begin(pn_ray_walk *W, const pn_ray_origin *X, const pn_ray *R, PN_CONST pn_kbvh_node *nodes)
+PN_KFN_HOT void pn_ray_walk_begin(pn_ray_walk *W, const pn_ray_origin *X, const pn_ray *R, PN_CONST pn_kbvh_node *nodes)
 {
     uint32_t cd;
     float tn, tl;
     W->sp = 0u;
     W->node = 0u;
     W->q = 0u;
-    W->leaf = 0u;
-    W->eb = -1.0f;
     W->done = X->chain_len == 0u && !pn_ray_box(R, nodes, &tn);
     if (W->done) return;
     for (cd = 1u; cd < X->chain_len; cd++) {
@@ -426,68 +424,69 @@ PN_KFN void pn_ray_walk_begin(pn_ray_walk *W, const pn_ray_origin *X, const pn_r
 }
 
 /* The next triangle other than `own` that blocks the ray's sample, or PN_RAY_NONE. */
-PN_KFN uint32_t pn_ray_walk_next(pn_ray_walk *W, const pn_ray *R, uint32_t own, PN_CONST float *tris,
-                                 PN_CONST pn_kbvh_node *nodes, PN_CONST uint32_t *tri_index, const pn_klight *L,
-                                 pn_shadow_counters *cnt)
+PN_KFN_HOT uint32_t pn_ray_walk_next(pn_ray_walk *W, const pn_ray *R, uint32_t own, PN_CONST float *tris,
+                                     PN_CONST pn_kbvh_node *nodes, PN_CONST uint32_t *tri_index, const pn_klight *L,
+                                     pn_shadow_counters *cnt)
 {
+    uint32_t node = W->node, sp = W->sp, tests = 0u;
     float tl, tr;
     if (W->done) return PN_RAY_NONE;
     for (;;) {
-        PN_CONST pn_kbvh_node *nd = nodes + W->node;
+        PN_CONST pn_kbvh_node *nd = nodes + node;
         uint32_t first = nd->first, count = nd->count;
-        if (!W->leaf && count == 0u && first != 0u) { /* interior (an empty root has first 0) */
+        if (count == 0u && first != 0u) { /* interior (an empty root has first 0) */
             int hl = pn_ray_box(R, nodes + first, &tl), hr = pn_ray_box(R, nodes + first + 1u, &tr);
             if (hl && hr) {
                 uint32_t nearer = tl <= tr ? first : first + 1u;
-                if (W->sp < PN_BVH_STACK)
-                    W->stack[W->sp++] = 2u * first + 1u - nearer;
+                if (sp < PN_BVH_STACK)
+                    W->stack[sp++] = 2u * first + 1u - nearer;
                 else
                     cnt->overflow++;
-                W->node = nearer;
+                node = nearer;
                 continue;
             }
             if (hl || hr) {
-                W->node = hl ? first : first + 1u;
+                node = hl ? first : first + 1u;
                 continue;
             }
         } else if (count != 0u) {
             /* The scene box's bound first; the leaf's, finer, computed once where needed. */
-            float e[3], eu;
-            if (!W->leaf) {
-                W->leaf = 1u;
-                W->q = 0u;
-                W->eb = -1.0f;
-            }
-            while (W->q < count) {
-                uint32_t t = tri_index[first + W->q];
+            float eb = -1.0f, e[3], eu;
+            uint32_t q;
+            for (q = W->q; q < count; q++) {
+                uint32_t t = tri_index[first + q];
                 PN_CONST float *p = tris + (size_t)t * 9u;
                 int32_t s;
-                W->q++;
                 if (t == own) continue;
-                cnt->candidates++;
+                tests++;
                 pn_ray_edges(R, p, e);
                 eu = R->ebr;
                 s = pn_ray_signs(e, eu);
                 if (s == 2) {
-                    if (W->eb < 0.0f) {
+                    if (eb < 0.0f) {
                         float lo[3], hi[3];
                         pn_ray_node_box(nd, lo, hi);
-                        W->eb = pn_ray_bound(R, lo, hi);
+                        eb = pn_ray_bound(R, lo, hi);
                     }
-                    eu = W->eb;
+                    eu = eb;
                     s = pn_ray_signs(e, eu);
                 }
                 if (s != 0 && pn_ray_decide(R, L, p, s, e, eu)) {
+                    W->node = node;
+                    W->sp = sp;
+                    W->q = q + 1u;
+                    cnt->candidates += tests;
                     cnt->blocking++;
                     return t;
                 }
             }
-            W->leaf = 0u;
+            W->q = 0u;
         }
-        if (W->sp == 0u) break;
-        W->node = W->stack[--W->sp];
+        if (sp == 0u) break;
+        node = W->stack[--sp];
     }
     W->done = 1u;
+    cnt->candidates += tests;
     return PN_RAY_NONE;
 }
 

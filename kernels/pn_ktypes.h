@@ -102,4 +102,8 @@ typedef struct pn_kwg {
 /* Rows of pixels per rasterizer work item. */
 #define PN_RASTER_BAND 8u
 
+/* Side in pixels of the penumbra wedges' screen tiles (kernels/pn_wedges.h; the arena sizes
+ * their pools by it). */
+#define PN_WG_TILE 16u
+
 #endif

@@ -45,7 +45,6 @@
 #include "pn_raster.h"
 #include "pn_raytrace.h"
 
-#define PN_WG_TILE 16u
 #define PN_WG_REV 0x80000000u    /* half-edge: traverses its edge from the higher vertex id */
 #define PN_WG_CLOSED 0x80000000u /* triangle's object: closed (every edge two opposite windings) */
 #define PN_WG_HARD_MAX 16u       /* objects blocking the centre a pixel keeps track of */

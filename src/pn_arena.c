@@ -8,6 +8,9 @@
 #if PN_ENABLE_GEARS
 #include "pn_gears_pass.h" /* pn_kfaces */
 #endif
+#if PN_ENABLE_WEDGES
+#include "pn_wedges.h" /* pn_wsil */
+#endif
 
 /* Appends a pool of count * elem bytes at the next 64-byte boundary. Sizes are checked in
  * 64-bit arithmetic, then against SIZE_MAX (a 32-bit target must not wrap). */
@@ -136,12 +139,12 @@ static int pn_mc_pools(const pn_limits *l, uint64_t *off)
 static int pn_wg_pools(const pn_limits *l, uint64_t *off)
 {
 #if PN_ENABLE_WEDGES
-    uint64_t start = *off, weld = start, tiles = pn_wg_tiles_of(l->max_width, l->max_height);
+    uint64_t weld = *off, tiles = pn_wg_tiles_of(l->max_width, l->max_height);
     size_t dummy;
     /* pn_wedges_frame() in src/pn_wedges.c allocates exactly these, in this order. */
     if (!(pn_bump(off, l->max_triangles, 4u, &dummy) &&                        /* casting */
           pn_bump(off, 3u * (uint64_t)l->max_triangles + 1u, 4u, &dummy) &&    /* silhouette slots */
-          pn_bump(off, pn_wg_sil_max(l), PN_WG_SIL_BYTES, &dummy) &&           /* silhouettes */
+          pn_bump(off, pn_wg_sil_max(l), sizeof(pn_wsil), &dummy) &&          /* silhouettes */
           pn_bump(off, (uint64_t)pn_wg_sil_max(l) + 1u, 4u, &dummy) &&         /* pair offsets */
           pn_bump(off, pn_wg_pairs_max(l), 8u, &dummy) &&                      /* pairs */
           pn_bump(off, pn_wg_pairs_max(l), 4u, &dummy) &&                      /* tile lists */
@@ -149,7 +152,6 @@ static int pn_wg_pools(const pn_limits *l, uint64_t *off)
           pn_bump(off, tiles, 4u, &dummy) &&                                   /* sort scratch */
           pn_bump(&weld, 6u * (uint64_t)l->max_triangles, 4u, &dummy)))         /* welding */
         return 0;
-    (void)start;
     if (weld > *off) *off = weld;
     return 1;
 #else
@@ -262,7 +264,7 @@ uint32_t pn_occ_map_max(const pn_limits *l) { return l->occ_map_max ? l->occ_map
 uint32_t pn_mc_map_max(const pn_limits *l) { return l->mc_map_max ? l->mc_map_max : PN_MCSM_MAP_MAX; }
 uint32_t pn_wg_tiles_of(uint32_t width, uint32_t height)
 {
-    return ((width + 15u) / 16u) * ((height + 15u) / 16u);
+    return ((width + PN_WG_TILE - 1u) / PN_WG_TILE) * ((height + PN_WG_TILE - 1u) / PN_WG_TILE);
 }
 uint32_t pn_wg_sil_max(const pn_limits *l)
 {

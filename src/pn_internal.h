@@ -131,8 +131,6 @@ uint32_t pn_mc_map_max(const pn_limits *l);
 uint32_t pn_wg_sil_max(const pn_limits *l);
 uint32_t pn_wg_pairs_max(const pn_limits *l);
 uint32_t pn_wg_tiles_of(uint32_t width, uint32_t height);
-/* Floats of a silhouette record (kernels/pn_wedges.h pn_wsil). */
-#define PN_WG_SIL_BYTES 80u
 /* Occlusion textures: N-buffer / mipmap levels of a res^2 texture (floor(log2 res) + 1), and
  * the words of the one-slice filter pool (the largest of the three filters). */
 uint32_t pn_occ_levels(uint32_t res);

@@ -8,10 +8,7 @@
 
 #if PN_ENABLE_WEDGES
 
-typedef char pn_wg_consts_agree[PN_WG_M_BLEND == PN_WG_MODE_BLEND && PN_WG_M_ADD == PN_WG_MODE_ADDITIVE &&
-                                        sizeof(pn_wsil) == PN_WG_SIL_BYTES
-                                    ? 1
-                                    : -1];
+typedef char pn_wg_consts_agree[PN_WG_M_BLEND == PN_WG_MODE_BLEND && PN_WG_M_ADD == PN_WG_MODE_ADDITIVE ? 1 : -1];
 
 typedef struct pn_wg_pools {
     uint32_t *tcast;  /* [T] how each triangle casts */

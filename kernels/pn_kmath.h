@@ -60,6 +60,8 @@ PN_KFN float pn_v3_linf(pn_v3 a)
 }
 PN_KFN int32_t pn_kmini(int32_t a, int32_t b) { return a < b ? a : b; }
 PN_KFN int32_t pn_kmaxi(int32_t a, int32_t b) { return a > b ? a : b; }
+PN_KFN uint32_t pn_kminu(uint32_t a, uint32_t b) { return a < b ? a : b; }
+PN_KFN uint32_t pn_kmaxu(uint32_t a, uint32_t b) { return a > b ? a : b; }
 
 /* Float to integer, clamped to [lo, hi] *before* the conversion (an out-of-range
  * conversion is undefined in C and implementation-defined in OpenCL); NaN gives lo. */

@@ -14,7 +14,7 @@ typedef struct pn_kpools {
     /* persistent: the scene */
     uint64_t tris, flags, nodes, index;
     /* frame: G-buffer, outputs, scratch */
-    uint64_t depth, tri_id, pos, nrm, vis, rgba, rows, counters;
+    uint64_t depth, tri_id, pos, nrm, vis, rgba, rows, chunks, counters;
     /* frame: GEARS (src/pn_gears.c) */
     uint64_t faces, rects, tri_off, pix_cell, row_box, cell_off, cell_pix, cell_cur, row_pairs, pairs, sorted;
     /* frame: the light view's row bounds (SRT, occlusion textures) */
@@ -43,6 +43,7 @@ typedef struct pn_kparams {
     pn_kshade shade;
     pn_ktile tile;        /* GEARS: the tile a pass works on (grid row r0 for a row count) */
     uint32_t tri_count;   /* scene triangles */
+    uint32_t raster_tris; /* entries of the BVH's leaf order: the triangles a rasterizer walks */
     uint32_t exact_stats; /* GEARS masks: 1 = do not stop at a full mask (exact counters) */
     /* the light-space view (SRT: at the light centre; occlusion textures: at the centre of
      * projection behind it) and the offsets of its row bounds (pn_lview.h) */
@@ -54,7 +55,7 @@ typedef struct pn_kparams {
     /* selective ray tracing: the classification's constants */
     float srt_delta, srt_alpha, srt_reach_u, srt_reach_v; /* reach: texels per unit splat weight */
     float srt_wmax; /* largest splat weight 1/z of the map's edge texels */
-    uint32_t srt_flags, srt_tiles, srt_pad0;
+    uint32_t srt_flags, srt_tiles;
 } pn_kparams;
 
 /* Typed pointer to pool `name` of arena A (the entries' arguments A and P). */

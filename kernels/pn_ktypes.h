@@ -102,6 +102,9 @@ typedef struct pn_kwg {
 /* Rows of pixels per rasterizer work item. */
 #define PN_RASTER_BAND 8u
 
+/* Triangles per chunk of the rasterizer's band walk (pn_raster_chunk). */
+#define PN_RASTER_CHUNK 32u
+
 /* Side in pixels of the penumbra wedges' screen tiles (kernels/pn_wedges.h; the arena sizes
  * their pools by it). */
 #define PN_WG_TILE 16u

@@ -181,12 +181,14 @@ PN_KFN void pn_mc_sample(uint32_t x, uint32_t y, uint32_t i, uint32_t j, uint32_
 /* ---- Layers ------------------------------------------------------------------------------ */
 
 /* Band `band` of PN_RASTER_BAND texel rows of level 0: cleared, then every fragment of every
- * occluder (not receiver-only) in front of the light plane takes part in its texel's near
- * and far; then max near := near. */
+ * occluder (not receiver-only; the band walk's, pn_raster.h) in front of the light plane
+ * takes part in its texel's near and far; then max near := near. */
 PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris, PN_CONST uint8_t *flags,
-                       PN_CONST uint32_t *rows, uint32_t tri_count, uint32_t band, PN_GLOBAL float *nb)
+                       PN_CONST uint32_t *rows, PN_CONST uint32_t *chunks, PN_CONST uint32_t *index, uint32_t tri_n,
+                       uint32_t band, PN_GLOBAL float *nb)
 {
     uint32_t y0 = band * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND - 1u, t, y, x;
+    pn_band_walk bw;
     pn_v3 f = pn_v3_make(v->f[0], v->f[1], v->f[2]);
     if (y1 >= v->height) y1 = v->height - 1u;
     for (y = y0; y <= y1; y++)
@@ -195,7 +197,8 @@ PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris
             T[0] = PN_KINF;
             T[1] = -PN_KINF;
         }
-    for (t = 0; t < tri_count; t++) {
+    pn_band_walk_begin(&bw);
+    while (pn_band_next(chunks, index, tri_n, y0, y1, &bw, &t)) {
         pn_raster_tri rt;
         if (flags[t] & PN_TRI_RECEIVER) continue;
         if (!pn_raster_tri_setup(v, tris, rows, t, y0, y1, &rt)) continue;

@@ -78,12 +78,14 @@ PN_KFN int32_t pn_occ_slice_of(const pn_kocc *o, float z)
 }
 
 /* Band `band` of PN_RASTER_BAND texel rows: its words cleared, then every triangle's
- * fragments set their slices' bits (the G-buffer's set-up and coverage on the slicing
- * view); the bits the band holds added to words (all, and per slice). */
+ * fragments set their slices' bits (the G-buffer's set-up, band walk and coverage on the
+ * slicing view); the bits the band holds added to words (all, and per slice). */
 PN_KFN void pn_occ_band(const pn_kview *v, const pn_kocc *o, PN_CONST float *tris, PN_CONST uint32_t *rows,
-                        uint32_t tri_count, uint32_t band, PN_GLOBAL uint32_t *bits, PN_GLOBAL uint32_t *words)
+                        PN_CONST uint32_t *chunks, PN_CONST uint32_t *index, uint32_t tri_n, uint32_t band,
+                        PN_GLOBAL uint32_t *bits, PN_GLOBAL uint32_t *words)
 {
     uint32_t y0 = band * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND - 1u, t, y, x, n = 0u, k;
+    pn_band_walk bw;
     uint32_t per[PN_OCC_SLICES_MAX];
     uint32_t last = o->slices - 1u;
     pn_v3 f = pn_v3_make(v->f[0], v->f[1], v->f[2]);
@@ -93,7 +95,8 @@ PN_KFN void pn_occ_band(const pn_kview *v, const pn_kocc *o, PN_CONST float *tri
     if (y1 >= v->height) y1 = v->height - 1u;
     for (y = y0; y <= y1; y++)
         for (x = 0; x < v->width; x++) bits[(size_t)y * v->width + x] = 0u;
-    for (t = 0; t < tri_count; t++) {
+    pn_band_walk_begin(&bw);
+    while (pn_band_next(chunks, index, tri_n, y0, y1, &bw, &t)) {
         pn_raster_tri rt;
         if (rows[t] == PN_RASTER_EMPTY) continue;
         /* Wholly within the deepest slice (a receiver below every occluder: a ground

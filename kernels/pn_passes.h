@@ -65,15 +65,24 @@ PN_KFN void pn_e_raster_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
     PN_POOL(uint32_t, rows)[t] = pn_raster_rows(&K->view, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), t);
 }
 
-/* Band `band` of PN_RASTER_BAND rows of view v: owns its pixels and walks every triangle in
- * id order (the G-buffer and the light-space maps alike). depth/ids of its rows must be
- * empty (+inf, no triangle) on entry. */
-PN_KFN void pn_band(const pn_kview *v, PN_CONST float *tris, PN_CONST uint32_t *rows, uint32_t tri_count, uint32_t band,
+/* Chunk of the band walk (pn_raster.h): the rows its triangles may cover, in whichever view
+ * the rows pass before it set up. */
+PN_KFN void pn_e_raster_chunks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t c)
+{
+    PN_POOL(uint32_t, chunks)[c] =
+        pn_raster_chunk(PN_POOL(const uint32_t, rows), PN_POOL(const uint32_t, index), K->raster_tris, c);
+}
+
+/* Band `band` of PN_RASTER_BAND rows of view v: owns its pixels and walks the triangles
+ * whose chunks meet it (the G-buffer and the light-space maps alike). depth/ids of its rows
+ * must be empty (+inf, no triangle) on entry. */
+PN_KFN void pn_band(const pn_kview *v, PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band,
                     PN_GLOBAL float *depth, PN_GLOBAL uint32_t *ids)
 {
     uint32_t y0 = band * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND - 1u;
     if (y1 >= v->height) y1 = v->height - 1u;
-    pn_raster_band(v, tris, rows, tri_count, y0, y1, depth, ids);
+    pn_raster_band(v, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows), PN_POOL(const uint32_t, chunks),
+                   PN_POOL(const uint32_t, index), K->raster_tris, y0, y1, depth, ids);
 }
 
 /* Band of the G-buffer: its rows cleared, rasterized, then resolved (position, normal),
@@ -89,7 +98,7 @@ PN_KFN void pn_e_raster_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
             depth[(size_t)y * W + x] = PN_KINF;
             ids[(size_t)y * W + x] = PN_NO_PIXEL_TRIANGLE;
         }
-    pn_band(&K->view, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows), K->tri_count, band, depth, ids);
+    pn_band(&K->view, A, P, K, band, depth, ids);
     for (y = y0; y < y1; y++)
         for (x = 0; x < W; x++)
             pn_gbuffer_resolve(&K->view, PN_POOL(const float, tris), x, y, depth, ids, PN_POOL(float, pos),
@@ -253,8 +262,7 @@ PN_KFN void pn_e_lmap_clear(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
 /* Band of map rows: the G-buffer's rasterizer on the light view. */
 PN_KFN void pn_e_lmap_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
 {
-    pn_band(&K->lview, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows), K->tri_count, band,
-            PN_POOL(float, lmap_depth), PN_POOL(uint32_t, lmap_id));
+    pn_band(&K->lview, A, P, K, band, PN_POOL(float, lmap_depth), PN_POOL(uint32_t, lmap_id));
 }
 
 /* Triangle: conservative rasterization when thin. */
@@ -342,7 +350,8 @@ PN_KFN void pn_e_srt_exact(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kp
 /* Band of texel rows: every fragment's slice bits. */
 PN_KFN void pn_e_occ_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
 {
-    pn_occ_band(&K->lview, &K->occ, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows), K->tri_count, band,
+    pn_occ_band(&K->lview, &K->occ, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows),
+                PN_POOL(const uint32_t, chunks), PN_POOL(const uint32_t, index), K->raster_tris, band,
                 PN_POOL(uint32_t, occ_bits), PN_POOL(uint32_t, occ_words));
 }
 
@@ -429,7 +438,8 @@ PN_KFN void pn_e_occ_finish(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
 PN_KFN void pn_e_mc_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
 {
     pn_mc_band(&K->lview, &K->mc, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags),
-               PN_POOL(const uint32_t, rows), K->tri_count, band, PN_POOL(float, mc_nb));
+               PN_POOL(const uint32_t, rows), PN_POOL(const uint32_t, chunks), PN_POOL(const uint32_t, index),
+               K->raster_tris, band, PN_POOL(float, mc_nb));
 }
 
 /* Row of N-buffer level K->mc.level. */
@@ -665,6 +675,7 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
 
 #define PN_PASSES(X)                                \
     X(RASTER_ROWS, raster_rows, 64, 4096)           \
+    X(RASTER_CHUNKS, raster_chunks, 64, 1024)       \
     X(RASTER_BAND, raster_band, 1, 1)               \
     PN_PASSES_REFERENCE(X)                          \
     PN_PASSES_RAYTRACE(X)                           \

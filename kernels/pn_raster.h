@@ -212,6 +212,57 @@ PN_KFN uint32_t pn_raster_rows(const pn_kview *v, PN_CONST float *tris, PN_CONST
     return (uint32_t)y0 | ((uint32_t)y1 << 16);
 }
 
+/* The band walk. A band of rows looks at the triangles that may cover them, not at every
+ * triangle: the walk goes through the BVH's leaf order (`index`, its n entries: every
+ * triangle that is not degenerate, which are the only ones pn_raster_rows draws, grouped in
+ * space by the build) in chunks of PN_RASTER_CHUNK entries, and skips a chunk whose rows,
+ * the union of its triangles' (pn_raster_chunk, one item per chunk after the rows pass),
+ * miss the band. Every rasterizer here combines fragments in a way that does not depend
+ * on their order (nearest depth with ties to the smaller id, OR of bits, min and max), so
+ * this order gives the bytes that id order gives. */
+PN_KFN uint32_t pn_raster_chunk(PN_CONST uint32_t *rows, PN_CONST uint32_t *index, uint32_t n, uint32_t c)
+{
+    uint32_t i = c * PN_RASTER_CHUNK, e = i + PN_RASTER_CHUNK, lo = 0xFFFFu, hi = 0u;
+    if (e > n) e = n;
+    for (; i < e; i++) {
+        uint32_t r = rows[index[i]];
+        if (r == PN_RASTER_EMPTY) continue;
+        lo = pn_kminu(lo, r & 0xFFFFu);
+        hi = pn_kmaxu(hi, r >> 16);
+    }
+    return lo > hi ? PN_RASTER_EMPTY : lo | (hi << 16);
+}
+
+/* The walk's place: the next chunk, and the entries [i, end) left of the current one. */
+typedef struct pn_band_walk {
+    uint32_t chunk, i, end;
+} pn_band_walk;
+
+PN_KFN void pn_band_walk_begin(pn_band_walk *w)
+{
+    w->chunk = 0u;
+    w->i = 0u;
+    w->end = 0u;
+}
+
+/* The next triangle *t of the chunks whose rows meet [row0, row1]; 0 at the end. The
+ * triangle's own rows may still miss the band (pn_raster_tri_setup tests them). */
+PN_KFN_HOT int pn_band_next(PN_CONST uint32_t *chunks, PN_CONST uint32_t *index, uint32_t n, uint32_t row0,
+                            uint32_t row1, pn_band_walk *w, uint32_t *t)
+{
+    uint32_t nc = (n + PN_RASTER_CHUNK - 1u) / PN_RASTER_CHUNK;
+    while (w->i >= w->end) {
+        uint32_t r;
+        if (w->chunk >= nc) return 0;
+        r = chunks[w->chunk++];
+        if (r == PN_RASTER_EMPTY || (r & 0xFFFFu) > row1 || (r >> 16) < row0) continue;
+        w->i = (w->chunk - 1u) * PN_RASTER_CHUNK;
+        w->end = pn_kminu(w->i + PN_RASTER_CHUNK, n);
+    }
+    *t = index[w->i++];
+    return 1;
+}
+
 /* One triangle set up for the rows [row0, row1] of view v: its projected polygon and edge
  * functions, the pixel columns and rows it may cover there, and its plane (n, n.(A - eye))
  * for the depth along a pixel's primary ray. The one set-up of every rasterizer here (the
@@ -273,13 +324,16 @@ PN_KFN_HOT int pn_raster_tri_hit(const pn_kview *v, const pn_raster_tri *rt, uin
     return *t > 0.0f;
 }
 
-/* Rasterizes every triangle into rows [row0, row1] of the G-buffer. depth and tri_id of
+/* Rasterizes every triangle (the band walk's) into rows [row0, row1] of the G-buffer. depth and tri_id of
  * those rows must hold +inf / PN_NO_TRIANGLE on entry. */
-PN_KFN void pn_raster_band(const pn_kview *v, PN_CONST float *tris, PN_CONST uint32_t *rows, uint32_t tri_count, uint32_t row0,
-                           uint32_t row1, PN_GLOBAL float *depth, PN_GLOBAL uint32_t *tri_id)
+PN_KFN void pn_raster_band(const pn_kview *v, PN_CONST float *tris, PN_CONST uint32_t *rows, PN_CONST uint32_t *chunks,
+                           PN_CONST uint32_t *index, uint32_t n, uint32_t row0, uint32_t row1, PN_GLOBAL float *depth,
+                           PN_GLOBAL uint32_t *tri_id)
 {
+    pn_band_walk w;
     uint32_t t;
-    for (t = 0; t < tri_count; t++) {
+    pn_band_walk_begin(&w);
+    while (pn_band_next(chunks, index, n, row0, row1, &w, &t)) {
         pn_raster_tri rt;
         uint32_t y;
         if (!pn_raster_tri_setup(v, tris, rows, t, row0, row1, &rt)) continue;

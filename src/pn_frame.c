@@ -293,13 +293,20 @@ static pn_status pn_scene_to_device(pn_frame_state *fs)
     return PN_OK;
 }
 
+pn_status pn_raster_setup(pn_frame_state *fs, uint32_t rows_pass)
+{
+    pn_status st = pn_dev_run(fs, rows_pass, fs->ctx->tri_count);
+    if (st != PN_OK) return st;
+    return pn_dev_run(fs, PN_K_RASTER_CHUNKS, (fs->K.raster_tris + PN_RASTER_CHUNK - 1u) / PN_RASTER_CHUNK);
+}
+
 /* Primary visibility: per-triangle row ranges, then bands (clear, raster, resolve). */
 static pn_status pn_gbuffer(pn_frame_state *fs)
 {
     uint32_t npix = fs->width * fs->height;
     size_t px = npix;
     pn_status st;
-    if ((st = pn_scene_to_device(fs)) != PN_OK || (st = pn_dev_run(fs, PN_K_RASTER_ROWS, fs->ctx->tri_count)) != PN_OK ||
+    if ((st = pn_scene_to_device(fs)) != PN_OK || (st = pn_raster_setup(fs, PN_K_RASTER_ROWS)) != PN_OK ||
         (st = pn_dev_run(fs, PN_K_RASTER_BAND, (fs->height + PN_RASTER_BAND - 1u) / PN_RASTER_BAND)) != PN_OK ||
         (st = pn_dev_to_host(fs, fs->depth, px * sizeof(float))) != PN_OK ||
         (st = pn_dev_to_host(fs, fs->tri_id, px * sizeof(uint32_t))) != PN_OK ||
@@ -373,6 +380,7 @@ static void pn_frame_pool_offsets(pn_frame_state *fs)
     P->vis = pn_dev_off(ctx, fs->vis);
     P->rgba = pn_dev_off(ctx, fs->rgba);
     P->rows = pn_dev_off(ctx, fs->rows);
+    P->chunks = pn_dev_off(ctx, fs->chunks);
     P->counters = pn_dev_off(ctx, fs->counters);
 }
 
@@ -398,6 +406,7 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     fs.K.shade.background = (uint32_t)opt->background[0] | ((uint32_t)opt->background[1] << 8) |
                             ((uint32_t)opt->background[2] << 16) | ((uint32_t)opt->background[3] << 24);
     fs.K.tri_count = ctx->tri_count;
+    fs.K.raster_tris = ctx->bvh_tris;
     fs.K.exact_stats = opt->exact_stats;
     fs.algo = (uint32_t)opt->algo;
     fs.width = opt->width;
@@ -446,6 +455,8 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
         !(fs.vis = (float *)pn_frame_alloc(ctx, px, sizeof(float), "visibility")) ||
         !(fs.rgba = (uint8_t *)pn_frame_alloc(ctx, px, 4u, "rgba")) ||
         !(fs.rows = (uint32_t *)pn_frame_alloc(ctx, ctx->tri_count, sizeof(uint32_t), "raster rows")) ||
+        !(fs.chunks = (uint32_t *)pn_frame_alloc(ctx, (ctx->tri_count + PN_RASTER_CHUNK - 1u) / PN_RASTER_CHUNK,
+                                                 sizeof(uint32_t), "raster chunks")) ||
         !(fs.counters = pn_frame_alloc(ctx, opt->height, sizeof(pn_shadow_counters), "shadow counters")))
         return PN_E_POOL_EXHAUSTED;
     pn_frame_pool_offsets(&fs);

@@ -51,6 +51,7 @@ typedef struct pn_frame_state {
     float *vis;
     uint8_t *rgba;      /* 4 bytes per pixel, r g b a */
     uint32_t *rows;     /* rasterizer set-up: pixel-row range per triangle */
+    uint32_t *chunks;   /* the band walk's: pixel-row range per chunk of the BVH's leaf order */
     void *counters;     /* per-row shadow counters (pn_shadow_counters[height]) */
     uint64_t candidates, blocking, nodes;
     uint32_t lit, overflow;
@@ -181,6 +182,9 @@ pn_status pn_bvh_build(pn_context *ctx);
  * the G-buffer, the chosen algorithm's sequence and shading on the port. */
 pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *camera,
                          const pn_light *light, const pn_frame_options *opt, pn_frame *out);
+/* A rasterizer's set-up for the view of `rows_pass` (PN_K_RASTER_ROWS, PN_K_LMAP_ROWS):
+ * every triangle's rows, then the band walk's chunks (kernels/pn_raster.h). */
+pn_status pn_raster_setup(pn_frame_state *fs, uint32_t rows_pass);
 
 /* pn_math.c */
 int pn_finite(float v);

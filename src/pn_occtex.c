@@ -144,7 +144,7 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
 
     /* Slicing. */
     if ((st = pn_dev_fill(fs, s.words, PN_OCC_WORDS, 0u)) != PN_OK ||
-        (st = pn_dev_run(fs, PN_K_LMAP_ROWS, ctx->tri_count)) != PN_OK ||
+        (st = pn_raster_setup(fs, PN_K_LMAP_ROWS)) != PN_OK ||
         (st = pn_dev_run(fs, PN_K_OCC_BAND, (res + PN_RASTER_BAND - 1u) / PN_RASTER_BAND)) != PN_OK ||
         (st = pn_dev_to_host(fs, s.words, PN_OCC_WORDS * 4u)) != PN_OK)
         return st;

@@ -104,7 +104,7 @@ pn_status pn_srt_frame(pn_frame_state *fs)
     pn_srt_window(fs, &s, res);
 
     /* The shadow map: the G-buffer's rasterizer on the light view. */
-    if ((st = pn_dev_run(fs, PN_K_LMAP_CLEAR, res * res)) != PN_OK || (st = pn_dev_run(fs, PN_K_LMAP_ROWS, T)) != PN_OK ||
+    if ((st = pn_dev_run(fs, PN_K_LMAP_CLEAR, res * res)) != PN_OK || (st = pn_raster_setup(fs, PN_K_LMAP_ROWS)) != PN_OK ||
         (st = pn_dev_run(fs, PN_K_LMAP_BAND, (res + PN_RASTER_BAND - 1u) / PN_RASTER_BAND)) != PN_OK ||
         (st = pn_dev_fill(fs, s.words, 4u, 0u)) != PN_OK)
         return st;

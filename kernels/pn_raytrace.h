@@ -490,23 +490,18 @@ PN_KFN_HOT uint32_t pn_ray_walk_next(pn_ray_walk *W, const pn_ray *R, uint32_t o
     return PN_RAY_NONE;
 }
 
-/* 1 if some triangle other than `own` blocks the ray's sample. */
-PN_KFN uint32_t pn_raytrace_sample(const pn_ray_origin *X, const pn_ray *R, uint32_t own, PN_CONST float *tris,
-                                   PN_CONST pn_kbvh_node *nodes, PN_CONST uint32_t *tri_index, const pn_klight *L,
-                                   pn_shadow_counters *cnt)
-{
-    pn_ray_walk W;
-    pn_ray_walk_begin(&W, X, R, nodes);
-    return pn_ray_walk_next(&W, R, own, tris, nodes, tri_index, L, cnt) != PN_RAY_NONE;
-}
-
 /* Visibility of one G-buffer pixel (P, unit geometric normal nrm, own triangle id).
- * Counters: candidates = ray-triangle tests, blocking = blocked rays. */
+ * Counters: candidates = ray-triangle tests, blocking = blocked rays.
+ *
+ * Neighbouring samples are mostly blocked by the same triangle, so a ray first tests the
+ * last triangle the walk found blocking one (a shadow cache: pn_ray_tri is the walk's own
+ * exact test, with the scene box's bound), and walks only when that one does not block it.
+ * A ray is blocked when some triangle blocks it, whichever is found: the same bits. */
 PN_KFN float pn_raytrace_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris,
                                PN_CONST pn_kbvh_node *nodes, PN_CONST uint32_t *tri_index,
                                const pn_klight *L, pn_shadow_counters *cnt)
 {
-    uint32_t k = L->k, blocked = 0;
+    uint32_t k = L->k, blocked = 0, last = PN_RAY_NONE;
     int32_t i, j;
     pn_horizon H;
     pn_ray_origin X;
@@ -531,7 +526,24 @@ PN_KFN float pn_raytrace_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float 
                 continue;
             }
             pn_ray_set(&X, pn_v3_add(row, pn_v3_scale(U, av[i])), av[i], av[j], i, j, &R);
-            blocked += pn_raytrace_sample(&X, &R, own, tris, nodes, tri_index, L, cnt);
+            if (last != PN_RAY_NONE) {
+                cnt->candidates++;
+                if (pn_ray_tri(&R, L, tris + (size_t)last * 9u, R.ebr)) {
+                    cnt->blocking++;
+                    blocked++;
+                    continue;
+                }
+            }
+            {
+                pn_ray_walk W;
+                uint32_t t;
+                pn_ray_walk_begin(&W, &X, &R, nodes);
+                t = pn_ray_walk_next(&W, &R, own, tris, nodes, tri_index, L, cnt);
+                if (t != PN_RAY_NONE) {
+                    last = t;
+                    blocked++;
+                }
+            }
         }
     }
     /* The same quotient as pn_mask_visibility(). */

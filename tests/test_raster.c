@@ -213,11 +213,87 @@ static void test_near_clip(void)
     pn_setup_free(&s);
 }
 
+/* The band walk (kernels/pn_raster.h) visits triangles in the BVH's leaf order, chunk by
+ * chunk, not in id order: the result must not depend on it. 48 copies of one quad (exact
+ * depth ties everywhere it covers) spread over the triangle list among 400 small quads
+ * elsewhere, so that the copies fall in different chunks and leaves: every pixel the quad
+ * covers goes to copy 0 (ids 0 and 1), the smallest ids, and every other pixel to the
+ * small quad the ray caster finds. */
+static void test_band_walk_ties(void)
+{
+    enum { COPIES = 48, SMALL = 400 };
+    uint32_t nt = 2u * (COPIES + SMALL), nv = 4u * (COPIES + SMALL), q, c = 0, s = 0, x, y, covered = 0, bad = 0;
+    unsigned char is_big[COPIES + SMALL];
+    pn_mesh m;
+    pn_camera cam = {{0.0f, 0.0f, 4.0f}, {0, 0, 0}, {0, 1, 0}, 50.0f};
+    pn_host host;
+    pn_frame_options opt;
+    pn_frame fr;
+    pn_light light = {{0, 0, 10}, {0, 0, 0}, {0, 0, 0}};
+    char err[256];
+    memset(&m, 0, sizeof(m));
+    m.positions = (float *)calloc(3u * nv, sizeof(float));
+    m.indices = (uint32_t *)calloc(3u * nt, sizeof(uint32_t));
+    REQUIRE(m.positions && m.indices);
+    m.vertex_count = nv;
+    m.triangle_count = nt;
+    for (q = 0; q < COPIES + SMALL; q++) {
+        /* Quad q: a copy of the big one at every tenth position (and the rest after the
+         * small ones), else a small one. */
+        float *p = m.positions + 12u * q;
+        uint32_t *ix = m.indices + 6u * q, v;
+        int big = (q % 10u == 0u && c < COPIES) || s >= SMALL;
+        float x0, y0, w;
+        is_big[q] = (unsigned char)big;
+        if (big) {
+            x0 = -1.0f;
+            y0 = -1.0f;
+            w = 1.25f;
+            c++;
+        } else {
+            x0 = 0.5f + 0.05f * (float)(s % 20u);
+            y0 = -1.5f + 0.15f * (float)(s / 20u);
+            w = 0.03f;
+            s++;
+        }
+        p[0] = x0, p[1] = y0, p[2] = 0.0f;
+        p[3] = x0 + w, p[4] = y0, p[5] = 0.0f;
+        p[6] = x0 + w, p[7] = y0 + w, p[8] = 0.0f;
+        p[9] = x0, p[10] = y0 + w, p[11] = 0.0f;
+        v = 4u * q;
+        ix[0] = v, ix[1] = v + 1u, ix[2] = v + 2u;
+        ix[3] = v, ix[4] = v + 2u, ix[5] = v + 3u;
+    }
+    REQUIRE(c == COPIES && s == SMALL);
+    REQUIRE(pn_host_open(&host, nt, 96, 72, 2, err, sizeof(err)) == 0);
+    REQUIRE(pn_scene_set(host.ctx, m.positions, m.vertex_count, m.indices, m.triangle_count) == PN_OK);
+    pn_frame_options_default(&opt);
+    opt.width = 96;
+    opt.height = 72;
+    opt.k = 4;
+    REQUIRE(pn_render(host.ctx, &cam, &light, &opt, &fr) == PN_OK);
+    for (y = 0; y < opt.height; y++)
+        for (x = 0; x < opt.width; x++) {
+            uint32_t id = fr.tri_id[(size_t)y * opt.width + x];
+            if (id == PN_NO_TRIANGLE) continue;
+            if (is_big[id / 2u]) {
+                covered++;
+                bad += id > 1u;
+            }
+        }
+    fprintf(stderr, "band walk ties: %u pixels on the quad, %u not given to copy 0\n", covered, bad);
+    CHECK(covered > 500u);
+    CHECK(bad == 0u);
+    pn_host_close(&host);
+    pn_mesh_free(&m);
+}
+
 int main(void)
 {
     RUN(test_spot);
     RUN(test_spheres);
     RUN(test_closed_sphere);
     RUN(test_near_clip);
+    RUN(test_band_walk_ties);
     return pn_test_summary();
 }

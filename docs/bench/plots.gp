@@ -20,14 +20,23 @@ plot 'data/tradeoff_square.dat' every ::0::0 using 2:3 with points pt 7 ps 1.6 l
      'data/tradeoff_square.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_square.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
      'data/tradeoff_square.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
-     'data/tradeoff_square.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_square.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
-     'data/tradeoff_square.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
-     'data/tradeoff_square.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
-     'data/tradeoff_square.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
-     'data/tradeoff_square.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
-     'data/tradeoff_square.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
-     'data/tradeoff_square.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
+     'data/tradeoff_square.dat' every ::8::8 using 2:3 with points pt 15 ps 1.6 lc 9 title 'MCSM default (2 layers, hierarchical, 3x3 rays, default blur)', \
+     'data/tradeoff_square.dat' every ::9::9 using 2:3 with points pt 15 ps 1.6 lc 10 title 'MCSM 1 layer, linear', \
+     'data/tradeoff_square.dat' every ::10::10 using 2:3 with points pt 15 ps 1.6 lc 11 title 'MCSM 2 layers, linear/binary', \
+     'data/tradeoff_square.dat' every ::11::11 using 2:3 with points pt 15 ps 1.6 lc 12 title 'MCSM 3 layers, linear/binary', \
+     'data/tradeoff_square.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
+     'data/tradeoff_square.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
+     'data/tradeoff_square.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
+     'data/tradeoff_square.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
+     'data/tradeoff_square.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
+     'data/tradeoff_square.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_square.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
+     'data/tradeoff_square.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
+     'data/tradeoff_square.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
+     'data/tradeoff_square.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
+     'data/tradeoff_square.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
+     'data/tradeoff_square.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
+     'data/tradeoff_square.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -52,14 +61,23 @@ plot 'data/tradeoff_spheres.dat' every ::0::0 using 2:3 with points pt 7 ps 1.6 
      'data/tradeoff_spheres.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_spheres.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
      'data/tradeoff_spheres.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
-     'data/tradeoff_spheres.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_spheres.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
-     'data/tradeoff_spheres.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
-     'data/tradeoff_spheres.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
-     'data/tradeoff_spheres.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
-     'data/tradeoff_spheres.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
-     'data/tradeoff_spheres.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
-     'data/tradeoff_spheres.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
+     'data/tradeoff_spheres.dat' every ::8::8 using 2:3 with points pt 15 ps 1.6 lc 9 title 'MCSM default (2 layers, hierarchical, 3x3 rays, default blur)', \
+     'data/tradeoff_spheres.dat' every ::9::9 using 2:3 with points pt 15 ps 1.6 lc 10 title 'MCSM 1 layer, linear', \
+     'data/tradeoff_spheres.dat' every ::10::10 using 2:3 with points pt 15 ps 1.6 lc 11 title 'MCSM 2 layers, linear/binary', \
+     'data/tradeoff_spheres.dat' every ::11::11 using 2:3 with points pt 15 ps 1.6 lc 12 title 'MCSM 3 layers, linear/binary', \
+     'data/tradeoff_spheres.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
+     'data/tradeoff_spheres.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
+     'data/tradeoff_spheres.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
+     'data/tradeoff_spheres.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
+     'data/tradeoff_spheres.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
+     'data/tradeoff_spheres.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_spheres.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
+     'data/tradeoff_spheres.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
+     'data/tradeoff_spheres.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
+     'data/tradeoff_spheres.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
+     'data/tradeoff_spheres.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
+     'data/tradeoff_spheres.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
+     'data/tradeoff_spheres.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -84,14 +102,23 @@ plot 'data/tradeoff_elongated-cube.dat' every ::0::0 using 2:3 with points pt 7 
      'data/tradeoff_elongated-cube.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_elongated-cube.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
      'data/tradeoff_elongated-cube.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
-     'data/tradeoff_elongated-cube.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_elongated-cube.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
-     'data/tradeoff_elongated-cube.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
-     'data/tradeoff_elongated-cube.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
-     'data/tradeoff_elongated-cube.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
-     'data/tradeoff_elongated-cube.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
-     'data/tradeoff_elongated-cube.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
-     'data/tradeoff_elongated-cube.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
+     'data/tradeoff_elongated-cube.dat' every ::8::8 using 2:3 with points pt 15 ps 1.6 lc 9 title 'MCSM default (2 layers, hierarchical, 3x3 rays, default blur)', \
+     'data/tradeoff_elongated-cube.dat' every ::9::9 using 2:3 with points pt 15 ps 1.6 lc 10 title 'MCSM 1 layer, linear', \
+     'data/tradeoff_elongated-cube.dat' every ::10::10 using 2:3 with points pt 15 ps 1.6 lc 11 title 'MCSM 2 layers, linear/binary', \
+     'data/tradeoff_elongated-cube.dat' every ::11::11 using 2:3 with points pt 15 ps 1.6 lc 12 title 'MCSM 3 layers, linear/binary', \
+     'data/tradeoff_elongated-cube.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
+     'data/tradeoff_elongated-cube.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
+     'data/tradeoff_elongated-cube.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
+     'data/tradeoff_elongated-cube.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
+     'data/tradeoff_elongated-cube.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
+     'data/tradeoff_elongated-cube.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_elongated-cube.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
+     'data/tradeoff_elongated-cube.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
+     'data/tradeoff_elongated-cube.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
+     'data/tradeoff_elongated-cube.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
+     'data/tradeoff_elongated-cube.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
+     'data/tradeoff_elongated-cube.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
+     'data/tradeoff_elongated-cube.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -116,14 +143,23 @@ plot 'data/tradeoff_thin.dat' every ::0::0 using 2:3 with points pt 7 ps 1.6 lc 
      'data/tradeoff_thin.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_thin.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
      'data/tradeoff_thin.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
-     'data/tradeoff_thin.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_thin.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
-     'data/tradeoff_thin.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
-     'data/tradeoff_thin.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
-     'data/tradeoff_thin.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
-     'data/tradeoff_thin.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
-     'data/tradeoff_thin.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
-     'data/tradeoff_thin.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
+     'data/tradeoff_thin.dat' every ::8::8 using 2:3 with points pt 15 ps 1.6 lc 9 title 'MCSM default (2 layers, hierarchical, 3x3 rays, default blur)', \
+     'data/tradeoff_thin.dat' every ::9::9 using 2:3 with points pt 15 ps 1.6 lc 10 title 'MCSM 1 layer, linear', \
+     'data/tradeoff_thin.dat' every ::10::10 using 2:3 with points pt 15 ps 1.6 lc 11 title 'MCSM 2 layers, linear/binary', \
+     'data/tradeoff_thin.dat' every ::11::11 using 2:3 with points pt 15 ps 1.6 lc 12 title 'MCSM 3 layers, linear/binary', \
+     'data/tradeoff_thin.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
+     'data/tradeoff_thin.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
+     'data/tradeoff_thin.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
+     'data/tradeoff_thin.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
+     'data/tradeoff_thin.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
+     'data/tradeoff_thin.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_thin.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
+     'data/tradeoff_thin.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
+     'data/tradeoff_thin.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
+     'data/tradeoff_thin.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
+     'data/tradeoff_thin.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
+     'data/tradeoff_thin.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
+     'data/tradeoff_thin.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -148,46 +184,63 @@ plot 'data/tradeoff_room.dat' every ::0::0 using 2:3 with points pt 7 ps 1.6 lc 
      'data/tradeoff_room.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_room.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
      'data/tradeoff_room.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
-     'data/tradeoff_room.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_room.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
-     'data/tradeoff_room.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
-     'data/tradeoff_room.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
-     'data/tradeoff_room.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
-     'data/tradeoff_room.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
-     'data/tradeoff_room.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
-     'data/tradeoff_room.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
+     'data/tradeoff_room.dat' every ::8::8 using 2:3 with points pt 15 ps 1.6 lc 9 title 'MCSM default (2 layers, hierarchical, 3x3 rays, default blur)', \
+     'data/tradeoff_room.dat' every ::9::9 using 2:3 with points pt 15 ps 1.6 lc 10 title 'MCSM 1 layer, linear', \
+     'data/tradeoff_room.dat' every ::10::10 using 2:3 with points pt 15 ps 1.6 lc 11 title 'MCSM 2 layers, linear/binary', \
+     'data/tradeoff_room.dat' every ::11::11 using 2:3 with points pt 15 ps 1.6 lc 12 title 'MCSM 3 layers, linear/binary', \
+     'data/tradeoff_room.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
+     'data/tradeoff_room.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
+     'data/tradeoff_room.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
+     'data/tradeoff_room.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
+     'data/tradeoff_room.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
+     'data/tradeoff_room.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_room.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
+     'data/tradeoff_room.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
+     'data/tradeoff_room.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
+     'data/tradeoff_room.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
+     'data/tradeoff_room.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
+     'data/tradeoff_room.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
+     'data/tradeoff_room.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
 reset
 
 # gallery: cad_infineon_easypim2b
-set terminal pngcairo noenhanced size 2880,262 font 'sans,9'
+set terminal pngcairo noenhanced size 3840,262 font 'sans,9'
 set output 'gallery/cad_infineon_easypim2b.png'
-set multiplot layout 1,12 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
+set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 397 ms"
+set title "reference, 302 ms"
 plot 'work/gallery/cad_infineon_easypim2b/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/cad_infineon_easypim2b/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 423 ms"
+set title "GEARS, 405 ms"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2585 ms"
+set title "raytrace, 1563 ms"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 621 ms"
+set title "SRT, 463 ms"
 plot 'work/gallery/cad_infineon_easypim2b/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 160 ms"
+set title "occtex, 113 ms"
 plot 'work/gallery/cad_infineon_easypim2b/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/occtex error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1400 ms"
+set title "MCSM, 50.2 ms"
+plot 'work/gallery/cad_infineon_easypim2b/MCSM.png' binary filetype=png with rgbimage
+set title "MCSM |error| x4 (differs)"
+plot 'work/gallery/cad_infineon_easypim2b/MCSM error.png' binary filetype=png with rgbimage
+set title "wedges, 160 ms"
+plot 'work/gallery/cad_infineon_easypim2b/wedges.png' binary filetype=png with rgbimage
+set title "wedges |error| x4 (differs)"
+plot 'work/gallery/cad_infineon_easypim2b/wedges error.png' binary filetype=png with rgbimage
+set title "Embree visibility, 1207 ms"
 plot 'work/gallery/cad_infineon_easypim2b/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.4425% px)"
 plot 'work/gallery/cad_infineon_easypim2b/embree_error.png' binary filetype=png with rgbimage
@@ -215,46 +268,63 @@ plot 'data/tradeoff_cad_infineon_easypim2b.dat' every ::0::0 using 2:3 with poin
      'data/tradeoff_cad_infineon_easypim2b.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_cad_infineon_easypim2b.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
      'data/tradeoff_cad_infineon_easypim2b.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::8::8 using 2:3 with points pt 15 ps 1.6 lc 9 title 'MCSM default (2 layers, hierarchical, 3x3 rays, default blur)', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::9::9 using 2:3 with points pt 15 ps 1.6 lc 10 title 'MCSM 1 layer, linear', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::10::10 using 2:3 with points pt 15 ps 1.6 lc 11 title 'MCSM 2 layers, linear/binary', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::11::11 using 2:3 with points pt 15 ps 1.6 lc 12 title 'MCSM 3 layers, linear/binary', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
 reset
 
 # gallery: chess_set
-set terminal pngcairo noenhanced size 2880,262 font 'sans,9'
+set terminal pngcairo noenhanced size 3840,262 font 'sans,9'
 set output 'gallery/chess_set.png'
-set multiplot layout 1,12 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
+set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 232 ms"
+set title "reference, 158 ms"
 plot 'work/gallery/chess_set/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/chess_set/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 389 ms"
+set title "GEARS, 281 ms"
 plot 'work/gallery/chess_set/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/chess_set/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2728 ms"
+set title "raytrace, 1639 ms"
 plot 'work/gallery/chess_set/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/chess_set/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 345 ms"
+set title "SRT, 251 ms"
 plot 'work/gallery/chess_set/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/chess_set/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 150 ms"
+set title "occtex, 107 ms"
 plot 'work/gallery/chess_set/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/chess_set/occtex error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1473 ms"
+set title "MCSM, 51.6 ms"
+plot 'work/gallery/chess_set/MCSM.png' binary filetype=png with rgbimage
+set title "MCSM |error| x4 (differs)"
+plot 'work/gallery/chess_set/MCSM error.png' binary filetype=png with rgbimage
+set title "wedges, 103 ms"
+plot 'work/gallery/chess_set/wedges.png' binary filetype=png with rgbimage
+set title "wedges |error| x4 (differs)"
+plot 'work/gallery/chess_set/wedges error.png' binary filetype=png with rgbimage
+set title "Embree visibility, 1280 ms"
 plot 'work/gallery/chess_set/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.2148% px)"
 plot 'work/gallery/chess_set/embree_error.png' binary filetype=png with rgbimage
@@ -282,46 +352,63 @@ plot 'data/tradeoff_chess_set.dat' every ::0::0 using 2:3 with points pt 7 ps 1.
      'data/tradeoff_chess_set.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_chess_set.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
      'data/tradeoff_chess_set.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
-     'data/tradeoff_chess_set.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_chess_set.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
-     'data/tradeoff_chess_set.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
-     'data/tradeoff_chess_set.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
-     'data/tradeoff_chess_set.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
-     'data/tradeoff_chess_set.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
-     'data/tradeoff_chess_set.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
-     'data/tradeoff_chess_set.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
+     'data/tradeoff_chess_set.dat' every ::8::8 using 2:3 with points pt 15 ps 1.6 lc 9 title 'MCSM default (2 layers, hierarchical, 3x3 rays, default blur)', \
+     'data/tradeoff_chess_set.dat' every ::9::9 using 2:3 with points pt 15 ps 1.6 lc 10 title 'MCSM 1 layer, linear', \
+     'data/tradeoff_chess_set.dat' every ::10::10 using 2:3 with points pt 15 ps 1.6 lc 11 title 'MCSM 2 layers, linear/binary', \
+     'data/tradeoff_chess_set.dat' every ::11::11 using 2:3 with points pt 15 ps 1.6 lc 12 title 'MCSM 3 layers, linear/binary', \
+     'data/tradeoff_chess_set.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
+     'data/tradeoff_chess_set.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
+     'data/tradeoff_chess_set.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
+     'data/tradeoff_chess_set.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
+     'data/tradeoff_chess_set.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
+     'data/tradeoff_chess_set.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_chess_set.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
+     'data/tradeoff_chess_set.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
+     'data/tradeoff_chess_set.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
+     'data/tradeoff_chess_set.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
+     'data/tradeoff_chess_set.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
+     'data/tradeoff_chess_set.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
+     'data/tradeoff_chess_set.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
 reset
 
 # gallery: happy_buddha_100k
-set terminal pngcairo noenhanced size 2880,262 font 'sans,9'
+set terminal pngcairo noenhanced size 3840,262 font 'sans,9'
 set output 'gallery/happy_buddha_100k.png'
-set multiplot layout 1,12 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
+set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 3475 ms"
+set title "reference, 3538 ms"
 plot 'work/gallery/happy_buddha_100k/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/happy_buddha_100k/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 6812 ms"
+set title "GEARS, 6875 ms"
 plot 'work/gallery/happy_buddha_100k/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 4793 ms"
+set title "raytrace, 4585 ms"
 plot 'work/gallery/happy_buddha_100k/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 3464 ms"
+set title "SRT, 3623 ms"
 plot 'work/gallery/happy_buddha_100k/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 161 ms"
+set title "occtex, 125 ms"
 plot 'work/gallery/happy_buddha_100k/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/occtex error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 2075 ms"
+set title "MCSM, 92.2 ms"
+plot 'work/gallery/happy_buddha_100k/MCSM.png' binary filetype=png with rgbimage
+set title "MCSM |error| x4 (differs)"
+plot 'work/gallery/happy_buddha_100k/MCSM error.png' binary filetype=png with rgbimage
+set title "wedges, 1130 ms"
+plot 'work/gallery/happy_buddha_100k/wedges.png' binary filetype=png with rgbimage
+set title "wedges |error| x4 (differs)"
+plot 'work/gallery/happy_buddha_100k/wedges error.png' binary filetype=png with rgbimage
+set title "Embree visibility, 2018 ms"
 plot 'work/gallery/happy_buddha_100k/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8091% px)"
 plot 'work/gallery/happy_buddha_100k/embree_error.png' binary filetype=png with rgbimage
@@ -349,46 +436,63 @@ plot 'data/tradeoff_happy_buddha_100k.dat' every ::0::0 using 2:3 with points pt
      'data/tradeoff_happy_buddha_100k.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_happy_buddha_100k.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
      'data/tradeoff_happy_buddha_100k.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
+     'data/tradeoff_happy_buddha_100k.dat' every ::8::8 using 2:3 with points pt 15 ps 1.6 lc 9 title 'MCSM default (2 layers, hierarchical, 3x3 rays, default blur)', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::9::9 using 2:3 with points pt 15 ps 1.6 lc 10 title 'MCSM 1 layer, linear', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::10::10 using 2:3 with points pt 15 ps 1.6 lc 11 title 'MCSM 2 layers, linear/binary', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::11::11 using 2:3 with points pt 15 ps 1.6 lc 12 title 'MCSM 3 layers, linear/binary', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
 reset
 
 # gallery: spot
-set terminal pngcairo noenhanced size 2880,262 font 'sans,9'
+set terminal pngcairo noenhanced size 3840,262 font 'sans,9'
 set output 'gallery/spot.png'
-set multiplot layout 1,12 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
+set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 519 ms"
+set title "reference, 353 ms"
 plot 'work/gallery/spot/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/spot/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 570 ms"
+set title "GEARS, 406 ms"
 plot 'work/gallery/spot/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/spot/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 3118 ms"
+set title "raytrace, 1795 ms"
 plot 'work/gallery/spot/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/spot/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 561 ms"
+set title "SRT, 384 ms"
 plot 'work/gallery/spot/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/spot/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 130 ms"
+set title "occtex, 87.3 ms"
 plot 'work/gallery/spot/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/spot/occtex error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1706 ms"
+set title "MCSM, 55.4 ms"
+plot 'work/gallery/spot/MCSM.png' binary filetype=png with rgbimage
+set title "MCSM |error| x4 (differs)"
+plot 'work/gallery/spot/MCSM error.png' binary filetype=png with rgbimage
+set title "wedges, 53.2 ms"
+plot 'work/gallery/spot/wedges.png' binary filetype=png with rgbimage
+set title "wedges |error| x4 (differs)"
+plot 'work/gallery/spot/wedges error.png' binary filetype=png with rgbimage
+set title "Embree visibility, 1375 ms"
 plot 'work/gallery/spot/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (1.2997% px)"
 plot 'work/gallery/spot/embree_error.png' binary filetype=png with rgbimage
@@ -416,46 +520,63 @@ plot 'data/tradeoff_spot.dat' every ::0::0 using 2:3 with points pt 7 ps 1.6 lc 
      'data/tradeoff_spot.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_spot.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
      'data/tradeoff_spot.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
-     'data/tradeoff_spot.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_spot.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
-     'data/tradeoff_spot.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
-     'data/tradeoff_spot.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
-     'data/tradeoff_spot.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
-     'data/tradeoff_spot.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
-     'data/tradeoff_spot.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
-     'data/tradeoff_spot.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
+     'data/tradeoff_spot.dat' every ::8::8 using 2:3 with points pt 15 ps 1.6 lc 9 title 'MCSM default (2 layers, hierarchical, 3x3 rays, default blur)', \
+     'data/tradeoff_spot.dat' every ::9::9 using 2:3 with points pt 15 ps 1.6 lc 10 title 'MCSM 1 layer, linear', \
+     'data/tradeoff_spot.dat' every ::10::10 using 2:3 with points pt 15 ps 1.6 lc 11 title 'MCSM 2 layers, linear/binary', \
+     'data/tradeoff_spot.dat' every ::11::11 using 2:3 with points pt 15 ps 1.6 lc 12 title 'MCSM 3 layers, linear/binary', \
+     'data/tradeoff_spot.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
+     'data/tradeoff_spot.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
+     'data/tradeoff_spot.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
+     'data/tradeoff_spot.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
+     'data/tradeoff_spot.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
+     'data/tradeoff_spot.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_spot.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
+     'data/tradeoff_spot.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
+     'data/tradeoff_spot.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
+     'data/tradeoff_spot.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
+     'data/tradeoff_spot.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
+     'data/tradeoff_spot.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
+     'data/tradeoff_spot.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
 reset
 
 # gallery: stanford_bunny
-set terminal pngcairo noenhanced size 2880,262 font 'sans,9'
+set terminal pngcairo noenhanced size 3840,262 font 'sans,9'
 set output 'gallery/stanford_bunny.png'
-set multiplot layout 1,12 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
+set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 1993 ms"
+set title "reference, 1286 ms"
 plot 'work/gallery/stanford_bunny/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_bunny/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 3194 ms"
+set title "GEARS, 1958 ms"
 plot 'work/gallery/stanford_bunny/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 4795 ms"
+set title "raytrace, 2663 ms"
 plot 'work/gallery/stanford_bunny/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 2066 ms"
+set title "SRT, 1257 ms"
 plot 'work/gallery/stanford_bunny/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 161 ms"
+set title "occtex, 90.7 ms"
 plot 'work/gallery/stanford_bunny/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/occtex error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 2175 ms"
+set title "MCSM, 65.7 ms"
+plot 'work/gallery/stanford_bunny/MCSM.png' binary filetype=png with rgbimage
+set title "MCSM |error| x4 (differs)"
+plot 'work/gallery/stanford_bunny/MCSM error.png' binary filetype=png with rgbimage
+set title "wedges, 141 ms"
+plot 'work/gallery/stanford_bunny/wedges.png' binary filetype=png with rgbimage
+set title "wedges |error| x4 (differs)"
+plot 'work/gallery/stanford_bunny/wedges error.png' binary filetype=png with rgbimage
+set title "Embree visibility, 1706 ms"
 plot 'work/gallery/stanford_bunny/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.7610% px)"
 plot 'work/gallery/stanford_bunny/embree_error.png' binary filetype=png with rgbimage
@@ -483,46 +604,63 @@ plot 'data/tradeoff_stanford_bunny.dat' every ::0::0 using 2:3 with points pt 7 
      'data/tradeoff_stanford_bunny.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_stanford_bunny.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
      'data/tradeoff_stanford_bunny.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
-     'data/tradeoff_stanford_bunny.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_stanford_bunny.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
-     'data/tradeoff_stanford_bunny.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
-     'data/tradeoff_stanford_bunny.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
-     'data/tradeoff_stanford_bunny.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
-     'data/tradeoff_stanford_bunny.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
-     'data/tradeoff_stanford_bunny.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
-     'data/tradeoff_stanford_bunny.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
+     'data/tradeoff_stanford_bunny.dat' every ::8::8 using 2:3 with points pt 15 ps 1.6 lc 9 title 'MCSM default (2 layers, hierarchical, 3x3 rays, default blur)', \
+     'data/tradeoff_stanford_bunny.dat' every ::9::9 using 2:3 with points pt 15 ps 1.6 lc 10 title 'MCSM 1 layer, linear', \
+     'data/tradeoff_stanford_bunny.dat' every ::10::10 using 2:3 with points pt 15 ps 1.6 lc 11 title 'MCSM 2 layers, linear/binary', \
+     'data/tradeoff_stanford_bunny.dat' every ::11::11 using 2:3 with points pt 15 ps 1.6 lc 12 title 'MCSM 3 layers, linear/binary', \
+     'data/tradeoff_stanford_bunny.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
+     'data/tradeoff_stanford_bunny.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
+     'data/tradeoff_stanford_bunny.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
+     'data/tradeoff_stanford_bunny.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
+     'data/tradeoff_stanford_bunny.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
+     'data/tradeoff_stanford_bunny.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_stanford_bunny.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
+     'data/tradeoff_stanford_bunny.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
+     'data/tradeoff_stanford_bunny.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
+     'data/tradeoff_stanford_bunny.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
+     'data/tradeoff_stanford_bunny.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
+     'data/tradeoff_stanford_bunny.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
+     'data/tradeoff_stanford_bunny.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
 reset
 
 # gallery: stanford_dragon
-set terminal pngcairo noenhanced size 2880,262 font 'sans,9'
+set terminal pngcairo noenhanced size 3840,262 font 'sans,9'
 set output 'gallery/stanford_dragon.png'
-set multiplot layout 1,12 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
+set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 4146 ms"
+set title "reference, 2667 ms"
 plot 'work/gallery/stanford_dragon/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_dragon/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 17594 ms"
+set title "GEARS, 9507 ms"
 plot 'work/gallery/stanford_dragon/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 5732 ms"
+set title "raytrace, 3613 ms"
 plot 'work/gallery/stanford_dragon/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 5053 ms"
+set title "SRT, 2950 ms"
 plot 'work/gallery/stanford_dragon/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 491 ms"
+set title "occtex, 138 ms"
 plot 'work/gallery/stanford_dragon/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/occtex error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 2513 ms"
+set title "MCSM, 100 ms"
+plot 'work/gallery/stanford_dragon/MCSM.png' binary filetype=png with rgbimage
+set title "MCSM |error| x4 (differs)"
+plot 'work/gallery/stanford_dragon/MCSM error.png' binary filetype=png with rgbimage
+set title "wedges, 831 ms"
+plot 'work/gallery/stanford_dragon/wedges.png' binary filetype=png with rgbimage
+set title "wedges |error| x4 (differs)"
+plot 'work/gallery/stanford_dragon/wedges error.png' binary filetype=png with rgbimage
+set title "Embree visibility, 1999 ms"
 plot 'work/gallery/stanford_dragon/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8690% px)"
 plot 'work/gallery/stanford_dragon/embree_error.png' binary filetype=png with rgbimage
@@ -550,14 +688,23 @@ plot 'data/tradeoff_stanford_dragon.dat' every ::0::0 using 2:3 with points pt 7
      'data/tradeoff_stanford_dragon.dat' every ::5::5 using 2:3 with points pt 9 ps 1.6 lc 6 title 'SRT no conservative rasterization', \
      'data/tradeoff_stanford_dragon.dat' every ::6::6 using 2:3 with points pt 9 ps 1.6 lc 7 title 'SRT map 1024', \
      'data/tradeoff_stanford_dragon.dat' every ::7::7 using 2:3 with points pt 9 ps 1.6 lc 8 title 'SRT map 512', \
-     'data/tradeoff_stanford_dragon.dat' every ::8::8 using 2:3 with points pt 11 ps 1.6 lc 9 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_stanford_dragon.dat' every ::9::9 using 2:3 with points pt 11 ps 1.6 lc 10 title 'occtex max', \
-     'data/tradeoff_stanford_dragon.dat' every ::10::10 using 2:3 with points pt 11 ps 1.6 lc 11 title 'occtex clamped sum', \
-     'data/tradeoff_stanford_dragon.dat' every ::11::11 using 2:3 with points pt 11 ps 1.6 lc 12 title 'occtex N-buffer', \
-     'data/tradeoff_stanford_dragon.dat' every ::12::12 using 2:3 with points pt 11 ps 1.6 lc 13 title 'occtex mipmap', \
-     'data/tradeoff_stanford_dragon.dat' every ::13::13 using 2:3 with points pt 11 ps 1.6 lc 14 title 'occtex 4 slices', \
-     'data/tradeoff_stanford_dragon.dat' every ::14::14 using 2:3 with points pt 11 ps 1.6 lc 15 title 'occtex 8 slices', \
-     'data/tradeoff_stanford_dragon.dat' every ::15::15 using 2:3 with points pt 11 ps 1.6 lc 16 title 'occtex leak fix'
+     'data/tradeoff_stanford_dragon.dat' every ::8::8 using 2:3 with points pt 15 ps 1.6 lc 9 title 'MCSM default (2 layers, hierarchical, 3x3 rays, default blur)', \
+     'data/tradeoff_stanford_dragon.dat' every ::9::9 using 2:3 with points pt 15 ps 1.6 lc 10 title 'MCSM 1 layer, linear', \
+     'data/tradeoff_stanford_dragon.dat' every ::10::10 using 2:3 with points pt 15 ps 1.6 lc 11 title 'MCSM 2 layers, linear/binary', \
+     'data/tradeoff_stanford_dragon.dat' every ::11::11 using 2:3 with points pt 15 ps 1.6 lc 12 title 'MCSM 3 layers, linear/binary', \
+     'data/tradeoff_stanford_dragon.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
+     'data/tradeoff_stanford_dragon.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
+     'data/tradeoff_stanford_dragon.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
+     'data/tradeoff_stanford_dragon.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
+     'data/tradeoff_stanford_dragon.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
+     'data/tradeoff_stanford_dragon.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_stanford_dragon.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
+     'data/tradeoff_stanford_dragon.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
+     'data/tradeoff_stanford_dragon.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
+     'data/tradeoff_stanford_dragon.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
+     'data/tradeoff_stanford_dragon.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
+     'data/tradeoff_stanford_dragon.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
+     'data/tradeoff_stanford_dragon.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -576,7 +723,7 @@ unset xlabel
 set xtics rotate by -30
 set grid ytics
 set key inside top right
-set yrange [0.0607737:33.243]
+set yrange [0.0718388:37.2363]
 set arrow 1 from graph 0, first 1 to graph 1, first 1 nohead dt 2
 set arrow 2 from graph 0, first 10 to graph 1, first 10 nohead dt 3 lc rgb 'red'
 set label 1 'goal 10x' at graph 0.01, first 10 offset 0,0.6 tc rgb 'red'
@@ -587,3 +734,42 @@ unset label 1
 unset logscale y
 set xtics norotate
 set yrange [*:*]
+
+# MCSM convergence
+set terminal pngcairo noenhanced size 900,560 font 'sans,10'
+set output 'mc_convergence.png'
+set title 'MCSM: RMSE against rays per pixel (blur off, k = 32 reference)'
+set xlabel 'rays per pixel (log scale)'
+set ylabel 'RMSE (log scale)'
+set logscale xy
+set xrange [0.8:80]
+set grid
+set key outside right top
+plot 'data/mc_convergence_square.dat' using 2:3 with linespoints lw 2 pt 7 lc 1 title 'square', \
+     'data/mc_convergence_spheres.dat' using 2:3 with linespoints lw 2 pt 7 lc 2 title 'spheres', \
+     'data/mc_convergence_elongated-cube.dat' using 2:3 with linespoints lw 2 pt 7 lc 3 title 'elongated-cube', \
+     'data/mc_convergence_thin.dat' using 2:3 with linespoints lw 2 pt 7 lc 4 title 'thin', \
+     'data/mc_convergence_room.dat' using 2:3 with linespoints lw 2 pt 7 lc 5 title 'room', \
+     'data/mc_convergence_cad_infineon_easypim2b.dat' using 2:3 with linespoints lw 2 pt 7 lc 6 title 'cad_infineon_easypim2b', \
+     'data/mc_convergence_chess_set.dat' using 2:3 with linespoints lw 2 pt 7 lc 7 title 'chess_set', \
+     'data/mc_convergence_happy_buddha_100k.dat' using 2:3 with linespoints lw 2 pt 7 lc 8 title 'happy_buddha_100k', \
+     'data/mc_convergence_spot.dat' using 2:3 with linespoints lw 2 pt 7 lc 9 title 'spot', \
+     'data/mc_convergence_stanford_bunny.dat' using 2:3 with linespoints lw 2 pt 7 lc 10 title 'stanford_bunny', \
+     'data/mc_convergence_stanford_dragon.dat' using 2:3 with linespoints lw 2 pt 7 lc 11 title 'stanford_dragon', \
+     0.221253 * x**-0.5 with lines dt 2 lc rgb 'black' title 'slope -1/2', 0.221253 * x**-0.75 with lines dt 3 lc rgb 'gray40' title 'slope -3/4'
+unset logscale xy
+set xrange [*:*]
+reset
+
+# penumbra wedges: time against triangles (Forest et al. 2006, Fig. 12)
+set terminal pngcairo noenhanced size 900,560 font 'sans,10'
+set output 'wg_sweep.png'
+set title 'spheres: shadow pass time against triangles (512x512, k = 16)'
+set xlabel 'triangles (log scale)'
+set ylabel 'shadow pass ms (median, log scale)'
+set logscale xy
+set grid
+set key outside right top
+plot 'data/wg_sweep_spheres.dat' using 2:4 with linespoints lw 2 pt 7 lc 1 title 'wedges blended (default)', '' using 2:5 with linespoints dt 2 pt 6 lc 2 title 'wedges additive', '' using 2:6 with linespoints dt 3 pt 4 lc 3 title 'fastest exact'
+unset logscale xy
+reset

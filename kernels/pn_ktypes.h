@@ -102,8 +102,10 @@ typedef struct pn_kwg {
 /* Rows of pixels per rasterizer work item. */
 #define PN_RASTER_BAND 8u
 
-/* Triangles per chunk of the rasterizer's band walk (pn_raster_chunk). */
+/* Triangles per chunk of the rasterizer's band walk (pn_raster_chunk), and the chunks of n
+ * triangles. */
 #define PN_RASTER_CHUNK 32u
+#define PN_RASTER_CHUNKS(n) (((n) + PN_RASTER_CHUNK - 1u) / PN_RASTER_CHUNK)
 
 /* Side in pixels of the penumbra wedges' screen tiles (kernels/pn_wedges.h; the arena sizes
  * their pools by it). */

@@ -197,8 +197,8 @@ PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris
             T[0] = PN_KINF;
             T[1] = -PN_KINF;
         }
-    pn_band_walk_begin(&bw);
-    while (pn_band_next(chunks, index, tri_n, y0, y1, &bw, &t)) {
+    pn_band_walk_begin(&bw, tri_n);
+    while (pn_band_next(chunks, index, y0, y1, &bw, &t)) {
         pn_raster_tri rt;
         if (flags[t] & PN_TRI_RECEIVER) continue;
         if (!pn_raster_tri_setup(v, tris, rows, t, y0, y1, &rt)) continue;

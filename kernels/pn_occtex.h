@@ -95,8 +95,8 @@ PN_KFN void pn_occ_band(const pn_kview *v, const pn_kocc *o, PN_CONST float *tri
     if (y1 >= v->height) y1 = v->height - 1u;
     for (y = y0; y <= y1; y++)
         for (x = 0; x < v->width; x++) bits[(size_t)y * v->width + x] = 0u;
-    pn_band_walk_begin(&bw);
-    while (pn_band_next(chunks, index, tri_n, y0, y1, &bw, &t)) {
+    pn_band_walk_begin(&bw, tri_n);
+    while (pn_band_next(chunks, index, y0, y1, &bw, &t)) {
         pn_raster_tri rt;
         if (rows[t] == PN_RASTER_EMPTY) continue;
         /* Wholly within the deepest slice (a receiver below every occluder: a ground

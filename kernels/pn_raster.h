@@ -233,13 +233,16 @@ PN_KFN uint32_t pn_raster_chunk(PN_CONST uint32_t *rows, PN_CONST uint32_t *inde
     return lo > hi ? PN_RASTER_EMPTY : lo | (hi << 16);
 }
 
-/* The walk's place: the next chunk, and the entries [i, end) left of the current one. */
+/* A band's walk over n entries: the next chunk of nc, and the entries [i, end) left of the
+ * current one. */
 typedef struct pn_band_walk {
-    uint32_t chunk, i, end;
+    uint32_t n, nc, chunk, i, end;
 } pn_band_walk;
 
-PN_KFN void pn_band_walk_begin(pn_band_walk *w)
+PN_KFN void pn_band_walk_begin(pn_band_walk *w, uint32_t n)
 {
+    w->n = n;
+    w->nc = PN_RASTER_CHUNKS(n);
     w->chunk = 0u;
     w->i = 0u;
     w->end = 0u;
@@ -247,17 +250,16 @@ PN_KFN void pn_band_walk_begin(pn_band_walk *w)
 
 /* The next triangle *t of the chunks whose rows meet [row0, row1]; 0 at the end. The
  * triangle's own rows may still miss the band (pn_raster_tri_setup tests them). */
-PN_KFN_HOT int pn_band_next(PN_CONST uint32_t *chunks, PN_CONST uint32_t *index, uint32_t n, uint32_t row0,
-                            uint32_t row1, pn_band_walk *w, uint32_t *t)
+PN_KFN_HOT int pn_band_next(PN_CONST uint32_t *chunks, PN_CONST uint32_t *index, uint32_t row0, uint32_t row1,
+                            pn_band_walk *w, uint32_t *t)
 {
-    uint32_t nc = (n + PN_RASTER_CHUNK - 1u) / PN_RASTER_CHUNK;
     while (w->i >= w->end) {
         uint32_t r;
-        if (w->chunk >= nc) return 0;
+        if (w->chunk >= w->nc) return 0;
         r = chunks[w->chunk++];
         if (r == PN_RASTER_EMPTY || (r & 0xFFFFu) > row1 || (r >> 16) < row0) continue;
         w->i = (w->chunk - 1u) * PN_RASTER_CHUNK;
-        w->end = pn_kminu(w->i + PN_RASTER_CHUNK, n);
+        w->end = pn_kminu(w->i + PN_RASTER_CHUNK, w->n);
     }
     *t = index[w->i++];
     return 1;
@@ -324,16 +326,16 @@ PN_KFN_HOT int pn_raster_tri_hit(const pn_kview *v, const pn_raster_tri *rt, uin
     return *t > 0.0f;
 }
 
-/* Rasterizes every triangle (the band walk's) into rows [row0, row1] of the G-buffer. depth and tri_id of
- * those rows must hold +inf / PN_NO_TRIANGLE on entry. */
+/* Rasterizes the band walk's triangles into rows [row0, row1] of the G-buffer. depth and
+ * tri_id of those rows must hold +inf / PN_NO_TRIANGLE on entry. */
 PN_KFN void pn_raster_band(const pn_kview *v, PN_CONST float *tris, PN_CONST uint32_t *rows, PN_CONST uint32_t *chunks,
                            PN_CONST uint32_t *index, uint32_t n, uint32_t row0, uint32_t row1, PN_GLOBAL float *depth,
                            PN_GLOBAL uint32_t *tri_id)
 {
     pn_band_walk w;
     uint32_t t;
-    pn_band_walk_begin(&w);
-    while (pn_band_next(chunks, index, n, row0, row1, &w, &t)) {
+    pn_band_walk_begin(&w, n);
+    while (pn_band_next(chunks, index, row0, row1, &w, &t)) {
         pn_raster_tri rt;
         uint32_t y;
         if (!pn_raster_tri_setup(v, tris, rows, t, row0, row1, &rt)) continue;

@@ -39,7 +39,7 @@ static int pn_frame_pools_common(const pn_limits *l, uint64_t *off)
           pn_bump(off, px, sizeof(float), &dummy) &&          /* visibility */
           pn_bump(off, px, 4u, &dummy) &&                     /* rgba */
           pn_bump(off, l->max_triangles, sizeof(uint32_t), &dummy) && /* raster rows */
-          pn_bump(off, (l->max_triangles + PN_RASTER_CHUNK - 1u) / PN_RASTER_CHUNK, sizeof(uint32_t), &dummy) && /* chunks */
+          pn_bump(off, PN_RASTER_CHUNKS(l->max_triangles), sizeof(uint32_t), &dummy) && /* chunks */
           pn_bump(off, l->max_height, sizeof(pn_shadow_counters), &dummy)))
         return 0;
     return 1;

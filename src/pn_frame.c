@@ -297,7 +297,7 @@ pn_status pn_raster_setup(pn_frame_state *fs, uint32_t rows_pass)
 {
     pn_status st = pn_dev_run(fs, rows_pass, fs->ctx->tri_count);
     if (st != PN_OK) return st;
-    return pn_dev_run(fs, PN_K_RASTER_CHUNKS, (fs->K.raster_tris + PN_RASTER_CHUNK - 1u) / PN_RASTER_CHUNK);
+    return pn_dev_run(fs, PN_K_RASTER_CHUNKS, PN_RASTER_CHUNKS(fs->K.raster_tris));
 }
 
 /* Primary visibility: per-triangle row ranges, then bands (clear, raster, resolve). */
@@ -455,8 +455,8 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
         !(fs.vis = (float *)pn_frame_alloc(ctx, px, sizeof(float), "visibility")) ||
         !(fs.rgba = (uint8_t *)pn_frame_alloc(ctx, px, 4u, "rgba")) ||
         !(fs.rows = (uint32_t *)pn_frame_alloc(ctx, ctx->tri_count, sizeof(uint32_t), "raster rows")) ||
-        !(fs.chunks = (uint32_t *)pn_frame_alloc(ctx, (ctx->tri_count + PN_RASTER_CHUNK - 1u) / PN_RASTER_CHUNK,
-                                                 sizeof(uint32_t), "raster chunks")) ||
+        !(fs.chunks = (uint32_t *)pn_frame_alloc(ctx, PN_RASTER_CHUNKS(ctx->tri_count), sizeof(uint32_t),
+                                                 "raster chunks")) ||
         !(fs.counters = pn_frame_alloc(ctx, opt->height, sizeof(pn_shadow_counters), "shadow counters")))
         return PN_E_POOL_EXHAUSTED;
     pn_frame_pool_offsets(&fs);

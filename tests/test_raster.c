@@ -217,8 +217,7 @@ static void test_near_clip(void)
  * chunk, not in id order: the result must not depend on it. 48 copies of one quad (exact
  * depth ties everywhere it covers) spread over the triangle list among 400 small quads
  * elsewhere, so that the copies fall in different chunks and leaves: every pixel the quad
- * covers goes to copy 0 (ids 0 and 1), the smallest ids, and every other pixel to the
- * small quad the ray caster finds. */
+ * covers must go to copy 0 (ids 0 and 1), the smallest ids. */
 static void test_band_walk_ties(void)
 {
     enum { COPIES = 48, SMALL = 400 };

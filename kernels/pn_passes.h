@@ -530,8 +530,8 @@ PN_KFN void pn_e_wg_sil_make(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
 /* Silhouette: its (tile, silhouette) pairs from its prefix-summed offset. */
 PN_KFN void pn_e_wg_scatter(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t s)
 {
-    pn_wg_scatter(&K->view, PN_POOL(const pn_wsil, wg_sil), s, PN_POOL(const uint32_t, wg_poff)[s],
-                  PN_POOL(uint32_t, wg_pairs));
+    pn_wg_scatter(&K->view, &K->light, K->wg.hmax, PN_POOL(const float, tris), PN_POOL(const pn_wsil, wg_sil), s,
+                  PN_POOL(const uint32_t, wg_poff)[s], PN_POOL(uint32_t, wg_pairs));
 }
 
 /* Pixel: its centre ray and its tile's wedges, blended object by object; times its

@@ -129,24 +129,44 @@ PN_KFN int pn_wg_screen(const pn_kview *v, pn_v3 d, float *px, float *py)
     return 1;
 }
 
-/* The screen tiles the wedge of edge a b may reach. The wedge is the set of points
+/* The screen reach of the wedge of edge a b. The wedge is the set of points
  * y + s (y - l), y on the edge, l on the light, s >= 0. A point at height h above the
  * light plane has h(y + s (y - l)) = (1 + s) h(y), so the part of the wedge no higher than
  * hmax ends on that plane at l + (hmax / h(y)) (y - l): for a fixed l a segment between the
  * images of a and b (a central projection), affine in l for a fixed y, so every such point
  * lies in the hull of the eight images of a and b from the light's corners. The wedge's
- * reach is in the hull of those and a, b; its image in the screen's, when all ten are in
- * front of the eye (else the whole screen, as for an edge not wholly in front of the light).
- * Widened by two pixels. */
-PN_KFN void pn_wg_tiles(const pn_kview *v, const pn_klight *L, float hmax, pn_v3 a, pn_v3 b, uint32_t *x0, uint32_t *y0,
-                        uint32_t *x1, uint32_t *y1)
+ * reach is in the hull of those and a, b; its image in the hull of their screen images (a
+ * perspective keeps convex sets convex in front of the eye), when all ten are in front of
+ * the eye (else the whole screen, as for an edge not wholly in front of the light).
+ *
+ * The reach keeps that hull (counter-clockwise, n vertices; n = 0: no hull, every tile of
+ * the box) and its tile box [x0, x1] x [y0, y1] (x0 > x1: none), both widened by two
+ * pixels. The widening covers rounding: the hull is built only while every point is within
+ * 2^20 pixels of the screen (else n = 0), where a float carries a sixteenth of a pixel, so
+ * an orientation or an edge's crossing of a row (pn_wg_row) is off by well under a pixel,
+ * and a point taken off the hull as collinear lies that close to it. */
+typedef struct pn_wreach {
+    float hx[10], hy[10];
+    uint32_t n, x0, y0, x1, y1;
+} pn_wreach;
+
+#define PN_WG_REACH_MAX 1048576.0f
+#define PN_WG_WIDEN 2.0f
+
+PN_KFN float pn_wg_turn(float ax, float ay, float bx, float by, float cx, float cy)
+{
+    return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+}
+
+PN_KFN void pn_wg_reach(const pn_kview *v, const pn_klight *L, float hmax, pn_v3 a, pn_v3 b, pn_wreach *R)
 {
     pn_v3 eye = pn_view_eye(v), c = pn_light_c(L), U = pn_light_U(L), V = pn_light_V(L), d[10];
     pn_v3 N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
-    float lo_x = PN_KINF, lo_y = PN_KINF, hi_x = -PN_KINF, hi_y = -PN_KINF, px, py;
+    float lo_x = PN_KINF, lo_y = PN_KINF, hi_x = -PN_KINF, hi_y = -PN_KINF, sx[10], sy[10];
     float ha = pn_v3_dot(pn_v3_sub(a, c), N), hb = pn_v3_dot(pn_v3_sub(b, c), N);
-    uint32_t tw = (v->width + PN_WG_TILE - 1u) / PN_WG_TILE, th = (v->height + PN_WG_TILE - 1u) / PN_WG_TILE, i;
-    int all = ha > 0.0f && hb > 0.0f && hmax >= ha && hmax >= hb;
+    uint32_t tw = (v->width + PN_WG_TILE - 1u) / PN_WG_TILE, th = (v->height + PN_WG_TILE - 1u) / PN_WG_TILE, i, j, m;
+    int all = ha > 0.0f && hb > 0.0f && hmax >= ha && hmax >= hb, hull = 1;
+    R->n = 0u;
     d[0] = pn_v3_sub(a, eye);
     d[1] = pn_v3_sub(b, eye);
     for (i = 0; all && i < 4u; i++) {
@@ -155,37 +175,129 @@ PN_KFN void pn_wg_tiles(const pn_kview *v, const pn_klight *L, float hmax, pn_v3
         d[3u + 2u * i] = pn_v3_sub(pn_v3_add(l, pn_v3_scale(pn_v3_sub(b, l), hmax / hb)), eye);
     }
     for (i = 0; all && i < 10u; i++) {
-        if (!pn_wg_screen(v, d[i], &px, &py)) {
+        if (!pn_wg_screen(v, d[i], sx + i, sy + i)) {
             all = 0;
             break;
         }
-        lo_x = pn_kminf(lo_x, px);
-        lo_y = pn_kminf(lo_y, py);
-        hi_x = pn_kmaxf(hi_x, px);
-        hi_y = pn_kmaxf(hi_y, py);
+        lo_x = pn_kminf(lo_x, sx[i]);
+        lo_y = pn_kminf(lo_y, sy[i]);
+        hi_x = pn_kmaxf(hi_x, sx[i]);
+        hi_y = pn_kmaxf(hi_y, sy[i]);
     }
     if (!all) {
-        *x0 = 0u;
-        *y0 = 0u;
-        *x1 = tw - 1u;
-        *y1 = th - 1u;
+        R->x0 = 0u;
+        R->y0 = 0u;
+        R->x1 = tw - 1u;
+        R->y1 = th - 1u;
         return;
     }
-    lo_x -= 2.0f;
-    lo_y -= 2.0f;
-    hi_x += 2.0f;
-    hi_y += 2.0f;
+    lo_x -= PN_WG_WIDEN;
+    lo_y -= PN_WG_WIDEN;
+    hi_x += PN_WG_WIDEN;
+    hi_y += PN_WG_WIDEN;
     if (!(hi_x >= 0.0f && hi_y >= 0.0f && lo_x < (float)v->width && lo_y < (float)v->height)) {
+        R->x0 = 1u;
+        R->x1 = 0u;
+        R->y0 = 1u;
+        R->y1 = 0u;
+        return;
+    }
+    R->x0 = (uint32_t)pn_kfloor_clamp(lo_x / (float)PN_WG_TILE, 0, (int32_t)tw - 1);
+    R->y0 = (uint32_t)pn_kfloor_clamp(lo_y / (float)PN_WG_TILE, 0, (int32_t)th - 1);
+    R->x1 = (uint32_t)pn_kfloor_clamp(hi_x / (float)PN_WG_TILE, 0, (int32_t)tw - 1);
+    R->y1 = (uint32_t)pn_kfloor_clamp(hi_y / (float)PN_WG_TILE, 0, (int32_t)th - 1);
+    for (i = 0; i < 10u; i++)
+        hull &= pn_kfabs(sx[i]) <= PN_WG_REACH_MAX && pn_kfabs(sy[i]) <= PN_WG_REACH_MAX;
+    if (!hull) return;
+    /* Andrew's monotone chain: points by x then y (insertion sort), lower chain then upper. */
+    for (i = 1; i < 10u; i++) {
+        float x = sx[i], y = sy[i];
+        for (j = i; j > 0u && (sx[j - 1u] > x || (sx[j - 1u] == x && sy[j - 1u] > y)); j--) {
+            sx[j] = sx[j - 1u];
+            sy[j] = sy[j - 1u];
+        }
+        sx[j] = x;
+        sy[j] = y;
+    }
+    {
+        float cx[20], cy[20];
+        m = 0u;
+        for (i = 0; i < 10u; i++) {
+            while (m >= 2u && pn_wg_turn(cx[m - 2u], cy[m - 2u], cx[m - 1u], cy[m - 1u], sx[i], sy[i]) <= 0.0f) m--;
+            cx[m] = sx[i];
+            cy[m] = sy[i];
+            m++;
+        }
+        for (i = 9u, j = m + 1u; i-- > 0u;) {
+            while (m >= j && pn_wg_turn(cx[m - 2u], cy[m - 2u], cx[m - 1u], cy[m - 1u], sx[i], sy[i]) <= 0.0f) m--;
+            cx[m] = sx[i];
+            cy[m] = sy[i];
+            m++;
+        }
+        m = m > 1u ? m - 1u : m; /* the last point repeats the first */
+        for (i = 0; i < m && i < 10u; i++) {
+            R->hx[i] = cx[i];
+            R->hy[i] = cy[i];
+        }
+        R->n = m < 10u ? m : 10u;
+    }
+}
+
+/* The tile columns [*x0, *x1] of row ty the reach R covers (*x0 > *x1: none): those within
+ * two pixels of the hull's part in the row's band (two pixels beyond the row each way),
+ * whose extent in x is reached at a hull vertex in the band or where a hull edge crosses
+ * one of the band's lines. */
+PN_KFN void pn_wg_row(const pn_kview *v, const pn_wreach *R, uint32_t ty, uint32_t *x0, uint32_t *x1)
+{
+    float ya = (float)(ty * PN_WG_TILE) - PN_WG_WIDEN, yb = (float)((ty + 1u) * PN_WG_TILE) + PN_WG_WIDEN;
+    float lo = PN_KINF, hi = -PN_KINF, lines[2];
+    uint32_t tw = (v->width + PN_WG_TILE - 1u) / PN_WG_TILE, i, k;
+    if (R->n == 0u) {
+        *x0 = R->x0;
+        *x1 = R->x1;
+        return;
+    }
+    lines[0] = ya;
+    lines[1] = yb;
+    for (i = 0; i < R->n; i++) {
+        uint32_t nx = i + 1u == R->n ? 0u : i + 1u;
+        float px = R->hx[i], py = R->hy[i], qx = R->hx[nx], qy = R->hy[nx];
+        if (py >= ya && py <= yb) {
+            lo = pn_kminf(lo, px);
+            hi = pn_kmaxf(hi, px);
+        }
+        for (k = 0; k < 2u; k++) {
+            float Y = lines[k], x;
+            if ((py < Y) == (qy < Y)) continue;
+            x = px + (Y - py) * ((qx - px) / (qy - py));
+            x = pn_kminf(pn_kmaxf(x, pn_kminf(px, qx)), pn_kmaxf(px, qx));
+            lo = pn_kminf(lo, x);
+            hi = pn_kmaxf(hi, x);
+        }
+    }
+    lo -= PN_WG_WIDEN;
+    hi += PN_WG_WIDEN;
+    if (!(lo <= hi && hi >= 0.0f && lo < (float)v->width)) {
         *x0 = 1u;
         *x1 = 0u;
-        *y0 = 1u;
-        *y1 = 0u;
         return;
     }
-    *x0 = (uint32_t)pn_kfloor_clamp(lo_x / (float)PN_WG_TILE, 0, (int32_t)tw - 1);
-    *y0 = (uint32_t)pn_kfloor_clamp(lo_y / (float)PN_WG_TILE, 0, (int32_t)th - 1);
-    *x1 = (uint32_t)pn_kfloor_clamp(hi_x / (float)PN_WG_TILE, 0, (int32_t)tw - 1);
-    *y1 = (uint32_t)pn_kfloor_clamp(hi_y / (float)PN_WG_TILE, 0, (int32_t)th - 1);
+    *x0 = (uint32_t)pn_kfloor_clamp(lo / (float)PN_WG_TILE, 0, (int32_t)tw - 1);
+    *x1 = (uint32_t)pn_kfloor_clamp(hi / (float)PN_WG_TILE, 0, (int32_t)tw - 1);
+    if (*x0 < R->x0) *x0 = R->x0;
+    if (*x1 > R->x1) *x1 = R->x1;
+}
+
+/* The number of tiles reach R covers. */
+PN_KFN uint32_t pn_wg_reach_tiles(const pn_kview *v, const pn_wreach *R)
+{
+    uint32_t y, n = 0u, x0, x1;
+    if (R->x0 > R->x1) return 0u;
+    for (y = R->y0; y <= R->y1; y++) {
+        pn_wg_row(v, R, y, &x0, &x1);
+        if (x0 <= x1) n += x1 - x0 + 1u;
+    }
+    return n;
 }
 
 /* Edge run r: its silhouette record at slot (when its winding is non-zero) and the count
@@ -195,8 +307,9 @@ PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN
                            uint32_t slot, PN_GLOBAL pn_wsil *sil, PN_GLOBAL uint32_t *npairs)
 {
     int32_t m = pn_wg_run_winding(hedge, run, tcast, r);
-    uint32_t h0 = hedge[run[r]], rev0 = (h0 & PN_WG_REV) != 0u, x0, y0, x1, y1;
+    uint32_t h0 = hedge[run[r]], rev0 = (h0 & PN_WG_REV) != 0u;
     PN_GLOBAL pn_wsil *s = sil + slot;
+    pn_wreach R;
     pn_v3 a, b;
     if (m == 0) return;
     /* The silhouette runs along the canonical direction iff m > 0; the half-edge does iff
@@ -206,7 +319,7 @@ PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN
     s->comp = tcomp[(h0 & ~PN_WG_REV) / 3u] & ~PN_WG_CLOSED;
     s->pad = 0u;
     pn_wg_ends(tris, s->h, &a, &b);
-    pn_wg_tiles(v, L, hmax, a, b, &x0, &y0, &x1, &y1);
+    pn_wg_reach(v, L, hmax, a, b, &R);
     {
         pn_v3 c = pn_light_c(L), n = pn_v3_cross(pn_v3_sub(a, c), pn_v3_sub(b, c));
         float u, vv, h;
@@ -225,25 +338,33 @@ PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN
         s->pad2 = 0.0f;
         s->pad3 = 0.0f;
     }
-    s->x0 = x0;
-    s->y0 = y0;
-    s->x1 = x1;
-    s->y1 = y1;
-    npairs[slot] = x0 > x1 ? 0u : (x1 - x0 + 1u) * (y1 - y0 + 1u);
+    s->x0 = R.x0;
+    s->y0 = R.y0;
+    s->x1 = R.x1;
+    s->y1 = R.y1;
+    npairs[slot] = pn_wg_reach_tiles(v, &R);
 }
 
-/* Silhouette s: its (tile, s) pairs from `at` on, tiles in ascending order. */
-PN_KFN void pn_wg_scatter(const pn_kview *v, PN_CONST pn_wsil *sil, uint32_t s, uint32_t at, PN_GLOBAL uint32_t *pairs)
+/* Silhouette s: its (tile, s) pairs from `at` on, tiles in ascending order (its reach,
+ * built again: the same arithmetic gives the same tiles pn_wg_sil_make counted). */
+PN_KFN void pn_wg_scatter(const pn_kview *v, const pn_klight *L, float hmax, PN_CONST float *tris, PN_CONST pn_wsil *sil,
+                          uint32_t s, uint32_t at, PN_GLOBAL uint32_t *pairs)
 {
-    uint32_t tw = (v->width + PN_WG_TILE - 1u) / PN_WG_TILE, x, y;
+    uint32_t tw = (v->width + PN_WG_TILE - 1u) / PN_WG_TILE, x, y, x0, x1;
     PN_CONST pn_wsil *e = sil + s;
+    pn_wreach R;
+    pn_v3 a, b;
     if (e->x0 > e->x1) return;
-    for (y = e->y0; y <= e->y1; y++)
-        for (x = e->x0; x <= e->x1; x++) {
+    pn_wg_ends(tris, e->h, &a, &b);
+    pn_wg_reach(v, L, hmax, a, b, &R);
+    for (y = R.y0; y <= R.y1; y++) {
+        pn_wg_row(v, &R, y, &x0, &x1);
+        for (x = x0; x <= x1 && x0 <= x1; x++) {
             pairs[2u * at] = y * tw + x;
             pairs[2u * at + 1u] = s;
             at++;
         }
+    }
 }
 
 /* ---- Per pixel ----------------------------------------------------------------------------- */
@@ -511,6 +632,14 @@ PN_KFN int pn_wg_project(const pn_wframe *F, PN_CONST pn_wsil *e, float *p, floa
         pv = F->vo + nva * ra;
         qu = F->uo + nub * rb;
         qv = F->vo + nvb * rb;
+    }
+    {
+        /* The line through p q passes beside the light, its four corners (+-1, +-1) strictly
+         * on one side: |(q - p) x p| > |qu - pu| + |qv - pv|, with a margin that dwarfs
+         * the rounding of both sides (the clip then finds nothing in any quadrant). */
+        float du = qu - pu, dv = qv - pv, g = dv * pu - du * pv;
+        if (pn_kfabs(g) > (pn_kfabs(du) + pn_kfabs(dv)) * 1.0001f + 1e-4f * (pn_kfabs(dv * pu) + pn_kfabs(du * pv)))
+            return 0;
     }
     /* Inner when O lies on the casting triangles' side of the plane through the centre and
      * the edge: the same sign det(a - c, b - c, v - c) < 0 their third vertex v gives. */

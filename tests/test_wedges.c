@@ -20,7 +20,11 @@
  *    PN_E_INVALID_ARG; the stats add up.
  * 7. A (tile, wedge) pair pool too small for the frame (pn_limits.wg_pairs) fails with
  *    PN_E_POOL_EXHAUSTED naming it, writes nothing outside the arena nor the frame
- *    out-parameter, and a smaller pool makes a smaller arena. */
+ *    out-parameter, and a smaller pool makes a smaller arena.
+ * 8. A wedge's screen reach (pn_wg_reach, pn_wg_row: the tiles it is binned to) holds every
+ *    pixel its edge covers light from: random edges, lights and receiver planes, every
+ *    pixel of a screen whose size is no multiple of the tile, the pixel's point taken where
+ *    its centre's ray meets the plane; and it is tighter than its tile box. */
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -31,6 +35,7 @@
 #include "pn_setup.h"
 #include "pn_test.h"
 #include "pn_test_render.h"
+#include "pn_wedges.h"
 
 #define W 128u
 #define H 96u
@@ -404,6 +409,105 @@ static void test_short_pool(void)
     pn_setup_free(&s);
 }
 
+/* ---- 8. The wedge's screen reach ------------------------------------------------------------ */
+
+static float frand(uint32_t *st, float lo, float hi)
+{
+    *st = *st * 1664525u + 1013904223u;
+    return lo + (hi - lo) * (float)(*st >> 8) * (1.0f / 16777216.0f);
+}
+
+static pn_v3 unit(pn_v3 a) { return pn_v3_scale(a, 1.0f / sqrtf(pn_v3_dot(a, a))); }
+
+static void test_reach(void)
+{
+    enum { RW = 200, RH = 136, CASES = 300 };
+    uint32_t st = 12345u, cs, covered = 0u, reach_tiles = 0u, box_tiles = 0u, missed = 0u, x, y;
+    for (cs = 0; cs < CASES; cs++) {
+        pn_kview v;
+        pn_klight L;
+        pn_wsil e;
+        pn_wreach R;
+        pn_v3 eye, f, r, u, a, b, c, n;
+        float hmax, ground, tanh_, lu, lv, h;
+        memset(&v, 0, sizeof(v));
+        memset(&L, 0, sizeof(L));
+        memset(&e, 0, sizeof(e));
+        /* Light: a rectangle 5 above the ground plane y = 0, facing down (N = U x V). */
+        c = pn_v3_make(frand(&st, -1.0f, 1.0f), 5.0f, frand(&st, -1.0f, 1.0f));
+        lu = frand(&st, 0.1f, 1.5f);
+        lv = frand(&st, 0.1f, 1.5f);
+        L.c[0] = c.x, L.c[1] = c.y, L.c[2] = c.z;
+        L.U[0] = lu;
+        L.V[2] = lv;
+        L.N[1] = -1.0f;
+        L.k = 16u;
+        hmax = 5.0f;
+        a = pn_v3_make(frand(&st, -2.0f, 2.0f), frand(&st, 0.2f, 4.0f), frand(&st, -2.0f, 2.0f));
+        b = pn_v3_add(a, pn_v3_make(frand(&st, -1.5f, 1.5f), frand(&st, -1.0f, 1.0f), frand(&st, -1.5f, 1.5f)));
+        if (!(b.y > 0.1f && b.y < 4.5f)) b.y = 0.5f;
+        /* Eye: above and beside the scene, looking at a point near the origin. */
+        eye = pn_v3_make(frand(&st, -6.0f, 6.0f), frand(&st, 1.0f, 7.0f), frand(&st, 4.0f, 9.0f));
+        f = unit(pn_v3_sub(pn_v3_make(frand(&st, -1.0f, 1.0f), 0.0f, frand(&st, -1.0f, 1.0f)), eye));
+        r = unit(pn_v3_cross(f, pn_v3_make(0.0f, 1.0f, 0.0f)));
+        u = pn_v3_cross(r, f);
+        v.eye[0] = eye.x, v.eye[1] = eye.y, v.eye[2] = eye.z;
+        v.f[0] = f.x, v.f[1] = f.y, v.f[2] = f.z;
+        v.r[0] = r.x, v.r[1] = r.y, v.r[2] = r.z;
+        v.u[0] = u.x, v.u[1] = u.y, v.u[2] = u.z;
+        tanh_ = tanf(0.5f * frand(&st, 0.6f, 1.4f));
+        v.tan_half = tanh_;
+        v.width = RW;
+        v.height = RH;
+        v.aspect = (float)RW / (float)RH;
+        v.znear = 0.01f;
+        pn_wg_light(&L, a, &e.ua, &e.va, &e.ha);
+        pn_wg_light(&L, b, &e.ub, &e.vb, &e.hb);
+        n = pn_v3_cross(pn_v3_sub(a, c), pn_v3_sub(b, c));
+        e.nx = n.x, e.ny = n.y, e.nz = n.z;
+        e.w = 1u;
+        pn_wg_reach(&v, &L, hmax, a, b, &R);
+        /* Receivers: the ground, or a plane below the edge's lower end. */
+        ground = (cs & 1u) ? 0.0f : frand(&st, 0.0f, 0.9f) * (a.y < b.y ? a.y : b.y);
+        if (R.x0 <= R.x1) {
+            box_tiles += (R.x1 - R.x0 + 1u) * (R.y1 - R.y0 + 1u);
+            reach_tiles += pn_wg_reach_tiles(&v, &R);
+        }
+        for (y = 0; y < RH; y++)
+            for (x = 0; x < RW; x++) {
+                float sx = (2.0f * ((float)x + 0.5f) / (float)RW - 1.0f) * tanh_ * v.aspect;
+                float sy = (1.0f - 2.0f * ((float)y + 0.5f) / (float)RH) * tanh_, p[4], sg, t;
+                pn_v3 d = pn_v3_add(f, pn_v3_add(pn_v3_scale(r, sx), pn_v3_scale(u, sy))), O;
+                pn_wframe F;
+                pn_wpart parts[4];
+                uint32_t tx = x / PN_WG_TILE, ty = y / PN_WG_TILE, x0, x1;
+                int in;
+                if (!(d.y < 0.0f)) continue;
+                t = (ground - eye.y) / d.y;
+                O = pn_v3_add(eye, pn_v3_scale(d, t));
+                pn_wg_light(&L, O, &F.uo, &F.vo, &h);
+                if (!(h > 0.0f && h <= hmax)) continue;
+                F.iho = 1.0f / h;
+                F.oc = pn_v3_sub(O, c);
+                if (!pn_wg_project(&F, &e, p, &sg)) continue;
+                pn_wg_parts_init(parts, 0);
+                if (!pn_wg_edge_parts(p, sg, 1.0f, parts)) continue;
+                covered++;
+                in = R.x0 <= R.x1 && ty >= R.y0 && ty <= R.y1;
+                if (in) {
+                    pn_wg_row(&v, &R, ty, &x0, &x1);
+                    in = x0 <= x1 && tx >= x0 && tx <= x1;
+                }
+                if (!in) missed++;
+            }
+    }
+    fprintf(stderr, "reach: %u pixels covered by their edge, %u outside its reach; %u tiles in the reaches, %u in their boxes\n",
+            covered, missed, reach_tiles, box_tiles);
+    CHECK(covered > 10000u);
+    CHECK_MSG(missed == 0u, "a pixel an edge covers light from lies outside the edge's binned tiles");
+    CHECK(reach_tiles < box_tiles);
+}
+
 int main(void)
 {
     if (!(pn_build_info() & PN_BUILD_WEDGES)) {
@@ -416,5 +520,6 @@ int main(void)
     RUN(test_blend_spheres);
     RUN(test_blend_stacked);
     RUN(test_short_pool);
+    RUN(test_reach);
     return pn_test_summary();
 }

@@ -1,12 +1,14 @@
 /* test_golden.c - golden hashes of whole frames (LVGL-style reference results, stored as
  * hashes): every built-in scene and every .glb of PN_SCENES_DIR, with its area light and
- * with a point light at the light's centre, through every exact algorithm compiled in,
- * on the scalar port with two threads. Each frame's visibility buffer and RGBA image are
- * hashed (FNV-1a 64 over their bytes) and compared with tests/golden/frames.txt.
+ * with a point light at the light's centre, through every algorithm compiled in (the
+ * exact ones and, with their default options, the approximate ones), on the scalar port
+ * with two threads. Each frame's visibility buffer and RGBA image are hashed (FNV-1a 64
+ * over their bytes) and compared with tests/golden/frames.txt.
  *
  * The table is what the library rendered when it was last regenerated; a change of the
- * visibility definition regenerates it on purpose (and says so in its commit), any other
- * change must leave every line as it is:
+ * visibility definition, or of an approximate algorithm's method or defaults, regenerates
+ * it on purpose (and says so in its commit), any other change must leave every line as it
+ * is:
  *
  *   test_golden              compare (every line must match, no scene or frame missing)
  *   test_golden --update F   write the table the current build renders to F */
@@ -34,6 +36,12 @@ static const struct {
     {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE},
     {"gears", PN_ALGO_GEARS, PN_BUILD_GEARS},
     {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},
+    /* The approximate algorithms with their defaults: their bytes are their own, pinned so
+     * that a change meant to keep them (a faster binning, a cheaper reject) is checked. */
+    {"srt", PN_ALGO_SRT, PN_BUILD_SRT},
+    {"occtex", PN_ALGO_OCCTEX, PN_BUILD_OCCTEX},
+    {"mcsm", PN_ALGO_MCSM, PN_BUILD_MCSM},
+    {"wedges", PN_ALGO_WEDGES, PN_BUILD_WEDGES},
 };
 
 typedef struct line {

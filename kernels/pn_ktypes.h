@@ -110,5 +110,6 @@ typedef struct pn_kwg {
 /* Side in pixels of the penumbra wedges' screen tiles (kernels/pn_wedges.h; the arena sizes
  * their pools by it). */
 #define PN_WG_TILE 16u
+#define PN_WG_TILES(n) (((n) + PN_WG_TILE - 1u) / PN_WG_TILE) /* tiles over n pixels */
 
 #endif

@@ -143,15 +143,19 @@ PN_KFN int pn_wg_screen(const pn_kview *v, pn_v3 d, float *px, float *py)
  * the box) and its tile box [x0, x1] x [y0, y1] (x0 > x1: none), both widened by two
  * pixels. The widening covers rounding: the hull is built only while every point is within
  * 2^20 pixels of the screen (else n = 0), where a float carries a sixteenth of a pixel, so
- * an orientation or an edge's crossing of a row (pn_wg_row) is off by well under a pixel,
+ * an orientation or an edge's crossing of a row (pn_wg_row) is off by under a pixel,
  * and a point taken off the hull as collinear lies that close to it. */
+#define PN_WG_REACH_PTS 10u /* the edge's two ends and their images from the four corners */
+#define PN_WG_REACH_MAX 1048576.0f
+#define PN_WG_WIDEN 2.0f
+
 typedef struct pn_wreach {
-    float hx[10], hy[10];
+    float hx[PN_WG_REACH_PTS], hy[PN_WG_REACH_PTS];
     uint32_t n, x0, y0, x1, y1;
 } pn_wreach;
 
-#define PN_WG_REACH_MAX 1048576.0f
-#define PN_WG_WIDEN 2.0f
+/* The tile (of nt) holding screen coordinate p, clamped to the screen. */
+PN_KFN uint32_t pn_wg_tile(float p, uint32_t nt) { return (uint32_t)pn_kfloor_clamp(p / (float)PN_WG_TILE, 0, (int32_t)nt - 1); }
 
 PN_KFN float pn_wg_turn(float ax, float ay, float bx, float by, float cx, float cy)
 {
@@ -160,11 +164,11 @@ PN_KFN float pn_wg_turn(float ax, float ay, float bx, float by, float cx, float 
 
 PN_KFN void pn_wg_reach(const pn_kview *v, const pn_klight *L, float hmax, pn_v3 a, pn_v3 b, pn_wreach *R)
 {
-    pn_v3 eye = pn_view_eye(v), c = pn_light_c(L), U = pn_light_U(L), V = pn_light_V(L), d[10];
+    pn_v3 eye = pn_view_eye(v), c = pn_light_c(L), U = pn_light_U(L), V = pn_light_V(L), d[PN_WG_REACH_PTS];
     pn_v3 N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
-    float lo_x = PN_KINF, lo_y = PN_KINF, hi_x = -PN_KINF, hi_y = -PN_KINF, sx[10], sy[10];
+    float lo_x = PN_KINF, lo_y = PN_KINF, hi_x = -PN_KINF, hi_y = -PN_KINF, sx[PN_WG_REACH_PTS], sy[PN_WG_REACH_PTS];
     float ha = pn_v3_dot(pn_v3_sub(a, c), N), hb = pn_v3_dot(pn_v3_sub(b, c), N);
-    uint32_t tw = (v->width + PN_WG_TILE - 1u) / PN_WG_TILE, th = (v->height + PN_WG_TILE - 1u) / PN_WG_TILE, i, j, m;
+    uint32_t tw = PN_WG_TILES(v->width), th = PN_WG_TILES(v->height), i, j, m;
     int all = ha > 0.0f && hb > 0.0f && hmax >= ha && hmax >= hb, hull = 1;
     R->n = 0u;
     d[0] = pn_v3_sub(a, eye);
@@ -174,7 +178,7 @@ PN_KFN void pn_wg_reach(const pn_kview *v, const pn_klight *L, float hmax, pn_v3
         d[2u + 2u * i] = pn_v3_sub(pn_v3_add(l, pn_v3_scale(pn_v3_sub(a, l), hmax / ha)), eye);
         d[3u + 2u * i] = pn_v3_sub(pn_v3_add(l, pn_v3_scale(pn_v3_sub(b, l), hmax / hb)), eye);
     }
-    for (i = 0; all && i < 10u; i++) {
+    for (i = 0; all && i < PN_WG_REACH_PTS; i++) {
         if (!pn_wg_screen(v, d[i], sx + i, sy + i)) {
             all = 0;
             break;
@@ -202,15 +206,15 @@ PN_KFN void pn_wg_reach(const pn_kview *v, const pn_klight *L, float hmax, pn_v3
         R->y1 = 0u;
         return;
     }
-    R->x0 = (uint32_t)pn_kfloor_clamp(lo_x / (float)PN_WG_TILE, 0, (int32_t)tw - 1);
-    R->y0 = (uint32_t)pn_kfloor_clamp(lo_y / (float)PN_WG_TILE, 0, (int32_t)th - 1);
-    R->x1 = (uint32_t)pn_kfloor_clamp(hi_x / (float)PN_WG_TILE, 0, (int32_t)tw - 1);
-    R->y1 = (uint32_t)pn_kfloor_clamp(hi_y / (float)PN_WG_TILE, 0, (int32_t)th - 1);
-    for (i = 0; i < 10u; i++)
+    R->x0 = pn_wg_tile(lo_x, tw);
+    R->y0 = pn_wg_tile(lo_y, th);
+    R->x1 = pn_wg_tile(hi_x, tw);
+    R->y1 = pn_wg_tile(hi_y, th);
+    for (i = 0; i < PN_WG_REACH_PTS; i++)
         hull &= pn_kfabs(sx[i]) <= PN_WG_REACH_MAX && pn_kfabs(sy[i]) <= PN_WG_REACH_MAX;
     if (!hull) return;
     /* Andrew's monotone chain: points by x then y (insertion sort), lower chain then upper. */
-    for (i = 1; i < 10u; i++) {
+    for (i = 1; i < PN_WG_REACH_PTS; i++) {
         float x = sx[i], y = sy[i];
         for (j = i; j > 0u && (sx[j - 1u] > x || (sx[j - 1u] == x && sy[j - 1u] > y)); j--) {
             sx[j] = sx[j - 1u];
@@ -220,26 +224,26 @@ PN_KFN void pn_wg_reach(const pn_kview *v, const pn_klight *L, float hmax, pn_v3
         sy[j] = y;
     }
     {
-        float cx[20], cy[20];
+        float cx[2u * PN_WG_REACH_PTS], cy[2u * PN_WG_REACH_PTS];
         m = 0u;
-        for (i = 0; i < 10u; i++) {
+        for (i = 0; i < PN_WG_REACH_PTS; i++) {
             while (m >= 2u && pn_wg_turn(cx[m - 2u], cy[m - 2u], cx[m - 1u], cy[m - 1u], sx[i], sy[i]) <= 0.0f) m--;
             cx[m] = sx[i];
             cy[m] = sy[i];
             m++;
         }
-        for (i = 9u, j = m + 1u; i-- > 0u;) {
+        for (i = PN_WG_REACH_PTS - 1u, j = m + 1u; i-- > 0u;) {
             while (m >= j && pn_wg_turn(cx[m - 2u], cy[m - 2u], cx[m - 1u], cy[m - 1u], sx[i], sy[i]) <= 0.0f) m--;
             cx[m] = sx[i];
             cy[m] = sy[i];
             m++;
         }
         m = m > 1u ? m - 1u : m; /* the last point repeats the first */
-        for (i = 0; i < m && i < 10u; i++) {
+        for (i = 0; i < m && i < PN_WG_REACH_PTS; i++) {
             R->hx[i] = cx[i];
             R->hy[i] = cy[i];
         }
-        R->n = m < 10u ? m : 10u;
+        R->n = m < PN_WG_REACH_PTS ? m : PN_WG_REACH_PTS;
     }
 }
 
@@ -251,7 +255,7 @@ PN_KFN void pn_wg_row(const pn_kview *v, const pn_wreach *R, uint32_t ty, uint32
 {
     float ya = (float)(ty * PN_WG_TILE) - PN_WG_WIDEN, yb = (float)((ty + 1u) * PN_WG_TILE) + PN_WG_WIDEN;
     float lo = PN_KINF, hi = -PN_KINF, lines[2];
-    uint32_t tw = (v->width + PN_WG_TILE - 1u) / PN_WG_TILE, i, k;
+    uint32_t tw = PN_WG_TILES(v->width), i, k;
     if (R->n == 0u) {
         *x0 = R->x0;
         *x1 = R->x1;
@@ -282,8 +286,8 @@ PN_KFN void pn_wg_row(const pn_kview *v, const pn_wreach *R, uint32_t ty, uint32
         *x1 = 0u;
         return;
     }
-    *x0 = (uint32_t)pn_kfloor_clamp(lo / (float)PN_WG_TILE, 0, (int32_t)tw - 1);
-    *x1 = (uint32_t)pn_kfloor_clamp(hi / (float)PN_WG_TILE, 0, (int32_t)tw - 1);
+    *x0 = pn_wg_tile(lo, tw);
+    *x1 = pn_wg_tile(hi, tw);
     if (*x0 < R->x0) *x0 = R->x0;
     if (*x1 > R->x1) *x1 = R->x1;
 }
@@ -350,7 +354,7 @@ PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN
 PN_KFN void pn_wg_scatter(const pn_kview *v, const pn_klight *L, float hmax, PN_CONST float *tris, PN_CONST pn_wsil *sil,
                           uint32_t s, uint32_t at, PN_GLOBAL uint32_t *pairs)
 {
-    uint32_t tw = (v->width + PN_WG_TILE - 1u) / PN_WG_TILE, x, y, x0, x1;
+    uint32_t tw = PN_WG_TILES(v->width), x, y, x0, x1;
     PN_CONST pn_wsil *e = sil + s;
     pn_wreach R;
     pn_v3 a, b;

@@ -265,7 +265,7 @@ uint32_t pn_occ_map_max(const pn_limits *l) { return l->occ_map_max ? l->occ_map
 uint32_t pn_mc_map_max(const pn_limits *l) { return l->mc_map_max ? l->mc_map_max : PN_MCSM_MAP_MAX; }
 uint32_t pn_wg_tiles_of(uint32_t width, uint32_t height)
 {
-    return ((width + PN_WG_TILE - 1u) / PN_WG_TILE) * ((height + PN_WG_TILE - 1u) / PN_WG_TILE);
+    return PN_WG_TILES(width) * PN_WG_TILES(height);
 }
 uint32_t pn_wg_sil_max(const pn_limits *l)
 {

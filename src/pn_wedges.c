@@ -84,7 +84,7 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
         }
         K->wg.hmax = hm + 2.0f * K->light.eps + 1e-5f * (hm + e);
     }
-    K->wg.tiles_x = (fs->width + PN_WG_TILE - 1u) / PN_WG_TILE;
+    K->wg.tiles_x = PN_WG_TILES(fs->width);
     if (!K->light.is_point && R > 0u) {
         if ((st = pn_dev_run(fs, PN_K_WG_CAST, T)) != PN_OK || (st = pn_dev_run(fs, PN_K_WG_SIL_FLAG, R)) != PN_OK ||
             (st = pn_dev_scan(fs, s.soff, R)) != PN_OK || (st = pn_dev_to_host(fs, s.soff + R, 4u)) != PN_OK)

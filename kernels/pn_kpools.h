@@ -11,8 +11,8 @@
 #include "pn_ktypes.h"
 
 typedef struct pn_kpools {
-    /* persistent: the scene */
-    uint64_t tris, flags, nodes, index;
+    /* persistent: the scene (index: the BVH's leaf order; rindex: the raster order) */
+    uint64_t tris, flags, nodes, index, rindex;
     /* frame: G-buffer, outputs, scratch */
     uint64_t depth, tri_id, pos, nrm, vis, rgba, rows, chunks, counters;
     /* frame: GEARS (src/pn_gears.c) */
@@ -43,7 +43,7 @@ typedef struct pn_kparams {
     pn_kshade shade;
     pn_ktile tile;        /* GEARS: the tile a pass works on (grid row r0 for a row count) */
     uint32_t tri_count;   /* scene triangles */
-    uint32_t raster_tris; /* entries of the BVH's leaf order: the triangles a rasterizer walks */
+    uint32_t raster_tris; /* entries of the raster order (rindex): the triangles a rasterizer walks */
     uint32_t exact_stats; /* GEARS masks: 1 = do not stop at a full mask (exact counters) */
     /* the light-space view (SRT: at the light centre; occlusion textures: at the centre of
      * projection behind it) and the offsets of its row bounds (pn_lview.h) */

@@ -70,7 +70,7 @@ PN_KFN void pn_e_raster_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
 PN_KFN void pn_e_raster_chunks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t c)
 {
     PN_POOL(uint32_t, chunks)[c] =
-        pn_raster_chunk(PN_POOL(const uint32_t, rows), PN_POOL(const uint32_t, index), K->raster_tris, c);
+        pn_raster_chunk(PN_POOL(const uint32_t, rows), PN_POOL(const uint32_t, rindex), K->raster_tris, c);
 }
 
 /* Band `band` of PN_RASTER_BAND rows of view v: owns its pixels and walks the triangles
@@ -82,7 +82,7 @@ PN_KFN void pn_band(const pn_kview *v, PN_GLOBAL uint8_t *A, const pn_kpools *P,
     uint32_t y0 = band * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND - 1u;
     if (y1 >= v->height) y1 = v->height - 1u;
     pn_raster_band(v, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows), PN_POOL(const uint32_t, chunks),
-                   PN_POOL(const uint32_t, index), K->raster_tris, y0, y1, depth, ids);
+                   PN_POOL(const uint32_t, rindex), K->raster_tris, y0, y1, depth, ids);
 }
 
 /* Band of the G-buffer: its rows cleared, rasterized, then resolved (position, normal),
@@ -351,7 +351,7 @@ PN_KFN void pn_e_srt_exact(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kp
 PN_KFN void pn_e_occ_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
 {
     pn_occ_band(&K->lview, &K->occ, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows),
-                PN_POOL(const uint32_t, chunks), PN_POOL(const uint32_t, index), K->raster_tris, band,
+                PN_POOL(const uint32_t, chunks), PN_POOL(const uint32_t, rindex), K->raster_tris, band,
                 PN_POOL(uint32_t, occ_bits), PN_POOL(uint32_t, occ_words));
 }
 
@@ -438,7 +438,7 @@ PN_KFN void pn_e_occ_finish(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
 PN_KFN void pn_e_mc_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
 {
     pn_mc_band(&K->lview, &K->mc, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags),
-               PN_POOL(const uint32_t, rows), PN_POOL(const uint32_t, chunks), PN_POOL(const uint32_t, index),
+               PN_POOL(const uint32_t, rows), PN_POOL(const uint32_t, chunks), PN_POOL(const uint32_t, rindex),
                K->raster_tris, band, PN_POOL(float, mc_nb));
 }
 

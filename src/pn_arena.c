@@ -171,13 +171,15 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
         l->gears_pairs > (1u << 28) || l->gears_grid_max > 1024u || l->srt_map_max > PN_SRT_MAP_MAX ||
         (l->srt_map_max != 0u && l->srt_map_max < 8u) || l->occ_map_max > PN_OCCTEX_MAP_MAX ||
         (l->occ_map_max != 0u && l->occ_map_max < 8u) || l->mc_map_max > PN_MCSM_MAP_MAX ||
-        (l->mc_map_max != 0u && l->mc_map_max < 8u) || l->wg_pairs > PN_WEDGES_PAIRS)
+        (l->mc_map_max != 0u && l->mc_map_max < 8u) || l->wg_pairs > PN_WEDGES_PAIRS ||
+        (l->bvh_refs != 0u && (l->bvh_refs < l->max_triangles || l->bvh_refs > (1u << 26))))
         return PN_E_LIMIT;
     if (!pn_bump(&off, 1u, sizeof(pn_context), &lay.ctx) ||
         !pn_bump(&off, l->max_triangles, 9u * sizeof(float), &lay.tris) ||
         !pn_bump(&off, l->max_triangles, 1u, &lay.flags) ||
-        !pn_bump(&off, 2u * (uint64_t)l->max_triangles, sizeof(pn_kbvh_node), &lay.nodes) ||
-        !pn_bump(&off, l->max_triangles, sizeof(uint32_t), &lay.index) ||
+        !pn_bump(&off, 2u * (uint64_t)pn_bvh_refs_max(l), sizeof(pn_kbvh_node), &lay.nodes) ||
+        !pn_bump(&off, pn_bvh_refs_max(l), sizeof(uint32_t), &lay.index) ||
+        !pn_bump(&off, l->max_triangles, sizeof(uint32_t), &lay.rindex) ||
         !pn_bump(&off, PN_PORT_SCRATCH_WORDS, sizeof(uint32_t), &lay.scratch) ||
         !pn_bump(&off, PN_ENABLE_WEDGES ? 3u * (uint64_t)l->max_triangles : 0u, sizeof(uint32_t), &lay.wg_hedge) ||
         !pn_bump(&off, PN_ENABLE_WEDGES ? 3u * (uint64_t)l->max_triangles + 1u : 0u, sizeof(uint32_t), &lay.wg_run) ||
@@ -202,6 +204,8 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
         off = off > c ? off : c;
         off = off > m ? off : m;
         off = off > w ? off : w;
+        /* pn_scene_set's BVH build uses the region as scratch too. */
+        if (pn_bvh_scratch_bytes(l) > off - frame_start) off = frame_start + pn_bvh_scratch_bytes(l);
     }
     /* Round the end so the last pool's alignment padding is inside the region. */
     if (!pn_bump(&off, 0u, 1u, &lay.end)) return PN_E_LIMIT;
@@ -257,12 +261,25 @@ void pn_limits_max(pn_limits *limits)
     limits->occ_map_max = 0;
     limits->mc_map_max = 0;
     limits->wg_pairs = 0;
+    limits->bvh_refs = 0;
 }
 
 uint32_t pn_gears_pairs_max(const pn_limits *l) { return l->gears_pairs ? l->gears_pairs : PN_GEARS_PAIRS; }
 uint32_t pn_srt_map_max(const pn_limits *l) { return l->srt_map_max ? l->srt_map_max : PN_SRT_MAP_MAX; }
 uint32_t pn_occ_map_max(const pn_limits *l) { return l->occ_map_max ? l->occ_map_max : PN_OCCTEX_MAP_MAX; }
 uint32_t pn_mc_map_max(const pn_limits *l) { return l->mc_map_max ? l->mc_map_max : PN_MCSM_MAP_MAX; }
+uint32_t pn_bvh_refs_max(const pn_limits *l)
+{
+    uint64_t n = l->max_triangles, extra = PN_BVH_SPLIT_REFS, most = ((1u << PN_BVH_SPLIT_DEPTH) - 1u) * n;
+    if (l->bvh_refs) return l->bvh_refs;
+    if (extra > most) extra = most;
+    if (n + extra > (1u << 26)) extra = n < (1u << 26) ? (1u << 26) - n : 0u;
+    return (uint32_t)(n + extra);
+}
+uint64_t pn_bvh_scratch_bytes(const pn_limits *l)
+{
+    return (uint64_t)pn_bvh_refs_max(l) * PN_BVH_REF_BYTES + ((uint64_t)l->max_triangles / 32u + 1u) * 4u;
+}
 uint32_t pn_wg_tiles_of(uint32_t width, uint32_t height)
 {
     return PN_WG_TILES(width) * PN_WG_TILES(height);
@@ -329,6 +346,7 @@ pn_status pn_init(pn_context **out_ctx, void *memory, size_t bytes, const pn_lim
     ctx->flags = base + lay.flags;
     ctx->nodes = (pn_kbvh_node *)(void *)(base + lay.nodes);
     ctx->tri_index = (uint32_t *)(void *)(base + lay.index);
+    ctx->raster_index = (uint32_t *)(void *)(base + lay.rindex);
     ctx->scratch = (uint32_t *)(void *)(base + lay.scratch);
 #if PN_ENABLE_WEDGES
     ctx->wg_hedge = (uint32_t *)(void *)(base + lay.wg_hedge);

@@ -1,13 +1,22 @@
-/* pn_bvh_build.c - binned SAH BVH, built top-down into the arena without recursion.
+/* pn_bvh_build.c - binned SAH BVH over triangle references, built top-down into the arena
+ * without recursion.
+ *
+ * References. Every non-degenerate triangle is one reference with its box, or, when its
+ * box is far larger than itself, several (early split clipping, Ernst and Greiner 2007;
+ * config.h PN_BVH_SPLIT_DEPTH, PN_BVH_SPLIT_REFS): its box is halved along the longest
+ * axis while the two halves' boxes of the triangle's part in them have under 5/8 of the
+ * parent's surface area. A leaf lists triangle ids (tri_index), a split triangle's in
+ * several leaves; the walks test whole triangles, so only which boxes a ray or a pyramid
+ * meets changes, never a result. A part's box must hold the real part: see pn_part_box.
  *
  * Work list: after a split the larger child is pushed and the smaller one is built next,
  * so every pushed entry at least halves the remaining count: the list never holds more
  * than log2(N) + 1 entries (64 is plenty). Below depth PN_BVH_SAH_DEPTH the split is the
  * object median (an iterative quickselect), which halves the count at each level and so
- * bounds the tree depth by PN_BVH_SAH_DEPTH + 27 <= PN_BVH_STACK (check_config.h): the
- * traversal stack can never overflow. Node 0 is the root; children are allocated in
- * pairs, so at most 2N - 1 nodes exist. Everything is deterministic: same triangles,
- * same tree. */
+ * bounds the tree depth by PN_BVH_SAH_DEPTH + 27 <= PN_BVH_STACK (check_config.h; at most
+ * 2^26 references): the traversal stack can never overflow. Node 0 is the root; children
+ * are allocated in pairs, so at most 2R - 1 nodes exist for R references. Everything is
+ * deterministic: same triangles, same tree. */
 #include "pn_internal.h"
 #include "pn_kmath.h"
 
@@ -50,27 +59,162 @@ static float pn_box_area(const pn_box *b)
     return dx * dy + dy * dz + dz * dx;
 }
 
-static void pn_tri_box(const float *tris, uint32_t t, pn_box *b)
+/* A reference: its box, the point it is binned and sorted by (the triangle's centroid when
+ * whole, the part's box centre when split), its triangle. PN_BVH_REF_BYTES each. */
+typedef struct pn_bref {
+    float lo[3], hi[3], c[3];
+    uint32_t tri;
+} pn_bref;
+
+typedef char pn_bref_size_check[sizeof(pn_bref) == PN_BVH_REF_BYTES ? 1 : -1];
+
+static void pn_ref_box(const pn_bref *refs, uint32_t r, pn_box *b)
 {
-    const float *p = tris + (size_t)t * 9u;
-    pn_box_empty(b);
-    pn_box_point(b, p[0], p[1], p[2]);
-    pn_box_point(b, p[3], p[4], p[5]);
-    pn_box_point(b, p[6], p[7], p[8]);
+    int a;
+    for (a = 0; a < 3; a++) {
+        b->lo[a] = refs[r].lo[a];
+        b->hi[a] = refs[r].hi[a];
+    }
 }
 
-static float pn_centroid(const float *tris, uint32_t t, int axis)
-{
-    const float *p = tris + (size_t)t * 9u;
-    return (p[axis] + p[3 + axis] + p[6 + axis]) * (1.0f / 3.0f);
-}
+static float pn_centroid(const pn_bref *refs, uint32_t r, int axis) { return refs[r].c[axis]; }
 
-/* Total order for the median split: centroid, then triangle index. */
-static int pn_key_less(const float *tris, int axis, uint32_t a, uint32_t b)
+/* Total order for the median split: centroid, then reference index. */
+static int pn_key_less(const pn_bref *refs, int axis, uint32_t a, uint32_t b)
 {
-    float ca = pn_centroid(tris, a, axis), cb = pn_centroid(tris, b, axis);
+    float ca = pn_centroid(refs, a, axis), cb = pn_centroid(refs, b, axis);
     if (ca != cb) return ca < cb;
     return a < b;
+}
+
+/* The box of the part of triangle p (9 floats) inside the region [rlo, rhi], widened by m,
+ * then cut back to the region; 0 when the part is empty. Sutherland-Hodgman against the
+ * region's six planes each moved out by m (float; a polygon of at most 9 vertices).
+ * Why it holds the real part: m is 2^-16 of the triangle's largest coordinate magnitude
+ * plus its extent, every computed vertex is a convex combination of points within a few
+ * rounding errors (2^-24 relative each, six clips) of the real clipped polygon's, far
+ * below m; so every real point of the triangle in the region, at least m inside each
+ * moved plane, survives every clip within that error, and the box widened by m holds
+ * it. Cutting back to the region is exact (the region's bounds are floats). */
+static int pn_part_box(const float *p, const float *rlo, const float *rhi, float m, pn_box *out)
+{
+    float poly[2][9][3];
+    uint32_t n = 3, i, c;
+    int src = 0, a;
+    for (i = 0; i < 3; i++)
+        for (a = 0; a < 3; a++) poly[0][i][a] = p[i * 3u + (uint32_t)a];
+    for (c = 0; c < 6u; c++) {
+        int ax = (int)(c >> 1), hi = (int)(c & 1u), dst = src ^ 1;
+        float plane = hi ? rhi[ax] + m : rlo[ax] - m;
+        uint32_t k = 0, outside = 0;
+        for (i = 0; i < n; i++) outside += hi ? poly[src][i][ax] > plane : poly[src][i][ax] < plane;
+        if (outside == 0u) continue; /* all inside: this plane cuts nothing */
+        for (i = 0; i < n; i++) {
+            const float *P = poly[src][i], *Q = poly[src][i + 1u < n ? i + 1u : 0u];
+            int pin = hi ? P[ax] <= plane : P[ax] >= plane, qin = hi ? Q[ax] <= plane : Q[ax] >= plane;
+            if (pin) {
+                for (a = 0; a < 3; a++) poly[dst][k][a] = P[a];
+                k++;
+            }
+            if (pin != qin) {
+                float t = (plane - P[ax]) / (Q[ax] - P[ax]);
+                for (a = 0; a < 3; a++) poly[dst][k][a] = P[a] + t * (Q[a] - P[a]);
+                poly[dst][k][ax] = plane;
+                k++;
+            }
+        }
+        n = k;
+        src = dst;
+        if (n == 0u) return 0;
+    }
+    pn_box_empty(out);
+    for (i = 0; i < n; i++) pn_box_point(out, poly[src][i][0], poly[src][i][1], poly[src][i][2]);
+    for (a = 0; a < 3; a++) {
+        out->lo[a] = pn_kmaxf(out->lo[a] - m, rlo[a]);
+        out->hi[a] = pn_kminf(out->hi[a] + m, rhi[a]);
+        if (!(out->lo[a] <= out->hi[a])) return 0;
+    }
+    return 1;
+}
+
+/* Splits triangle t: the parts at most `cap` halvings deep. Counts, for every depth d up
+ * to PN_BVH_SPLIT_DEPTH, the references a cap of d would give (into count[d], when count
+ * is not NULL), and writes the references of this cap from refs[*r] on (when refs is not
+ * NULL). Depth first over an explicit stack (at most depth + 1 entries). */
+static void pn_split_tri(const float *tris, uint32_t t, uint32_t cap, uint64_t *count, pn_bref *refs, uint32_t *r)
+{
+    struct {
+        pn_box b;
+        uint32_t depth;
+    } st[PN_BVH_SPLIT_DEPTH + 2u];
+    const float *p = tris + (size_t)t * 9u;
+    uint32_t sp = 1, d;
+    float mag = 0.0f, ext = 0.0f, m;
+    int a;
+    pn_box_empty(&st[0].b);
+    pn_box_point(&st[0].b, p[0], p[1], p[2]);
+    pn_box_point(&st[0].b, p[3], p[4], p[5]);
+    pn_box_point(&st[0].b, p[6], p[7], p[8]);
+    st[0].depth = 0;
+    for (a = 0; a < 3; a++) {
+        mag = pn_kmaxf(mag, pn_kmaxf(-st[0].b.lo[a], st[0].b.hi[a]));
+        ext = pn_kmaxf(ext, st[0].b.hi[a] - st[0].b.lo[a]);
+    }
+    m = (mag + ext) * (1.0f / 65536.0f);
+    {
+        /* Only slivers: a box of surface area over four times the triangle's (twice its
+         * area is |cross|); a compact triangle's halves never shrink enough. Far from
+         * float's range only (the margins above must not overflow). */
+        pn_v3 A = pn_v3_make(p[0], p[1], p[2]), B = pn_v3_make(p[3], p[4], p[5]), C = pn_v3_make(p[6], p[7], p[8]);
+        pn_v3 n = pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
+        if (!(mag < 1e18f) || !(pn_box_area(&st[0].b) > 4.0f * pn_ksqrt(pn_v3_dot(n, n)))) cap = 0;
+    }
+    while (sp > 0u) {
+        pn_box cur = st[--sp].b, L, R;
+        uint32_t dep = st[sp].depth;
+        int split = 0;
+        if (dep < cap) {
+            int ax = 0;
+            float mid, lhi[3], rlo[3];
+            for (a = 1; a < 3; a++)
+                if (cur.hi[a] - cur.lo[a] > cur.hi[ax] - cur.lo[ax]) ax = a;
+            mid = cur.lo[ax] + (cur.hi[ax] - cur.lo[ax]) * 0.5f;
+            for (a = 0; a < 3; a++) {
+                lhi[a] = cur.hi[a];
+                rlo[a] = cur.lo[a];
+            }
+            lhi[ax] = mid;
+            rlo[ax] = mid;
+            if (mid > cur.lo[ax] && mid < cur.hi[ax] && pn_part_box(p, cur.lo, lhi, m, &L) &&
+                pn_part_box(p, rlo, cur.hi, m, &R) &&
+                pn_box_area(&L) + pn_box_area(&R) < 0.625f * pn_box_area(&cur))
+                split = 1;
+        }
+        if (count) {
+            /* a leaf here is one reference for every cap from dep on; a split node is one
+             * for the cap dep itself */
+            if (split)
+                count[dep]++;
+            else
+                for (d = dep; d <= PN_BVH_SPLIT_DEPTH; d++) count[d]++;
+        }
+        if (split) {
+            st[sp].b = R;
+            st[sp++].depth = dep + 1u;
+            st[sp].b = L;
+            st[sp++].depth = dep + 1u;
+        } else if (refs) {
+            pn_bref *o = refs + (*r)++;
+            for (a = 0; a < 3; a++) {
+                o->lo[a] = cur.lo[a];
+                o->hi[a] = cur.hi[a];
+                o->c[a] = cur.lo[a] + (cur.hi[a] - cur.lo[a]) * 0.5f;
+            }
+            if (dep == 0u)
+                for (a = 0; a < 3; a++) o->c[a] = (p[a] + p[3 + a] + p[6 + a]) * (1.0f / 3.0f);
+            o->tri = t;
+        }
+    }
 }
 
 static void pn_swap(uint32_t *ix, uint32_t a, uint32_t b)
@@ -81,17 +225,17 @@ static void pn_swap(uint32_t *ix, uint32_t a, uint32_t b)
 }
 
 /* Places the element of rank kth (within [lo, hi]) at kth, smaller ones before it. */
-static void pn_select(const float *tris, uint32_t *ix, int axis, uint32_t lo, uint32_t hi, uint32_t kth)
+static void pn_select(const pn_bref *refs, uint32_t *ix, int axis, uint32_t lo, uint32_t hi, uint32_t kth)
 {
     while (lo < hi) {
         uint32_t mid = lo + (hi - lo) / 2u, i, j;
         /* median of three to hi as pivot */
-        if (pn_key_less(tris, axis, ix[mid], ix[lo])) pn_swap(ix, mid, lo);
-        if (pn_key_less(tris, axis, ix[hi], ix[lo])) pn_swap(ix, hi, lo);
-        if (pn_key_less(tris, axis, ix[mid], ix[hi])) pn_swap(ix, mid, hi);
+        if (pn_key_less(refs, axis, ix[mid], ix[lo])) pn_swap(ix, mid, lo);
+        if (pn_key_less(refs, axis, ix[hi], ix[lo])) pn_swap(ix, hi, lo);
+        if (pn_key_less(refs, axis, ix[mid], ix[hi])) pn_swap(ix, mid, hi);
         i = lo;
         for (j = lo; j < hi; j++)
-            if (pn_key_less(tris, axis, ix[j], ix[hi])) pn_swap(ix, i++, j);
+            if (pn_key_less(refs, axis, ix[j], ix[hi])) pn_swap(ix, i++, j);
         pn_swap(ix, i, hi);
         if (i == kth) return;
         if (kth < i)
@@ -105,18 +249,40 @@ typedef struct pn_work {
     uint32_t node, depth;
 } pn_work;
 
+/* The references of the scene into refs (the frame region): every triangle split as deep
+ * as the reserve allows (the same cap for all: the deepest whose count fits). */
+static uint32_t pn_bvh_refs(pn_context *ctx, pn_bref *refs, uint32_t *tris_out)
+{
+    uint64_t count[PN_BVH_SPLIT_DEPTH + 1u], most = pn_bvh_refs_max(&ctx->limits);
+    uint32_t t, n = 0, r = 0, cap = 0, d;
+    int splits = PN_BVH_SPLIT_DEPTH > 0u && most > ctx->limits.max_triangles;
+    for (d = 0; d <= PN_BVH_SPLIT_DEPTH; d++) count[d] = 0;
+    for (t = 0; t < ctx->tri_count; t++)
+        if (!(ctx->flags[t] & PN_TRI_DEGENERATE)) {
+            n++;
+            if (splits) pn_split_tri(ctx->tris, t, PN_BVH_SPLIT_DEPTH, count, NULL, NULL);
+        }
+    /* count[d] only grows with d, and count[0] = n <= max_triangles <= most */
+    if (splits)
+        for (d = 1; d <= PN_BVH_SPLIT_DEPTH && count[d] <= most; d++) cap = d;
+    for (t = 0; t < ctx->tri_count; t++)
+        if (!(ctx->flags[t] & PN_TRI_DEGENERATE)) pn_split_tri(ctx->tris, t, cap, NULL, refs, &r);
+    *tris_out = n;
+    return r;
+}
+
 pn_status pn_bvh_build(pn_context *ctx)
 {
-    const float *tris = ctx->tris;
+    pn_bref *refs = (pn_bref *)(void *)ctx->frame;
     uint32_t *ix = ctx->tri_index;
     pn_kbvh_node *nodes = ctx->nodes;
     pn_work list[64];
-    uint32_t sp = 0, n = 0, t, node_count = 1, max_depth = 0, max_leaf = 0;
+    uint32_t sp = 0, n, t, node_count = 1, max_depth = 0, max_leaf = 0;
     pn_work cur;
 
-    for (t = 0; t < ctx->tri_count; t++)
-        if (!(ctx->flags[t] & PN_TRI_DEGENERATE)) ix[n++] = t;
-    ctx->bvh_tris = n;
+    n = pn_bvh_refs(ctx, refs, &ctx->bvh_tris);
+    for (t = 0; t < n; t++) ix[t] = t;
+    ctx->bvh_refs = n;
     nodes[0].first = 0;
     nodes[0].count = n;
     cur.node = 0;
@@ -143,10 +309,10 @@ pn_status pn_bvh_build(pn_context *ctx)
         pn_box_empty(&cbox);
         for (i = first; i < first + count; i++) {
             pn_box tb;
-            pn_tri_box(tris, ix[i], &tb);
+            pn_ref_box(refs, ix[i], &tb);
             pn_box_join(&box, &tb);
-            pn_box_point(&cbox, pn_centroid(tris, ix[i], 0), pn_centroid(tris, ix[i], 1),
-                         pn_centroid(tris, ix[i], 2));
+            pn_box_point(&cbox, pn_centroid(refs, ix[i], 0), pn_centroid(refs, ix[i], 1),
+                         pn_centroid(refs, ix[i], 2));
         }
         for (i = 0; i < 3; i++) {
             nd->bmin[i] = box.lo[i];
@@ -165,7 +331,7 @@ pn_status pn_bvh_build(pn_context *ctx)
                     axis = a;
                 }
             split = count / 2u;
-            pn_select(tris, ix, axis, first, first + count - 1u, first + split);
+            pn_select(refs, ix, axis, first, first + count - 1u, first + split);
         } else {
             /* Binned SAH over all three axes, binned in one pass over the triangles.
              * Costs: traversal 1, triangle 1. */
@@ -186,11 +352,11 @@ pn_status pn_bvh_build(pn_context *ctx)
             }
             for (i = first; i < first + count; i++) {
                 pn_box tb;
-                pn_tri_box(tris, ix[i], &tb);
+                pn_ref_box(refs, ix[i], &tb);
                 for (a = 0; a < 3; a++) {
                     int32_t bin;
                     if (scale[a] == 0.0f) continue;
-                    bin = pn_kfloor_clamp((pn_centroid(tris, ix[i], a) - cbox.lo[a]) * scale[a], 0,
+                    bin = pn_kfloor_clamp((pn_centroid(refs, ix[i], a) - cbox.lo[a]) * scale[a], 0,
                                           (int32_t)PN_BVH_BINS - 1);
                     pn_box_join(&bb[a][bin], &tb);
                     bc[a][bin]++;
@@ -233,7 +399,7 @@ pn_status pn_bvh_build(pn_context *ctx)
                 uint32_t lo = first, hi = first + count;
                 while (lo < hi) {
                     int32_t bin = pn_kfloor_clamp(
-                        (pn_centroid(tris, ix[lo], best_axis) - cbox.lo[best_axis]) * scale[best_axis], 0,
+                        (pn_centroid(refs, ix[lo], best_axis) - cbox.lo[best_axis]) * scale[best_axis], 0,
                         (int32_t)PN_BVH_BINS - 1);
                     if ((uint32_t)bin <= best_bin)
                         lo++;
@@ -254,7 +420,7 @@ pn_status pn_bvh_build(pn_context *ctx)
         {
             uint32_t l = node_count, r = node_count + 1u;
             pn_work small, large;
-            if (node_count + 2u > 2u * ctx->limits.max_triangles)
+            if (node_count + 2u > 2u * pn_bvh_refs_max(&ctx->limits))
                 return pn_fail(ctx, PN_E_INTERNAL, "BVH node pool overflow at %u nodes", node_count);
             node_count += 2u;
             nodes[l].first = first;
@@ -269,6 +435,20 @@ pn_status pn_bvh_build(pn_context *ctx)
             if (sp >= 64u) return pn_fail(ctx, PN_E_INTERNAL, "BVH build list overflow");
             list[sp++] = large;
             cur = small;
+        }
+    }
+    /* References to triangle ids; the raster order: each triangle at its first reference
+     * (a bit per triangle after the references marks the ones written). */
+    {
+        uint32_t *seen = (uint32_t *)(void *)(refs + pn_bvh_refs_max(&ctx->limits)), k = 0, i;
+        for (t = 0; t <= ctx->tri_count / 32u; t++) seen[t] = 0;
+        for (i = 0; i < n; i++) {
+            t = refs[ix[i]].tri;
+            ix[i] = t;
+            if (!(seen[t >> 5] & (1u << (t & 31u)))) {
+                seen[t >> 5] |= 1u << (t & 31u);
+                ctx->raster_index[k++] = t;
+            }
         }
     }
     ctx->bvh_nodes = node_count;

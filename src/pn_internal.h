@@ -18,8 +18,10 @@ typedef struct pn_layout {
     size_t ctx;
     size_t tris;      /* max_triangles * 9 floats: the scene copy */
     size_t flags;     /* max_triangles bytes */
-    size_t nodes;     /* 2 * max_triangles BVH nodes */
-    size_t index;     /* max_triangles uint32: BVH leaf order */
+    size_t nodes;     /* 2 * pn_bvh_refs_max BVH nodes */
+    size_t index;     /* pn_bvh_refs_max uint32: BVH leaf order (references: triangle ids,
+                         a split triangle's repeated) */
+    size_t rindex;    /* max_triangles uint32: raster order (each triangle once, leaf order) */
     size_t scratch;   /* PN_PORT_SCRATCH_WORDS uint32: port scratch */
     size_t wg_hedge;  /* 3 max_triangles uint32: half-edges by edge (penumbra wedges) */
     size_t wg_run;    /* 3 max_triangles + 1 uint32: first half-edge of each edge */
@@ -70,7 +72,8 @@ struct pn_context {
     float *tris;
     uint8_t *flags;
     pn_kbvh_node *nodes;
-    uint32_t *tri_index;
+    uint32_t *tri_index;    /* BVH leaf order: bvh_refs entries */
+    uint32_t *raster_index; /* raster order: bvh_tris entries */
     uint32_t *scratch;
     uint32_t *wg_hedge, *wg_run, *wg_tcomp; /* NULL without PN_ENABLE_WEDGES */
     /* frame region: a bump allocator rewound at every frame */
@@ -82,7 +85,7 @@ struct pn_context {
     uint32_t scene_version; /* changes whenever pn_scene_set replaces the scene */
     uint32_t tri_count;
     uint32_t degenerate;
-    uint32_t bvh_nodes, bvh_depth, bvh_max_leaf, bvh_tris;
+    uint32_t bvh_nodes, bvh_depth, bvh_max_leaf, bvh_tris, bvh_refs;
     float scene_min[3], scene_max[3], scene_diag;
     /* execution */
     pn_parallel_for_fn parallel_for;
@@ -127,6 +130,9 @@ uint32_t pn_gears_grid_max(const pn_limits *l);
 uint32_t pn_srt_map_max(const pn_limits *l);
 uint32_t pn_occ_map_max(const pn_limits *l);
 uint32_t pn_mc_map_max(const pn_limits *l);
+/* BVH references a context reserves: limits.bvh_refs, or max_triangles plus the split
+ * ones (config.h PN_BVH_SPLIT_REFS), at most 2^26. */
+uint32_t pn_bvh_refs_max(const pn_limits *l);
 /* Penumbra wedges: the silhouette and (tile, wedge) pair pools of a context, and the
  * screen tiles of a frame. */
 uint32_t pn_wg_sil_max(const pn_limits *l);
@@ -175,7 +181,10 @@ void pn_run(pn_context *ctx, uint32_t count, pn_task_fn fn, void *task);
  * scratch: call outside a frame). */
 void pn_connect_build(pn_context *ctx);
 
-/* pn_bvh_build.c */
+/* pn_bvh_build.c. The build's scratch sits in the frame region (call outside a frame):
+ * PN_BVH_REF_BYTES per reference of pn_bvh_refs_max, then a bit per triangle. */
+#define PN_BVH_REF_BYTES 40u
+uint64_t pn_bvh_scratch_bytes(const pn_limits *l);
 pn_status pn_bvh_build(pn_context *ctx);
 
 /* pn_frame.c: validates and derives the frame's parameters, carves its pools, and runs

@@ -21,8 +21,8 @@ static int all_bytes(const uint8_t *p, size_t n, uint8_t v)
 
 static void test_size_equals_carve(void)
 {
-    pn_limits lims[4] = {{1, 1, 1, 0, 0, 0, 0, 0, 0}, {100, 64, 48, 1000, 16, 0, 0, 0, 0}, {1u << 20, 512, 512, 0, 0, 0, 0, 0, 0},
-                         {PN_MAX_TRIANGLES, PN_MAX_WIDTH, PN_MAX_HEIGHT, 0, 0, 0, 0, 0, 0}};
+    pn_limits lims[4] = {{1, 1, 1, 0, 0, 0, 0, 0, 0, 0}, {100, 64, 48, 1000, 16, 0, 0, 0, 0, 0}, {1u << 20, 512, 512, 0, 0, 0, 0, 0, 0, 0},
+                         {PN_MAX_TRIANGLES, PN_MAX_WIDTH, PN_MAX_HEIGHT, 0, 0, 0, 0, 0, 0, 0}};
     int i;
     for (i = 0; i < 4; i++) {
         size_t bytes = 0;
@@ -45,7 +45,7 @@ static void test_size_equals_carve(void)
     }
     {
         size_t bytes = 0;
-        pn_limits l = {1u << 20, 512, 512, 0, 0, 0, 0, 0, 0};
+        pn_limits l = {1u << 20, 512, 512, 0, 0, 0, 0, 0, 0, 0};
         CHECK(pn_arena_size(&l, &bytes) == PN_OK);
         fprintf(stderr, "arena for 512x512, 2^20 triangles: %zu bytes\n", bytes);
     }
@@ -54,10 +54,10 @@ static void test_size_equals_carve(void)
 static void test_bad_limits(void)
 {
     size_t bytes = 12345;
-    pn_limits l0 = {0, 10, 10, 0, 0, 0, 0, 0, 0}, l1 = {10, 0, 10, 0, 0, 0, 0, 0, 0}, l2 = {10, 10, PN_MAX_HEIGHT + 1u, 0, 0, 0, 0, 0, 0},
-              l3 = {PN_MAX_TRIANGLES + 1u, 1, 1, 0, 0, 0, 0, 0, 0}, l4 = {10, 10, 10, (1u << 28) + 1u, 0, 0, 0, 0, 0},
-              l5 = {10, 10, 10, 0, 1025, 0, 0, 0, 0}, l6 = {10, 10, 10, 0, 0, 0, 0, PN_MCSM_MAP_MAX + 1u, 0},
-              l7 = {10, 10, 10, 0, 0, 0, 0, 7, 0}, l8 = {10, 10, 10, 0, 0, 0, 0, 0, PN_WEDGES_PAIRS + 1u};
+    pn_limits l0 = {0, 10, 10, 0, 0, 0, 0, 0, 0, 0}, l1 = {10, 0, 10, 0, 0, 0, 0, 0, 0, 0}, l2 = {10, 10, PN_MAX_HEIGHT + 1u, 0, 0, 0, 0, 0, 0, 0},
+              l3 = {PN_MAX_TRIANGLES + 1u, 1, 1, 0, 0, 0, 0, 0, 0, 0}, l4 = {10, 10, 10, (1u << 28) + 1u, 0, 0, 0, 0, 0, 0},
+              l5 = {10, 10, 10, 0, 1025, 0, 0, 0, 0, 0}, l6 = {10, 10, 10, 0, 0, 0, 0, PN_MCSM_MAP_MAX + 1u, 0, 0},
+              l7 = {10, 10, 10, 0, 0, 0, 0, 7, 0, 0}, l8 = {10, 10, 10, 0, 0, 0, 0, 0, PN_WEDGES_PAIRS + 1u, 0};
     CHECK(pn_arena_size(NULL, &bytes) == PN_E_INVALID_ARG);
     CHECK(pn_arena_size(&l0, NULL) == PN_E_INVALID_ARG);
     CHECK(pn_arena_size(&l0, &bytes) == PN_E_LIMIT);
@@ -151,7 +151,7 @@ static void test_too_small_and_guard(void)
 static uint8_t static_arena[PN_ARENA_BYTES_MAX(64, 16, 16)];
 static void test_static_arena(void)
 {
-    pn_limits lim = {64, 16, 16, 0, 0, 0, 0, 0, 0};
+    pn_limits lim = {64, 16, 16, 0, 0, 0, 0, 0, 0, 0};
     pn_context *ctx;
     size_t bytes;
     CHECK(pn_arena_size(&lim, &bytes) == PN_OK);
@@ -162,7 +162,7 @@ static void test_static_arena(void)
 /* Two contexts in one process are independent (no hidden global state). */
 static void test_two_contexts(void)
 {
-    pn_limits lim = {16, 8, 8, 0, 0, 0, 0, 0, 0};
+    pn_limits lim = {16, 8, 8, 0, 0, 0, 0, 0, 0, 0};
     size_t bytes;
     uint8_t *a, *b;
     pn_context *ca, *cb;

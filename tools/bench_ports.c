@@ -59,7 +59,7 @@ static int build_time(const char *dir, double *build_ms, double *warmup_ms)
     fflush(NULL);
     pid = fork();
     if (pid == 0) {
-        pn_limits lim = {16, 16, 16, 1024, 16, 0, 0, 0, 0};
+        pn_limits lim = {16, 16, 16, 1024, 16, 0, 0, 0, 0, 0};
         size_t bytes;
         void *mem;
         pn_context *ctx;

@@ -111,12 +111,18 @@ int pn_host_open(pn_host *h, uint32_t max_triangles, uint32_t max_w, uint32_t ma
                  char *err, size_t err_size)
 {
     pn_limits lim;
-    pn_status st;
-    memset(h, 0, sizeof(*h));
     memset(&lim, 0, sizeof(lim));
     lim.max_triangles = max_triangles;
     lim.max_width = max_w;
     lim.max_height = max_h;
+    return pn_host_open_limits(h, &lim, threads, err, err_size);
+}
+
+int pn_host_open_limits(pn_host *h, const pn_limits *limits, int threads, char *err, size_t err_size)
+{
+    pn_limits lim = *limits;
+    pn_status st;
+    memset(h, 0, sizeof(*h));
     st = pn_arena_size(&lim, &h->bytes);
     if (st != PN_OK) {
         snprintf(err, err_size, "pn_arena_size: %s", pn_status_str(st));

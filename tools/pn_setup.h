@@ -60,6 +60,8 @@ typedef struct pn_host {
 
 int pn_host_open(pn_host *h, uint32_t max_triangles, uint32_t max_w, uint32_t max_h, int threads,
                  char *err, size_t err_size);
+/* The same with the caller's limits (every field). */
+int pn_host_open_limits(pn_host *h, const pn_limits *limits, int threads, char *err, size_t err_size);
 void pn_host_close(pn_host *h);
 
 /* Parses "x,y,z" / "WxH". Return 0 on success. */

@@ -169,7 +169,7 @@ int fw_run(fw_write_fn write)
                  {PN_ALGO_MCSM, PN_BUILD_MCSM, "mcsm"},
                  {PN_ALGO_WEDGES, PN_BUILD_WEDGES, "wedges"}};
     static const uint32_t ks[] = {4u, 8u};
-    const pn_limits lim = {PN_MAX_TRIANGLES, FW_WIDTH, FW_HEIGHT, 0u, 0u, 0u, 0u, 0u, 0u};
+    const pn_limits lim = {PN_MAX_TRIANGLES, FW_WIDTH, FW_HEIGHT, 0u, 0u, 0u, 0u, 0u, 0u, 0u};
     const pn_camera cam = {{0.0f, 2.5f, 3.5f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 50.0f};
     /* The area light faces down (u x v = -y); the point light sits at its centre. */
     const pn_light area = {{0.3f, 3.0f, -0.2f}, {0.6f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.6f}};

@@ -83,12 +83,20 @@
 #error "PN_BVH_LEAF_MAX must be in 1 .. 16"
 #endif
 
+#if PN_BVH_SPLIT_DEPTH > 6
+#error "PN_BVH_SPLIT_DEPTH must be in 0 .. 6 (a triangle becomes at most 2^depth BVH references)"
+#endif
+
+#if PN_BVH_SPLIT_REFS > (1u << 26)
+#error "PN_BVH_SPLIT_REFS must be in 0 .. 2^26"
+#endif
+
 #if PN_BVH_STACK < 8 || PN_BVH_STACK > 256
 #error "PN_BVH_STACK must be in 8 .. 256"
 #endif
 
-/* Tree depth bound: SAH levels, then median splits halve the count (2^26 triangles at most
- * -> 26 more levels), plus the leaf level. The traversal stack holds at most depth entries. */
+/* Tree depth bound: SAH levels, then median splits halve the count (2^26 references at
+ * most, split ones included -> 26 more levels), plus the leaf level. The traversal stack holds at most depth entries. */
 #if PN_BVH_SAH_DEPTH + 27 > PN_BVH_STACK
 #error "PN_BVH_SAH_DEPTH + 27 must not exceed PN_BVH_STACK: raise PN_BVH_STACK or lower PN_BVH_SAH_DEPTH"
 #endif

@@ -112,8 +112,9 @@
 /* ---- Limits (they size the arena; see pn_arena_size()). ------------------------------ */
 
 /* Largest triangle count a scene may have, including any ground plane the caller adds.
- * Costs about 108 bytes per triangle of persistent arena (triangle copy 36, BVH nodes up
- * to 2 x 32, index 4, raster record 8). Range 1 .. 2^26. */
+ * Costs about 112 bytes per triangle of persistent arena (triangle copy 36, BVH nodes up
+ * to 2 x 32, leaf and raster orders 4 + 4, raster record 8), and the BVH's split
+ * references (PN_BVH_SPLIT_REFS) 68 bytes each. Range 1 .. 2^26. */
 #ifndef PN_MAX_TRIANGLES
 #define PN_MAX_TRIANGLES (1u << 20)
 #endif
@@ -170,9 +171,30 @@
 #define PN_BVH_LEAF_MAX 4u
 #endif
 
+/* Split references (early split clipping, Ernst and Greiner 2007): a triangle whose box is
+ * far larger than the triangle (a long sliver lying diagonal to the axes) is entered into
+ * the BVH as up to 2^PN_BVH_SPLIT_DEPTH references, each with the box of the part of the
+ * triangle inside one piece of its box, halved along the longest axis while halving
+ * shrinks the boxes' surface area to under 5/8 of the parent's. Only the boxes change: a
+ * leaf still names whole triangles and every walk still tests the whole triangle, so the
+ * bits of every frame are the same; a ray just meets fewer boxes it then misses.
+ * PN_BVH_SPLIT_REFS references beyond one per triangle are reserved (at most
+ * (2^depth - 1) per triangle of max_triangles, and the total at most 2^26), 68 bytes each
+ * of persistent arena (two BVH nodes, an index entry; pn_scene_set's build also borrows
+ * 40 bytes a reference of the frame region); when a scene wants more, every
+ * triangle is split one level less until it fits. 0 for either: no splitting, no cost.
+ * A context's limits.bvh_refs sets the reserve at run time. Depth 0 .. 6; references
+ * 0 .. 2^26. */
+#ifndef PN_BVH_SPLIT_DEPTH
+#define PN_BVH_SPLIT_DEPTH 4u
+#endif
+#ifndef PN_BVH_SPLIT_REFS
+#define PN_BVH_SPLIT_REFS 65536u
+#endif
+
 /* Depth after which the builder switches from SAH to median splits, which halve the
- * triangle count at each level; with it the tree depth is at most
- * PN_BVH_SAH_DEPTH + log2(PN_MAX_TRIANGLES) + 1, and that must fit the traversal stack
+ * reference count at each level; with it the tree depth is at most
+ * PN_BVH_SAH_DEPTH + log2(2^26 references) + 1, and that must fit the traversal stack
  * PN_BVH_STACK (8 .. 256 entries of 4 bytes, on the stack of each work item). */
 #ifndef PN_BVH_SAH_DEPTH
 #define PN_BVH_SAH_DEPTH 32u

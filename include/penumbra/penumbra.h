@@ -124,6 +124,11 @@ typedef struct pn_limits {
     uint32_t wg_pairs;       /* penumbra wedges' (screen tile, wedge) pair pool, at most
                                 PN_WEDGES_PAIRS; 0: PN_WEDGES_PAIRS. A frame needing more
                                 fails PN_E_POOL_EXHAUSTED with the count it needed */
+    uint32_t bvh_refs;       /* BVH references: max_triangles .. 2^26 (68 bytes of arena
+                                each); beyond one a triangle, split slivers (config.h
+                                PN_BVH_SPLIT_DEPTH; frames are the same bits with or
+                                without). max_triangles: no splitting; 0: max_triangles
+                                plus PN_BVH_SPLIT_REFS, at most (2^depth - 1) a triangle */
 } pn_limits;
 
 /* Limits equal to the compile-time maxima. */
@@ -142,7 +147,16 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
     ((size_t)(17u * 1024u) + (size_t)(t) * 112u + (size_t)(w) * (size_t)(h) * 40u +          \
      (size_t)(h) * 16u + 32u * (size_t)PN_ARENA_ALIGN + PN_GEARS_BYTES_MAX(t, w, h) +      \
      PN_SRT_BYTES_MAX(t, w, h) + PN_OCCTEX_BYTES_MAX(t, w, h) + PN_MCSM_BYTES_MAX(t, w, h) +     \
-     PN_WEDGES_BYTES_MAX(t, w, h))
+     PN_WEDGES_BYTES_MAX(t, w, h) + PN_BVH_BYTES_MAX(t))
+/* BVH references beyond the triangle copy: per triangle the raster order (4) and the
+ * build's scratch in the frame region (40 a reference, a bit a triangle); per split
+ * reference (at most PN_BVH_SPLIT_REFS, at most 2^PN_BVH_SPLIT_DEPTH - 1 a triangle) two
+ * nodes and an index entry (68) and its scratch (40). */
+#define PN_BVH_BYTES_MAX(t)                                                                 \
+    ((size_t)(t) * 45u + 8u +                                                                \
+     ((size_t)PN_BVH_SPLIT_REFS < ((size_t)(1u << PN_BVH_SPLIT_DEPTH) - 1u) * (size_t)(t)     \
+          ? (size_t)PN_BVH_SPLIT_REFS                                                        \
+          : ((size_t)(1u << PN_BVH_SPLIT_DEPTH) - 1u) * (size_t)(t)) * 108u)
 #if PN_ENABLE_WEDGES
 /* Penumbra-wedge pools: persistent per triangle 28 (+ 3 x 64 alignment); the frame per
  * triangle 4 + 12 + 4 (casting, slots) or 24 (welding at pn_scene_set), counted both; per
@@ -377,6 +391,8 @@ typedef struct pn_stats {
     uint32_t bvh_nodes;
     uint32_t bvh_depth;
     uint32_t bvh_max_leaf;
+    uint32_t bvh_refs;           /* BVH references: triangles, a split one counted once per
+                                    part (config.h PN_BVH_SPLIT_DEPTH) */
     uint64_t pass_ns[PN_PASS_COUNT]; /* 0 without a clock; last scene set / last frame */
     uint64_t shadow_candidates;  /* triangles handed to the predicate in the last frame
                                     (PN_ALGO_RAYTRACE: ray-triangle tests; PN_ALGO_OCCTEX:

@@ -10,6 +10,8 @@
 #define PN_BVH_LEAF_MAX 16u
 #define PN_BVH_SAH_DEPTH 229u
 #define PN_BVH_STACK 256u
+#define PN_BVH_SPLIT_DEPTH 6u
+#define PN_BVH_SPLIT_REFS (1u << 26)
 #define PN_DEBUG_ARENA 1
 #define PN_SRT_MAP_MAX 8192u
 #define PN_OCCTEX_MAP_MAX 4096u

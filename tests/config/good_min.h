@@ -10,6 +10,8 @@
 #define PN_BVH_LEAF_MAX 1u
 #define PN_BVH_SAH_DEPTH 0u
 #define PN_BVH_STACK 27u
+#define PN_BVH_SPLIT_DEPTH 0u
+#define PN_BVH_SPLIT_REFS 0u
 #define PN_DEBUG_ARENA 0
 #define PN_SRT_MAP_MAX 8u
 #define PN_OCCTEX_MAP_MAX 8u

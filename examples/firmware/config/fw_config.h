@@ -13,7 +13,8 @@
  * 32 x 32 Monte Carlo depth layers (their N-buffer: 72 KiB); penumbra wedges with room for
  * every edge of 64 triangles as a silhouette (192) and every (tile, wedge) pair of a 32 x 32
  * image (4 tiles: 768 of the 1024 pairs reserved; the default 2^22 pairs alone would be
- * 48 MiB). */
+ * 48 MiB); no split BVH references (64 triangles gain nothing from them, and the
+ * default reserve would be 960 of them, 65 KB). */
 #ifndef FW_CONFIG_H
 #define FW_CONFIG_H
 
@@ -29,5 +30,6 @@
 #define PN_MCSM_MAP_MAX 32u
 #define PN_WEDGES_SIL_MAX 192u
 #define PN_WEDGES_PAIRS 1024u
+#define PN_BVH_SPLIT_REFS 0u
 
 #endif

@@ -1,0 +1,488 @@
+/* test_bvh.c - the BVH's split references (config.h PN_BVH_SPLIT_DEPTH, PN_BVH_SPLIT_REFS):
+ *
+ *   containment  the leaf boxes a triangle is listed in cover the whole real triangle
+ *                (its vertices, points along its edges, points inside it, in double), on
+ *                long diagonal slivers at several scales and offsets, general triangles
+ *                and near-degenerate ones; every node's box holds its children's; each
+ *                non-degenerate triangle is listed, each degenerate one is not; the raster
+ *                order lists every non-degenerate triangle once; and splitting happened
+ *                (more references than triangles, smaller boxes), so none of it is vacuous
+ *   frames       every algorithm renders the same bytes with splitting (the default
+ *                reserve, and a reserve one short of what the scene wants) as without it
+ *                (limits.bvh_refs = max_triangles), on the built-in thin scene and on a
+ *                scene of random slivers
+ *   limits       a reserve below max_triangles or above 2^26 is PN_E_LIMIT; a short
+ *                reserve is never exceeded */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "penumbra/penumbra.h"
+#include "pn_internal.h"
+#include "pn_setup.h"
+#include "pn_test.h"
+
+#define FRAME_W 64u
+#define FRAME_H 48u
+
+/* xorshift64*: the same scenes every run */
+static uint64_t g_rng = 0x9e3779b97f4a7c15ull;
+static double rnd(void)
+{
+    g_rng ^= g_rng >> 12;
+    g_rng ^= g_rng << 25;
+    g_rng ^= g_rng >> 27;
+    return (double)((g_rng * 2685821657736338717ull) >> 11) * (1.0 / 9007199254740992.0);
+}
+static double rnd_in(double lo, double hi) { return lo + (hi - lo) * rnd(); }
+
+typedef struct scene {
+    float *pos;
+    uint32_t *idx;
+    uint32_t tris, verts;
+} scene;
+
+static void add_tri(scene *s, const double v[9])
+{
+    int i;
+    for (i = 0; i < 9; i++) s->pos[s->verts * 3u + (uint32_t)i] = (float)v[i];
+    for (i = 0; i < 3; i++) s->idx[s->tris * 3u + (uint32_t)i] = s->verts + (uint32_t)i;
+    s->verts += 3u;
+    s->tris++;
+}
+
+/* A sliver: length len along a random direction, width wid across it, centred at c. */
+static void add_sliver(scene *s, const double c[3], double len, double wid)
+{
+    double d[3], w[3], v[9], n;
+    int a;
+    do {
+        for (a = 0; a < 3; a++) d[a] = rnd_in(-1, 1);
+        n = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    } while (n < 0.2);
+    for (a = 0; a < 3; a++) d[a] /= n;
+    /* a width direction: d x (a random vector), normalized */
+    do {
+        double r[3] = {rnd_in(-1, 1), rnd_in(-1, 1), rnd_in(-1, 1)};
+        w[0] = d[1] * r[2] - d[2] * r[1];
+        w[1] = d[2] * r[0] - d[0] * r[2];
+        w[2] = d[0] * r[1] - d[1] * r[0];
+        n = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+    } while (n < 0.2);
+    for (a = 0; a < 3; a++) {
+        w[a] /= n;
+        v[a] = c[a] - d[a] * len * 0.5;
+        v[3 + a] = c[a] + d[a] * len * 0.5;
+        v[6 + a] = c[a] + d[a] * len * rnd_in(-0.4, 0.4) + w[a] * wid;
+    }
+    add_tri(s, v);
+}
+
+/* Random slivers at several scales and offsets, general triangles, triangles flat in one
+ * axis, and a few exactly degenerate ones. */
+static void make_mixed(scene *s, uint32_t n)
+{
+    uint32_t i;
+    s->pos = (float *)malloc((size_t)n * 9u * sizeof(float));
+    s->idx = (uint32_t *)malloc((size_t)n * 3u * sizeof(uint32_t));
+    s->tris = s->verts = 0;
+    for (i = 0; i < n; i++) {
+        double c[3], v[9];
+        int a, kind = (int)(i % 8u);
+        double off = (i % 3u == 0u) ? 0.0 : (i % 3u == 1u) ? 1000.0 : -250000.0;
+        double scale = (i % 5u == 0u) ? 0.01 : (i % 5u == 1u) ? 100.0 : 1.0;
+        for (a = 0; a < 3; a++) c[a] = off + rnd_in(-10, 10) * scale;
+        if (kind < 5) {
+            add_sliver(s, c, scale * rnd_in(1, 8), scale * rnd_in(1e-4, 1e-2));
+        } else if (kind == 5) {
+            for (a = 0; a < 9; a++) v[a] = c[a % 3] + scale * rnd_in(-1, 1);
+            add_tri(s, v);
+        } else if (kind == 6) {
+            /* flat in y, diagonal in x and z */
+            double t = rnd_in(0.5, 4) * scale;
+            v[0] = c[0] - t, v[1] = c[1], v[2] = c[2] - t;
+            v[3] = c[0] + t, v[4] = c[1], v[5] = c[2] + t;
+            v[6] = c[0] + t * 0.01, v[7] = c[1], v[8] = c[2];
+            add_tri(s, v);
+        } else {
+            if (i % 16u == 7u) {
+                /* degenerate: three collinear points */
+                for (a = 0; a < 3; a++) {
+                    v[a] = c[a];
+                    v[3 + a] = c[a] + 1.0;
+                    v[6 + a] = c[a] + 2.0;
+                }
+            } else {
+                add_sliver(s, c, scale * 20.0, scale * 1e-3);
+                continue;
+            }
+            add_tri(s, v);
+        }
+    }
+}
+
+static void free_scene(scene *s)
+{
+    free(s->pos);
+    free(s->idx);
+}
+
+static int in_box(const pn_kbvh_node *nd, const double p[3])
+{
+    int a;
+    for (a = 0; a < 3; a++)
+        if (!(p[a] >= (double)nd->bmin[a] && p[a] <= (double)nd->bmax[a])) return 0;
+    return 1;
+}
+
+static double box_area(const pn_kbvh_node *nd)
+{
+    double dx = (double)nd->bmax[0] - nd->bmin[0], dy = (double)nd->bmax[1] - nd->bmin[1],
+           dz = (double)nd->bmax[2] - nd->bmin[2];
+    return dx * dy + dy * dz + dz * dx;
+}
+
+/* Leaves listing each triangle: (triangle, node) pairs, sorted by triangle. */
+typedef struct pair {
+    uint32_t tri, node;
+} pair;
+
+static int cmp_pair(const void *a, const void *b)
+{
+    const pair *x = (const pair *)a, *y = (const pair *)b;
+    if (x->tri != y->tri) return x->tri < y->tri ? -1 : 1;
+    return x->node < y->node ? -1 : x->node > y->node;
+}
+
+static void check_tree(pn_context *ctx, const scene *s, int expect_split)
+{
+    const pn_kbvh_node *nodes = ctx->nodes;
+    pair *pairs = (pair *)malloc((size_t)ctx->bvh_refs * sizeof(pair) + 1u);
+    uint32_t *stack = (uint32_t *)malloc((size_t)ctx->bvh_nodes * sizeof(uint32_t) + 4u);
+    uint8_t *raster_seen = (uint8_t *)calloc(s->tris + 1u, 1);
+    uint32_t np = 0, sp = 0, i, nondegen = 0, bad_nest = 0, bad_cover = 0, unlisted = 0, degen_listed = 0;
+    uint32_t raster_bad = 0, split_tris = 0, points = 0;
+    double whole_area = 0.0, part_area = 0.0;
+    REQUIRE(pairs && stack && raster_seen);
+    REQUIRE(ctx->bvh_nodes >= 1u && ctx->bvh_refs >= ctx->bvh_tris);
+    /* walk every node: children inside parents, leaves' entries collected */
+    stack[sp++] = 0;
+    while (sp > 0u) {
+        uint32_t n = stack[--sp];
+        const pn_kbvh_node *nd = nodes + n;
+        if (nd->count > 0u) {
+            for (i = nd->first; i < nd->first + nd->count; i++) {
+                if (i >= ctx->bvh_refs || np >= ctx->bvh_refs) {
+                    bad_nest++;
+                    continue;
+                }
+                pairs[np].tri = ctx->tri_index[i];
+                pairs[np++].node = n;
+            }
+        } else if (ctx->bvh_refs > 0u) {
+            uint32_t c, a;
+            for (c = nd->first; c < nd->first + 2u; c++) {
+                if (c >= ctx->bvh_nodes) {
+                    bad_nest++;
+                    continue;
+                }
+                for (a = 0; a < 3u; a++)
+                    if (!(nodes[c].bmin[a] >= nd->bmin[a] && nodes[c].bmax[a] <= nd->bmax[a])) bad_nest++;
+                stack[sp++] = c;
+            }
+        }
+    }
+    CHECK_MSG(bad_nest == 0u, "%u child boxes outside their parents or entries out of range", bad_nest);
+    CHECK_MSG(np == ctx->bvh_refs, "leaves list %u entries, bvh_refs %u", np, ctx->bvh_refs);
+    qsort(pairs, np, sizeof(pair), cmp_pair);
+    /* every triangle against the leaves that list it */
+    for (i = 0; i < s->tris; i++) {
+        const float *f = s->pos + (size_t)i * 9u;
+        uint32_t lo = 0, hi = np, first, last, e, q;
+        int degenerate = (ctx->flags[i] & PN_TRI_DEGENERATE) != 0;
+        while (lo < hi) {
+            uint32_t mid = lo + (hi - lo) / 2u;
+            if (pairs[mid].tri < i) lo = mid + 1u;
+            else hi = mid;
+        }
+        first = last = lo;
+        while (last < np && pairs[last].tri == i) last++;
+        if (degenerate) {
+            degen_listed += last != first;
+            continue;
+        }
+        nondegen++;
+        if (last == first) {
+            unlisted++;
+            continue;
+        }
+        if (last - first > 1u) {
+            double wb = 0.0;
+            int a;
+            pn_kbvh_node whole;
+            for (a = 0; a < 3; a++) {
+                whole.bmin[a] = fminf(f[a], fminf(f[3 + a], f[6 + a]));
+                whole.bmax[a] = fmaxf(f[a], fmaxf(f[3 + a], f[6 + a]));
+            }
+            wb = box_area(&whole);
+            split_tris++;
+            whole_area += wb;
+            for (e = first; e < last; e++) {
+                /* a split triangle's leaves are single references' boxes or unions of
+                 * several: bound the parts by the leaf boxes, a lower-or-equal measure
+                 * only when the leaf holds just this triangle */
+                if (nodes[pairs[e].node].count == 1u) part_area += box_area(nodes + pairs[e].node);
+                else part_area += wb / (double)(last - first);
+            }
+        }
+        /* points: vertices, 63 along each edge, 200 inside */
+        for (q = 0; q < 3u + 3u * 63u + 200u; q++) {
+            double p[3];
+            int a, found = 0;
+            if (q < 3u) {
+                for (a = 0; a < 3; a++) p[a] = f[q * 3u + (uint32_t)a];
+            } else if (q < 3u + 3u * 63u) {
+                uint32_t ed = (q - 3u) / 63u, k = (q - 3u) % 63u;
+                const float *P = f + ed * 3u, *Q = f + ((ed + 1u) % 3u) * 3u;
+                double t = (double)(k + 1u) / 64.0;
+                for (a = 0; a < 3; a++) p[a] = (double)P[a] + t * ((double)Q[a] - (double)P[a]);
+            } else {
+                double u = rnd_in(0.001, 0.997), v = rnd_in(0.001, 0.998 - u);
+                for (a = 0; a < 3; a++)
+                    p[a] = (double)f[a] + u * ((double)f[3 + a] - f[a]) + v * ((double)f[6 + a] - f[a]);
+            }
+            for (e = first; e < last && !found; e++) found = in_box(nodes + pairs[e].node, p);
+            points++;
+            if (!found) {
+                if (bad_cover < 5u)
+                    fprintf(stderr, "triangle %u point %u (%.9g %.9g %.9g) in none of its %u leaves\n", i, q, p[0],
+                            p[1], p[2], last - first);
+                bad_cover++;
+            }
+        }
+    }
+    CHECK_MSG(bad_cover == 0u, "%u of %u triangle points outside every leaf listing the triangle", bad_cover, points);
+    CHECK_MSG(unlisted == 0u, "%u non-degenerate triangles in no leaf", unlisted);
+    CHECK_MSG(degen_listed == 0u, "%u degenerate triangles listed", degen_listed);
+    CHECK(ctx->bvh_tris == nondegen);
+    for (i = 0; i < ctx->bvh_tris; i++) {
+        uint32_t t = ctx->raster_index[i];
+        if (t >= s->tris || raster_seen[t] || (ctx->flags[t] & PN_TRI_DEGENERATE)) raster_bad++;
+        else raster_seen[t] = 1;
+    }
+    CHECK_MSG(raster_bad == 0u, "raster order: %u entries repeated, degenerate or out of range", raster_bad);
+    if (expect_split) {
+        CHECK_MSG(ctx->bvh_refs > ctx->bvh_tris + ctx->bvh_tris / 2u, "%u references for %u triangles",
+                  ctx->bvh_refs, ctx->bvh_tris);
+        /* not all: a sliver small against its distance from the origin keeps its box (the
+         * margins, 2^-16 of the coordinates, are wider than it) */
+        CHECK_MSG(split_tris * 4u > nondegen, "only %u of %u triangles split", split_tris, nondegen);
+        /* the parts' boxes are together far smaller than the whole boxes */
+        CHECK_MSG(part_area < 0.5 * whole_area, "split boxes' area %g of the whole boxes' %g", part_area,
+                  whole_area);
+    } else {
+        CHECK_MSG(ctx->bvh_refs == ctx->bvh_tris && split_tris == 0u, "%u references for %u triangles unsplit",
+                  ctx->bvh_refs, ctx->bvh_tris);
+    }
+    free(pairs);
+    free(stack);
+    free(raster_seen);
+}
+
+static pn_context *open_ctx(pn_host *h, uint32_t tris, uint32_t refs)
+{
+    pn_limits lim;
+    char err[256];
+    memset(&lim, 0, sizeof(lim));
+    lim.max_triangles = tris;
+    lim.max_width = FRAME_W;
+    lim.max_height = FRAME_H;
+    lim.bvh_refs = refs;
+    if (pn_host_open_limits(h, &lim, 2, err, sizeof(err)) != 0) {
+        CHECK_MSG(0, "context: %s", err);
+        return NULL;
+    }
+    return h->ctx;
+}
+
+static void test_containment(void)
+{
+    scene s;
+    pn_host h;
+    pn_context *ctx;
+    make_mixed(&s, 4000);
+    ctx = open_ctx(&h, s.tris, 0);
+    if (ctx) {
+        CHECK(pn_scene_set(ctx, s.pos, s.verts, s.idx, s.tris) == PN_OK);
+        check_tree(ctx, &s, 1);
+        pn_host_close(&h);
+    }
+    ctx = open_ctx(&h, s.tris, s.tris);
+    if (ctx) {
+        pn_status st = pn_scene_set(ctx, s.pos, s.verts, s.idx, s.tris);
+        CHECK_MSG(st == PN_OK, "%s", pn_last_error(ctx));
+        check_tree(ctx, &s, 0);
+        pn_host_close(&h);
+    }
+    free_scene(&s);
+}
+
+static const struct {
+    const char *name;
+    pn_algo algo;
+    uint32_t build_flag;
+} algos[] = {
+    {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE}, {"gears", PN_ALGO_GEARS, PN_BUILD_GEARS},
+    {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},    {"srt", PN_ALGO_SRT, PN_BUILD_SRT},
+    {"occtex", PN_ALGO_OCCTEX, PN_BUILD_OCCTEX},          {"mcsm", PN_ALGO_MCSM, PN_BUILD_MCSM},
+    {"wedges", PN_ALGO_WEDGES, PN_BUILD_WEDGES},
+};
+
+/* Renders every algorithm compiled in on three contexts (no splitting, the default
+ * reserve, a reserve one short of the default's references) and compares the bytes. */
+static void frames_same(const char *label, const float *pos, uint32_t verts, const uint32_t *idx, uint32_t tris,
+                        const pn_camera *cam, const pn_light *light, float eps)
+{
+    pn_host h[3];
+    pn_context *ctx[3];
+    pn_stats st;
+    uint32_t refs_default = 0, c, a, built = pn_build_info();
+    size_t npix = (size_t)FRAME_W * FRAME_H;
+    float *vis0 = (float *)malloc(npix * sizeof(float));
+    uint8_t *rgba0 = (uint8_t *)malloc(npix * 4u);
+    REQUIRE(vis0 && rgba0);
+    ctx[0] = open_ctx(&h[0], tris, tris);
+    ctx[1] = open_ctx(&h[1], tris, 0);
+    REQUIRE(ctx[0] && ctx[1]);
+    CHECK(pn_scene_set(ctx[0], pos, verts, idx, tris) == PN_OK);
+    CHECK(pn_scene_set(ctx[1], pos, verts, idx, tris) == PN_OK);
+    CHECK(pn_get_stats(ctx[0], &st) == PN_OK && st.bvh_refs <= tris);
+    CHECK(pn_get_stats(ctx[1], &st) == PN_OK);
+    refs_default = st.bvh_refs;
+    CHECK_MSG(refs_default > tris + tris / 2u, "%s: %u references for %u triangles", label, refs_default, tris);
+    ctx[2] = open_ctx(&h[2], tris, refs_default - 1u);
+    REQUIRE(ctx[2]);
+    CHECK(pn_scene_set(ctx[2], pos, verts, idx, tris) == PN_OK);
+    CHECK(pn_get_stats(ctx[2], &st) == PN_OK);
+    CHECK_MSG(st.bvh_refs <= refs_default - 1u && st.bvh_refs > tris, "%s: short reserve %u gave %u references",
+              label, refs_default - 1u, st.bvh_refs);
+    for (a = 0; a < sizeof(algos) / sizeof(algos[0]); a++) {
+        if (!(built & algos[a].build_flag)) continue;
+        for (c = 0; c < 3u; c++) {
+            pn_frame_options opt;
+            pn_frame fr;
+            pn_status rs;
+            pn_frame_options_default(&opt);
+            opt.width = FRAME_W;
+            opt.height = FRAME_H;
+            opt.k = 8;
+            opt.eps = eps;
+            opt.algo = algos[a].algo;
+            opt.gears_grid = 16;
+            rs = pn_render(ctx[c], cam, light, &opt, &fr);
+            CHECK_MSG(rs == PN_OK, "%s %s: %s", label, algos[a].name, pn_last_error(ctx[c]));
+            if (rs != PN_OK) break;
+            if (c == 0u) {
+                memcpy(vis0, fr.visibility, npix * sizeof(float));
+                memcpy(rgba0, fr.rgba, npix * 4u);
+            } else {
+                CHECK_MSG(memcmp(vis0, fr.visibility, npix * sizeof(float)) == 0 && memcmp(rgba0, fr.rgba, npix * 4u) == 0,
+                          "%s %s: reserve %s renders other bytes than no splitting", label, algos[a].name,
+                          c == 1u ? "default" : "short");
+            }
+        }
+    }
+    for (c = 0; c < 3u; c++) pn_host_close(&h[c]);
+    free(vis0);
+    free(rgba0);
+}
+
+static void test_frames_thin(void)
+{
+    pn_setup s;
+    char err[256];
+    REQUIRE(pn_setup_load(&s, "thin", 1, -1, err, sizeof(err)) == 0);
+    frames_same("thin", s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count, &s.camera,
+                &s.light, s.eps);
+    pn_setup_free(&s);
+}
+
+/* Random slivers above a floor, under thin's camera and light. */
+static void test_frames_slivers(void)
+{
+    pn_setup th;
+    scene s;
+    char err[256];
+    uint32_t i;
+    const uint32_t n = 1500;
+    REQUIRE(pn_setup_load(&th, "thin", 1, -1, err, sizeof(err)) == 0);
+    s.pos = (float *)malloc((size_t)(n + 2u) * 9u * sizeof(float));
+    s.idx = (uint32_t *)malloc((size_t)(n + 2u) * 3u * sizeof(uint32_t));
+    s.tris = s.verts = 0;
+    for (i = 0; i < n; i++) {
+        double c[3] = {rnd_in(-3, 3), rnd_in(0.8, 1.8), rnd_in(-3, 3)};
+        add_sliver(&s, c, rnd_in(0.5, 3), rnd_in(0.002, 0.02));
+    }
+    {
+        static const double f0[9] = {-6, 0, -6, -6, 0, 6, 6, 0, 6}, f1[9] = {-6, 0, -6, 6, 0, 6, 6, 0, -6};
+        add_tri(&s, f0);
+        add_tri(&s, f1);
+    }
+    frames_same("slivers", s.pos, s.verts, s.idx, s.tris, &th.camera, &th.light, th.eps);
+    free_scene(&s);
+    pn_setup_free(&th);
+}
+
+static void test_limits(void)
+{
+    pn_limits lim;
+    size_t bytes, bytes_split, bytes_none;
+    memset(&lim, 0, sizeof(lim));
+    lim.max_triangles = 100;
+    lim.max_width = 8;
+    lim.max_height = 8;
+    lim.bvh_refs = 99;
+    CHECK(pn_arena_size(&lim, &bytes) == PN_E_LIMIT);
+    lim.bvh_refs = (1u << 26) + 1u;
+    CHECK(pn_arena_size(&lim, &bytes) == PN_E_LIMIT);
+    lim.bvh_refs = 100;
+    CHECK(pn_arena_size(&lim, &bytes_none) == PN_OK);
+    lim.bvh_refs = 1100;
+    CHECK(pn_arena_size(&lim, &bytes_split) == PN_OK);
+    /* 1000 references more: two nodes and an index entry each (less what the pools'
+     * alignment padding absorbs, under PN_ARENA_ALIGN a pool) */
+    CHECK_MSG(bytes_split + 3u * PN_ARENA_ALIGN >= bytes_none + 1000u * 68u, "%zu vs %zu", bytes_split, bytes_none);
+    lim.bvh_refs = 0;
+    CHECK(pn_arena_size(&lim, &bytes) == PN_OK);
+    CHECK(bytes <= PN_ARENA_BYTES_MAX(100, 8, 8));
+    /* a reserve far below what the slivers want: the deepest cap that fits, never more */
+    {
+        scene s;
+        pn_host h;
+        pn_context *ctx;
+        pn_stats st;
+        make_mixed(&s, 1000);
+        ctx = open_ctx(&h, s.tris, s.tris + 37u);
+        if (ctx) {
+            CHECK(pn_scene_set(ctx, s.pos, s.verts, s.idx, s.tris) == PN_OK);
+            CHECK(pn_get_stats(ctx, &st) == PN_OK && st.bvh_refs <= s.tris + 37u && st.bvh_refs == ctx->bvh_refs);
+            check_tree(ctx, &s, 0);
+            pn_host_close(&h);
+        }
+        free_scene(&s);
+    }
+}
+
+int main(void)
+{
+    if (PN_BVH_SPLIT_DEPTH == 0u || PN_BVH_SPLIT_REFS == 0u) {
+        /* nothing splits in this configuration: only the limits apply */
+        RUN(test_limits);
+        return pn_test_summary();
+    }
+    RUN(test_containment);
+    RUN(test_frames_thin);
+    RUN(test_frames_slivers);
+    RUN(test_limits);
+    return pn_test_summary();
+}

@@ -31,7 +31,12 @@ typedef struct pn_klight {
 
 /* BVH node, 32 bytes. Interior (count == 0): children at first and first + 1.
  * Leaf: triangles tri_index[first .. first + count). The root is node 0, so no child
- * index is ever 0: a root with count 0 and first 0 is the empty tree. */
+ * index is ever 0: a root with count 0 and first 0 is the empty tree. A leaf entry is a
+ * triangle id (PN_REF_TRI), with PN_REF_SPLIT set when the triangle is split into several
+ * references (src/pn_bvh_build.c): a leaf box then holds the part of it that matters to
+ * the walks, not necessarily its vertices. */
+#define PN_REF_SPLIT 0x80000000u
+#define PN_REF_TRI 0x7FFFFFFFu
 typedef struct pn_kbvh_node {
     float bmin[3];
     uint32_t first;

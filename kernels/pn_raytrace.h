@@ -46,8 +46,9 @@
  *     eb = 4.25 u h^2 + eps (4.25 h + 2.125 eps) + PN_KTINY, strictly above the error
  *     (the slack pays for computing eb; PN_KTINY for underflows, as pn_predicate.h argues).
  * eb comes from the box of the leaf holding the triangle (its vertices' box or larger:
- * the BVH build's leaf boxes are the min/max of their triangles' vertices), once per
- * leaf. Then: some e >= eb and some e <= -eb: two exact values of opposite strict signs,
+ * the BVH build's leaf boxes hold the vertices of every whole triangle in them), once per
+ * leaf; for a split triangle (PN_REF_SPLIT: the leaf boxes only a part of it) from its own
+ * vertices' box (pn_ray_tri_bound). Then: some e >= eb and some e <= -eb: two exact values of opposite strict signs,
  * not blocked (the common answer). All e >= eb or all e <= -eb: the edges pass, and the
  * plane decides: Woop's t = T / P in (0, 1) in the same frame with its own bound
  * (pn_ray_hit), and where that cannot tell, the very test pn_tri_sample makes
@@ -290,6 +291,18 @@ PN_KFN float pn_ray_bound(const pn_ray *R, const float *lo, const float *hi)
     return R->filt ? pn_ray_eb(h, eps) : PN_KINF;
 }
 
+/* pn_ray_bound over triangle p's own box (9 floats, A B C). */
+PN_KFN float pn_ray_tri_bound(const pn_ray *R, PN_CONST float *p)
+{
+    float lo[3], hi[3];
+    uint32_t a;
+    for (a = 0; a < 3u; a++) {
+        lo[a] = pn_kminf(p[a], pn_kminf(p[3u + a], p[6u + a]));
+        hi[a] = pn_kmaxf(p[a], pn_kmaxf(p[3u + a], p[6u + a]));
+    }
+    return pn_ray_bound(R, lo, hi);
+}
+
 /* The three edge functions of triangle p (9 floats, A B C) into e. */
 PN_KFN_HOT void pn_ray_edges(const pn_ray *R, PN_CONST float *p, float *e)
 {
@@ -450,11 +463,12 @@ PN_KFN_HOT uint32_t pn_ray_walk_next(pn_ray_walk *W, const pn_ray *R, uint32_t o
                 continue;
             }
         } else if (count != 0u) {
-            /* The scene box's bound first; the leaf's, finer, computed once where needed. */
+            /* The scene box's bound first; the leaf's, finer, computed once where needed,
+             * or a split triangle's own box's (its leaf's box need not hold it). */
             float eb = -1.0f, e[3], eu;
             uint32_t q;
             for (q = W->q; q < count; q++) {
-                uint32_t t = tri_index[first + q];
+                uint32_t ref = tri_index[first + q], t = ref & PN_REF_TRI;
                 PN_CONST float *p = tris + (size_t)t * 9u;
                 int32_t s;
                 if (t == own) continue;
@@ -463,12 +477,16 @@ PN_KFN_HOT uint32_t pn_ray_walk_next(pn_ray_walk *W, const pn_ray *R, uint32_t o
                 eu = R->ebr;
                 s = pn_ray_signs(e, eu);
                 if (s == 2) {
-                    if (eb < 0.0f) {
-                        float lo[3], hi[3];
-                        pn_ray_node_box(nd, lo, hi);
-                        eb = pn_ray_bound(R, lo, hi);
+                    if (ref & PN_REF_SPLIT) {
+                        eu = pn_ray_tri_bound(R, p);
+                    } else {
+                        if (eb < 0.0f) {
+                            float lo[3], hi[3];
+                            pn_ray_node_box(nd, lo, hi);
+                            eb = pn_ray_bound(R, lo, hi);
+                        }
+                        eu = eb;
                     }
-                    eu = eb;
                     s = pn_ray_signs(e, eu);
                 }
                 if (s != 0 && pn_ray_decide(R, L, p, s, e, eu)) {

@@ -221,7 +221,7 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
         } else {
             uint32_t e;
             for (e = 0; e < nd->count; e++) {
-                uint32_t t = tri_index[nd->first + e];
+                uint32_t t = tri_index[nd->first + e] & PN_REF_TRI;
                 pn_v3 A, B, C;
                 if (t == own) continue;
                 pn_tri_load(tris, t, &A, &B, &C);

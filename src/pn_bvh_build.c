@@ -6,8 +6,10 @@
  * config.h PN_BVH_SPLIT_DEPTH, PN_BVH_SPLIT_REFS): its box is halved along the longest
  * axis while the two halves' boxes of the triangle's part in them have under 5/8 of the
  * parent's surface area. A leaf lists triangle ids (tri_index), a split triangle's in
- * several leaves; the walks test whole triangles, so only which boxes a ray or a pyramid
- * meets changes, never a result. A part's box must hold the real part: see pn_part_box.
+ * several leaves and marked PN_REF_SPLIT there (its leaf box need not hold its vertices,
+ * so the ray filter bounds it by its own box); the walks test whole triangles, so only
+ * which boxes a ray or a pyramid meets changes, never a result. A part's box must hold
+ * the real part: see pn_part_box.
  *
  * Work list: after a split the larger child is pushed and the smaller one is built next,
  * so every pushed entry at least halves the remaining count: the list never holds more
@@ -212,7 +214,7 @@ static void pn_split_tri(const float *tris, uint32_t t, uint32_t cap, uint64_t *
             }
             if (dep == 0u)
                 for (a = 0; a < 3; a++) o->c[a] = (p[a] + p[3 + a] + p[6 + a]) * (1.0f / 3.0f);
-            o->tri = t;
+            o->tri = t | (dep > 0u ? PN_REF_SPLIT : 0u); /* a part of a split triangle */
         }
     }
 }
@@ -443,8 +445,8 @@ pn_status pn_bvh_build(pn_context *ctx)
         uint32_t *seen = (uint32_t *)(void *)(refs + pn_bvh_refs_max(&ctx->limits)), k = 0, i;
         for (t = 0; t <= ctx->tri_count / 32u; t++) seen[t] = 0;
         for (i = 0; i < n; i++) {
-            t = refs[ix[i]].tri;
-            ix[i] = t;
+            ix[i] = refs[ix[i]].tri;
+            t = ix[i] & PN_REF_TRI;
             if (!(seen[t >> 5] & (1u << (t & 31u)))) {
                 seen[t >> 5] |= 1u << (t & 31u);
                 ctx->raster_index[k++] = t;

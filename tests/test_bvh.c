@@ -5,7 +5,9 @@
  *                long diagonal slivers at several scales and offsets, general triangles
  *                and near-degenerate ones; every node's box holds its children's; each
  *                non-degenerate triangle is listed, each degenerate one is not; the raster
- *                order lists every non-degenerate triangle once; and splitting happened
+ *                order lists every non-degenerate triangle once; a whole triangle's
+ *                vertices lie in its leaf's box (the ray filter's bound relies on it) and
+ *                only a split triangle's references carry PN_REF_SPLIT; and splitting happened
  *                (more references than triangles, smaller boxes), so none of it is vacuous
  *   frames       every algorithm renders the same bytes with splitting (the default
  *                reserve, and a reserve one short of what the scene wants) as without it
@@ -144,7 +146,7 @@ static double box_area(const pn_kbvh_node *nd)
 
 /* Leaves listing each triangle: (triangle, node) pairs, sorted by triangle. */
 typedef struct pair {
-    uint32_t tri, node;
+    uint32_t tri, node, split;
 } pair;
 
 static int cmp_pair(const void *a, const void *b)
@@ -161,7 +163,7 @@ static void check_tree(pn_context *ctx, const scene *s, int expect_split)
     uint32_t *stack = (uint32_t *)malloc((size_t)ctx->bvh_nodes * sizeof(uint32_t) + 4u);
     uint8_t *raster_seen = (uint8_t *)calloc(s->tris + 1u, 1);
     uint32_t np = 0, sp = 0, i, nondegen = 0, bad_nest = 0, bad_cover = 0, unlisted = 0, degen_listed = 0;
-    uint32_t raster_bad = 0, split_tris = 0, points = 0;
+    uint32_t raster_bad = 0, split_tris = 0, points = 0, whole_outside = 0, mark_bad = 0;
     double whole_area = 0.0, part_area = 0.0;
     REQUIRE(pairs && stack && raster_seen);
     REQUIRE(ctx->bvh_nodes >= 1u && ctx->bvh_refs >= ctx->bvh_tris);
@@ -176,8 +178,18 @@ static void check_tree(pn_context *ctx, const scene *s, int expect_split)
                     bad_nest++;
                     continue;
                 }
-                pairs[np].tri = ctx->tri_index[i];
+                uint32_t t = ctx->tri_index[i] & PN_REF_TRI, v, a;
+                pairs[np].tri = t;
+                pairs[np].split = (ctx->tri_index[i] & PN_REF_SPLIT) != 0u;
                 pairs[np++].node = n;
+                /* a whole triangle's vertices lie in its leaf's box: the ray filter's bound
+                 * for it comes from that box (kernels/pn_raytrace.h) */
+                if (!(ctx->tri_index[i] & PN_REF_SPLIT) && t < s->tris)
+                    for (v = 0; v < 3u; v++)
+                        for (a = 0; a < 3u; a++) {
+                            float x = s->pos[(size_t)t * 9u + v * 3u + a];
+                            if (!(x >= nd->bmin[a] && x <= nd->bmax[a])) whole_outside++;
+                        }
             }
         } else if (ctx->bvh_refs > 0u) {
             uint32_t c, a;
@@ -193,6 +205,7 @@ static void check_tree(pn_context *ctx, const scene *s, int expect_split)
         }
     }
     CHECK_MSG(bad_nest == 0u, "%u child boxes outside their parents or entries out of range", bad_nest);
+    CHECK_MSG(whole_outside == 0u, "%u vertex coordinates of whole triangles outside their leaf's box", whole_outside);
     CHECK_MSG(np == ctx->bvh_refs, "leaves list %u entries, bvh_refs %u", np, ctx->bvh_refs);
     qsort(pairs, np, sizeof(pair), cmp_pair);
     /* every triangle against the leaves that list it */
@@ -216,6 +229,9 @@ static void check_tree(pn_context *ctx, const scene *s, int expect_split)
             unlisted++;
             continue;
         }
+        /* PN_REF_SPLIT: on every reference of a triangle split in several, on none of a
+         * whole one */
+        for (e = first; e < last; e++) mark_bad += pairs[e].split != (last - first > 1u);
         if (last - first > 1u) {
             double wb = 0.0;
             int a;
@@ -262,6 +278,7 @@ static void check_tree(pn_context *ctx, const scene *s, int expect_split)
         }
     }
     CHECK_MSG(bad_cover == 0u, "%u of %u triangle points outside every leaf listing the triangle", bad_cover, points);
+    CHECK_MSG(mark_bad == 0u, "%u references marked otherwise than their triangle's split", mark_bad);
     CHECK_MSG(unlisted == 0u, "%u non-degenerate triangles in no leaf", unlisted);
     CHECK_MSG(degen_listed == 0u, "%u degenerate triangles listed", degen_listed);
     CHECK(ctx->bvh_tris == nondegen);

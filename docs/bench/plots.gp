@@ -212,35 +212,35 @@ set output 'gallery/cad_infineon_easypim2b.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 340 ms"
+set title "reference, 297 ms"
 plot 'work/gallery/cad_infineon_easypim2b/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/cad_infineon_easypim2b/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 357 ms"
+set title "GEARS, 348 ms"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1432 ms"
+set title "raytrace, 1232 ms"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 371 ms"
+set title "SRT, 381 ms"
 plot 'work/gallery/cad_infineon_easypim2b/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 102 ms"
+set title "occtex, 98.6 ms"
 plot 'work/gallery/cad_infineon_easypim2b/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 51.5 ms"
+set title "MCSM, 48.7 ms"
 plot 'work/gallery/cad_infineon_easypim2b/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 161 ms"
+set title "wedges, 146 ms"
 plot 'work/gallery/cad_infineon_easypim2b/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1194 ms"
+set title "Embree visibility, 1167 ms"
 plot 'work/gallery/cad_infineon_easypim2b/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.4425% px)"
 plot 'work/gallery/cad_infineon_easypim2b/embree_error.png' binary filetype=png with rgbimage
@@ -296,35 +296,35 @@ set output 'gallery/chess_set.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 179 ms"
+set title "reference, 202 ms"
 plot 'work/gallery/chess_set/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/chess_set/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 310 ms"
+set title "GEARS, 341 ms"
 plot 'work/gallery/chess_set/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/chess_set/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2211 ms"
+set title "raytrace, 1978 ms"
 plot 'work/gallery/chess_set/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/chess_set/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 256 ms"
+set title "SRT, 338 ms"
 plot 'work/gallery/chess_set/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/chess_set/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 114 ms"
+set title "occtex, 115 ms"
 plot 'work/gallery/chess_set/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/chess_set/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 61.5 ms"
+set title "MCSM, 54.0 ms"
 plot 'work/gallery/chess_set/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/chess_set/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 94.9 ms"
+set title "wedges, 101 ms"
 plot 'work/gallery/chess_set/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/chess_set/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1369 ms"
+set title "Embree visibility, 1318 ms"
 plot 'work/gallery/chess_set/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.2148% px)"
 plot 'work/gallery/chess_set/embree_error.png' binary filetype=png with rgbimage
@@ -380,35 +380,35 @@ set output 'gallery/happy_buddha_100k.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 3060 ms"
+set title "reference, 2640 ms"
 plot 'work/gallery/happy_buddha_100k/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/happy_buddha_100k/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 6750 ms"
+set title "GEARS, 5856 ms"
 plot 'work/gallery/happy_buddha_100k/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 4106 ms"
+set title "raytrace, 3531 ms"
 plot 'work/gallery/happy_buddha_100k/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 3175 ms"
+set title "SRT, 3055 ms"
 plot 'work/gallery/happy_buddha_100k/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 117 ms"
+set title "occtex, 110 ms"
 plot 'work/gallery/happy_buddha_100k/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 81.4 ms"
+set title "MCSM, 80.8 ms"
 plot 'work/gallery/happy_buddha_100k/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 781 ms"
+set title "wedges, 737 ms"
 plot 'work/gallery/happy_buddha_100k/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1934 ms"
+set title "Embree visibility, 1849 ms"
 plot 'work/gallery/happy_buddha_100k/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8091% px)"
 plot 'work/gallery/happy_buddha_100k/embree_error.png' binary filetype=png with rgbimage
@@ -464,35 +464,35 @@ set output 'gallery/spot.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 344 ms"
+set title "reference, 351 ms"
 plot 'work/gallery/spot/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/spot/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 370 ms"
+set title "GEARS, 462 ms"
 plot 'work/gallery/spot/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/spot/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1768 ms"
+set title "raytrace, 2060 ms"
 plot 'work/gallery/spot/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/spot/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 392 ms"
+set title "SRT, 396 ms"
 plot 'work/gallery/spot/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/spot/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 92.2 ms"
+set title "occtex, 94.3 ms"
 plot 'work/gallery/spot/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/spot/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 57.4 ms"
+set title "MCSM, 63.8 ms"
 plot 'work/gallery/spot/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/spot/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 52.1 ms"
+set title "wedges, 57.6 ms"
 plot 'work/gallery/spot/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/spot/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1386 ms"
+set title "Embree visibility, 1394 ms"
 plot 'work/gallery/spot/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (1.2997% px)"
 plot 'work/gallery/spot/embree_error.png' binary filetype=png with rgbimage
@@ -548,35 +548,35 @@ set output 'gallery/stanford_bunny.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 1330 ms"
+set title "reference, 1723 ms"
 plot 'work/gallery/stanford_bunny/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_bunny/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 2014 ms"
+set title "GEARS, 2727 ms"
 plot 'work/gallery/stanford_bunny/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 3000 ms"
+set title "raytrace, 4290 ms"
 plot 'work/gallery/stanford_bunny/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 1350 ms"
+set title "SRT, 1813 ms"
 plot 'work/gallery/stanford_bunny/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 98.0 ms"
+set title "occtex, 122 ms"
 plot 'work/gallery/stanford_bunny/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 68.8 ms"
+set title "MCSM, 88.6 ms"
 plot 'work/gallery/stanford_bunny/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 129 ms"
+set title "wedges, 177 ms"
 plot 'work/gallery/stanford_bunny/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1779 ms"
+set title "Embree visibility, 1968 ms"
 plot 'work/gallery/stanford_bunny/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.7610% px)"
 plot 'work/gallery/stanford_bunny/embree_error.png' binary filetype=png with rgbimage
@@ -632,35 +632,35 @@ set output 'gallery/stanford_dragon.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 2635 ms"
+set title "reference, 2964 ms"
 plot 'work/gallery/stanford_dragon/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_dragon/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 8980 ms"
+set title "GEARS, 11871 ms"
 plot 'work/gallery/stanford_dragon/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 3534 ms"
+set title "raytrace, 4226 ms"
 plot 'work/gallery/stanford_dragon/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 2825 ms"
+set title "SRT, 3762 ms"
 plot 'work/gallery/stanford_dragon/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 135 ms"
+set title "occtex, 179 ms"
 plot 'work/gallery/stanford_dragon/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 99.9 ms"
+set title "MCSM, 125 ms"
 plot 'work/gallery/stanford_dragon/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 617 ms"
+set title "wedges, 857 ms"
 plot 'work/gallery/stanford_dragon/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1991 ms"
+set title "Embree visibility, 2195 ms"
 plot 'work/gallery/stanford_dragon/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8690% px)"
 plot 'work/gallery/stanford_dragon/embree_error.png' binary filetype=png with rgbimage
@@ -723,7 +723,7 @@ unset xlabel
 set xtics rotate by -30
 set grid ytics
 set key inside top right
-set yrange [0.0727721:36.1965]
+set yrange [0.0775981:30]
 set arrow 1 from graph 0, first 1 to graph 1, first 1 nohead dt 2
 set arrow 2 from graph 0, first 10 to graph 1, first 10 nohead dt 3 lc rgb 'red'
 set label 1 'goal 10x' at graph 0.01, first 10 offset 0,0.6 tc rgb 'red'

@@ -140,10 +140,11 @@ static int pn_part_box(const float *p, const float *rlo, const float *rhi, float
 }
 
 /* Splits triangle t: the parts at most `cap` halvings deep. Counts, for every depth d up
- * to PN_BVH_SPLIT_DEPTH, the references a cap of d would give (into count[d], when count
- * is not NULL), and writes the references of this cap from refs[*r] on (when refs is not
- * NULL). Depth first over an explicit stack (at most depth + 1 entries). */
-static void pn_split_tri(const float *tris, uint32_t t, uint32_t cap, uint64_t *count, pn_bref *refs, uint32_t *r)
+ * to cap, the references a cap of d would give (into count[d], when count is not NULL;
+ * count[d] for d above cap gets this cap's), and writes the references of this cap from refs[*r] on, those below index `room` only
+ * (*r counts them all). Depth first over an explicit stack (at most depth + 1 entries). */
+static void pn_split_tri(const float *tris, uint32_t t, uint32_t cap, uint64_t *count, pn_bref *refs, uint32_t *r,
+                         uint32_t room)
 {
     struct {
         pn_box b;
@@ -200,12 +201,16 @@ static void pn_split_tri(const float *tris, uint32_t t, uint32_t cap, uint64_t *
             else
                 for (d = dep; d <= PN_BVH_SPLIT_DEPTH; d++) count[d]++;
         }
+        if (!split && *r >= room) {
+            (*r)++; /* counted, not written: the caller splits everything less deep */
+            continue;
+        }
         if (split) {
             st[sp].b = R;
             st[sp++].depth = dep + 1u;
             st[sp].b = L;
             st[sp++].depth = dep + 1u;
-        } else if (refs) {
+        } else {
             pn_bref *o = refs + (*r)++;
             for (a = 0; a < 3; a++) {
                 o->lo[a] = cur.lo[a];
@@ -252,24 +257,33 @@ typedef struct pn_work {
 } pn_work;
 
 /* The references of the scene into refs (the frame region): every triangle split as deep
- * as the reserve allows (the same cap for all: the deepest whose count fits). */
+ * as the reserve allows (the same cap for all: the deepest whose count fits). One pass
+ * splits to the deepest cap still possible, counting every shallower cap's references and
+ * writing while they fit; the cap drops as soon as its count, plus one reference for
+ * every triangle still to come, passes the reserve (its final count would), so a scene
+ * that wants far more than the reserve stops paying for deep splits early, and the cap is
+ * the one a full count would choose. Only when it dropped, a second pass writes it. */
 static uint32_t pn_bvh_refs(pn_context *ctx, pn_bref *refs, uint32_t *tris_out)
 {
     uint64_t count[PN_BVH_SPLIT_DEPTH + 1u], most = pn_bvh_refs_max(&ctx->limits);
-    uint32_t t, n = 0, r = 0, cap = 0, d;
-    int splits = PN_BVH_SPLIT_DEPTH > 0u && most > ctx->limits.max_triangles;
+    uint32_t t, n = 0, r = 0, d, first_cap, cap, rest = 0;
+    first_cap = cap = PN_BVH_SPLIT_DEPTH > 0u && most > ctx->limits.max_triangles ? PN_BVH_SPLIT_DEPTH : 0u;
     for (d = 0; d <= PN_BVH_SPLIT_DEPTH; d++) count[d] = 0;
+    for (t = 0; t < ctx->tri_count; t++) rest += !(ctx->flags[t] & PN_TRI_DEGENERATE);
     for (t = 0; t < ctx->tri_count; t++)
         if (!(ctx->flags[t] & PN_TRI_DEGENERATE)) {
             n++;
-            if (splits) pn_split_tri(ctx->tris, t, PN_BVH_SPLIT_DEPTH, count, NULL, NULL);
+            rest--;
+            pn_split_tri(ctx->tris, t, cap, count, refs, &r, (uint32_t)most);
+            /* count[0] + rest = the non-degenerate triangles <= max_triangles <= most: the
+             * loop ends at 0 at the latest */
+            while (count[cap] + rest > most) cap--;
         }
-    /* count[d] only grows with d, and count[0] = n <= max_triangles <= most */
-    if (splits)
-        for (d = 1; d <= PN_BVH_SPLIT_DEPTH && count[d] <= most; d++) cap = d;
-    for (t = 0; t < ctx->tri_count; t++)
-        if (!(ctx->flags[t] & PN_TRI_DEGENERATE)) pn_split_tri(ctx->tris, t, cap, NULL, refs, &r);
     *tris_out = n;
+    if (cap == first_cap) return r; /* = count[cap] <= most, all written */
+    r = 0;
+    for (t = 0; t < ctx->tri_count; t++)
+        if (!(ctx->flags[t] & PN_TRI_DEGENERATE)) pn_split_tri(ctx->tris, t, cap, NULL, refs, &r, (uint32_t)most);
     return r;
 }
 

@@ -213,9 +213,9 @@ PN_KFN uint32_t pn_raster_rows(const pn_kview *v, PN_CONST float *tris, PN_CONST
 }
 
 /* The band walk. A band of rows looks at the triangles that may cover them, not at every
- * triangle: the walk goes through the BVH's leaf order (`index`, its n entries: every
- * triangle that is not degenerate, which are the only ones pn_raster_rows draws, grouped in
- * space by the build) in chunks of PN_RASTER_CHUNK entries, and skips a chunk whose rows,
+ * triangle: the walk goes through the BVH's raster order (`rindex`, its n entries: every
+ * triangle that is not degenerate, which are the only ones pn_raster_rows draws, once, in
+ * the leaf order where it first appears, so grouped in space by the build) in chunks of PN_RASTER_CHUNK entries, and skips a chunk whose rows,
  * the union of its triangles' (pn_raster_chunk, one item per chunk after the rows pass),
  * miss the band. Every rasterizer here combines fragments in a way that does not depend
  * on their order (nearest depth with ties to the smaller id, OR of bits, min and max), so

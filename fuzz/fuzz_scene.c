@@ -4,7 +4,10 @@
  * (so NaN, Inf, huge, subnormal values and out-of-range indices all occur); bytes past
  * the end read as zero.
  *   0 vertex count % 65     1 triangle count % 65    2 width % 25    3 height % 25
- *   4 k (raw)               5 arena misalignment & 63
+ *   4 k (raw)               5 arena misalignment & 63; bits 6..7 the BVH's split
+ *     reserve (limits.bvh_refs): 0 the default, 1 none (max_triangles), 2 max_triangles
+ *     + 1 + byte 9 % 64, at most the default (short: the build drops its cap), 3 one
+ *     above the default (pn_arena_size and pn_init refuse it: PN_E_LIMIT)
  *   6 flags: 1 positions NULL, 2 indices NULL, 4 skip pn_scene_set, 8 arena 1 byte
  *     short, 16 indices taken modulo the vertex count, 32 limits from bytes 8..10,
  *     64 first render under the reversed schedule (the second always uses the other)
@@ -115,6 +118,26 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         lim.max_triangles = 1u + h[8] % MAX_T;
         lim.max_width = 1u + h[9] % MAX_W;
         lim.max_height = 1u + h[10] % MAX_H;
+    }
+    {
+        /* the default reserve: max_triangles plus the split ones (penumbra.h) */
+        uint32_t most = ((1u << PN_BVH_SPLIT_DEPTH) - 1u) * lim.max_triangles, dflt;
+        dflt = lim.max_triangles + (PN_BVH_SPLIT_REFS < most ? PN_BVH_SPLIT_REFS : most);
+        switch (h[5] >> 6) {
+        case 1: lim.bvh_refs = lim.max_triangles; break;
+        case 2: lim.bvh_refs = lim.max_triangles + 1u + h[9] % 64u; break;
+        case 3: lim.bvh_refs = dflt + 1u; break;
+        default: break;
+        }
+        if (lim.bvh_refs > dflt && (h[5] >> 6) == 2u) lim.bvh_refs = dflt;
+        if ((h[5] >> 6) == 3u) {
+            pn_context *none = NULL;
+            static uint8_t small[64];
+            FUZZ_CHECK(pn_arena_size(&lim, &bytes) == PN_E_LIMIT, "a reserve above the default was accepted");
+            FUZZ_CHECK(pn_init(&none, small, sizeof small, &lim) == PN_E_LIMIT && none == NULL,
+                       "pn_init took a reserve above the default");
+            return 0;
+        }
     }
     pn_frame_options_default(&opt);
     opt.width = h[2] % 25u;

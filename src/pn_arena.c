@@ -172,7 +172,7 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
         (l->srt_map_max != 0u && l->srt_map_max < 8u) || l->occ_map_max > PN_OCCTEX_MAP_MAX ||
         (l->occ_map_max != 0u && l->occ_map_max < 8u) || l->mc_map_max > PN_MCSM_MAP_MAX ||
         (l->mc_map_max != 0u && l->mc_map_max < 8u) || l->wg_pairs > PN_WEDGES_PAIRS ||
-        (l->bvh_refs != 0u && (l->bvh_refs < l->max_triangles || l->bvh_refs > (1u << 26))))
+        (l->bvh_refs != 0u && (l->bvh_refs < l->max_triangles || l->bvh_refs > pn_bvh_refs_default(l))))
         return PN_E_LIMIT;
     if (!pn_bump(&off, 1u, sizeof(pn_context), &lay.ctx) ||
         !pn_bump(&off, l->max_triangles, 9u * sizeof(float), &lay.tris) ||
@@ -268,14 +268,14 @@ uint32_t pn_gears_pairs_max(const pn_limits *l) { return l->gears_pairs ? l->gea
 uint32_t pn_srt_map_max(const pn_limits *l) { return l->srt_map_max ? l->srt_map_max : PN_SRT_MAP_MAX; }
 uint32_t pn_occ_map_max(const pn_limits *l) { return l->occ_map_max ? l->occ_map_max : PN_OCCTEX_MAP_MAX; }
 uint32_t pn_mc_map_max(const pn_limits *l) { return l->mc_map_max ? l->mc_map_max : PN_MCSM_MAP_MAX; }
-uint32_t pn_bvh_refs_max(const pn_limits *l)
+uint32_t pn_bvh_refs_default(const pn_limits *l)
 {
     uint64_t n = l->max_triangles, extra = PN_BVH_SPLIT_REFS, most = ((1u << PN_BVH_SPLIT_DEPTH) - 1u) * n;
-    if (l->bvh_refs) return l->bvh_refs;
     if (extra > most) extra = most;
     if (n + extra > (1u << 26)) extra = n < (1u << 26) ? (1u << 26) - n : 0u;
     return (uint32_t)(n + extra);
 }
+uint32_t pn_bvh_refs_max(const pn_limits *l) { return l->bvh_refs ? l->bvh_refs : pn_bvh_refs_default(l); }
 uint64_t pn_bvh_scratch_bytes(const pn_limits *l)
 {
     return (uint64_t)pn_bvh_refs_max(l) * PN_BVH_REF_BYTES + ((uint64_t)l->max_triangles / 32u + 1u) * 4u;

@@ -13,8 +13,8 @@
  *                reserve, and a reserve one short of what the scene wants) as without it
  *                (limits.bvh_refs = max_triangles), on the built-in thin scene and on a
  *                scene of random slivers
- *   limits       a reserve below max_triangles or above 2^26 is PN_E_LIMIT; a short
- *                reserve is never exceeded */
+ *   limits       a reserve below max_triangles, above the default or above 2^26 is
+ *                PN_E_LIMIT; a short reserve is never exceeded */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -462,13 +462,22 @@ static void test_limits(void)
     CHECK(pn_arena_size(&lim, &bytes) == PN_E_LIMIT);
     lim.bvh_refs = (1u << 26) + 1u;
     CHECK(pn_arena_size(&lim, &bytes) == PN_E_LIMIT);
+    /* at most the default reserve (100 + min(PN_BVH_SPLIT_REFS, 15 x 100) by default), so
+     * that PN_ARENA_BYTES_MAX bounds every context */
+    lim.bvh_refs = 101u + (PN_BVH_SPLIT_REFS < ((1u << PN_BVH_SPLIT_DEPTH) - 1u) * 100u
+                               ? PN_BVH_SPLIT_REFS
+                               : ((1u << PN_BVH_SPLIT_DEPTH) - 1u) * 100u);
+    CHECK(pn_arena_size(&lim, &bytes) == PN_E_LIMIT);
+    lim.bvh_refs -= 1u;
+    CHECK(pn_arena_size(&lim, &bytes) == PN_OK && bytes <= PN_ARENA_BYTES_MAX(100, 8, 8));
     lim.bvh_refs = 100;
     CHECK(pn_arena_size(&lim, &bytes_none) == PN_OK);
-    lim.bvh_refs = 1100;
+    lim.bvh_refs = PN_BVH_SPLIT_REFS >= 1000u && PN_BVH_SPLIT_DEPTH >= 4u ? 1100u : 100u;
     CHECK(pn_arena_size(&lim, &bytes_split) == PN_OK);
     /* 1000 references more: two nodes and an index entry each (less what the pools'
      * alignment padding absorbs, under PN_ARENA_ALIGN a pool) */
-    CHECK_MSG(bytes_split + 3u * PN_ARENA_ALIGN >= bytes_none + 1000u * 68u, "%zu vs %zu", bytes_split, bytes_none);
+    CHECK_MSG(bytes_split + 3u * PN_ARENA_ALIGN >= bytes_none + (lim.bvh_refs - 100u) * 68u, "%zu vs %zu", bytes_split,
+              bytes_none);
     lim.bvh_refs = 0;
     CHECK(pn_arena_size(&lim, &bytes) == PN_OK);
     CHECK(bytes <= PN_ARENA_BYTES_MAX(100, 8, 8));

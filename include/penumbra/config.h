@@ -183,7 +183,7 @@
  * of persistent arena (two BVH nodes, an index entry; pn_scene_set's build also borrows
  * 40 bytes a reference of the frame region); when a scene wants more, every
  * triangle is split one level less until it fits. 0 for either: no splitting, no cost.
- * A context's limits.bvh_refs sets the reserve at run time. Depth 0 .. 6; references
+ * A context's limits.bvh_refs lowers the reserve at run time. Depth 0 .. 6; references
  * 0 .. 2^26. */
 #ifndef PN_BVH_SPLIT_DEPTH
 #define PN_BVH_SPLIT_DEPTH 4u

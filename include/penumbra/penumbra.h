@@ -124,11 +124,12 @@ typedef struct pn_limits {
     uint32_t wg_pairs;       /* penumbra wedges' (screen tile, wedge) pair pool, at most
                                 PN_WEDGES_PAIRS; 0: PN_WEDGES_PAIRS. A frame needing more
                                 fails PN_E_POOL_EXHAUSTED with the count it needed */
-    uint32_t bvh_refs;       /* BVH references: max_triangles .. 2^26 (68 bytes of arena
-                                each); beyond one a triangle, split slivers (config.h
-                                PN_BVH_SPLIT_DEPTH; frames are the same bits with or
-                                without). max_triangles: no splitting; 0: max_triangles
-                                plus PN_BVH_SPLIT_REFS, at most (2^depth - 1) a triangle */
+    uint32_t bvh_refs;       /* BVH references (68 bytes of arena each); beyond one a
+                                triangle, split slivers (config.h PN_BVH_SPLIT_DEPTH;
+                                frames are the same bits with or without). 0: the default,
+                                max_triangles plus PN_BVH_SPLIT_REFS, at most (2^depth - 1)
+                                a triangle and 2^26 in all; else max_triangles (no
+                                splitting) .. the default */
 } pn_limits;
 
 /* Limits equal to the compile-time maxima. */

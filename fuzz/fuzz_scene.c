@@ -120,9 +120,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         lim.max_height = 1u + h[10] % MAX_H;
     }
     {
-        /* the default reserve: max_triangles plus the split ones (penumbra.h) */
-        uint32_t most = ((1u << PN_BVH_SPLIT_DEPTH) - 1u) * lim.max_triangles, dflt;
-        dflt = lim.max_triangles + (PN_BVH_SPLIT_REFS < most ? PN_BVH_SPLIT_REFS : most);
+        /* the default reserve (penumbra.h; max_triangles <= 64 here, far below 2^26) */
+        uint32_t dflt = lim.max_triangles + (uint32_t)PN_BVH_SPLIT_EXTRA(lim.max_triangles);
         switch (h[5] >> 6) {
         case 1: lim.bvh_refs = lim.max_triangles; break;
         case 2: lim.bvh_refs = lim.max_triangles + 1u + h[9] % 64u; break;

@@ -48,8 +48,8 @@
  * eb comes from the box of the leaf holding the triangle (its vertices' box or larger:
  * the BVH build's leaf boxes hold the vertices of every whole triangle in them), once per
  * leaf; for a split triangle (PN_REF_SPLIT: the leaf boxes only a part of it) from its own
- * vertices' box (pn_ray_tri_bound). Then: some e >= eb and some e <= -eb: two exact values of opposite strict signs,
- * not blocked (the common answer). All e >= eb or all e <= -eb: the edges pass, and the
+ * vertices' box (pn_ray_tri_bound). Then: some e >= eb and some e <= -eb: two exact
+ * values of opposite strict signs, not blocked (the common answer). All e >= eb or all e <= -eb: the edges pass, and the
  * plane decides: Woop's t = T / P in (0, 1) in the same frame with its own bound
  * (pn_ray_hit), and where that cannot tell, the very test pn_tri_sample makes
  * (pn_tri_plane, the sample's float plane value against its bound, the exact sign

@@ -270,8 +270,7 @@ uint32_t pn_occ_map_max(const pn_limits *l) { return l->occ_map_max ? l->occ_map
 uint32_t pn_mc_map_max(const pn_limits *l) { return l->mc_map_max ? l->mc_map_max : PN_MCSM_MAP_MAX; }
 uint32_t pn_bvh_refs_default(const pn_limits *l)
 {
-    uint64_t n = l->max_triangles, extra = PN_BVH_SPLIT_REFS, most = ((1u << PN_BVH_SPLIT_DEPTH) - 1u) * n;
-    if (extra > most) extra = most;
+    uint64_t n = l->max_triangles, extra = PN_BVH_SPLIT_EXTRA(l->max_triangles);
     if (n + extra > (1u << 26)) extra = n < (1u << 26) ? (1u << 26) - n : 0u;
     return (uint32_t)(n + extra);
 }

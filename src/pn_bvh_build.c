@@ -266,20 +266,18 @@ typedef struct pn_work {
 static uint32_t pn_bvh_refs(pn_context *ctx, pn_bref *refs, uint32_t *tris_out)
 {
     uint64_t count[PN_BVH_SPLIT_DEPTH + 1u], most = pn_bvh_refs_max(&ctx->limits);
-    uint32_t t, n = 0, r = 0, d, first_cap, cap, rest = 0;
+    uint32_t t, r = 0, d, first_cap, cap, rest = ctx->tri_count - ctx->degenerate;
     first_cap = cap = PN_BVH_SPLIT_DEPTH > 0u && most > ctx->limits.max_triangles ? PN_BVH_SPLIT_DEPTH : 0u;
     for (d = 0; d <= PN_BVH_SPLIT_DEPTH; d++) count[d] = 0;
-    for (t = 0; t < ctx->tri_count; t++) rest += !(ctx->flags[t] & PN_TRI_DEGENERATE);
+    *tris_out = rest;
     for (t = 0; t < ctx->tri_count; t++)
         if (!(ctx->flags[t] & PN_TRI_DEGENERATE)) {
-            n++;
             rest--;
             pn_split_tri(ctx->tris, t, cap, count, refs, &r, (uint32_t)most);
             /* count[0] + rest = the non-degenerate triangles <= max_triangles <= most: the
              * loop ends at 0 at the latest */
             while (count[cap] + rest > most) cap--;
         }
-    *tris_out = n;
     if (cap == first_cap) return r; /* = count[cap] <= most, all written */
     r = 0;
     for (t = 0; t < ctx->tri_count; t++)
@@ -293,7 +291,7 @@ pn_status pn_bvh_build(pn_context *ctx)
     uint32_t *ix = ctx->tri_index;
     pn_kbvh_node *nodes = ctx->nodes;
     pn_work list[64];
-    uint32_t sp = 0, n, t, node_count = 1, max_depth = 0, max_leaf = 0;
+    uint32_t sp = 0, n, t, node_count = 1, max_depth = 0, max_leaf = 0, refs_max = pn_bvh_refs_max(&ctx->limits);
     pn_work cur;
 
     n = pn_bvh_refs(ctx, refs, &ctx->bvh_tris);
@@ -436,7 +434,7 @@ pn_status pn_bvh_build(pn_context *ctx)
         {
             uint32_t l = node_count, r = node_count + 1u;
             pn_work small, large;
-            if (node_count + 2u > 2u * pn_bvh_refs_max(&ctx->limits))
+            if (node_count + 2u > 2u * refs_max)
                 return pn_fail(ctx, PN_E_INTERNAL, "BVH node pool overflow at %u nodes", node_count);
             node_count += 2u;
             nodes[l].first = first;
@@ -456,7 +454,7 @@ pn_status pn_bvh_build(pn_context *ctx)
     /* References to triangle ids; the raster order: each triangle at its first reference
      * (a bit per triangle after the references marks the ones written). */
     {
-        uint32_t *seen = (uint32_t *)(void *)(refs + pn_bvh_refs_max(&ctx->limits)), k = 0, i;
+        uint32_t *seen = (uint32_t *)(void *)(refs + refs_max), k = 0, i;
         for (t = 0; t <= ctx->tri_count / 32u; t++) seen[t] = 0;
         for (i = 0; i < n; i++) {
             ix[i] = refs[ix[i]].tri;

@@ -464,9 +464,7 @@ static void test_limits(void)
     CHECK(pn_arena_size(&lim, &bytes) == PN_E_LIMIT);
     /* at most the default reserve (100 + min(PN_BVH_SPLIT_REFS, 15 x 100) by default), so
      * that PN_ARENA_BYTES_MAX bounds every context */
-    lim.bvh_refs = 101u + (PN_BVH_SPLIT_REFS < ((1u << PN_BVH_SPLIT_DEPTH) - 1u) * 100u
-                               ? PN_BVH_SPLIT_REFS
-                               : ((1u << PN_BVH_SPLIT_DEPTH) - 1u) * 100u);
+    lim.bvh_refs = 101u + (uint32_t)PN_BVH_SPLIT_EXTRA(100u);
     CHECK(pn_arena_size(&lim, &bytes) == PN_E_LIMIT);
     lim.bvh_refs -= 1u;
     CHECK(pn_arena_size(&lim, &bytes) == PN_OK && bytes <= PN_ARENA_BYTES_MAX(100, 8, 8));

@@ -149,15 +149,18 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
      (size_t)(h) * 16u + 32u * (size_t)PN_ARENA_ALIGN + PN_GEARS_BYTES_MAX(t, w, h) +      \
      PN_SRT_BYTES_MAX(t, w, h) + PN_OCCTEX_BYTES_MAX(t, w, h) + PN_MCSM_BYTES_MAX(t, w, h) +     \
      PN_WEDGES_BYTES_MAX(t, w, h) + PN_BVH_BYTES_MAX(t))
+/* The split BVH references a context of t triangles reserves by default (limits.bvh_refs
+ * 0; a context may reserve fewer): PN_BVH_SPLIT_REFS, at most 2^PN_BVH_SPLIT_DEPTH - 1 a
+ * triangle (and t plus them at most 2^26, which only lowers it). */
+#define PN_BVH_SPLIT_EXTRA(t)                                                               \
+    ((size_t)((unsigned long long)PN_BVH_SPLIT_REFS <                                        \
+                      ((1ull << PN_BVH_SPLIT_DEPTH) - 1ull) * (unsigned long long)(t)        \
+                  ? (unsigned long long)PN_BVH_SPLIT_REFS                                    \
+                  : ((1ull << PN_BVH_SPLIT_DEPTH) - 1ull) * (unsigned long long)(t)))
 /* BVH references beyond the triangle copy: per triangle the raster order (4) and the
  * build's scratch in the frame region (40 a reference, a bit a triangle); per split
- * reference (at most PN_BVH_SPLIT_REFS, at most 2^PN_BVH_SPLIT_DEPTH - 1 a triangle) two
- * nodes and an index entry (68) and its scratch (40). */
-#define PN_BVH_BYTES_MAX(t)                                                                 \
-    ((size_t)(t) * 45u + 8u +                                                                \
-     ((size_t)PN_BVH_SPLIT_REFS < ((size_t)(1u << PN_BVH_SPLIT_DEPTH) - 1u) * (size_t)(t)     \
-          ? (size_t)PN_BVH_SPLIT_REFS                                                        \
-          : ((size_t)(1u << PN_BVH_SPLIT_DEPTH) - 1u) * (size_t)(t)) * 108u)
+ * reference two nodes and an index entry (68) and its scratch (40). */
+#define PN_BVH_BYTES_MAX(t) ((size_t)(t) * 45u + 8u + PN_BVH_SPLIT_EXTRA(t) * 108u)
 #if PN_ENABLE_WEDGES
 /* Penumbra-wedge pools: persistent per triangle 28 (+ 3 x 64 alignment); the frame per
  * triangle 4 + 12 + 4 (casting, slots) or 24 (welding at pn_scene_set), counted both; per

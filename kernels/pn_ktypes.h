@@ -44,6 +44,23 @@ typedef struct pn_kbvh_node {
     uint32_t count;
 } pn_kbvh_node;
 
+/* Four-wide BVH node, 128 bytes: the same tree with up to three levels of binary nodes
+ * folded into one (src/pn_bvh_build.c, pn_bvh_widen), so that a walk tests up to four
+ * children's boxes at once, one lane each (kernels/pn_raytrace.h). Child c < n: box
+ * lo[a][c] .. hi[a][c] (exactly the binary node's), and child[c] a four-wide node index,
+ * or PN_W4_LEAF | the index of the binary leaf node it is (its box, first and count).
+ * Lanes c >= n hold zeros and are never used. Node 0 is the root; an empty tree's root
+ * has n = 0. */
+#define PN_W4_LEAF 0x80000000u
+typedef struct pn_kbvh4 {
+    float lo[3][4];
+    float hi[3][4];
+    uint32_t child[4];
+    uint32_t n;   /* children */
+    uint32_t bin; /* the binary node it folds */
+    uint32_t pad0, pad1;
+} pn_kbvh4;
+
 /* Shading constants. */
 typedef struct pn_kshade {
     float albedo, ambient;

@@ -124,7 +124,7 @@ PN_KFN void pn_pixel_shadow(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
 #if PN_ENABLE_RAYTRACE
     if (rays)
         v = pn_raytrace_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
-                              PN_POOL(const uint32_t, index), &K->light, &c);
+                              PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), &K->light, &c);
     else
 #endif
         v = pn_reference_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
@@ -555,7 +555,7 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     }
     tile = (pix / W / PN_WG_TILE) * K->wg.tiles_x + (pix % W) / PN_WG_TILE;
     v = pn_wg_pixel(O, id, &K->light, K->wg.mode, PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
-                    PN_POOL(const uint32_t, index), PN_POOL(const uint32_t, wg_tcomp), PN_POOL(const pn_wsil, wg_sil),
+                    PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), PN_POOL(const uint32_t, wg_tcomp), PN_POOL(const pn_wsil, wg_sil),
                     PN_POOL(const uint32_t, wg_sorted), toff[tile], toff[tile + 1u], &c);
     if (v > 0.0f) {
         uint32_t m[PN_MASK_WORDS_MAX];

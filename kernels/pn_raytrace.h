@@ -61,13 +61,13 @@
  *
  * ---- Traversal -------------------------------------------------------------------------
  * Slab tests with per-ray reciprocals inv = 1 / D (a component below 1e-30 in magnitude,
- * zero included, gets +-1e30: the segment it stands for moves by < 2e-30), both children
- * of a node tested together, the nearer one (entry distance along the ray) visited first,
- * the other pushed. Per origin, the chain of nodes from the root down whose grown boxes
- * hold O (pn_ray_chain) is taken as hit by every ray without a test: a ray starts at the
- * chain's end with the chain's other children tested and pushed (about half of the
- * interior nodes a ray visits on the scanned models). A node is skipped only when the
- * segment misses its box grown by tol.
+ * zero included, gets +-1e30: the segment it stands for moves by < 2e-30) over the
+ * four-wide tree (pn_kbvh4: the binary tree with up to three levels folded into a node),
+ * the four children's boxes tested at once (pn_ray_box4, one SSE lane each), the nearest
+ * entry visited next and the others pushed. Per origin, the chain of nodes from the root
+ * down whose grown boxes hold O (pn_ray_chain) is taken as hit by every ray without a
+ * test: a ray starts at the chain's end with the chain's other children tested and
+ * pushed. A node is skipped only when the segment misses its box grown by tol.
  * Rigorous: a blocked sample's exact segment meets the triangle at O + t D*, t in [0, 1],
  * inside every box on the triangle's path; O + t D lies within dl of it; the computed
  * entry fl(fl(lo - fl(O + tol)) * inv) errs by at most 3.01 u |D_i| in t |D_i| plus the
@@ -95,9 +95,11 @@ typedef struct pn_ray_origin {
     float tol;   /* growth of the boxes the slab test uses */
     float t0, t1; /* the segment's parameter range, 0 and 1 (see pn_ray_origin_make) */
     float mroot; /* max |fl(P - O)| over the scene box (its corners: rounding is monotone) */
-    /* The nodes from the root down whose boxes grown by tol hold O, following the first
-     * child that does: every ray from O enters them, so the walk takes them as hit. */
+    /* Four-wide nodes from the root down, chain[d + 1] being child slot[d] of chain[d],
+     * the first child whose box grown by tol holds O: every ray from O enters them, so
+     * the walk takes them as hit. */
     uint32_t chain[PN_BVH_STACK];
+    uint32_t slot[PN_BVH_STACK];
     uint32_t chain_len;
 } pn_ray_origin;
 
@@ -105,8 +107,7 @@ typedef struct pn_ray_origin {
 typedef struct pn_ray {
     float inv[3];        /* 1 / D */
     float t0, t1;        /* the segment's parameter range [0, 1] */
-    float on[3], of[3];  /* O moved by -+tol to the near and far planes of a grown box */
-    uint32_t bn[3], bf[3]; /* float offsets of the near and far bounds in a node (bmin 0-2, bmax 4-6) */
+    float ol[3], oh[3];  /* O + tol and O - tol: the grown box's planes lo - tol and hi + tol, moved */
     uint32_t kx, ky, kz; /* the shear frame */
     float ox, oy, oz;    /* O in it */
     float sx, sy;        /* the shear */
@@ -152,18 +153,13 @@ PN_KFN void pn_ray_origin_make(pn_v3 O, const pn_klight *L, const float *lo, con
 }
 
 /* Axis q of the slab test: the reciprocal of direction component d (of a component below
- * PN_RAY_DIR_MIN in magnitude, zero included: of +-PN_RAY_DIR_MIN), the node offsets of the
- * near and far bounds, and the origin moved to the grown box's near and far planes. */
+ * PN_RAY_DIR_MIN in magnitude, zero included: of +-PN_RAY_DIR_MIN), and the origin moved
+ * so that lo - ol and hi - oh are the grown box's planes' offsets from O. */
 PN_KFN_HOT void pn_ray_axis(pn_ray *R, uint32_t q, float d, float o, float tol)
 {
-    float inv = 1.0f / (pn_ray_abs(d) >= PN_RAY_DIR_MIN ? d : (d < 0.0f ? -PN_RAY_DIR_MIN : PN_RAY_DIR_MIN));
-    uint32_t neg = (uint32_t)(inv < 0.0f);
-    float st = neg ? -tol : tol;
-    R->inv[q] = inv;
-    R->bn[q] = q + 4u * neg;
-    R->bf[q] = q + 4u - 4u * neg;
-    R->on[q] = o + st;
-    R->of[q] = o - st;
+    R->inv[q] = 1.0f / (pn_ray_abs(d) >= PN_RAY_DIR_MIN ? d : (d < 0.0f ? -PN_RAY_DIR_MIN : PN_RAY_DIR_MIN));
+    R->ol[q] = o + tol;
+    R->oh[q] = o - tol;
 }
 
 /* The ray along D = fl(fl(cO + fl(b V)) + fl(a U)) to sample (i, j) = (a, b). */
@@ -234,45 +230,74 @@ PN_KFN void pn_ray_node_box(PN_CONST pn_kbvh_node *nd, float *lo, float *hi)
     hi[2] = nd->bmax[2];
 }
 
-/* 1 when O lies in node nd's box grown by tol. */
-PN_KFN int pn_ray_holds_origin(const pn_ray_origin *X, PN_CONST pn_kbvh_node *nd)
+/* 1 when O lies in child c of wide node w, grown by tol. */
+PN_KFN int pn_ray_holds_origin(const pn_ray_origin *X, PN_CONST pn_kbvh4 *w, uint32_t c)
 {
-    return nd->bmin[0] - X->tol <= X->O.x && X->O.x <= nd->bmax[0] + X->tol && nd->bmin[1] - X->tol <= X->O.y &&
-           X->O.y <= nd->bmax[1] + X->tol && nd->bmin[2] - X->tol <= X->O.z && X->O.z <= nd->bmax[2] + X->tol;
+    return w->lo[0][c] - X->tol <= X->O.x && X->O.x <= w->hi[0][c] + X->tol && w->lo[1][c] - X->tol <= X->O.y &&
+           X->O.y <= w->hi[1][c] + X->tol && w->lo[2][c] - X->tol <= X->O.z && X->O.z <= w->hi[2][c] + X->tol;
 }
 
 /* X->chain: the walk is the same whatever it takes as hit (taking a box as hit only adds
  * tests, and each test is exact), so the chain needs no rounding argument. */
-PN_KFN void pn_ray_chain(pn_ray_origin *X, PN_CONST pn_kbvh_node *nodes)
+PN_KFN void pn_ray_chain(pn_ray_origin *X, PN_CONST pn_kbvh4 *wnodes)
 {
     uint32_t n = 0u;
-    X->chain_len = 0u;
-    if ((nodes->count == 0u && nodes->first == 0u) || !pn_ray_holds_origin(X, nodes)) return;
-    X->chain[X->chain_len++] = 0u;
-    while (nodes[n].count == 0u && X->chain_len < PN_BVH_STACK) {
-        uint32_t f = nodes[n].first;
-        if (pn_ray_holds_origin(X, nodes + f))
-            n = f;
-        else if (pn_ray_holds_origin(X, nodes + f + 1u))
-            n = f + 1u;
-        else
-            break;
+    X->chain_len = 1u;
+    X->chain[0] = 0u;
+    while (X->chain_len < PN_BVH_STACK) {
+        PN_CONST pn_kbvh4 *w = wnodes + n;
+        uint32_t c;
+        for (c = 0; c < w->n; c++)
+            if (!(w->child[c] & PN_W4_LEAF) && pn_ray_holds_origin(X, w, c)) break;
+        if (c == w->n) break;
+        X->slot[X->chain_len - 1u] = c;
+        n = w->child[c];
         X->chain[X->chain_len++] = n;
     }
 }
 
-/* 1 when the segment may meet node nd's box grown by tol; *tn its entry parameter. */
-PN_KFN_HOT int pn_ray_box(const pn_ray *R, PN_CONST pn_kbvh_node *nd, float *tn)
+/* The slab test of the children of wide node w against the segment, one lane each: bit c
+ * of the result when the segment may meet child c's box grown by tol, tn[c] its entry
+ * parameter. lo - ol and hi - oh are the grown planes' offsets from O, so their products
+ * with inv are the near and far distances in the order of inv's sign (fl(lo - fl(O + tol))
+ * <= fl(hi - fl(O - tol)): rounding is monotone), and their min and max pick them without
+ * a branch. The lane loop is plain float arithmetic over the node's arrays, which GCC
+ * vectorizes (one SSE lane a child). */
+PN_KFN_HOT uint32_t pn_ray_box4(const pn_ray *R, PN_CONST pn_kbvh4 *w, float *tn)
 {
-    PN_CONST float *f = (PN_CONST float *)nd; /* bmin at 0-2, bmax at 4-6 */
-    float nx = (f[R->bn[0]] - R->on[0]) * R->inv[0], fx = (f[R->bf[0]] - R->of[0]) * R->inv[0];
-    float ny = (f[R->bn[1]] - R->on[1]) * R->inv[1], fy = (f[R->bf[1]] - R->of[1]) * R->inv[1];
-    float nz = (f[R->bn[2]] - R->on[2]) * R->inv[2], fz = (f[R->bf[2]] - R->of[2]) * R->inv[2];
-    float t0 = pn_kmaxf(pn_kmaxf(nx, ny), pn_kmaxf(nz, R->t0));
-    float t1 = pn_kminf(pn_kminf(fx, fy), pn_kminf(fz, R->t1));
-    *tn = t0;
-    return t0 <= t1;
+    float t1[4];
+    uint32_t c, hit[4];
+    for (c = 0; c < 4u; c++) {
+        float ax = (w->lo[0][c] - R->ol[0]) * R->inv[0], bx = (w->hi[0][c] - R->oh[0]) * R->inv[0];
+        float ay = (w->lo[1][c] - R->ol[1]) * R->inv[1], by = (w->hi[1][c] - R->oh[1]) * R->inv[1];
+        float az = (w->lo[2][c] - R->ol[2]) * R->inv[2], bz = (w->hi[2][c] - R->oh[2]) * R->inv[2];
+        tn[c] = pn_kmaxf(pn_kmaxf(pn_kminf(ax, bx), pn_kminf(ay, by)), pn_kmaxf(pn_kminf(az, bz), R->t0));
+        t1[c] = pn_kminf(pn_kminf(pn_kmaxf(ax, bx), pn_kmaxf(ay, by)), pn_kminf(pn_kmaxf(az, bz), R->t1));
+    }
+    for (c = 0; c < 4u; c++) hit[c] = tn[c] <= t1[c] ? 1u << c : 0u;
+    return (hit[0] | hit[1] | hit[2] | hit[3]) & ((1u << w->n) - 1u);
 }
+
+#if !defined(__OPENCL_VERSION__) && !defined(__OPENCL_C_VERSION__)
+/* 1 when the segment may meet node nd's box grown by tol; *tn its entry parameter: the
+ * one slab test, on a wide node of one child in private memory (so host code only: the
+ * tests' and fuzzers' check of a single box). */
+PN_KFN int pn_ray_box(const pn_ray *R, const pn_kbvh_node *nd, float *tn)
+{
+    pn_kbvh4 w;
+    float t[4];
+    uint32_t a, c;
+    for (a = 0; a < 3u; a++)
+        for (c = 0; c < 4u; c++) {
+            w.lo[a][c] = nd->bmin[a];
+            w.hi[a][c] = nd->bmax[a];
+        }
+    w.n = 1u;
+    a = pn_ray_box4(R, &w, t);
+    *tn = t[0];
+    return (int)a;
+}
+#endif
 
 /* The edge functions' bound eb for every triangle inside the box [lo, hi] (xyz). */
 PN_KFN float pn_ray_bound(const pn_ray *R, const float *lo, const float *hi)
@@ -413,60 +438,81 @@ PN_KFN uint32_t pn_ray_tri(const pn_ray *R, const pn_klight *L, PN_CONST float *
 #define PN_RAY_NONE 0xFFFFFFFFu
 
 typedef struct pn_ray_walk {
-    uint32_t stack[PN_BVH_STACK];
+    uint32_t stack[PN_BVH_STACK]; /* wide node indices and PN_W4_LEAF | binary leaf indices */
     uint32_t sp, node, done;
-    uint32_t q; /* the next triangle of the current node when it is a leaf left at a blocker */
+    uint32_t q;    /* the next triangle of the current node when it is a leaf left at a blocker */
+    uint32_t lost; /* entries the stack had no room for (must stay 0: pn_bvh_widen) */
 } pn_ray_walk;
 
-/* The chain first: its nodes are entered at t = 0, the nearest of their children; their
- * other children are tested and pushed. The walk starts at the chain's end. */
-PN_KFN_HOT void pn_ray_walk_begin(pn_ray_walk *W, const pn_ray_origin *X, const pn_ray *R, PN_CONST pn_kbvh_node *nodes)
+/* The chain first: each of its nodes is entered at t = 0 through the child that holds O;
+ * its other children are tested and pushed. The walk starts at the chain's end. The
+ * pushes are those a walk down the same path could leave, which pn_bvh_widen keeps
+ * within PN_BVH_STACK. */
+PN_KFN_HOT void pn_ray_walk_begin(pn_ray_walk *W, const pn_ray_origin *X, const pn_ray *R, PN_CONST pn_kbvh4 *wnodes)
 {
     uint32_t cd;
-    float tn, tl;
     W->sp = 0u;
-    W->node = 0u;
     W->q = 0u;
-    W->done = X->chain_len == 0u && !pn_ray_box(R, nodes, &tn);
-    if (W->done) return;
-    for (cd = 1u; cd < X->chain_len; cd++) {
-        uint32_t c = X->chain[cd], o = 2u * nodes[X->chain[cd - 1u]].first + 1u - c;
-        if (pn_ray_box(R, nodes + o, &tl)) W->stack[W->sp++] = o; /* at most one a level: no overflow */
+    W->done = 0u;
+    W->lost = 0u;
+    for (cd = 0u; cd + 1u < X->chain_len; cd++) {
+        PN_CONST pn_kbvh4 *w = wnodes + X->chain[cd];
+        float tn[4];
+        uint32_t hit = pn_ray_box4(R, w, tn) & ~(1u << X->slot[cd]), c;
+        for (c = 0; c < 4u; c++)
+            if ((hit >> c) & 1u) {
+                if (W->sp < PN_BVH_STACK)
+                    W->stack[W->sp++] = w->child[c];
+                else
+                    W->lost++;
+            }
     }
-    if (X->chain_len != 0u) W->node = X->chain[X->chain_len - 1u];
+    W->node = X->chain[X->chain_len - 1u];
 }
 
-/* The next triangle other than `own` that blocks the ray's sample, or PN_RAY_NONE. */
+/* The next triangle other than `own` that blocks the ray's sample, or PN_RAY_NONE. At a
+ * wide node the children the segment may meet are visited nearest entry first (the others
+ * pushed, farthest first); a leaf is the binary leaf node, whose box gives the filter's
+ * bound. */
 PN_KFN_HOT uint32_t pn_ray_walk_next(pn_ray_walk *W, const pn_ray *R, uint32_t own, PN_CONST float *tris,
-                                     PN_CONST pn_kbvh_node *nodes, PN_CONST uint32_t *tri_index, const pn_klight *L,
-                                     pn_shadow_counters *cnt)
+                                     PN_CONST pn_kbvh_node *nodes, PN_CONST pn_kbvh4 *wnodes,
+                                     PN_CONST uint32_t *tri_index, const pn_klight *L, pn_shadow_counters *cnt)
 {
-    uint32_t node = W->node, sp = W->sp, tests = 0u;
-    float tl, tr;
+    uint32_t cur = W->node, sp = W->sp, tests = 0u;
+    cnt->overflow += W->lost;
+    W->lost = 0u;
     if (W->done) return PN_RAY_NONE;
     for (;;) {
-        PN_CONST pn_kbvh_node *nd = nodes + node;
-        uint32_t first = nd->first, count = nd->count;
-        if (count == 0u && first != 0u) { /* interior (an empty root has first 0) */
-            int hl = pn_ray_box(R, nodes + first, &tl), hr = pn_ray_box(R, nodes + first + 1u, &tr);
-            if (hl && hr) {
-                uint32_t nearer = tl <= tr ? first : first + 1u;
-                if (sp < PN_BVH_STACK)
-                    W->stack[sp++] = 2u * first + 1u - nearer;
-                else
-                    cnt->overflow++;
-                node = nearer;
+        if (!(cur & PN_W4_LEAF)) {
+            PN_CONST pn_kbvh4 *wn = wnodes + cur;
+            float tn[4], ks[4];
+            uint32_t hit = pn_ray_box4(R, wn, tn), ids[4], m = 0u, c, j;
+            if (hit) {
+                for (c = 0; c < 4u; c++) {
+                    if (!((hit >> c) & 1u)) continue;
+                    /* insertion by entry parameter, largest first */
+                    for (j = m++; j > 0u && ks[j - 1u] < tn[c]; j--) {
+                        ks[j] = ks[j - 1u];
+                        ids[j] = ids[j - 1u];
+                    }
+                    ks[j] = tn[c];
+                    ids[j] = wn->child[c];
+                }
+                for (j = 0; j + 1u < m; j++) {
+                    if (sp < PN_BVH_STACK)
+                        W->stack[sp++] = ids[j];
+                    else
+                        cnt->overflow++;
+                }
+                cur = ids[m - 1u];
                 continue;
             }
-            if (hl || hr) {
-                node = hl ? first : first + 1u;
-                continue;
-            }
-        } else if (count != 0u) {
+        } else {
             /* The scene box's bound first; the leaf's, finer, computed once where needed,
              * or a split triangle's own box's (its leaf's box need not hold it). */
+            PN_CONST pn_kbvh_node *nd = nodes + (cur & ~PN_W4_LEAF);
+            uint32_t first = nd->first, count = nd->count, q;
             float eb = -1.0f, e[3], eu;
-            uint32_t q;
             for (q = W->q; q < count; q++) {
                 uint32_t ref = tri_index[first + q], t = ref & PN_REF_TRI;
                 PN_CONST float *p = tris + (size_t)t * 9u;
@@ -490,7 +536,7 @@ PN_KFN_HOT uint32_t pn_ray_walk_next(pn_ray_walk *W, const pn_ray *R, uint32_t o
                     s = pn_ray_signs(e, eu);
                 }
                 if (s != 0 && pn_ray_decide(R, L, p, s, e, eu)) {
-                    W->node = node;
+                    W->node = cur;
                     W->sp = sp;
                     W->q = q + 1u;
                     cnt->candidates += tests;
@@ -501,7 +547,7 @@ PN_KFN_HOT uint32_t pn_ray_walk_next(pn_ray_walk *W, const pn_ray *R, uint32_t o
             W->q = 0u;
         }
         if (sp == 0u) break;
-        node = W->stack[--sp];
+        cur = W->stack[--sp];
     }
     W->done = 1u;
     cnt->candidates += tests;
@@ -516,8 +562,8 @@ PN_KFN_HOT uint32_t pn_ray_walk_next(pn_ray_walk *W, const pn_ray *R, uint32_t o
  * exact test, with the scene box's bound), and walks only when that one does not block it.
  * A ray is blocked when some triangle blocks it, whichever is found: the same bits. */
 PN_KFN float pn_raytrace_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris,
-                               PN_CONST pn_kbvh_node *nodes, PN_CONST uint32_t *tri_index,
-                               const pn_klight *L, pn_shadow_counters *cnt)
+                               PN_CONST pn_kbvh_node *nodes, PN_CONST pn_kbvh4 *wnodes,
+                               PN_CONST uint32_t *tri_index, const pn_klight *L, pn_shadow_counters *cnt)
 {
     uint32_t k = L->k, blocked = 0, last = PN_RAY_NONE;
     int32_t i, j;
@@ -534,7 +580,7 @@ PN_KFN float pn_raytrace_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float 
         pn_ray_node_box(nodes, lo, hi);
         pn_ray_origin_make(O, L, lo, hi, &X);
     }
-    pn_ray_chain(&X, nodes);
+    pn_ray_chain(&X, wnodes);
     for (i = 0; i < (int32_t)k; i++) av[i] = pn_sample_coord(i, k);
     for (j = 0; j < (int32_t)k; j++) {
         pn_v3 row = pn_ray_row(&X, L, av[j]);
@@ -555,8 +601,8 @@ PN_KFN float pn_raytrace_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float 
             {
                 pn_ray_walk W;
                 uint32_t t;
-                pn_ray_walk_begin(&W, &X, &R, nodes);
-                t = pn_ray_walk_next(&W, &R, own, tris, nodes, tri_index, L, cnt);
+                pn_ray_walk_begin(&W, &X, &R, wnodes);
+                t = pn_ray_walk_next(&W, &R, own, tris, nodes, wnodes, tri_index, L, cnt);
                 if (t != PN_RAY_NONE) {
                     last = t;
                     blocked++;

@@ -702,7 +702,8 @@ PN_KFN int pn_wg_listed(PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t
  * nodes = blockers of the centre ray, overflow = more than PN_WG_HARD_MAX objects listed
  * in the tile block the centre (taken as umbra). */
 PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mode, PN_CONST float *tris,
-                         PN_CONST pn_kbvh_node *nodes, PN_CONST uint32_t *tri_index, PN_CONST uint32_t *tcomp,
+                         PN_CONST pn_kbvh_node *nodes, PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index,
+                         PN_CONST uint32_t *tcomp,
                          PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t lo, uint32_t hi,
                          pn_shadow_counters *cnt)
 {
@@ -723,13 +724,13 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
         pn_ray_node_box(nodes, blo, bhi);
         pn_ray_origin_make(O, &Lc, blo, bhi, &X);
     }
-    pn_ray_chain(&X, nodes);
+    pn_ray_chain(&X, wnodes);
     pn_ray_make(&X, &Lc, 0, 0, &R);
-    pn_ray_walk_begin(&W, &X, &R, nodes);
+    pn_ray_walk_begin(&W, &X, &R, wnodes);
     for (;;) {
         pn_shadow_counters rc = {0u, 0u, 0u, 0u, 0u};
         uint32_t s, j;
-        t = pn_ray_walk_next(&W, &R, own, tris, nodes, tri_index, &Lc, &rc);
+        t = pn_ray_walk_next(&W, &R, own, tris, nodes, wnodes, tri_index, &Lc, &rc);
         if (t == PN_RAY_NONE) break;
         cnt->nodes++;
         s = tcomp[t] & ~PN_WG_CLOSED;

@@ -178,6 +178,7 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
         !pn_bump(&off, l->max_triangles, 9u * sizeof(float), &lay.tris) ||
         !pn_bump(&off, l->max_triangles, 1u, &lay.flags) ||
         !pn_bump(&off, 2u * (uint64_t)pn_bvh_refs_max(l), sizeof(pn_kbvh_node), &lay.nodes) ||
+        !pn_bump(&off, pn_bvh_refs_max(l), sizeof(pn_kbvh4), &lay.wnodes) ||
         !pn_bump(&off, pn_bvh_refs_max(l), sizeof(uint32_t), &lay.index) ||
         !pn_bump(&off, l->max_triangles, sizeof(uint32_t), &lay.rindex) ||
         !pn_bump(&off, PN_PORT_SCRATCH_WORDS, sizeof(uint32_t), &lay.scratch) ||
@@ -344,6 +345,7 @@ pn_status pn_init(pn_context **out_ctx, void *memory, size_t bytes, const pn_lim
     ctx->tris = (float *)(void *)(base + lay.tris);
     ctx->flags = base + lay.flags;
     ctx->nodes = (pn_kbvh_node *)(void *)(base + lay.nodes);
+    ctx->wnodes = (pn_kbvh4 *)(void *)(base + lay.wnodes);
     ctx->tri_index = (uint32_t *)(void *)(base + lay.index);
     ctx->raster_index = (uint32_t *)(void *)(base + lay.rindex);
     ctx->scratch = (uint32_t *)(void *)(base + lay.scratch);

@@ -285,6 +285,89 @@ static uint32_t pn_bvh_refs(pn_context *ctx, pn_bref *refs, uint32_t *tris_out)
     return r;
 }
 
+static float pn_node_area(const pn_kbvh_node *nd)
+{
+    float dx = nd->bmax[0] - nd->bmin[0], dy = nd->bmax[1] - nd->bmin[1], dz = nd->bmax[2] - nd->bmin[2];
+    return dx * dy + dy * dz + dz * dx;
+}
+
+/* The children of binary interior node b, opened up to `width`: while there are fewer,
+ * the interior child with the largest box (the first of equals) is replaced in place by
+ * its two children, so the list keeps the tree's left-to-right order. */
+static uint32_t pn_widen_children(const pn_kbvh_node *nodes, uint32_t b, uint32_t width, uint32_t *ch)
+{
+    uint32_t n = 2u, i, best;
+    ch[0] = nodes[b].first;
+    ch[1] = nodes[b].first + 1u;
+    while (n < width) {
+        float ba = -1.0f;
+        best = n;
+        for (i = 0; i < n; i++)
+            if (nodes[ch[i]].count == 0u && pn_node_area(nodes + ch[i]) > ba) {
+                ba = pn_node_area(nodes + ch[i]);
+                best = i;
+            }
+        if (best == n) break;
+        for (i = n; i > best + 1u; i--) ch[i] = ch[i - 1u];
+        ch[best + 1u] = nodes[ch[best]].first + 1u;
+        ch[best] = nodes[ch[best]].first;
+        n++;
+    }
+    return n;
+}
+
+/* The four-wide tree (pn_kbvh4) over the binary one, in breadth-first order: the wide
+ * nodes themselves are the queue (field bin names the binary node a wide node folds,
+ * pad0 the walk stack its path needs). Each wide node folds a distinct binary interior
+ * node (or the root), so there are at most max(1, interior nodes) <= refs_max of them.
+ * Returns the stack a walk needs: the largest sum over a root-to-leaf path of (children
+ * - 1), the entries a walk leaves pushed, plus one. */
+static uint32_t pn_bvh_widen_to(pn_context *ctx, uint32_t width)
+{
+    const pn_kbvh_node *nodes = ctx->nodes;
+    pn_kbvh4 *w = ctx->wnodes;
+    uint32_t head = 0, tail = 1, need_max = 1, ch[4], n, c, a;
+    w[0].bin = 0u;
+    w[0].pad0 = 0u;
+    while (head < tail) {
+        pn_kbvh4 *wn = w + head++;
+        uint32_t b = wn->bin, need = wn->pad0;
+        if (nodes[b].count != 0u || nodes[b].first == 0u) { /* the root is a leaf, or empty */
+            ch[0] = b;
+            n = nodes[b].count != 0u ? 1u : 0u;
+        } else {
+            n = pn_widen_children(nodes, b, width, ch);
+        }
+        need += n > 0u ? n - 1u : 0u;
+        if (need + 1u > need_max) need_max = need + 1u;
+        for (c = 0; c < 4u; c++) {
+            for (a = 0; a < 3u; a++) {
+                wn->lo[a][c] = c < n ? nodes[ch[c]].bmin[a] : 0.0f;
+                wn->hi[a][c] = c < n ? nodes[ch[c]].bmax[a] : 0.0f;
+            }
+            wn->child[c] = 0u;
+            if (c >= n) continue;
+            if (nodes[ch[c]].count != 0u) {
+                wn->child[c] = PN_W4_LEAF | ch[c];
+            } else {
+                w[tail].bin = ch[c];
+                w[tail].pad0 = need;
+                wn->child[c] = tail++;
+            }
+        }
+        wn->n = n;
+        wn->pad1 = 0u;
+    }
+    for (c = 0; c < tail; c++) w[c].pad0 = 0u;
+    ctx->bvh_wide = tail;
+    return need_max;
+}
+
+void pn_bvh_widen(pn_context *ctx, uint32_t stack_max)
+{
+    if (pn_bvh_widen_to(ctx, 4u) > stack_max) (void)pn_bvh_widen_to(ctx, 2u);
+}
+
 pn_status pn_bvh_build(pn_context *ctx)
 {
     pn_bref *refs = (pn_bref *)(void *)ctx->frame;
@@ -310,6 +393,7 @@ pn_status pn_bvh_build(pn_context *ctx)
         ctx->bvh_nodes = 1;
         ctx->bvh_depth = 0;
         ctx->bvh_max_leaf = 0;
+        pn_bvh_widen(ctx, PN_BVH_STACK);
         return PN_OK;
     }
 
@@ -470,5 +554,6 @@ pn_status pn_bvh_build(pn_context *ctx)
     ctx->bvh_max_leaf = max_leaf;
     if (max_depth + 1u > PN_BVH_STACK)
         return pn_fail(ctx, PN_E_INTERNAL, "BVH depth %u exceeds PN_BVH_STACK", max_depth);
+    pn_bvh_widen(ctx, PN_BVH_STACK);
     return PN_OK;
 }

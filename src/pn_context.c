@@ -131,6 +131,7 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out)
     s.bvh_depth = ctx->bvh_depth;
     s.bvh_max_leaf = ctx->bvh_max_leaf;
     s.bvh_refs = ctx->bvh_refs;
+    s.bvh_wide_nodes = ctx->bvh_wide;
     for (i = 0; i < PN_PASS_COUNT; i++) s.pass_ns[i] = ctx->pass_ns[i];
     s.shadow_candidates = ctx->shadow_candidates;
     s.shadow_blocking = ctx->shadow_blocking;

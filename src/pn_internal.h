@@ -19,6 +19,7 @@ typedef struct pn_layout {
     size_t tris;      /* max_triangles * 9 floats: the scene copy */
     size_t flags;     /* max_triangles bytes */
     size_t nodes;     /* 2 * pn_bvh_refs_max BVH nodes */
+    size_t wnodes;    /* pn_bvh_refs_max four-wide BVH nodes (pn_bvh_widen) */
     size_t index;     /* pn_bvh_refs_max uint32: BVH leaf order (references: triangle ids,
                          a split triangle's repeated) */
     size_t rindex;    /* max_triangles uint32: raster order (each triangle once, leaf order) */
@@ -72,6 +73,7 @@ struct pn_context {
     float *tris;
     uint8_t *flags;
     pn_kbvh_node *nodes;
+    pn_kbvh4 *wnodes;
     uint32_t *tri_index;    /* BVH leaf order: bvh_refs entries */
     uint32_t *raster_index; /* raster order: bvh_tris entries */
     uint32_t *scratch;
@@ -86,6 +88,7 @@ struct pn_context {
     uint32_t tri_count;
     uint32_t degenerate;
     uint32_t bvh_nodes, bvh_depth, bvh_max_leaf, bvh_tris, bvh_refs;
+    uint32_t bvh_wide; /* four-wide nodes */
     float scene_min[3], scene_max[3], scene_diag;
     /* execution */
     pn_parallel_for_fn parallel_for;
@@ -188,6 +191,10 @@ void pn_connect_build(pn_context *ctx);
 #define PN_BVH_REF_BYTES 40u
 uint64_t pn_bvh_scratch_bytes(const pn_limits *l);
 pn_status pn_bvh_build(pn_context *ctx);
+/* The four-wide tree over the binary one (kernels/pn_ktypes.h pn_kbvh4); two-wide when a
+ * walk of the four-wide one could need more than stack_max entries (pn_bvh_build passes
+ * PN_BVH_STACK; a smaller value lets the tests build the two-wide tree). */
+void pn_bvh_widen(pn_context *ctx, uint32_t stack_max);
 
 /* pn_frame.c: validates and derives the frame's parameters, carves its pools, and runs
  * the G-buffer, the chosen algorithm's sequence and shading on the port. */

@@ -14,7 +14,16 @@
  *                (limits.bvh_refs = max_triangles), on the built-in thin scene and on a
  *                scene of random slivers
  *   limits       a reserve below max_triangles, above the default or above 2^26 is
- *                PN_E_LIMIT; a short reserve is never exceeded */
+ *                PN_E_LIMIT; a short reserve is never exceeded
+ *   wide tree    the four-wide tree the ray walks use (pn_kbvh4, src/pn_bvh_build.c
+ *                pn_bvh_widen) is the binary tree folded: every child box is its binary
+ *                node's box exactly, every binary leaf is reached exactly once, nodes have
+ *                2 .. 4 children (the root 0 or 1 when the binary root is a leaf) and
+ *                fewer than four only when all are leaves, at most pn_bvh_refs_max of
+ *                them and fewer than the binary interior nodes, and no root-to-leaf path
+ *                needs more walk stack than PN_BVH_STACK; the two-wide fold pn_bvh_widen
+ *                falls back to renders the same bytes as the four-wide one (built-in room,
+ *                every algorithm) */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -156,8 +165,77 @@ static int cmp_pair(const void *a, const void *b)
     return x->node < y->node ? -1 : x->node > y->node;
 }
 
+static void check_wide(pn_context *ctx)
+{
+    const pn_kbvh_node *nodes = ctx->nodes;
+    const pn_kbvh4 *w = ctx->wnodes;
+    uint8_t *leaf_seen = (uint8_t *)calloc(ctx->bvh_nodes + 1u, 1);
+    uint8_t *wide_seen = (uint8_t *)calloc(ctx->bvh_wide + 1u, 1);
+    uint32_t *queue = (uint32_t *)malloc(((size_t)ctx->bvh_wide + 1u) * 2u * sizeof(uint32_t));
+    uint32_t head = 0, tail = 0, i, bad = 0, leaves = 0, twice = 0, full = 0, need_max = 0;
+    REQUIRE(leaf_seen && wide_seen && queue);
+    CHECK_MSG(ctx->bvh_wide >= 1u && ctx->bvh_wide <= pn_bvh_refs_max(&ctx->limits), "%u wide nodes", ctx->bvh_wide);
+    queue[tail++] = 0u; /* node, stack need on its path */
+    queue[tail++] = 0u;
+    while (head < tail) {
+        uint32_t wi = queue[head++], need = queue[head++], c, a;
+        const pn_kbvh4 *wn;
+        if (wi >= ctx->bvh_wide || wide_seen[wi]) {
+            bad++;
+            continue;
+        }
+        wide_seen[wi] = 1u;
+        wn = w + wi;
+        if (wn->n > 4u || (wi != 0u && wn->n < 2u) || (wi == 0u && wn->n < 2u && nodes[0].count == 0u && ctx->bvh_refs > 0u)) bad++;
+        if (wn->n == 4u) full++;
+        for (c = 0; c < wn->n && c < 4u && wn->n < 4u; c++)
+            if (!(wn->child[c] & PN_W4_LEAF)) bad++; /* the fold stops short of four only at leaves */
+        need += wn->n > 0u ? wn->n - 1u : 0u;
+        if (need + 1u > need_max) need_max = need + 1u;
+        for (c = 0; c < wn->n && c < 4u; c++) {
+            uint32_t ch = wn->child[c], b = ch & PN_W4_LEAF ? ch & ~PN_W4_LEAF : (ch < ctx->bvh_wide ? w[ch].bin : 0u);
+            if (b >= ctx->bvh_nodes) {
+                bad++;
+                continue;
+            }
+            for (a = 0; a < 3u; a++)
+                if (wn->lo[a][c] != nodes[b].bmin[a] || wn->hi[a][c] != nodes[b].bmax[a]) bad++;
+            if (ch & PN_W4_LEAF) {
+                if (nodes[b].count == 0u) bad++;
+                if (leaf_seen[b]) twice++;
+                leaf_seen[b] = 1u;
+                leaves++;
+            } else {
+                if (nodes[b].count != 0u) bad++;
+                if (tail + 2u > ((size_t)ctx->bvh_wide + 1u) * 2u) {
+                    bad++;
+                    continue;
+                }
+                queue[tail++] = ch;
+                queue[tail++] = need;
+            }
+        }
+    }
+    for (i = 0; i < ctx->bvh_nodes; i++)
+        if (nodes[i].count != 0u && !leaf_seen[i]) bad++;
+    for (i = 0; i < ctx->bvh_wide; i++)
+        if (!wide_seen[i]) bad++;
+    CHECK_MSG(bad == 0u && twice == 0u, "wide tree: %u bad boxes, children or unreached nodes, %u leaves twice", bad,
+              twice);
+    CHECK_MSG(need_max <= PN_BVH_STACK, "a wide walk needs %u stack entries, PN_BVH_STACK is %u", need_max,
+              (unsigned)PN_BVH_STACK);
+    /* the fold folds: fewer wide nodes than binary interior nodes, and some four-wide */
+    if (ctx->bvh_nodes >= 15u)
+        CHECK_MSG(full > 0u && ctx->bvh_wide < (ctx->bvh_nodes - 1u) / 2u, "%u wide nodes (%u four-wide) for %u binary",
+                  ctx->bvh_wide, full, ctx->bvh_nodes);
+    free(leaf_seen);
+    free(wide_seen);
+    free(queue);
+}
+
 static void check_tree(pn_context *ctx, const scene *s, int expect_split)
 {
+    check_wide(ctx);
     const pn_kbvh_node *nodes = ctx->nodes;
     pair *pairs = (pair *)malloc((size_t)ctx->bvh_refs * sizeof(pair) + 1u);
     uint32_t *stack = (uint32_t *)malloc((size_t)ctx->bvh_nodes * sizeof(uint32_t) + 4u);
@@ -424,6 +502,57 @@ static void test_frames_thin(void)
     pn_setup_free(&s);
 }
 
+/* The two-wide fold (what pn_bvh_widen falls back to when a four-wide walk could overflow
+ * PN_BVH_STACK) renders the same bytes as the four-wide one, for every algorithm. */
+static void test_frames_two_wide(void)
+{
+    pn_setup s;
+    pn_host h;
+    pn_context *ctx;
+    char err[256];
+    uint32_t a, i, wide4, two = 0, built = pn_build_info();
+    size_t npix = (size_t)FRAME_W * FRAME_H;
+    float *vis0 = (float *)malloc(npix * sizeof(float) * (sizeof(algos) / sizeof(algos[0])));
+    REQUIRE(vis0);
+    REQUIRE(pn_setup_load(&s, "room", 1, -1, err, sizeof(err)) == 0);
+    ctx = open_ctx(&h, s.mesh.triangle_count, 0);
+    REQUIRE(ctx);
+    CHECK(pn_scene_set(ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
+    wide4 = ctx->bvh_wide;
+    for (i = 0; i < 2u; i++) {
+        if (i == 1u) {
+            pn_bvh_widen(ctx, 1u); /* no four-wide walk fits one entry: two-wide */
+            for (a = 0; a < ctx->bvh_wide; a++) two += ctx->wnodes[a].n <= 2u;
+            CHECK_MSG(two == ctx->bvh_wide && ctx->bvh_wide > wide4, "two-wide fold: %u of %u nodes (four-wide %u)", two,
+                      ctx->bvh_wide, wide4);
+        }
+        for (a = 0; a < sizeof(algos) / sizeof(algos[0]); a++) {
+            pn_frame_options opt;
+            pn_frame fr;
+            if (!(built & algos[a].build_flag)) continue;
+            pn_frame_options_default(&opt);
+            opt.width = FRAME_W;
+            opt.height = FRAME_H;
+            opt.k = 8;
+            opt.eps = s.eps;
+            opt.algo = algos[a].algo;
+            opt.gears_grid = 16;
+            if (pn_render(ctx, &s.camera, &s.light, &opt, &fr) != PN_OK) {
+                CHECK_MSG(0, "room %s: %s", algos[a].name, pn_last_error(ctx));
+                continue;
+            }
+            if (i == 0u)
+                memcpy(vis0 + a * npix, fr.visibility, npix * sizeof(float));
+            else
+                CHECK_MSG(memcmp(vis0 + a * npix, fr.visibility, npix * sizeof(float)) == 0,
+                          "room %s: the two-wide tree renders other bytes", algos[a].name);
+        }
+    }
+    pn_host_close(&h);
+    pn_setup_free(&s);
+    free(vis0);
+}
+
 /* Random slivers above a floor, under thin's camera and light. */
 static void test_frames_slivers(void)
 {
@@ -507,6 +636,7 @@ int main(void)
     RUN(test_containment);
     RUN(test_frames_thin);
     RUN(test_frames_slivers);
+    RUN(test_frames_two_wide);
     RUN(test_limits);
     return pn_test_summary();
 }

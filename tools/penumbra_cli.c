@@ -180,8 +180,9 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
                "  \"arena_high_water\": %zu,\n",
             st->arena_bytes, st->arena_carved, st->arena_persistent, st->arena_high_water);
     fprintf(f, "  \"degenerate_triangles\": %u,\n  \"bvh_nodes\": %u,\n  \"bvh_depth\": %u,\n"
-               "  \"bvh_max_leaf\": %u,\n  \"bvh_refs\": %u,\n",
-            st->degenerate_triangles, st->bvh_nodes, st->bvh_depth, st->bvh_max_leaf, st->bvh_refs);
+               "  \"bvh_max_leaf\": %u,\n  \"bvh_refs\": %u,\n  \"bvh_wide_nodes\": %u,\n",
+            st->degenerate_triangles, st->bvh_nodes, st->bvh_depth, st->bvh_max_leaf, st->bvh_refs,
+            st->bvh_wide_nodes);
     fprintf(f, "  \"ms_scene_copy\": %.3f,\n  \"ms_bvh_build\": %.3f,\n  \"ms_gbuffer\": %.3f,\n"
                "  \"ms_shadow\": %.3f,\n  \"ms_shade\": %.3f,\n  \"ms_render_total\": %.3f,\n",
             st->pass_ns[PN_PASS_SCENE_COPY] / 1e6, st->pass_ns[PN_PASS_BVH_BUILD] / 1e6,

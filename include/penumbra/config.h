@@ -112,9 +112,10 @@
 /* ---- Limits (they size the arena; see pn_arena_size()). ------------------------------ */
 
 /* Largest triangle count a scene may have, including any ground plane the caller adds.
- * Costs about 112 bytes per triangle of persistent arena (triangle copy 36, BVH nodes up
- * to 2 x 32, leaf and raster orders 4 + 4, raster record 8), and the BVH's split
- * references (PN_BVH_SPLIT_REFS) 68 bytes each. Range 1 .. 2^26. */
+ * Costs about 240 bytes per triangle of persistent arena (triangle copy 36, binary BVH
+ * nodes up to 2 x 32, four-wide nodes up to 128, leaf and raster orders 4 + 4, raster
+ * record 8), and the BVH's split references (PN_BVH_SPLIT_REFS) 196 bytes each. Range
+ * 1 .. 2^26. */
 #ifndef PN_MAX_TRIANGLES
 #define PN_MAX_TRIANGLES (1u << 20)
 #endif
@@ -179,8 +180,8 @@
  * leaf still names whole triangles and every walk still tests the whole triangle, so the
  * bits of every frame are the same; a ray just meets fewer boxes it then misses.
  * PN_BVH_SPLIT_REFS references beyond one per triangle are reserved (at most
- * (2^depth - 1) per triangle of max_triangles, and the total at most 2^26), 68 bytes each
- * of persistent arena (two BVH nodes, an index entry; pn_scene_set's build also borrows
+ * (2^depth - 1) per triangle of max_triangles, and the total at most 2^26), 196 bytes each
+ * of persistent arena (two binary BVH nodes, a four-wide node, an index entry; pn_scene_set's build also borrows
  * 40 bytes a reference of the frame region); when a scene wants more, every
  * triangle is split one level less until it fits. 0 for either: no splitting, no cost.
  * A context's limits.bvh_refs lowers the reserve at run time. Depth 0 .. 6; references

@@ -124,7 +124,7 @@ typedef struct pn_limits {
     uint32_t wg_pairs;       /* penumbra wedges' (screen tile, wedge) pair pool, at most
                                 PN_WEDGES_PAIRS; 0: PN_WEDGES_PAIRS. A frame needing more
                                 fails PN_E_POOL_EXHAUSTED with the count it needed */
-    uint32_t bvh_refs;       /* BVH references (68 bytes of arena each); beyond one a
+    uint32_t bvh_refs;       /* BVH references (196 bytes of arena each); beyond one a
                                 triangle, split slivers (config.h PN_BVH_SPLIT_DEPTH;
                                 frames are the same bits with or without). 0: the default,
                                 max_triangles plus PN_BVH_SPLIT_REFS, at most (2^depth - 1)
@@ -157,10 +157,11 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
                       ((1ull << PN_BVH_SPLIT_DEPTH) - 1ull) * (unsigned long long)(t)        \
                   ? (unsigned long long)PN_BVH_SPLIT_REFS                                    \
                   : ((1ull << PN_BVH_SPLIT_DEPTH) - 1ull) * (unsigned long long)(t)))
-/* BVH references beyond the triangle copy: per triangle the raster order (4) and the
- * build's scratch in the frame region (40 a reference, a bit a triangle); per split
- * reference two nodes and an index entry (68) and its scratch (40). */
-#define PN_BVH_BYTES_MAX(t) ((size_t)(t) * 45u + 8u + PN_BVH_SPLIT_EXTRA(t) * 108u)
+/* BVH references beyond the triangle copy: per reference a four-wide node (128), per
+ * triangle the raster order (4) and the build's scratch in the frame region (40 a
+ * reference, a bit a triangle); per split reference two nodes, a four-wide node and an index entry (196) and
+ * its scratch (40). */
+#define PN_BVH_BYTES_MAX(t) ((size_t)(t) * 173u + 72u + PN_BVH_SPLIT_EXTRA(t) * 236u)
 #if PN_ENABLE_WEDGES
 /* Penumbra-wedge pools: persistent per triangle 28 (+ 3 x 64 alignment); the frame per
  * triangle 4 + 12 + 4 (casting, slots) or 24 (welding at pn_scene_set), counted both; per
@@ -397,6 +398,7 @@ typedef struct pn_stats {
     uint32_t bvh_max_leaf;
     uint32_t bvh_refs;           /* BVH references: triangles, a split one counted once per
                                     part (config.h PN_BVH_SPLIT_DEPTH) */
+    uint32_t bvh_wide_nodes;     /* nodes of the four-wide tree the ray walks use */
     uint64_t pass_ns[PN_PASS_COUNT]; /* 0 without a clock; last scene set / last frame */
     uint64_t shadow_candidates;  /* triangles handed to the predicate in the last frame
                                     (PN_ALGO_RAYTRACE: ray-triangle tests; PN_ALGO_OCCTEX:

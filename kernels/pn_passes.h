@@ -128,7 +128,7 @@ PN_KFN void pn_pixel_shadow(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
     else
 #endif
         v = pn_reference_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
-                               PN_POOL(const uint32_t, index), &K->light, &c);
+                               PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), &K->light, &c);
     (void)rays;
     PN_POOL(float, vis)[pix] = v;
     pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
@@ -338,7 +338,7 @@ PN_KFN void pn_e_srt_exact(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kp
     PN_POOL(float, vis)[pix] = pn_reference_pixel(
         pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u), pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u),
         PN_POOL(const uint32_t, tri_id)[pix], PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
-        PN_POOL(const uint32_t, index), &K->light, &c);
+        PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), &K->light, &c);
     c.lit = 0u; /* counted by the classification */
     pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
 }

@@ -118,6 +118,32 @@ PN_KFN int pn_frustum_box(const pn_frustum *fr, PN_CONST pn_kbvh_node *nd)
                            pn_v3_make(nd->bmax[0], nd->bmax[1], nd->bmax[2]));
 }
 
+/* pn_frustum_aabb on the children of wide node w at once: bit c for child c. For an area
+ * light, the same floats per lane (the corner each plane's normal picks is the same for
+ * every lane), in a lane loop GCC vectorizes; a point light's segment test lane by lane. */
+PN_KFN uint32_t pn_frustum_box4(const pn_frustum *fr, PN_CONST pn_kbvh4 *w)
+{
+    uint32_t c, q, in[4];
+    if (fr->is_point) {
+        uint32_t bits = 0u;
+        for (c = 0; c < w->n; c++)
+            if (pn_frustum_aabb(fr, pn_v3_make(w->lo[0][c], w->lo[1][c], w->lo[2][c]),
+                                pn_v3_make(w->hi[0][c], w->hi[1][c], w->hi[2][c])))
+                bits |= 1u << c;
+        return bits;
+    }
+    for (c = 0; c < 4u; c++) in[c] = 1u << c;
+    for (q = 0; q < 6u; q++) {
+        pn_v3 n = fr->n[q];
+        PN_CONST float *px = n.x >= 0.0f ? w->lo[0] : w->hi[0];
+        PN_CONST float *py = n.y >= 0.0f ? w->lo[1] : w->hi[1];
+        PN_CONST float *pz = n.z >= 0.0f ? w->lo[2] : w->hi[2];
+        float d = fr->d[q];
+        for (c = 0; c < 4u; c++) in[c] = n.x * px[c] + n.y * py[c] + n.z * pz[c] > d ? 0u : in[c];
+    }
+    return (in[0] | in[1] | in[2] | in[3]) & ((1u << w->n) - 1u);
+}
+
 PN_KFN void pn_tri_load(PN_CONST float *tris, uint32_t t, pn_v3 *A, pn_v3 *B, pn_v3 *C)
 {
     PN_CONST float *p = tris + (size_t)t * 9u;
@@ -137,17 +163,19 @@ typedef struct pn_shadow_counters {
 
 /* Visibility of one G-buffer pixel (P, unit geometric normal nrm, own triangle id).
  *
- * The walk keeps the mask m of samples found blocked so far and visits a node only while
- * its footprint on the light (pn_footprint.h) still holds a sample m has not blocked: the
- * test runs when a child is pushed and again when it is popped, since m may have grown in
- * between. Children go on the stack in pn_foot_order(): the child whose centre lies
- * farther from the light toward O is walked first (near occluders have the large
- * footprints that fill a mask soonest). At a
- * leaf, a triangle whose own box's footprint holds no open sample is skipped before any of
- * the predicate's set-up. The result is the OR over every triangle that can block an open
- * sample, so it is the same mask in any order; only the counters depend on the order. */
+ * The walk (over the four-wide tree, pn_kbvh4) keeps the mask m of samples found blocked
+ * so far and visits a child only while its footprint on the light (pn_footprint.h) still
+ * holds a sample m has not blocked: the test runs when a child is pushed and again when it
+ * is popped, since m may have grown in between. A wide node's children are first tested
+ * against the light frustum together (pn_frustum_box4), then the survivors' footprints;
+ * they go on the stack in pn_foot_order(): the child whose centre lies farther from the
+ * light toward O is walked first (near occluders have the large footprints that fill a
+ * mask soonest). At a leaf (a binary leaf node), a triangle whose own footprint holds no
+ * open sample is skipped before any of the predicate's set-up. The result is the OR over
+ * every triangle that can block an open sample, so it is the same mask in any order and
+ * over any tree; only the counters depend on them. */
 PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris,
-                                PN_CONST pn_kbvh_node *nodes, PN_CONST uint32_t *tri_index,
+                                PN_CONST pn_kbvh_node *nodes, PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index,
                                 const pn_klight *L, pn_shadow_counters *cnt)
 {
     uint32_t m[PN_MASK_WORDS_MAX], stack[PN_BVH_STACK], rects[PN_BVH_STACK];
@@ -167,47 +195,44 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
     any = pn_mask_count(m, k) != 0u;
     pn_frustum_make(O, L, &fr);
     pn_foot_make(O, L, &fp);
-    cnt->nodes++;
-    if (nodes[0].count != 0u || nodes[0].first != 0u) { /* not the empty tree */
-        if (pn_frustum_box(&fr, nodes) &&
-            pn_rect_open(m, k, r = pn_foot_box(&fp, pn_v3_load(nodes[0].bmin), pn_v3_load(nodes[0].bmax)))) {
-            stack[0] = 0u;
-            rects[0] = pn_rect_pack(r);
-            sp = 1u;
-        }
-    }
+    stack[0] = 0u; /* the root: its children are tested when it is popped */
+    rects[0] = pn_rect_pack(pn_rect_full(k));
+    sp = 1u;
     while (sp > 0u) {
-        PN_CONST pn_kbvh_node *nd;
+        uint32_t e;
         sp--;
         if (!pn_rect_open(m, k, pn_rect_unpack(rects[sp]))) continue; /* blocked since the push */
-        nd = nodes + stack[sp];
-        if (nd->count == 0u) { /* interior: both children, O's side first */
-            uint32_t c, n_in = 0u, id[2], pk[2];
-            float key[2];
-            for (c = 0; c < 2u; c++) {
-                PN_CONST pn_kbvh_node *ch = nodes + nd->first + c;
-                cnt->nodes++;
-                if (!pn_frustum_box(&fr, ch)) continue;
+        e = stack[sp];
+        if (!(e & PN_W4_LEAF)) { /* wide node: its children, O's side last pushed */
+            PN_CONST pn_kbvh4 *w = wnodes + e;
+            uint32_t bits = pn_frustum_box4(&fr, w), c, j, n_in = 0u, id[4], pk[4];
+            float key[4];
+            cnt->nodes += w->n;
+            for (c = 0; c < 4u; c++) {
+                pn_v3 lo, hi;
+                float kc;
+                if (!((bits >> c) & 1u)) continue;
+                lo = pn_v3_make(w->lo[0][c], w->lo[1][c], w->lo[2][c]);
+                hi = pn_v3_make(w->hi[0][c], w->hi[1][c], w->hi[2][c]);
                 /* While nothing is blocked, a box's footprint can only be empty between
                  * samples, which a box large enough to be an interior node seldom is:
                  * the whole light. */
                 if (any) {
-                    r = pn_foot_box(&fp, pn_v3_load(ch->bmin), pn_v3_load(ch->bmax));
+                    r = pn_foot_box(&fp, lo, hi);
                     if (!pn_rect_open(m, k, r)) continue;
                 } else {
                     r = pn_rect_full(k);
                 }
-                id[n_in] = nd->first + c;
-                pk[n_in] = pn_rect_pack(r);
-                key[n_in] = pn_foot_order(&fp, pn_v3_load(ch->bmin), pn_v3_load(ch->bmax));
-                n_in++;
-            }
-            if (n_in == 2u && key[0] > key[1]) { /* the larger key goes on top */
-                uint32_t ti = id[0], tp = pk[0];
-                id[0] = id[1];
-                pk[0] = pk[1];
-                id[1] = ti;
-                pk[1] = tp;
+                kc = pn_foot_order(&fp, lo, hi);
+                /* insertion, smallest key first: the largest goes on top */
+                for (j = n_in++; j > 0u && key[j - 1u] > kc; j--) {
+                    key[j] = key[j - 1u];
+                    id[j] = id[j - 1u];
+                    pk[j] = pk[j - 1u];
+                }
+                key[j] = kc;
+                id[j] = w->child[c];
+                pk[j] = pn_rect_pack(r);
             }
             for (c = 0; c < n_in; c++) {
                 if (sp < PN_BVH_STACK) {
@@ -219,9 +244,10 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
                 }
             }
         } else {
-            uint32_t e;
-            for (e = 0; e < nd->count; e++) {
-                uint32_t t = tri_index[nd->first + e] & PN_REF_TRI;
+            PN_CONST pn_kbvh_node *nd = nodes + (e & ~PN_W4_LEAF);
+            uint32_t q;
+            for (q = 0; q < nd->count; q++) {
+                uint32_t t = tri_index[nd->first + q] & PN_REF_TRI;
                 pn_v3 A, B, C;
                 if (t == own) continue;
                 pn_tri_load(tris, t, &A, &B, &C);

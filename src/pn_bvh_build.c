@@ -319,13 +319,11 @@ static uint32_t pn_widen_children(const pn_kbvh_node *nodes, uint32_t b, uint32_
 /* The four-wide tree (pn_kbvh4) over the binary one, in breadth-first order: the wide
  * nodes themselves are the queue (field bin names the binary node a wide node folds,
  * pad0 the walk stack its path needs). Each wide node folds a distinct binary interior
- * node (or the root), so there are at most max(1, interior nodes) <= refs_max of them.
- * Returns the stack a walk needs: the largest sum over a root-to-leaf path of (children
- * - 1), the entries a walk leaves pushed, plus one. */
-static uint32_t pn_bvh_widen_to(pn_context *ctx, uint32_t width)
+ * node (or the root), so there are at most max(1, interior nodes) of them. Returns their
+ * count; *need the stack a walk needs: the largest sum over a root-to-leaf path of
+ * (children - 1), the entries a walk leaves pushed, plus one. */
+uint32_t pn_bvh_fold(const pn_kbvh_node *nodes, pn_kbvh4 *w, uint32_t width, uint32_t *need_out)
 {
-    const pn_kbvh_node *nodes = ctx->nodes;
-    pn_kbvh4 *w = ctx->wnodes;
     uint32_t head = 0, tail = 1, need_max = 1, ch[4], n, c, a;
     w[0].bin = 0u;
     w[0].pad0 = 0u;
@@ -359,13 +357,15 @@ static uint32_t pn_bvh_widen_to(pn_context *ctx, uint32_t width)
         wn->pad1 = 0u;
     }
     for (c = 0; c < tail; c++) w[c].pad0 = 0u;
-    ctx->bvh_wide = tail;
-    return need_max;
+    *need_out = need_max;
+    return tail;
 }
 
 void pn_bvh_widen(pn_context *ctx, uint32_t stack_max)
 {
-    if (pn_bvh_widen_to(ctx, 4u) > stack_max) (void)pn_bvh_widen_to(ctx, 2u);
+    uint32_t need;
+    ctx->bvh_wide = pn_bvh_fold(ctx->nodes, ctx->wnodes, 4u, &need);
+    if (need > stack_max) ctx->bvh_wide = pn_bvh_fold(ctx->nodes, ctx->wnodes, 2u, &need);
 }
 
 pn_status pn_bvh_build(pn_context *ctx)

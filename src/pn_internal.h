@@ -195,6 +195,9 @@ pn_status pn_bvh_build(pn_context *ctx);
  * walk of the four-wide one could need more than stack_max entries (pn_bvh_build passes
  * PN_BVH_STACK; a smaller value lets the tests build the two-wide tree). */
 void pn_bvh_widen(pn_context *ctx, uint32_t stack_max);
+/* The fold itself, over any binary tree (nodes, root 0) into w (room for max(1, its
+ * interior nodes)); width 2 or 4. Returns the wide node count, *need the walk stack. */
+uint32_t pn_bvh_fold(const pn_kbvh_node *nodes, pn_kbvh4 *w, uint32_t width, uint32_t *need);
 
 /* pn_frame.c: validates and derives the frame's parameters, carves its pools, and runs
  * the G-buffer, the chosen algorithm's sequence and shading on the port. */

@@ -10,6 +10,7 @@
 
 #include "pn_bench.h"
 #include "pn_bench_kernels.h"
+#include "pn_internal.h" /* pn_bvh_fold */
 
 int pn_gbuf_copy(pn_gbuf *g, const pn_frame *fr)
 {
@@ -104,6 +105,7 @@ void pn_bench_klight(const pn_light *l, uint32_t k, float eps, float cull_tol, p
 
 typedef struct pn_hbvh {
     pn_kbvh_node *nodes;
+    pn_kbvh4 *wnodes; /* the library's fold of it (pn_bvh_fold) */
     uint32_t *index;
     float *tris; /* 9 floats per triangle, scene order */
     uint32_t node_count;
@@ -162,8 +164,9 @@ static int pn_hbvh_build(pn_hbvh *b, const pn_mesh *m)
     b->tris = (float *)malloc((size_t)n * 9u * sizeof(float));
     b->index = (uint32_t *)malloc((size_t)n * sizeof(uint32_t));
     b->nodes = (pn_kbvh_node *)malloc((size_t)(2u * n + 1u) * sizeof(pn_kbvh_node));
+    b->wnodes = (pn_kbvh4 *)malloc((size_t)(n + 1u) * sizeof(pn_kbvh4));
     stack = (uint32_t(*)[3])malloc((size_t)(2u * n + 1u) * sizeof(*stack));
-    if (!b->tris || !b->index || !b->nodes || !stack) {
+    if (!b->tris || !b->index || !b->nodes || !b->wnodes || !stack) {
         free(stack);
         return 1;
     }
@@ -217,12 +220,18 @@ static int pn_hbvh_build(pn_hbvh *b, const pn_mesh *m)
         b->node_count += 2u;
     }
     free(stack);
+    {
+        uint32_t need;
+        (void)pn_bvh_fold(b->nodes, b->wnodes, 4u, &need);
+        if (need > PN_BVH_STACK) (void)pn_bvh_fold(b->nodes, b->wnodes, 2u, &need);
+    }
     return 0;
 }
 
 static void pn_hbvh_free(pn_hbvh *b)
 {
     free(b->nodes);
+    free(b->wnodes);
     free(b->index);
     free(b->tris);
     memset(b, 0, sizeof(*b));
@@ -358,7 +367,8 @@ static void pn_class_rows(void *task, uint32_t begin, uint32_t end)
             if (!pn_shadow_origin(P, n, &tk->light, &O)) continue;
             memset(&cnt, 0, sizeof(cnt));
             t0 = pn_threads_now_ns(NULL);
-            v = pn_reference_pixel(P, n, g->tri[pix], tk->bvh->tris, tk->bvh->nodes, tk->bvh->index, &tk->light, &cnt);
+            v = pn_reference_pixel(P, n, g->tri[pix], tk->bvh->tris, tk->bvh->nodes, tk->bvh->wnodes, tk->bvh->index,
+                                   &tk->light, &cnt);
             c = v == 1.0f ? 0 : v == 0.0f ? 1 : 2;
             tk->row_ns[y * 3u + (uint32_t)c] += (double)(pn_threads_now_ns(NULL) - t0);
             tk->row_work[y * 3u + (uint32_t)c] += (double)cnt.nodes + (double)cnt.candidates;

@@ -375,25 +375,27 @@ PN_KFN uint32_t pn_tri_sample(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_kligh
 /* Bits s4 <= i < n4 (multiples of 4, n4 <= k rounded up to one) of one row that can pass: with plane value
  * vp = pb + a_i*phu (bound ep) and edge values v_q = b_q + a_i*h_q (bounds r_q), a lane can
  * pass when vp >= -ep and all v_q >= -r_q or all v_q <= r_q (pn_filter's tests; a lane that
- * fails them certainly does not pass). No branches and no variable shifts (pw[i] = 1 << i),
+ * fails them certainly does not pass). No branches and no variable shifts (lane l of the
+ * group at i0 has bit (1 << l) << i0, one shift for the group, and coordinate
+ * a_i = (2i+1)*(1/k) - 1, which equals pn_sample_coord() exactly: k is a power of two),
  * in groups of four lanes: GCC 12 vectorizes the group loop at -O2 (SSE2) and the outer
  * loop at -O3; PoCL picks its own widths. The row is most of the predicate's cost (issue 5
  * profile); an earlier measurement (callgrind, reference pass, bunny 64x64) found lanes
  * written out by hand with a shift per group stayed scalar (842 M instructions at -O3
  * against 489 M for this form). */
-PN_KFN uint32_t pn_row_bits(const float *av, const uint32_t *pw, int32_t s4, int32_t n4, float pb, float phu, float ep, float b0,
+PN_KFN uint32_t pn_row_bits(float rk, int32_t s4, int32_t n4, float pb, float phu, float ep, float b0,
                             float h0, float b1, float h1, float b2, float h2, float r0, float r1, float r2)
 {
     uint32_t bits = 0u;
     int32_t i0, l;
     for (i0 = s4; i0 < n4; i0 += 4) {
         for (l = 0; l < 4; l++) {
-            float a = av[i0 + l];
+            float a = (float)(2 * (i0 + l) + 1) * rk - 1.0f;
             float vp = pb + a * phu, v0 = b0 + a * h0, v1 = b1 + a * h1, v2 = b2 + a * h2;
             int32_t pos = (v0 >= -r0) & (v1 >= -r1) & (v2 >= -r2);
             int32_t neg = (v0 <= r0) & (v1 <= r1) & (v2 <= r2);
             int32_t ok = (vp >= -ep) & (pos | neg);
-            bits |= (0u - (uint32_t)ok) & pw[i0 + l];
+            bits |= (0u - (uint32_t)ok) & ((1u << (uint32_t)l) << (uint32_t)i0);
         }
     }
     return bits;
@@ -402,19 +404,19 @@ PN_KFN uint32_t pn_row_bits(const float *av, const uint32_t *pw, int32_t s4, int
 /* The lanes of a row that certainly pass: vp >= ep and all v_q >= r_q or all v_q <= -r_q.
  * The same loop, run only for the rows where some lane can pass (a few percent of the
  * rows pn_row_bits sees on scanned models), so that the hot loop carries none of it. */
-PN_KFN uint32_t pn_row_sure(const float *av, const uint32_t *pw, int32_t s4, int32_t n4, float pb, float phu, float ep, float b0,
+PN_KFN uint32_t pn_row_sure(float rk, int32_t s4, int32_t n4, float pb, float phu, float ep, float b0,
                             float h0, float b1, float h1, float b2, float h2, float r0, float r1, float r2)
 {
     uint32_t bits = 0u;
     int32_t i0, l;
     for (i0 = s4; i0 < n4; i0 += 4) {
         for (l = 0; l < 4; l++) {
-            float a = av[i0 + l];
+            float a = (float)(2 * (i0 + l) + 1) * rk - 1.0f;
             float vp = pb + a * phu, v0 = b0 + a * h0, v1 = b1 + a * h1, v2 = b2 + a * h2;
             int32_t pos = (v0 >= r0) & (v1 >= r1) & (v2 >= r2);
             int32_t neg = (v0 <= -r0) & (v1 <= -r1) & (v2 <= -r2);
             int32_t ok = (vp >= ep) & (pos | neg);
-            bits |= (0u - (uint32_t)ok) & pw[i0 + l];
+            bits |= (0u - (uint32_t)ok) & ((1u << (uint32_t)l) << (uint32_t)i0);
         }
     }
     return bits;
@@ -474,30 +476,26 @@ PN_KFN uint32_t pn_tri_mask_in(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klig
         /* Every sample of the candidate rows, classified branch-free (the row loop
          * vectorizes); the few in a band decided one by one, exactly.
          * a_i = (2i+1)*(1/k) - 1 equals pn_sample_coord() exactly: k is a power of two. */
-        float rk = 1.0f / (float)k, av[32]; /* k <= 32 */
-        uint32_t keep = k >= 32u ? 0xFFFFFFFFu : ((1u << k) - 1u), pw[32], bits, sure, bit, have;
-        int32_t n4 = ((int32_t)k + 3) & ~3, s4 = i_lo & ~3, e4 = pn_kmini(n4, (i_hi + 4) & ~3), i;
-        for (i = 0; i < n4; i++) {
-            av[i] = (float)(2 * i + 1) * rk - 1.0f;
-            pw[i] = 1u << (uint32_t)i;
-        }
+        float rk = 1.0f / (float)k;
+        uint32_t keep = k >= 32u ? 0xFFFFFFFFu : ((1u << k) - 1u), bits, sure, bit, have;
+        int32_t n4 = ((int32_t)k + 3) & ~3, s4 = i_lo & ~3, e4 = pn_kmini(n4, (i_hi + 4) & ~3);
         for (j = row_lo; j <= row_hi; j++) {
-            float b = av[j];
+            float b = (float)(2 * j + 1) * rk - 1.0f;
             float pb = plane.h0 + b * plane.hv;
             float b0 = e[0].h0 + b * e[0].hv, b1 = e[1].h0 + b * e[1].hv, b2 = e[2].h0 + b * e[2].hv;
             bit = (uint32_t)j * k;
             have = (m[bit >> 5] >> (bit & 31u)) & keep;
             if (have == keep) continue; /* row already blocked */
             bits = keep & ~have &
-                   pn_row_bits(av, pw, s4, e4, pb, plane.hu, ep, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu, F.e_err[0], F.e_err[1],
+                   pn_row_bits(rk, s4, e4, pb, plane.hu, ep, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu, F.e_err[0], F.e_err[1],
                                F.e_err[2]);
             if (!bits) continue;
-            sure = bits & pn_row_sure(av, pw, s4, e4, pb, plane.hu, ep, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu, F.e_err[0],
+            sure = bits & pn_row_sure(rk, s4, e4, pb, plane.hu, ep, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu, F.e_err[0],
                                       F.e_err[1], F.e_err[2]);
             bits &= ~sure; /* band samples not already blocked */
             while (bits) {
                 uint32_t lane = pn_kctz(bits);
-                float a = av[lane];
+                float a = (float)(2 * (int32_t)lane + 1) * rk - 1.0f;
                 bits &= bits - 1u;
                 if (pn_tri_resolve(O, A, B, C, L, &F, a, b, pb + a * plane.hu, b0 + a * e[0].hu, b1 + a * e[1].hu,
                                    b2 + a * e[2].hu))

@@ -212,12 +212,14 @@ PN_KFN int pn_gears_in_tile(const pn_ktile *tl, uint32_t res, uint32_t cell)
 PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktile *tl, uint32_t res,
                                PN_CONST uint32_t *tri_id, PN_CONST float *pos, PN_CONST float *nrm,
                                PN_CONST uint32_t *pix_cell, PN_CONST uint32_t *cell_off, PN_CONST uint32_t *sorted,
-                               PN_CONST float *tris, size_t pix, pn_shadow_counters *cnt, float *vis_out)
+                               PN_CONST float *tris, PN_CONST pn_kbvh_node *nodes, size_t pix, pn_shadow_counters *cnt,
+                               float *vis_out)
 {
     uint32_t cell = pix_cell[pix], own = tri_id[pix], e, k = L->k;
     uint32_t m[PN_MASK_WORDS_MAX];
     pn_frustum fr;
     pn_foot fp;
+    pn_ray_origin X;
     pn_rect r;
     pn_horizon H;
     pn_v3 O;
@@ -231,6 +233,7 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
     pn_horizon_mask(&H, L, m);
     pn_frustum_make(O, L, &fr);
     pn_foot_make(O, L, &fp);
+    pn_tri_block_origin(O, L, nodes, &X);
     for (e = cell_off[cell]; e < cell_off[cell + 1u]; e++) {
         uint32_t t = sorted[e];
         pn_v3 A, B, C;
@@ -250,7 +253,7 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
         r = exact ? pn_rect_full(k) : pn_foot_tri(&fp, A, B, C);
         if (!pn_rect_open(m, k, r) && !exact) continue;
         cnt->candidates++;
-        cnt->blocking += pn_tri_mask_in(O, A, B, C, L, m, r.i0, r.i1, r.j0, r.j1);
+        cnt->blocking += pn_tri_block(O, A, B, C, tris + (size_t)t * 9u, L, &X, m, r);
         if (!exact && pn_mask_full(m, k)) break;
     }
     *vis_out = pn_mask_visibility(m, k);

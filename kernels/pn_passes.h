@@ -221,7 +221,8 @@ PN_KFN void pn_e_gears_masks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
     if (!pn_gears_pixel_mask(&K->light, K->exact_stats, &K->tile, PN_POOL(const pn_kfaces, faces)->res,
                              PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos), PN_POOL(const float, nrm),
                              PN_POOL(const uint32_t, pix_cell), PN_POOL(const uint32_t, cell_off),
-                             PN_POOL(const uint32_t, sorted), PN_POOL(const float, tris), pix, &c, &v))
+                             PN_POOL(const uint32_t, sorted), PN_POOL(const float, tris),
+                             PN_POOL(const pn_kbvh_node, nodes), pix, &c, &v))
         return;
     PN_POOL(float, vis)[pix] = v;
     pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);

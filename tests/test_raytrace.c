@@ -13,7 +13,9 @@
  *    plane, tiny and huge scales, far from the origin) and lights of any orientation,
  *    pn_ray_tri() equals pn_tri_sample() for every sample, with its bound taken from the
  *    triangle's own box and from a larger one (a BVH leaf's); the slab test never rejects
- *    the box of a triangle that blocks; the fallbacks to pn_tri_sample are counted.
+ *    the box of a triangle that blocks; the fallbacks to pn_tri_sample are counted. And
+ *    pn_tri_block (a few open samples: a ray each) sets the same bits and returns the same
+ *    answer as pn_tri_mask_in from the same partial mask.
  * 3. Frames: the raytraced visibility buffer is byte-identical to the reference's on the
  *    built-in scenes and spot.glb, area and point light. */
 #include <math.h>
@@ -173,6 +175,7 @@ static void tri_box(const float *T, float grow, float *lo, float *hi)
 
 typedef struct ray_stats {
     unsigned long tests, blocked, disagree, cull_misses;
+    unsigned long block_tests, block_rays, block_hits, block_disagree; /* pn_tri_block */
 } ray_stats;
 
 /* Every sample of triangle T seen from O: pn_ray_tri (bounds from T's box, from a box
@@ -212,6 +215,31 @@ static void ray_check(pn_v3 O, const float *T, const pn_klight *L, float grow, r
             }
             if (want && !pn_ray_box(&R, &nd, &tn)) st->cull_misses++;
         }
+    /* pn_tri_block (the reference's and GEARS' per-triangle step) against pn_tri_mask_in
+     * from the same partial mask: 1 to 6 open samples (rays up to PN_REF_RAYS, the forms
+     * beyond), the rest blocked; the same bits and the same answer. */
+    {
+        uint32_t trial, n = L->k * L->k;
+        for (trial = 0; trial < 4u; trial++) {
+            uint32_t m1[PN_MASK_WORDS_MAX], m2[PN_MASK_WORDS_MAX], w, open = 1u + (uint32_t)(rndf() * 6.0f), q, h1, h2;
+            pn_rect full = pn_rect_full(L->k);
+            pn_mask_clear(m1);
+            for (q = 0; q < n; q++) m1[q >> 5] |= 1u << (q & 31u);
+            for (q = 0; q < open && q < n; q++) {
+                uint32_t b = (uint32_t)(rndf() * (float)n) % n;
+                m1[b >> 5] &= ~(1u << (b & 31u));
+            }
+            memcpy(m2, m1, sizeof(m1));
+            st->block_rays += n - pn_mask_count(m1, L->k) <= PN_REF_RAYS;
+            h1 = pn_tri_block(O, A, B, C, T, L, &X, m1, full);
+            h2 = pn_tri_mask_in(O, A, B, C, L, m2, full.i0, full.i1, full.j0, full.j1);
+            st->block_tests++;
+            st->block_hits += h2;
+            for (w = 0; w < PN_MASK_WORDS_MAX; w++)
+                if (m1[w] != m2[w]) h1 = 2u;
+            if (h1 != h2) st->block_disagree++;
+        }
+    }
 }
 
 static void nudge_vertex(float *P, int ulps)
@@ -242,7 +270,7 @@ static void test_ray_filter(void)
 {
     static const uint32_t ks[5] = {1, 4, 8, 16, 32};
     static const float scales[6] = {1.0f, 1.0f, 1e-6f, 1e5f, 9.094947e-13f /* 2^-40 */, 1.0f};
-    ray_stats st = {0, 0, 0, 0};
+    ray_stats st = {0, 0, 0, 0, 0, 0, 0, 0};
     unsigned long fb0 = ray_fallbacks, pf0 = ray_plane_fallbacks, pairs_blocked = 0;
     uint32_t trial;
     for (trial = 0; trial < 12000u; trial++) {
@@ -340,6 +368,12 @@ static void test_ray_filter(void)
     CHECK(ray_plane_fallbacks - pf0 > 100u);
     CHECK(st.disagree == 0u);
     CHECK(st.cull_misses == 0u);
+    CHECK_MSG(st.block_disagree == 0u, "pn_tri_block differs from pn_tri_mask_in %lu times of %lu", st.block_disagree,
+              st.block_tests);
+    /* not vacuous: many masks decided by rays, and many blocked samples among them */
+    fprintf(stderr, "pn_tri_block: %lu tests, %lu by rays, %lu blocking\n", st.block_tests, st.block_rays, st.block_hits);
+    CHECK_MSG(st.block_rays > 1000u && st.block_hits > 1000u, "pn_tri_block: %lu tests, %lu by rays, %lu blocking",
+              st.block_tests, st.block_rays, st.block_hits);
 }
 
 /* ---- 3. frames ------------------------------------------------------------------------ */

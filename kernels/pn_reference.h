@@ -199,7 +199,7 @@ PN_KFN void pn_tri_load(PN_CONST float *tris, uint32_t t, pn_v3 *A, pn_v3 *B, pn
 
 /* Per-work-item counters, summed by the host (integer adds: order-independent). */
 typedef struct pn_shadow_counters {
-    uint32_t candidates; /* triangles handed to the predicate */
+    uint32_t candidates; /* triangles handed to the predicate (pn_tri_block: rays or forms) */
     uint32_t blocking;   /* ...that blocked at least one sample */
     uint32_t lit;        /* pixels in front of the light */
     uint32_t overflow;   /* traversal stack overflows (must stay 0) */
@@ -216,9 +216,10 @@ typedef struct pn_shadow_counters {
  * they go on the stack in pn_foot_order(): the child whose centre lies farther from the
  * light toward O is walked first (near occluders have the large footprints that fill a
  * mask soonest). At a leaf (a binary leaf node), a triangle whose own footprint holds no
- * open sample is skipped before any of the predicate's set-up. The result is the OR over
- * every triangle that can block an open sample, so it is the same mask in any order and
- * over any tree; only the counters depend on them. */
+ * open sample is skipped before any of the predicate's set-up, and pn_tri_block decides
+ * the open samples it holds (a few: a ray each; more: the forms over its rows). The result
+ * is the OR over every triangle that can block an open sample, so it is the same mask in
+ * any order and over any tree; only the counters depend on them. */
 PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris,
                                 PN_CONST pn_kbvh_node *nodes, PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index,
                                 const pn_klight *L, pn_shadow_counters *cnt)

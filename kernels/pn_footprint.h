@@ -261,7 +261,7 @@ PN_KFN pn_rect pn_foot_tri(const pn_foot *fp, pn_v3 A, pn_v3 B, pn_v3 C)
 
 /* The samples of rectangle r that mask m (bit j k + i) has not blocked yet, row by row:
  * up to `most` of them into (si, sj); returns their count, or most + 1 when there are
- * more (r not empty). */
+ * more (r not empty). With most = 0 it writes nothing and stops at the first. */
 PN_KFN uint32_t pn_rect_few(const uint32_t *m, uint32_t k, pn_rect r, uint32_t most, int32_t *si, int32_t *sj)
 {
     uint32_t n = (uint32_t)(r.i1 - r.i0 + 1), cols, bit, open, c = 0u;
@@ -284,15 +284,7 @@ PN_KFN uint32_t pn_rect_few(const uint32_t *m, uint32_t k, pn_rect r, uint32_t m
 /* 1 if rectangle r holds a sample that mask m (bit j k + i) has not blocked yet. */
 PN_KFN int pn_rect_open(const uint32_t *m, uint32_t k, pn_rect r)
 {
-    uint32_t n = (uint32_t)(r.i1 - r.i0 + 1), cols, bit;
-    int32_t j;
-    if (pn_rect_empty(r)) return 0;
-    cols = (n >= 32u ? 0xFFFFFFFFu : ((1u << n) - 1u)) << (uint32_t)r.i0;
-    for (j = r.j0; j <= r.j1; j++) {
-        bit = (uint32_t)j * k; /* a row never straddles two words (k divides 32 or is 32) */
-        if (~(m[bit >> 5] >> (bit & 31u)) & cols) return 1;
-    }
-    return 0;
+    return !pn_rect_empty(r) && pn_rect_few(m, k, r, 0u, 0, 0) != 0u;
 }
 
 #endif

@@ -24,8 +24,8 @@
 /* A triangle whose footprint holds at most this many open samples is decided ray by ray
  * (pn_ray_tri: the same exact answer per sample as the predicate's mask) instead of by the
  * predicate's forms over the grid: on the dense scanned scenes two thirds of the
- * reference's predicate calls have a single open sample left, and a ray costs about a
- * tenth of a form set-up. Measured (callgrind, reference pass, 64x64, k = 16): dragon
+ * reference's predicate calls had a single open sample left, each paying the forms'
+ * set-up over the whole grid for it. Measured (callgrind, reference pass, 64x64, k = 16): dragon
  * 512 M with no rays, 411 M with up to 2, 404 M with 4, 402 M with 8, 407 M with 16; room
  * 190.5 M, 191.2 M, 191.3 M, 193.7 M, 204.8 M. */
 #define PN_REF_RAYS 4u

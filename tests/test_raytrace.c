@@ -371,7 +371,6 @@ static void test_ray_filter(void)
     CHECK_MSG(st.block_disagree == 0u, "pn_tri_block differs from pn_tri_mask_in %lu times of %lu", st.block_disagree,
               st.block_tests);
     /* not vacuous: many masks decided by rays, and many blocked samples among them */
-    fprintf(stderr, "pn_tri_block: %lu tests, %lu by rays, %lu blocking\n", st.block_tests, st.block_rays, st.block_hits);
     CHECK_MSG(st.block_rays > 1000u && st.block_hits > 1000u, "pn_tri_block: %lu tests, %lu by rays, %lu blocking",
               st.block_tests, st.block_rays, st.block_hits);
 }

@@ -216,7 +216,9 @@ typedef struct pn_shadow_counters {
  * they go on the stack in pn_foot_order(): the child whose centre lies farther from the
  * light toward O is walked first (near occluders have the large footprints that fill a
  * mask soonest). At a leaf (a binary leaf node), a triangle whose own footprint holds no
- * open sample is skipped before any of the predicate's set-up, and pn_tri_block decides
+ * open sample is skipped before any of the predicate's set-up; when the leaf's box holds
+ * at most PN_REF_RAYS open samples, the box's rectangle stands in for each triangle's
+ * (pn_foot_tri costs more than the few rays it would spare). pn_tri_block decides
  * the open samples it holds (a few: a ray each; more: the forms over its rows). The result
  * is the OR over every triangle that can block an open sample, so it is the same mask in
  * any order and over any tree; only the counters depend on them. */
@@ -248,8 +250,10 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
     sp = 1u;
     while (sp > 0u) {
         uint32_t e;
+        pn_rect rb;
         sp--;
-        if (!pn_rect_open(m, k, pn_rect_unpack(rects[sp]))) continue; /* blocked since the push */
+        rb = pn_rect_unpack(rects[sp]);
+        if (!pn_rect_open(m, k, rb)) continue; /* blocked since the push */
         e = stack[sp];
         if (!(e & PN_W4_LEAF)) { /* wide node: its children, O's side last pushed */
             PN_CONST pn_kbvh4 *w = wnodes + e;
@@ -293,13 +297,14 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
             }
         } else {
             PN_CONST pn_kbvh_node *nd = nodes + (e & ~PN_W4_LEAF);
-            uint32_t q;
+            int32_t si[PN_REF_RAYS], sj[PN_REF_RAYS];
+            uint32_t q, few = pn_rect_few(m, k, rb, PN_REF_RAYS, si, sj) <= PN_REF_RAYS;
             for (q = 0; q < nd->count; q++) {
                 uint32_t t = tri_index[nd->first + q] & PN_REF_TRI;
                 pn_v3 A, B, C;
                 if (t == own) continue;
                 pn_tri_load(tris, t, &A, &B, &C);
-                r = pn_foot_tri(&fp, A, B, C);
+                r = few ? rb : pn_foot_tri(&fp, A, B, C);
                 if (!pn_rect_open(m, k, r)) continue;
                 cnt->candidates++;
                 if (pn_tri_block(O, A, B, C, tris + (size_t)t * 9u, L, &X, m, r)) {

@@ -114,79 +114,148 @@ PN_KFN void pn_foot_make(pn_v3 O, const pn_klight *L, pn_foot *fp)
     fp->on = fp->D > 2.0f * fp->eD && fp->aO == fp->aO && fp->bO == fp->bO;
 }
 
-/* Range of the linear function X -> (X - O).n over the box, with d = X - O given per
- * component as [dl, dh]. */
-PN_KFN void pn_lin_range(pn_v3 n, pn_v3 dl, pn_v3 dh, float *lo, float *hi)
+/* Lanes c < n (n <= 4): sample indices [n0, n1][c] whose coordinate (2 i + 1) / k - 1 can
+ * lie in [lo, hi][c]; NaN in either bound: all. Loops of selects, no branch, so that a
+ * caller's four lanes (pn_foot_box4) run side by side. */
+PN_KFN_HOT void pn_foot_index(const float *lo, const float *hi, uint32_t n, uint32_t k, int32_t *n0, int32_t *n1)
 {
-    float x0 = n.x * dl.x, x1 = n.x * dh.x, y0 = n.y * dl.y, y1 = n.y * dh.y, z0 = n.z * dl.z, z1 = n.z * dh.z;
-    *lo = (pn_kminf(x0, x1) + pn_kminf(y0, y1)) + pn_kminf(z0, z1);
-    *hi = (pn_kmaxf(x0, x1) + pn_kmaxf(y0, y1)) + pn_kmaxf(z0, z1);
+    float fk = (float)k, a[4], b[4];
+    int32_t nan[4], ia[4], ib[4];
+    uint32_t c;
+    for (c = 0; c < n; c++) {
+        nan[c] = !(lo[c] == lo[c]) | !(hi[c] == hi[c]);
+        a[c] = pn_kclampf(((lo[c] + 1.0f) * fk - 1.0f) * 0.5f - 1e-5f, 0, (int32_t)k);
+        b[c] = pn_kclampf(((hi[c] + 1.0f) * fk - 1.0f) * 0.5f + 1e-5f, -1, (int32_t)k - 1);
+    }
+    for (c = 0; c < n; c++) { /* pn_kceil_clamp and pn_kfloor_clamp, in two loops */
+        ia[c] = pn_kceil_in(a[c]);
+        ib[c] = pn_kfloor_in(b[c]);
+    }
+    for (c = 0; c < n; c++) {
+        n0[c] = nan[c] ? 0 : ia[c];
+        n1[c] = nan[c] ? (int32_t)k - 1 : ib[c];
+    }
 }
 
-/* Sample indices n whose coordinate (2n + 1) / k - 1 can lie in [lo, hi]; NaN: all. */
-PN_KFN void pn_foot_index(float lo, float hi, uint32_t k, int32_t *n0, int32_t *n1)
+/* Lanes c < 4 of four boxes: the range [lo[c], hi[c]] of the linear function
+ * X -> (X - O).n over box c, with d = X - O given per axis a as [dl, dh][a * 4 + c]. */
+PN_KFN_HOT void pn_lin_range4(pn_v3 n, const float *dl, const float *dh, float *lo, float *hi)
 {
-    float fk = (float)k;
-    if (!(lo == lo) || !(hi == hi)) {
-        *n0 = 0;
-        *n1 = (int32_t)k - 1;
+    uint32_t c;
+    for (c = 0; c < 4u; c++) {
+        float x0 = n.x * dl[c], x1 = n.x * dh[c], y0 = n.y * dl[4u + c], y1 = n.y * dh[4u + c];
+        float z0 = n.z * dl[8u + c], z1 = n.z * dh[8u + c];
+        lo[c] = (pn_kminf(x0, x1) + pn_kminf(y0, y1)) + pn_kminf(z0, z1);
+        hi[c] = (pn_kmaxf(x0, x1) + pn_kmaxf(y0, y1)) + pn_kmaxf(z0, z1);
+    }
+}
+
+/* Lanes c < 4: sample indices [n0, n1][c] whose coordinate (2n + 1) / k - 1 can lie in
+ * [o + r_lo, o + r_hi], r = D g / w over g in [glo, ghi][c] widened by e_g = eu mag[c] +
+ * PN_KTINY, w in [wlo, whi][c] (whi > 0, D in [dlo, dhi], dlo > 0), o within eo of O's
+ * coordinate. For w > 0 bounded below, the extreme quotients over the corners; else only
+ * g / whi, on the side where g cannot change sign. Every division is used on every path
+ * (w0 is wlo or whi, so for wlo <= 0 the min and max are of two equal quotients): the
+ * lanes then run side by side without a branch. */
+PN_KFN_HOT void pn_foot_axis4(float o, float eo, float eu, const float *glo, const float *ghi, const float *mag,
+                              const float *wlo, const float *whi, float dlo, float dhi, uint32_t k, int32_t *n0,
+                              int32_t *n1)
+{
+    float gl[4], gh[4], a0[4], a1[4], b0[4], b1[4];
+    int32_t bl[4], bh[4];
+    uint32_t c;
+    /* The comparisons and the quotients first, in loops of their own, so that none is
+     * left behind a branch (a compiler would sink a quotient used on one side only). */
+    for (c = 0; c < 4u; c++) {
+        float eg = eu * mag[c] + PN_KTINY;
+        gl[c] = glo[c] - eg;
+        gh[c] = ghi[c] + eg;
+        bl[c] = (wlo[c] > 0.0f) | (gl[c] >= 0.0f);
+        bh[c] = (wlo[c] > 0.0f) | (gh[c] <= 0.0f);
+    }
+    for (c = 0; c < 4u; c++) {
+        float wl = wlo[c], wh = whi[c], w0 = wl > 0.0f ? wl : wh;
+        a0[c] = gl[c] / w0;
+        a1[c] = gl[c] / wh;
+        b0[c] = gh[c] / w0;
+        b1[c] = gh[c] / wh;
+    }
+    for (c = 0; c < 4u; c++) { /* the quotient range, and the D that maximises it */
+        a0[c] = bl[c] ? pn_kminf(a0[c], a1[c]) : -PN_KINF;
+        b0[c] = bh[c] ? pn_kmaxf(b0[c], b1[c]) : PN_KINF;
+        a1[c] = a0[c] >= 0.0f ? dlo : dhi;
+        b1[c] = b0[c] >= 0.0f ? dhi : dlo;
+    }
+    for (c = 0; c < 4u; c++) {
+        float rlo = a0[c] * a1[c], rhi = b0[c] * b1[c];
+        gl[c] = (o + rlo) - (eo + 1e-6f * (pn_kfabs(o) + pn_kfabs(rlo)));
+        gh[c] = (o + rhi) + (eo + 1e-6f * (pn_kfabs(o) + pn_kfabs(rhi)));
+    }
+    pn_foot_index(gl, gh, 4u, k, n0, n1);
+}
+
+/* The samples whose segments from O can meet each of four boxes, box c being
+ * lo[a * 4 + c], hi[a * 4 + c] over axes a (a wide node's children, copied out of its
+ * pn_kbvh4), into out[c]. Branch-free over the lanes, so a compiler may run the four
+ * boxes at once (SSE on x86-64, the work-item's own lanes in OpenCL). */
+PN_KFN void pn_foot_box4(const pn_foot *fp, const float *lo, const float *hi, pn_rect *out)
+{
+    float o[3], dl[12], dh[12], mag[4], wlo[4], whi[4], glo[4], ghi[4], hlo[4], hhi[4];
+    float dtop = fp->D + fp->eD, dlo = fp->D - fp->eD;
+    int32_t i0[4], i1[4], j0[4], j1[4], empty[4];
+    uint32_t a, c;
+    if (!fp->on) {
+        for (c = 0; c < 4u; c++) out[c] = pn_rect_full(fp->k);
         return;
     }
-    *n0 = pn_kceil_clamp(((lo + 1.0f) * fk - 1.0f) * 0.5f - 1e-5f, 0, (int32_t)k);
-    *n1 = pn_kfloor_clamp(((hi + 1.0f) * fk - 1.0f) * 0.5f + 1e-5f, -1, (int32_t)k - 1);
-}
-
-/* Sample indices n whose coordinate (2n + 1) / k - 1 can lie in [c + r_lo, c + r_hi],
- * r = D g / w over g in [glo, ghi], w in [wlo, whi] (whi > 0, D in [dlo, dhi], dlo > 0),
- * c within ec of O's coordinate. */
-PN_KFN void pn_foot_axis(float c, float ec, float glo, float ghi, float wlo, float whi, float dlo, float dhi,
-                         uint32_t k, int32_t *n0, int32_t *n1)
-{
-    float qlo, qhi, rlo, rhi, lo, hi;
-    if (wlo > 0.0f) {
-        qlo = pn_kminf(glo / wlo, glo / whi);
-        qhi = pn_kmaxf(ghi / wlo, ghi / whi);
-    } else {
-        qlo = glo >= 0.0f ? glo / whi : -PN_KINF;
-        qhi = ghi <= 0.0f ? ghi / whi : PN_KINF;
+    o[0] = fp->O.x;
+    o[1] = fp->O.y;
+    o[2] = fp->O.z;
+    for (a = 0; a < 3u; a++)
+        for (c = 0; c < 4u; c++) {
+            dl[a * 4u + c] = lo[a * 4u + c] - o[a];
+            dh[a * 4u + c] = hi[a * 4u + c] - o[a];
+        }
+    for (c = 0; c < 4u; c++)
+        mag[c] = (pn_kmaxf(pn_kfabs(dl[c]), pn_kfabs(dh[c])) + pn_kmaxf(pn_kfabs(dl[4u + c]), pn_kfabs(dh[4u + c]))) +
+                 pn_kmaxf(pn_kfabs(dl[8u + c]), pn_kfabs(dh[8u + c]));
+    /* w = -(X - O).N */
+    pn_lin_range4(fp->N, dl, dh, hlo, hhi);
+    for (c = 0; c < 4u; c++) {
+        float ew = 16.0f * PN_KU * mag[c] + PN_KTINY;
+        wlo[c] = -hhi[c] - ew;
+        whi[c] = pn_kminf(-hlo[c] + ew, dtop);
+        /* Wholly behind O's plane or beyond the light plane: no segment reaches it. NaN
+         * falls through to the axes, which then give the whole light. */
+        empty[c] = (whi[c] <= 0.0f) | (wlo[c] > dtop);
     }
-    rlo = qlo * (qlo >= 0.0f ? dlo : dhi);
-    rhi = qhi * (qhi >= 0.0f ? dhi : dlo);
-    lo = (c + rlo) - (ec + 1e-6f * (pn_kfabs(c) + pn_kfabs(rlo)));
-    hi = (c + rhi) + (ec + 1e-6f * (pn_kfabs(c) + pn_kfabs(rhi)));
-    pn_foot_index(lo, hi, k, n0, n1);
+    pn_lin_range4(fp->Ua, dl, dh, glo, ghi);
+    pn_foot_axis4(fp->aO, fp->ea, 32.0f * PN_KU * fp->ua_inf, glo, ghi, mag, wlo, whi, dlo, dtop, fp->k, i0, i1);
+    pn_lin_range4(fp->Va, dl, dh, glo, ghi);
+    pn_foot_axis4(fp->bO, fp->eb, 32.0f * PN_KU * fp->va_inf, glo, ghi, mag, wlo, whi, dlo, dtop, fp->k, j0, j1);
+    for (c = 0; c < 4u; c++) {
+        int e = empty[c] | (i0[c] > i1[c]);
+        out[c] = e ? pn_rect_make(0, -1, 0, -1) : pn_rect_make(i0[c], i1[c], j0[c], j1[c]);
+    }
 }
 
-/* The samples whose segments from O can meet the box [lo, hi]. */
+/* The samples whose segments from O can meet the box [lo, hi]: pn_foot_box4 with the box
+ * in every lane. */
 PN_KFN pn_rect pn_foot_box(const pn_foot *fp, pn_v3 lo, pn_v3 hi)
 {
-    pn_v3 dl, dh, da;
-    float mag, glo, ghi, hlo, hhi, wlo, whi, eg, ew, dlo, dhi;
-    pn_rect r;
-    if (!fp->on) return pn_rect_full(fp->k);
-    dl = pn_v3_sub(lo, fp->O);
-    dh = pn_v3_sub(hi, fp->O);
-    da = pn_v3_make(pn_kmaxf(pn_kfabs(dl.x), pn_kfabs(dh.x)), pn_kmaxf(pn_kfabs(dl.y), pn_kfabs(dh.y)),
-                    pn_kmaxf(pn_kfabs(dl.z), pn_kfabs(dh.z)));
-    mag = pn_v3_l1(da);
-    /* w = -(X - O).N */
-    pn_lin_range(fp->N, dl, dh, &hlo, &hhi);
-    ew = 16.0f * PN_KU * mag + PN_KTINY;
-    wlo = -hhi - ew;
-    whi = pn_kminf(-hlo + ew, fp->D + fp->eD);
-    /* Wholly behind O's plane or beyond the light plane: no segment reaches it. NaN falls
-     * through to the axes, which then give the whole light. */
-    if (whi <= 0.0f || wlo > fp->D + fp->eD) return pn_rect_make(0, -1, 0, -1);
-    dlo = fp->D - fp->eD;
-    dhi = fp->D + fp->eD;
-    pn_lin_range(fp->Ua, dl, dh, &glo, &ghi);
-    eg = 32.0f * PN_KU * mag * fp->ua_inf + PN_KTINY;
-    pn_foot_axis(fp->aO, fp->ea, glo - eg, ghi + eg, wlo, whi, dlo, dhi, fp->k, &r.i0, &r.i1);
-    if (r.i0 > r.i1) return pn_rect_make(0, -1, 0, -1);
-    pn_lin_range(fp->Va, dl, dh, &glo, &ghi);
-    eg = 32.0f * PN_KU * mag * fp->va_inf + PN_KTINY;
-    pn_foot_axis(fp->bO, fp->eb, glo - eg, ghi + eg, wlo, whi, dlo, dhi, fp->k, &r.j0, &r.j1);
-    return r;
+    float l[12], h[12];
+    pn_rect r[4];
+    uint32_t c;
+    for (c = 0; c < 4u; c++) {
+        l[c] = lo.x;
+        l[4u + c] = lo.y;
+        l[8u + c] = lo.z;
+        h[c] = hi.x;
+        h[4u + c] = hi.y;
+        h[8u + c] = hi.z;
+    }
+    pn_foot_box4(fp, l, h, r);
+    return r[0];
 }
 
 /* The order a walk visits two boxes in: the one whose centre lies farther from the light
@@ -252,10 +321,10 @@ PN_KFN pn_rect pn_foot_tri(const pn_foot *fp, pn_v3 A, pn_v3 B, pn_v3 C)
     ega = 32.0f * PN_KU * mag * fp->ua_inf + PN_KTINY;
     egb = 32.0f * PN_KU * mag * fp->va_inf + PN_KTINY;
     pn_foot_verts(fp->aO, fp->ea, fp->D, fp->eD, ga, ega, w, ew, &lo, &hi);
-    pn_foot_index(lo, hi, fp->k, &r.i0, &r.i1);
+    pn_foot_index(&lo, &hi, 1u, fp->k, &r.i0, &r.i1);
     if (r.i0 > r.i1) return pn_rect_make(0, -1, 0, -1);
     pn_foot_verts(fp->bO, fp->eb, fp->D, fp->eD, gb, egb, w, ew, &lo, &hi);
-    pn_foot_index(lo, hi, fp->k, &r.j0, &r.j1);
+    pn_foot_index(&lo, &hi, 1u, fp->k, &r.j0, &r.j1);
     return r;
 }
 

@@ -64,25 +64,28 @@ PN_KFN uint32_t pn_kminu(uint32_t a, uint32_t b) { return a < b ? a : b; }
 PN_KFN uint32_t pn_kmaxu(uint32_t a, uint32_t b) { return a > b ? a : b; }
 
 /* Float to integer, clamped to [lo, hi] *before* the conversion (an out-of-range
- * conversion is undefined in C and implementation-defined in OpenCL); NaN gives lo. */
-PN_KFN int32_t pn_kfloor_clamp(float v, int32_t lo, int32_t hi)
+ * conversion is undefined in C and implementation-defined in OpenCL); NaN gives lo. Every
+ * caller's bounds are at most 2^24 in magnitude, so exact in float: v is clamped as a
+ * float (pn_kclampf), and the rounding of an in-range float (pn_kfloor_in, pn_kceil_in)
+ * leaves a clamped bound alone. Selects, not early returns, and split in two so that a
+ * loop over lanes (pn_foot_index) can run each half side by side. */
+PN_KFN float pn_kclampf(float v, int32_t lo, int32_t hi)
 {
-    int32_t i;
-    if (!(v > (float)lo)) return lo;
-    if (v >= (float)hi) return hi;
-    i = (int32_t)v; /* truncation; v > lo >= -2^24 here */
-    if ((float)i > v) i -= 1;
-    return i;
+    float fl = (float)lo, fh = (float)hi;
+    return v > fl ? (v < fh ? v : fh) : fl;
 }
-PN_KFN int32_t pn_kceil_clamp(float v, int32_t lo, int32_t hi)
+PN_KFN int32_t pn_kfloor_in(float v)
 {
-    int32_t i;
-    if (!(v > (float)lo)) return lo;
-    if (v >= (float)hi) return hi;
-    i = (int32_t)v;
-    if ((float)i < v) i += 1;
-    return i;
+    int32_t i = (int32_t)v; /* truncation toward zero */
+    return (float)i > v ? i - 1 : i;
 }
+PN_KFN int32_t pn_kceil_in(float v)
+{
+    int32_t i = (int32_t)v;
+    return (float)i < v ? i + 1 : i;
+}
+PN_KFN int32_t pn_kfloor_clamp(float v, int32_t lo, int32_t hi) { return pn_kfloor_in(pn_kclampf(v, lo, hi)); }
+PN_KFN int32_t pn_kceil_clamp(float v, int32_t lo, int32_t hi) { return pn_kceil_in(pn_kclampf(v, lo, hi)); }
 
 PN_KFN uint32_t pn_kpopcount(uint32_t v)
 {

@@ -212,10 +212,10 @@ typedef struct pn_shadow_counters {
  * so far and visits a child only while its footprint on the light (pn_footprint.h) still
  * holds a sample m has not blocked: the test runs when a child is pushed and again when it
  * is popped, since m may have grown in between. A wide node's children are first tested
- * against the light frustum together (pn_frustum_box4), then the survivors' footprints;
- * they go on the stack in pn_foot_order(): the child whose centre lies farther from the
- * light toward O is walked first (near occluders have the large footprints that fill a
- * mask soonest). At a leaf (a binary leaf node), a triangle whose own footprint holds no
+ * against the light frustum together (pn_frustum_box4), then their footprints, four at a
+ * time (pn_foot_box4); the survivors go on the stack in pn_foot_order(): the child whose
+ * centre lies farther from the light toward O is walked first (near occluders have the
+ * large footprints that fill a mask soonest). At a leaf (a binary leaf node), a triangle whose own footprint holds no
  * open sample is skipped before any of the predicate's set-up; when the leaf's box holds
  * at most PN_REF_RAYS open samples, the box's rectangle stands in for each triangle's
  * (pn_foot_tri costs more than the few rays it would spare). pn_tri_block decides
@@ -258,23 +258,26 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
         if (!(e & PN_W4_LEAF)) { /* wide node: its children, O's side last pushed */
             PN_CONST pn_kbvh4 *w = wnodes + e;
             uint32_t bits = pn_frustum_box4(&fr, w), c, j, n_in = 0u, id[4], pk[4];
-            float key[4];
+            float key[4], blo[12], bhi[12];
+            pn_rect r4[4];
             cnt->nodes += w->n;
+            if (!bits) continue;
+            for (c = 0; c < 12u; c++) {
+                blo[c] = w->lo[c >> 2][c & 3u];
+                bhi[c] = w->hi[c >> 2][c & 3u];
+            }
+            /* While nothing is blocked, a box's footprint can only be empty between
+             * samples, which a box large enough to be an interior node seldom is: the
+             * whole light. */
+            if (any) pn_foot_box4(&fp, blo, bhi, r4);
             for (c = 0; c < 4u; c++) {
                 pn_v3 lo, hi;
                 float kc;
                 if (!((bits >> c) & 1u)) continue;
-                lo = pn_v3_make(w->lo[0][c], w->lo[1][c], w->lo[2][c]);
-                hi = pn_v3_make(w->hi[0][c], w->hi[1][c], w->hi[2][c]);
-                /* While nothing is blocked, a box's footprint can only be empty between
-                 * samples, which a box large enough to be an interior node seldom is:
-                 * the whole light. */
-                if (any) {
-                    r = pn_foot_box(&fp, lo, hi);
-                    if (!pn_rect_open(m, k, r)) continue;
-                } else {
-                    r = pn_rect_full(k);
-                }
+                lo = pn_v3_make(blo[c], blo[4u + c], blo[8u + c]);
+                hi = pn_v3_make(bhi[c], bhi[4u + c], bhi[8u + c]);
+                r = any ? r4[c] : pn_rect_full(k);
+                if (any && !pn_rect_open(m, k, r)) continue;
                 kc = pn_foot_order(&fp, lo, hi);
                 /* insertion, smallest key first: the largest goes on top */
                 for (j = n_in++; j > 0u && key[j - 1u] > kc; j--) {

@@ -2648,7 +2648,8 @@ static void print_report(report *r, const bench_opts *o, FILE *out, const char *
                  "table measures %s (a port with a device of its own: its threads column is Embree's).\n",
             mach, threads, o->nports >= 3 || NPORT < 3 ? "every port and the scalar port on 1 thread" : "every port");
     if (port_devices[0]) fprintf(out, "- %s.\n", port_devices);
-    fprintf(out, "- Build: %s, compiler %s. %s.\n", PN_BENCH_BUILD_TYPE, __VERSION__, emb_info);
+    fprintf(out, "- Build: %s, compiler %s, library compiled for %s. %s.\n", PN_BENCH_BUILD_TYPE, __VERSION__,
+            PN_BENCH_TARGET_ARCH[0] ? "-march=" PN_BENCH_TARGET_ARCH : "the compiler's default target", emb_info);
     fprintf(out, "- Method: medians of %d repetitions (%d when one repetition took over %.0f s; the `reps` column says "
                  "which); within a repetition every algorithm, both Embree APIs and both BVH builds run one after the "
                  "other, so each ratio compares medians measured side by side in the same run. \"X vs Y\" is Y's median "

@@ -63,7 +63,8 @@ echo
 echo "Instruction counts (callgrind \`Ir\`) of one shadow pass: $scene at ${size}x$size, k = $k, one thread; $lit lit"
 echo "pixels, $samples light samples. Written by tools/bench_profile.sh; each row is its own valgrind run with"
 echo "collection on only inside the pass. Predicate calls: \`pn_stats.shadow_candidates\` of the same frame (for"
-echo "raytrace, ray-triangle tests). Valgrind has no AVX-512, so Embree's rows count its AVX2 kernels."
+echo "raytrace, ray-triangle tests). Valgrind has no AVX-512, so Embree's rows count its AVX2 kernels, and our"
+echo "library here is compiled for the compiler's default target (x86-64: SSE2), not the timed build's -march=native."
 echo
 echo "| shadow pass | instructions (millions) | per lit pixel | per light sample | predicate calls per lit pixel | instructions per predicate call |"
 echo "| --- | ---: | ---: | ---: | ---: | ---: |"

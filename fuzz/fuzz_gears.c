@@ -228,6 +228,23 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                        "triangle %u blocks %u samples from origin %u but the frustum cull rejects its box", t,
                        pn_mask_count(m, L.k), o);
             {
+                /* The same cull four boxes at a time (GEARS' chunks and triangle groups):
+                 * every lane holds the triangle's box, grown by a lane-dependent amount. */
+                float l4[12], h4[12];
+                uint32_t c, a;
+                for (c = 0; c < 4u; c++) {
+                    float g = (float)c * (float)c * 0.21f * (float)(o + 1u);
+                    for (a = 0; a < 3u; a++) {
+                        l4[a * 4u + c] = pn_kminf(T[a], pn_kminf(T[3 + a], T[6 + a])) - g * (float)(a + 1u);
+                        h4[a * 4u + c] = pn_kmaxf(T[a], pn_kmaxf(T[3 + a], T[6 + a])) + g * (float)(3u - a);
+                    }
+                }
+                FUZZ_CHECK(pn_frustum_box4p(&fr, l4, h4) == 0xFu,
+                           "triangle %u blocks %u samples from origin %u but the four-box frustum cull rejects a box "
+                           "holding it (bits %x)",
+                           t, pn_mask_count(m, L.k), o, pn_frustum_box4p(&fr, l4, h4));
+            }
+            {
                 /* The footprints (pn_footprint.h) the reference's walk and GEARS' per-pixel
                  * step skip by: of the triangle (its projected vertices, or its box), of
                  * its box, and of a box around it grown by a hostile amount (a BVH node),

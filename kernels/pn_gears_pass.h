@@ -199,6 +199,89 @@ PN_KFN void pn_gears_tri_scatter(PN_CONST pn_cellrect *rects, PN_CONST uint32_t 
         }
 }
 
+/* Consecutive entries of a tile's cell-sorted list that share one box (chunk_box): the
+ * per-pixel step tests a chunk's box against the pixel's light frustum and its footprint
+ * against the samples still open before it looks at the chunk's triangles. Triangle ids
+ * follow the mesh, which keeps neighbours together, so a chunk's box is small: on the
+ * dragon at 256x256, 85% of the chunks a pixel meets are outside its frustum, and they hold
+ * every triangle the per-triangle frustum test would reject. */
+#define PN_GEARS_CHUNK 8u
+
+/* Chunk q of a tile's cell-sorted list, entries [q C, min(q C + C, n)) with C =
+ * PN_GEARS_CHUNK and n the tile's pairs: the box of its triangles into box[q * 6 ..] (lo
+ * xyz, hi xyz). A chunk may straddle two cells: its box then holds the triangles of both,
+ * and is still a box of either cell's part. */
+PN_KFN void pn_gears_chunk_box(PN_CONST uint32_t *sorted, uint32_t n, PN_CONST float *tris, uint32_t q,
+                               PN_GLOBAL float *box)
+{
+    uint32_t e, e1 = pn_kminu(q * PN_GEARS_CHUNK + PN_GEARS_CHUNK, n), i;
+    float b[6];
+    pn_box3_empty(b);
+    for (e = q * PN_GEARS_CHUNK; e < e1; e++) {
+        PN_CONST float *p = tris + (size_t)sorted[e] * 9u;
+        for (i = 0; i < 9u; i += 3u) pn_box3_add(b, pn_v3_make(p[i], p[i + 1u], p[i + 2u]));
+    }
+    for (i = 0; i < 6u; i++) box[(size_t)q * 6u + i] = b[i];
+}
+
+/* Chunk q of a cell's list sorted[e0 .. e1), whose footprint is rc (the whole light with
+ * `exact`): its triangles into mask m, four at a time: their boxes against the frustum
+ * (the reference's conservative test), then the footprints of those inside
+ * (pn_foot_box4) against the samples still open (not with `exact`, which computes every
+ * assignment's whole mask for the paper's Table 6), then pn_tri_block on each survivor.
+ * Returns 1 when the mask is full (never with `exact`). */
+PN_KFN uint32_t pn_gears_chunk_mask(uint32_t q, pn_rect rc, uint32_t e0, uint32_t e1, uint32_t own,
+                                    PN_CONST uint32_t *sorted, PN_CONST float *tris, uint32_t exact,
+                                    const pn_frustum *fr, const pn_foot *fp, pn_v3 O, const pn_klight *L,
+                                    const pn_ray_origin *X, uint32_t *m, uint32_t *any, pn_shadow_counters *cnt)
+{
+    uint32_t k = L->k, e = pn_kmaxu(e0, q * PN_GEARS_CHUNK), end = pn_kminu(q * PN_GEARS_CHUNK + PN_GEARS_CHUNK, e1);
+    uint32_t ts[4], n, l, bits;
+    float lo[12], hi[12];
+    pn_rect r[4];
+    /* No open sample in the chunk's footprint: none of its triangles can block. (The
+     * reference's leaf rule, the box's rectangle for each triangle when it holds at most
+     * PN_REF_RAYS open samples, measured worse here: 3.11 G -> 3.62 G instructions, dragon
+     * at 128x128.) */
+    if (!exact && !pn_rect_open(m, k, rc)) return 0u;
+    while (e < end) {
+        for (n = 0; n < 4u && e < end; e++) {
+            uint32_t t = sorted[e];
+            pn_v3 A, B, C;
+            if (t == own) continue;
+            pn_tri_load(tris, t, &A, &B, &C);
+            for (l = n; l < 4u; l++) { /* its lane and the unused ones after it */
+                lo[l] = pn_kminf(A.x, pn_kminf(B.x, C.x));
+                lo[4u + l] = pn_kminf(A.y, pn_kminf(B.y, C.y));
+                lo[8u + l] = pn_kminf(A.z, pn_kminf(B.z, C.z));
+                hi[l] = pn_kmaxf(A.x, pn_kmaxf(B.x, C.x));
+                hi[4u + l] = pn_kmaxf(A.y, pn_kmaxf(B.y, C.y));
+                hi[8u + l] = pn_kmaxf(A.z, pn_kmaxf(B.z, C.z));
+            }
+            ts[n++] = t;
+        }
+        bits = n ? pn_frustum_box4p(fr, lo, hi) & ((1u << n) - 1u) : 0u;
+        if (!bits) continue;
+        if (exact) {
+            for (l = 0; l < 4u; l++) r[l] = pn_rect_full(k);
+        } else {
+            pn_foot_box4(fp, lo, hi, r);
+        }
+        for (l = 0; l < n; l++) {
+            pn_v3 A, B, C;
+            if (!((bits >> l) & 1u) || (!exact && !pn_rect_open(m, k, r[l]))) continue;
+            pn_tri_load(tris, ts[l], &A, &B, &C);
+            cnt->candidates++;
+            if (pn_tri_block(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, m, r[l])) {
+                cnt->blocking++;
+                *any = 1u;
+            }
+            if (!exact && pn_mask_full(m, k)) return 1u;
+        }
+    }
+    return 0u;
+}
+
 PN_KFN int pn_gears_in_tile(const pn_ktile *tl, uint32_t res, uint32_t cell)
 {
     uint32_t cells = res * res, f = cell / cells, in_face = cell % cells;
@@ -208,19 +291,24 @@ PN_KFN int pn_gears_in_tile(const pn_ktile *tl, uint32_t res, uint32_t cell)
 
 /* Pixel pix, if its cell is in the tile: the mask of the cell's triangles
  * sorted[cell_off[cell] .. cell_off[cell + 1]) (ascending ids), stopping at a full mask
- * unless `exact`; returns 1 and the visibility in *vis_out, else 0. */
+ * unless `exact`; returns 1 and the visibility in *vis_out, else 0. A chunk of the list
+ * (PN_GEARS_CHUNK) whose box is outside the pixel's light frustum, or (unless `exact`)
+ * whose footprint holds no open sample, is skipped whole: none of its triangles can
+ * block a sample still open, so the mask is the same. The footprints of the chunks inside
+ * the frustum are computed four at a time (pn_foot_box4). */
 PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktile *tl, uint32_t res,
                                PN_CONST uint32_t *tri_id, PN_CONST float *pos, PN_CONST float *nrm,
                                PN_CONST uint32_t *pix_cell, PN_CONST uint32_t *cell_off, PN_CONST uint32_t *sorted,
-                               PN_CONST float *tris, PN_CONST pn_kbvh_node *nodes, size_t pix, pn_shadow_counters *cnt,
-                               float *vis_out)
+                               PN_CONST float *chunk_box, PN_CONST float *tris, PN_CONST pn_kbvh_node *nodes, size_t pix,
+                               pn_shadow_counters *cnt, float *vis_out)
 {
-    uint32_t cell = pix_cell[pix], own = tri_id[pix], e, k = L->k;
+    uint32_t cell = pix_cell[pix], own = tri_id[pix], e0, e1, q0, qlast, i, k = L->k, any, nq = 0u, qs[4], done = 0u;
+    float blo[12], bhi[12], tlo[12], thi[12];
+    pn_rect r4[4];
     uint32_t m[PN_MASK_WORDS_MAX];
     pn_frustum fr;
     pn_foot fp;
     pn_ray_origin X;
-    pn_rect r;
     pn_horizon H;
     pn_v3 O;
     /* A pixel has a cell only if it has an origin. */
@@ -231,30 +319,48 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
      * once per pixel). */
     pn_horizon_of(pn_v3_load(pos + pix * 3u), pn_v3_load(nrm + pix * 3u), own, tris, L, &H);
     pn_horizon_mask(&H, L, m);
+    any = pn_mask_count(m, k) != 0u;
     pn_frustum_make(O, L, &fr);
     pn_foot_make(O, L, &fp);
     pn_tri_block_origin(O, L, nodes, &X);
-    for (e = cell_off[cell]; e < cell_off[cell + 1u]; e++) {
-        uint32_t t = sorted[e];
-        pn_v3 A, B, C;
-        if (t == own) continue;
-        pn_tri_load(tris, t, &A, &B, &C);
-        /* The reference's conservative frustum test, on the triangle's own box: a cheap
-         * reject before the predicate. */
-        if (!pn_frustum_aabb(&fr, pn_v3_make(pn_kminf(A.x, pn_kminf(B.x, C.x)), pn_kminf(A.y, pn_kminf(B.y, C.y)),
-                                             pn_kminf(A.z, pn_kminf(B.z, C.z))),
-                             pn_v3_make(pn_kmaxf(A.x, pn_kmaxf(B.x, C.x)), pn_kmaxf(A.y, pn_kmaxf(B.y, C.y)),
-                                        pn_kmaxf(A.z, pn_kmaxf(B.z, C.z)))))
-            continue;
-        /* The triangle's footprint on the light against the samples still open
-         * (pn_footprint.h): nothing it could block is left (also between samples, so
-         * even before anything is blocked). Not with `exact`, which computes every
-         * assignment's whole mask for the paper's Table 6. */
-        r = exact ? pn_rect_full(k) : pn_foot_tri(&fp, A, B, C);
-        if (!pn_rect_open(m, k, r) && !exact) continue;
-        cnt->candidates++;
-        cnt->blocking += pn_tri_block(O, A, B, C, tris + (size_t)t * 9u, L, &X, m, r);
-        if (!exact && pn_mask_full(m, k)) break;
+    e0 = cell_off[cell];
+    e1 = cell_off[cell + 1u];
+    /* The chunks of the list, four at a time against the frustum; those inside queue up
+     * four at a time for pn_foot_box4, then each is walked with its rectangle. */
+    qlast = e0 < e1 ? (e1 - 1u) / PN_GEARS_CHUNK : 0u;
+    for (q0 = e0 / PN_GEARS_CHUNK; e0 < e1 && q0 <= qlast && !done; q0 += 4u) {
+        uint32_t bits, c;
+        for (c = 0; c < 4u; c++) {
+            PN_CONST float *b = chunk_box + (size_t)pn_kminu(q0 + c, qlast) * 6u;
+            for (i = 0; i < 3u; i++) {
+                tlo[i * 4u + c] = b[i];
+                thi[i * 4u + c] = b[3u + i];
+            }
+        }
+        bits = pn_frustum_box4p(&fr, tlo, thi);
+        for (c = 0; c < 4u && !done; c++) {
+            uint32_t last = q0 + c >= qlast, w;
+            if ((bits >> c) & 1u) {
+                for (w = nq; w < 4u; w++) /* its queue lane and the unused ones after it */
+                    for (i = 0; i < 3u; i++) {
+                        blo[i * 4u + w] = tlo[i * 4u + c];
+                        bhi[i * 4u + w] = thi[i * 4u + c];
+                    }
+                qs[nq++] = q0 + c;
+            }
+            if (nq == 4u || (last && nq > 0u)) {
+                if (!exact && any) {
+                    pn_foot_box4(&fp, blo, bhi, r4);
+                } else {
+                    for (w = 0; w < 4u; w++) r4[w] = pn_rect_full(k);
+                }
+                for (w = 0; w < nq && !done; w++)
+                    done = pn_gears_chunk_mask(qs[w], r4[w], e0, e1, own, sorted, tris, exact, &fr, &fp, O, L, &X,
+                                               m, &any, cnt);
+                nq = 0u;
+            }
+            if (last) break;
+        }
     }
     *vis_out = pn_mask_visibility(m, k);
     return 1;

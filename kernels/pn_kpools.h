@@ -16,7 +16,7 @@ typedef struct pn_kpools {
     /* frame: G-buffer, outputs, scratch */
     uint64_t depth, tri_id, pos, nrm, vis, rgba, rows, chunks, counters;
     /* frame: GEARS (src/pn_gears.c) */
-    uint64_t faces, rects, tri_off, pix_cell, row_box, cell_off, cell_pix, cell_cur, row_pairs, pairs, sorted;
+    uint64_t faces, rects, tri_off, pix_cell, row_box, cell_off, cell_pix, cell_cur, row_pairs, pairs, sorted, chunk_box;
     /* frame: the light view's row bounds (SRT, occlusion textures) */
     uint64_t lview_box;
     /* frame: occlusion textures (src/pn_occtex.c) */
@@ -32,7 +32,9 @@ typedef struct pn_kpools {
 
 /* A tile of GEARS grid cells: grid rows [r0, r1] and columns [x0, x1] of one face. */
 typedef struct pn_ktile {
-    uint32_t face, r0, r1, x0, x1, pad0, pad1, pad2;
+    uint32_t face, r0, r1, x0, x1;
+    uint32_t pairs; /* the tile's pairs, once counted (the chunk-box pass reads it) */
+    uint32_t pad1, pad2;
 } pn_ktile;
 
 /* The parameters of one launch: the frame's camera, light and shading constants, and the

@@ -157,6 +157,36 @@ PN_KFN_HOT int pn_frustum_aabb(const pn_frustum *fr, pn_v3 lo, pn_v3 hi)
     }
 }
 
+/* pn_frustum_aabb on four boxes in private memory, box c being lo[a * 4 + c], hi[a * 4 + c]
+ * over axes a: bit c set when box c may hold a crossing. For an area light each plane's
+ * term is min(n lo, n hi) per axis, the same float as the corner pn_frustum_aabb picks
+ * (n >= 0: n lo <= n hi, rounding being monotone), in loops without a branch that a
+ * compiler runs four lanes at a time; a point light's segment test lane by lane. */
+PN_KFN uint32_t pn_frustum_box4p(const pn_frustum *fr, const float *lo, const float *hi)
+{
+    uint32_t c, q, bits = 0u;
+    int32_t out[4];
+    if (fr->is_point) {
+        for (c = 0; c < 4u; c++)
+            bits |= (uint32_t)pn_frustum_aabb(fr, pn_v3_make(lo[c], lo[4u + c], lo[8u + c]),
+                                              pn_v3_make(hi[c], hi[4u + c], hi[8u + c]))
+                    << c;
+        return bits;
+    }
+    for (c = 0; c < 4u; c++) { /* lanes outside, planes inside: the lane loop vectorizes */
+        int32_t o = 0;
+        for (q = 0; q < 6u; q++) {
+            pn_v3 n = fr->n[q];
+            float v = pn_kminf(n.x * lo[c], n.x * hi[c]) + pn_kminf(n.y * lo[4u + c], n.y * hi[4u + c]) +
+                      pn_kminf(n.z * lo[8u + c], n.z * hi[8u + c]);
+            o |= v > fr->d[q];
+        }
+        out[c] = o;
+    }
+    for (c = 0; c < 4u; c++) bits |= (uint32_t)(out[c] == 0) << c;
+    return bits;
+}
+
 PN_KFN int pn_frustum_box(const pn_frustum *fr, PN_CONST pn_kbvh_node *nd)
 {
     return pn_frustum_aabb(fr, pn_v3_make(nd->bmin[0], nd->bmin[1], nd->bmin[2]),

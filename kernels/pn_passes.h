@@ -213,11 +213,11 @@ PN_KFN void pn_e_gears_scatter(PN_GLOBAL uint8_t *A, const pn_kpools *P, const p
                          PN_POOL(uint32_t, pairs));
 }
 
-/* Chunk q of the tile's cell-sorted list: the box of its triangles. */
-PN_KFN void pn_e_gears_chunks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t q)
+/* Superchunk s of the tile's cell-sorted list: the boxes of its chunks and its own. */
+PN_KFN void pn_e_gears_chunks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t s)
 {
-    pn_gears_chunk_box(PN_POOL(const uint32_t, sorted), K->tile.pairs, PN_POOL(const float, tris), q,
-                       PN_POOL(float, chunk_box));
+    pn_gears_chunk_boxes(PN_POOL(const uint32_t, sorted), K->tile.pairs, PN_POOL(const float, tris), s,
+                         PN_POOL(float, chunk_box), PN_POOL(float, super_box));
 }
 
 /* Pixel whose cell is in the tile: the mask of the cell's triangles. */
@@ -228,7 +228,8 @@ PN_KFN void pn_e_gears_masks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
     if (!pn_gears_pixel_mask(&K->light, K->exact_stats, &K->tile, PN_POOL(const pn_kfaces, faces)->res,
                              PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos), PN_POOL(const float, nrm),
                              PN_POOL(const uint32_t, pix_cell), PN_POOL(const uint32_t, cell_off),
-                             PN_POOL(const uint32_t, sorted), PN_POOL(const float, chunk_box), PN_POOL(const float, tris),
+                             PN_POOL(const uint32_t, sorted), PN_POOL(const float, chunk_box),
+                             PN_POOL(const float, super_box), PN_POOL(const float, tris),
                              PN_POOL(const pn_kbvh_node, nodes), pix, &c, &v))
         return;
     PN_POOL(float, vis)[pix] = v;

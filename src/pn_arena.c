@@ -45,8 +45,9 @@ static int pn_frame_pools_common(const pn_limits *l, uint64_t *off)
     return 1;
 }
 
-/* PN_GEARS_BYTES_MAX (include/penumbra/penumbra.h) counts a 24-byte chunk box per 8 pairs. */
-typedef char pn_gears_chunk_is_8[(PN_GEARS_CHUNK == 8u) ? 1 : -1];
+/* PN_GEARS_BYTES_MAX (include/penumbra/penumbra.h) counts a 24-byte chunk box per 8 pairs
+ * and a superchunk box per 64. */
+typedef char pn_gears_chunk_is_8[(PN_GEARS_CHUNK == 8u && PN_GEARS_SUPER == 8u) ? 1 : -1];
 
 /* GEARS' frame pools, after the common ones. */
 static int pn_gears_pools(const pn_limits *l, uint64_t *off)
@@ -68,7 +69,8 @@ static int pn_gears_pools(const pn_limits *l, uint64_t *off)
                pn_bump(off, 6u * g, 8u, &dummy) &&                        /* pairs per grid row */
                pn_bump(off, pn_gears_pairs_max(l), 8u, &dummy) &&         /* pairs */
                pn_bump(off, pn_gears_pairs_max(l), 4u, &dummy) &&         /* cell-sorted */
-               pn_bump(off, pn_gears_pairs_max(l) / PN_GEARS_CHUNK + 1u, 24u, &dummy); /* chunk boxes */
+               pn_bump(off, pn_gears_pairs_max(l) / PN_GEARS_CHUNK + 1u, 24u, &dummy) && /* chunk boxes */
+               pn_bump(off, pn_gears_pairs_max(l) / (PN_GEARS_CHUNK * PN_GEARS_SUPER) + 1u, 24u, &dummy); /* superchunks */
     }
 #else
     (void)l;

@@ -25,6 +25,7 @@ typedef struct pn_gears_frame {
     uint32_t *pairs;     /* [pool * 2]: (global cell, triangle) */
     uint32_t *sorted;    /* [pool]: triangles by cell, ascending within a cell */
     float *chunk_box;    /* [pool / PN_GEARS_CHUNK + 1][6]: box of each chunk of sorted */
+    float *super_box;    /* [pool / (PN_GEARS_CHUNK PN_GEARS_SUPER) + 1][6]: of each superchunk */
     uint32_t cells_max;  /* capacity of the per-cell pools */
     uint32_t cells;      /* faces * res^2 */
     uint32_t rows;       /* faces * res: global grid rows */
@@ -158,7 +159,9 @@ static pn_status pn_gears_begin(pn_frame_state *fs, pn_gears_frame_pools *g)
         !(g->row_pairs = (uint32_t *)pn_frame_alloc(ctx, 6u * (size_t)gmax, 8u, "gears pairs per row")) ||
         !(g->pairs = (uint32_t *)pn_frame_alloc(ctx, g->pool, 8u, "gears pairs")) ||
         !(g->sorted = (uint32_t *)pn_frame_alloc(ctx, g->pool, 4u, "gears sorted pairs")) ||
-        !(g->chunk_box = (float *)pn_frame_alloc(ctx, (size_t)g->pool / PN_GEARS_CHUNK + 1u, 24u, "gears chunk boxes")))
+        !(g->chunk_box = (float *)pn_frame_alloc(ctx, (size_t)g->pool / PN_GEARS_CHUNK + 1u, 24u, "gears chunk boxes")) ||
+        !(g->super_box = (float *)pn_frame_alloc(ctx, (size_t)g->pool / (PN_GEARS_CHUNK * PN_GEARS_SUPER) + 1u, 24u,
+                                                 "gears superchunk boxes")))
         return PN_E_POOL_EXHAUSTED;
     memset(g->faces, 0, sizeof(*g->faces));
     g->faces->res = fs->gears_grid;
@@ -174,6 +177,7 @@ static pn_status pn_gears_begin(pn_frame_state *fs, pn_gears_frame_pools *g)
     P->pairs = pn_dev_off(ctx, g->pairs);
     P->sorted = pn_dev_off(ctx, g->sorted);
     P->chunk_box = pn_dev_off(ctx, g->chunk_box);
+    P->super_box = pn_dev_off(ctx, g->super_box);
     memset(&ctx->gears, 0, sizeof(ctx->gears));
     return PN_OK;
 }
@@ -329,8 +333,8 @@ static void pn_gears_end(pn_context *ctx, const pn_gears_frame_pools *g)
     ctx->gears.pairs_high = g->pairs_high;
 }
 
-/* One tile: count -> exclusive prefix sum -> scatter -> sort by cell -> chunk boxes ->
- * masks. */
+/* One tile: count -> exclusive prefix sum -> scatter -> sort by cell -> chunk and
+ * superchunk boxes -> masks. */
 static pn_status pn_gears_tile(pn_frame_state *fs, pn_gears_frame_pools *g)
 {
     uint32_t T = fs->ctx->tri_count;
@@ -347,7 +351,9 @@ static pn_status pn_gears_tile(pn_frame_state *fs, pn_gears_frame_pools *g)
         return st;
     pn_gears_tile_cells(g);
     fs->K.tile.pairs = g->tri_off[T];
-    if ((st = pn_dev_run(fs, PN_K_GEARS_CHUNKS, (g->tri_off[T] + PN_GEARS_CHUNK - 1u) / PN_GEARS_CHUNK)) != PN_OK)
+    if ((st = pn_dev_run(fs, PN_K_GEARS_CHUNKS,
+                         (g->tri_off[T] + PN_GEARS_CHUNK * PN_GEARS_SUPER - 1u) / (PN_GEARS_CHUNK * PN_GEARS_SUPER))) !=
+        PN_OK)
         return st;
     return pn_dev_run(fs, PN_K_GEARS_MASKS, fs->width * fs->height);
 }

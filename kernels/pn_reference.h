@@ -157,7 +157,8 @@ PN_KFN_HOT int pn_frustum_aabb(const pn_frustum *fr, pn_v3 lo, pn_v3 hi)
     }
 }
 
-/* pn_frustum_aabb on four boxes in private memory, box c being lo[a * 4 + c], hi[a * 4 + c]
+/* pn_frustum_aabb on four boxes in private memory (a wide node's children copied out of
+ * their pn_kbvh4; GEARS' chunks and triangles), box c being lo[a * 4 + c], hi[a * 4 + c]
  * over axes a: bit c set when box c may hold a crossing. For an area light each plane's
  * term is min(n lo, n hi) per axis, the same float as the corner pn_frustum_aabb picks
  * (n >= 0: n lo <= n hi, rounding being monotone), in loops without a branch that a
@@ -193,32 +194,6 @@ PN_KFN int pn_frustum_box(const pn_frustum *fr, PN_CONST pn_kbvh_node *nd)
                            pn_v3_make(nd->bmax[0], nd->bmax[1], nd->bmax[2]));
 }
 
-/* pn_frustum_aabb on the children of wide node w at once: bit c for child c. For an area
- * light, the same floats per lane (the corner each plane's normal picks is the same for
- * every lane), in a lane loop GCC vectorizes; a point light's segment test lane by lane. */
-PN_KFN uint32_t pn_frustum_box4(const pn_frustum *fr, PN_CONST pn_kbvh4 *w)
-{
-    uint32_t c, q, in[4];
-    if (fr->is_point) {
-        uint32_t bits = 0u;
-        for (c = 0; c < w->n; c++)
-            if (pn_frustum_aabb(fr, pn_v3_make(w->lo[0][c], w->lo[1][c], w->lo[2][c]),
-                                pn_v3_make(w->hi[0][c], w->hi[1][c], w->hi[2][c])))
-                bits |= 1u << c;
-        return bits;
-    }
-    for (c = 0; c < 4u; c++) in[c] = 1u << c;
-    for (q = 0; q < 6u; q++) {
-        pn_v3 n = fr->n[q];
-        PN_CONST float *px = n.x >= 0.0f ? w->lo[0] : w->hi[0];
-        PN_CONST float *py = n.y >= 0.0f ? w->lo[1] : w->hi[1];
-        PN_CONST float *pz = n.z >= 0.0f ? w->lo[2] : w->hi[2];
-        float d = fr->d[q];
-        for (c = 0; c < 4u; c++) in[c] = n.x * px[c] + n.y * py[c] + n.z * pz[c] > d ? 0u : in[c];
-    }
-    return (in[0] | in[1] | in[2] | in[3]) & ((1u << w->n) - 1u);
-}
-
 PN_KFN void pn_tri_load(PN_CONST float *tris, uint32_t t, pn_v3 *A, pn_v3 *B, pn_v3 *C)
 {
     PN_CONST float *p = tris + (size_t)t * 9u;
@@ -242,7 +217,7 @@ typedef struct pn_shadow_counters {
  * so far and visits a child only while its footprint on the light (pn_footprint.h) still
  * holds a sample m has not blocked: the test runs when a child is pushed and again when it
  * is popped, since m may have grown in between. A wide node's children are first tested
- * against the light frustum together (pn_frustum_box4), then their footprints, four at a
+ * against the light frustum together (pn_frustum_box4p), then their footprints, four at a
  * time (pn_foot_box4); the survivors go on the stack in pn_foot_order(): the child whose
  * centre lies farther from the light toward O is walked first (near occluders have the
  * large footprints that fill a mask soonest). At a leaf (a binary leaf node), a triangle whose own footprint holds no
@@ -287,15 +262,16 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
         e = stack[sp];
         if (!(e & PN_W4_LEAF)) { /* wide node: its children, O's side last pushed */
             PN_CONST pn_kbvh4 *w = wnodes + e;
-            uint32_t bits = pn_frustum_box4(&fr, w), c, j, n_in = 0u, id[4], pk[4];
+            uint32_t bits, c, j, n_in = 0u, id[4], pk[4];
             float key[4], blo[12], bhi[12];
             pn_rect r4[4];
             cnt->nodes += w->n;
-            if (!bits) continue;
             for (c = 0; c < 12u; c++) {
                 blo[c] = w->lo[c >> 2][c & 3u];
                 bhi[c] = w->hi[c >> 2][c & 3u];
             }
+            bits = pn_frustum_box4p(&fr, blo, bhi) & ((1u << w->n) - 1u);
+            if (!bits) continue;
             /* While nothing is blocked, a box's footprint can only be empty between
              * samples, which a box large enough to be an interior node seldom is: the
              * whole light. */

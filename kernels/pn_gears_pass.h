@@ -7,7 +7,9 @@
  *   per triangle  cell rectangle on each face; pairs per grid row (tile plan); pairs per
  *                 cell of one grid row (a row split into runs of cells); pair count and
  *                 scatter within a tile
- *   per pixel     the mask of the pixel's cell's triangles, in ascending triangle order
+ *   per superchunk  the boxes of 8 consecutive list entries (a chunk) and of 64 (a
+ *                 superchunk), after the sort by cell
+ *   per pixel     the mask of the pixel's cell's triangles, chunk by chunk
  *
  * Counts that many work items add to (pixels per cell, pairs per row or cell) use
  * pn_katomic_add: integer sums, the same whatever the order. */

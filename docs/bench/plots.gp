@@ -212,35 +212,35 @@ set output 'gallery/cad_infineon_easypim2b.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 206 ms"
+set title "reference, 167 ms"
 plot 'work/gallery/cad_infineon_easypim2b/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/cad_infineon_easypim2b/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 255 ms"
+set title "GEARS, 177 ms"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 646 ms"
+set title "raytrace, 653 ms"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 271 ms"
+set title "SRT, 244 ms"
 plot 'work/gallery/cad_infineon_easypim2b/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 72.7 ms"
+set title "occtex, 76.2 ms"
 plot 'work/gallery/cad_infineon_easypim2b/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 37.5 ms"
+set title "MCSM, 42.4 ms"
 plot 'work/gallery/cad_infineon_easypim2b/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 98.5 ms"
+set title "wedges, 107 ms"
 plot 'work/gallery/cad_infineon_easypim2b/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 819 ms"
+set title "Embree visibility, 863 ms"
 plot 'work/gallery/cad_infineon_easypim2b/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.4425% px)"
 plot 'work/gallery/cad_infineon_easypim2b/embree_error.png' binary filetype=png with rgbimage
@@ -296,35 +296,35 @@ set output 'gallery/chess_set.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 99.3 ms"
+set title "reference, 87.4 ms"
 plot 'work/gallery/chess_set/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/chess_set/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 199 ms"
+set title "GEARS, 126 ms"
 plot 'work/gallery/chess_set/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/chess_set/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 839 ms"
+set title "raytrace, 833 ms"
 plot 'work/gallery/chess_set/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/chess_set/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 153 ms"
+set title "SRT, 143 ms"
 plot 'work/gallery/chess_set/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/chess_set/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 75.5 ms"
+set title "occtex, 74.3 ms"
 plot 'work/gallery/chess_set/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/chess_set/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 35.8 ms"
+set title "MCSM, 40.4 ms"
 plot 'work/gallery/chess_set/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/chess_set/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 62.1 ms"
+set title "wedges, 65.8 ms"
 plot 'work/gallery/chess_set/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/chess_set/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 907 ms"
+set title "Embree visibility, 958 ms"
 plot 'work/gallery/chess_set/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.2148% px)"
 plot 'work/gallery/chess_set/embree_error.png' binary filetype=png with rgbimage
@@ -380,35 +380,35 @@ set output 'gallery/happy_buddha_100k.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 1260 ms"
+set title "reference, 945 ms"
 plot 'work/gallery/happy_buddha_100k/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/happy_buddha_100k/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 3181 ms"
+set title "GEARS, 1601 ms"
 plot 'work/gallery/happy_buddha_100k/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1952 ms"
+set title "raytrace, 2139 ms"
 plot 'work/gallery/happy_buddha_100k/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 1339 ms"
+set title "SRT, 1018 ms"
 plot 'work/gallery/happy_buddha_100k/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 74.2 ms"
+set title "occtex, 80.0 ms"
 plot 'work/gallery/happy_buddha_100k/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 53.2 ms"
+set title "MCSM, 63.3 ms"
 plot 'work/gallery/happy_buddha_100k/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 468 ms"
+set title "wedges, 559 ms"
 plot 'work/gallery/happy_buddha_100k/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1261 ms"
+set title "Embree visibility, 1472 ms"
 plot 'work/gallery/happy_buddha_100k/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8091% px)"
 plot 'work/gallery/happy_buddha_100k/embree_error.png' binary filetype=png with rgbimage
@@ -464,35 +464,35 @@ set output 'gallery/spot.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 216 ms"
+set title "reference, 197 ms"
 plot 'work/gallery/spot/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/spot/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 266 ms"
+set title "GEARS, 252 ms"
 plot 'work/gallery/spot/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/spot/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1075 ms"
+set title "raytrace, 1069 ms"
 plot 'work/gallery/spot/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/spot/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 256 ms"
+set title "SRT, 239 ms"
 plot 'work/gallery/spot/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/spot/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 65.0 ms"
+set title "occtex, 63.2 ms"
 plot 'work/gallery/spot/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/spot/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 41.6 ms"
+set title "MCSM, 46.2 ms"
 plot 'work/gallery/spot/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/spot/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 34.4 ms"
+set title "wedges, 35.7 ms"
 plot 'work/gallery/spot/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/spot/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 971 ms"
+set title "Embree visibility, 1054 ms"
 plot 'work/gallery/spot/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (1.2997% px)"
 plot 'work/gallery/spot/embree_error.png' binary filetype=png with rgbimage
@@ -548,35 +548,35 @@ set output 'gallery/stanford_bunny.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 629 ms"
+set title "reference, 481 ms"
 plot 'work/gallery/stanford_bunny/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_bunny/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 1147 ms"
+set title "GEARS, 870 ms"
 plot 'work/gallery/stanford_bunny/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1668 ms"
+set title "raytrace, 1672 ms"
 plot 'work/gallery/stanford_bunny/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 713 ms"
+set title "SRT, 539 ms"
 plot 'work/gallery/stanford_bunny/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 70.4 ms"
+set title "occtex, 67.8 ms"
 plot 'work/gallery/stanford_bunny/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 51.8 ms"
+set title "MCSM, 54.1 ms"
 plot 'work/gallery/stanford_bunny/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 88.1 ms"
+set title "wedges, 95.8 ms"
 plot 'work/gallery/stanford_bunny/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1238 ms"
+set title "Embree visibility, 1304 ms"
 plot 'work/gallery/stanford_bunny/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.7610% px)"
 plot 'work/gallery/stanford_bunny/embree_error.png' binary filetype=png with rgbimage
@@ -632,35 +632,35 @@ set output 'gallery/stanford_dragon.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 1358 ms"
+set title "reference, 904 ms"
 plot 'work/gallery/stanford_dragon/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_dragon/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 6410 ms"
+set title "GEARS, 1771 ms"
 plot 'work/gallery/stanford_dragon/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2235 ms"
+set title "raytrace, 2293 ms"
 plot 'work/gallery/stanford_dragon/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 1460 ms"
+set title "SRT, 1037 ms"
 plot 'work/gallery/stanford_dragon/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 104 ms"
+set title "occtex, 108 ms"
 plot 'work/gallery/stanford_dragon/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 72.2 ms"
+set title "MCSM, 79.8 ms"
 plot 'work/gallery/stanford_dragon/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 469 ms"
+set title "wedges, 507 ms"
 plot 'work/gallery/stanford_dragon/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1384 ms"
+set title "Embree visibility, 1479 ms"
 plot 'work/gallery/stanford_dragon/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8690% px)"
 plot 'work/gallery/stanford_dragon/embree_error.png' binary filetype=png with rgbimage
@@ -723,7 +723,7 @@ unset xlabel
 set xtics rotate by -30
 set grid ytics
 set key inside top right
-set yrange [0.0799425:30]
+set yrange [0.316183:30]
 set arrow 1 from graph 0, first 1 to graph 1, first 1 nohead dt 2
 set arrow 2 from graph 0, first 10 to graph 1, first 10 nohead dt 3 lc rgb 'red'
 set label 1 'goal 10x' at graph 0.01, first 10 offset 0,0.6 tc rgb 'red'

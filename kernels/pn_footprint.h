@@ -194,6 +194,20 @@ PN_KFN_HOT void pn_foot_axis4(float o, float eo, float eu, const float *glo, con
     pn_foot_index(gl, gh, 4u, k, n0, n1);
 }
 
+/* Box [lo, hi] into lane c of four-lane arrays (l4[a * 4 + c], h4[a * 4 + c] over axes a)
+ * and into every lane after it, so that lanes no box fills hold a copy, not garbage. */
+PN_KFN void pn_lanes_put(float *l4, float *h4, uint32_t c, pn_v3 lo, pn_v3 hi)
+{
+    for (; c < 4u; c++) {
+        l4[c] = lo.x;
+        l4[4u + c] = lo.y;
+        l4[8u + c] = lo.z;
+        h4[c] = hi.x;
+        h4[4u + c] = hi.y;
+        h4[8u + c] = hi.z;
+    }
+}
+
 /* The samples whose segments from O can meet each of four boxes, box c being
  * lo[a * 4 + c], hi[a * 4 + c] over axes a (a wide node's children, copied out of its
  * pn_kbvh4), into out[c]. Branch-free over the lanes, so a compiler may run the four
@@ -245,15 +259,7 @@ PN_KFN pn_rect pn_foot_box(const pn_foot *fp, pn_v3 lo, pn_v3 hi)
 {
     float l[12], h[12];
     pn_rect r[4];
-    uint32_t c;
-    for (c = 0; c < 4u; c++) {
-        l[c] = lo.x;
-        l[4u + c] = lo.y;
-        l[8u + c] = lo.z;
-        h[c] = hi.x;
-        h[4u + c] = hi.y;
-        h[8u + c] = hi.z;
-    }
+    pn_lanes_put(l, h, 0u, lo, hi);
     pn_foot_box4(fp, l, h, r);
     return r[0];
 }

@@ -267,12 +267,13 @@ PN_KFN uint32_t pn_gears_chunk_mask(uint32_t q, pn_rect rc, uint32_t e0, uint32_
 {
     uint32_t k = L->k, e = pn_kmaxu(e0, q * PN_GEARS_CHUNK), end = pn_kminu(q * PN_GEARS_CHUNK + PN_GEARS_CHUNK, e1);
     uint32_t ts[4], n, l, bits;
-    float lo[12], hi[12];
+    float lo[12], hi[12]; /* the boxes of up to four triangles, as lanes (pn_lanes_put) */
     pn_rect r[4];
     /* No open sample in the chunk's footprint: none of its triangles can block. (The
      * reference's leaf rule, the box's rectangle for each triangle when it holds at most
-     * PN_REF_RAYS open samples, measured worse here: 3.11 G -> 3.62 G instructions, dragon
-     * at 128x128.) */
+     * PN_REF_RAYS open samples, measured worse here on the first chunked walk, d5fd710's
+     * predecessor with pn_foot_tri per triangle: mask pass 3.11 G -> 3.62 G instructions,
+     * dragon at 128x128.) */
     if (!exact && !pn_rect_open(m, k, rc)) return 0u;
     while (e < end) {
         for (n = 0; n < 4u && e < end; e++) {
@@ -280,14 +281,10 @@ PN_KFN uint32_t pn_gears_chunk_mask(uint32_t q, pn_rect rc, uint32_t e0, uint32_
             pn_v3 A, B, C;
             if (t == own) continue;
             pn_tri_load(tris, t, &A, &B, &C);
-            for (l = n; l < 4u; l++) { /* its lane and the unused ones after it */
-                lo[l] = pn_kminf(A.x, pn_kminf(B.x, C.x));
-                lo[4u + l] = pn_kminf(A.y, pn_kminf(B.y, C.y));
-                lo[8u + l] = pn_kminf(A.z, pn_kminf(B.z, C.z));
-                hi[l] = pn_kmaxf(A.x, pn_kmaxf(B.x, C.x));
-                hi[4u + l] = pn_kmaxf(A.y, pn_kmaxf(B.y, C.y));
-                hi[8u + l] = pn_kmaxf(A.z, pn_kmaxf(B.z, C.z));
-            }
+            pn_lanes_put(lo, hi, n, pn_v3_make(pn_kminf(A.x, pn_kminf(B.x, C.x)), pn_kminf(A.y, pn_kminf(B.y, C.y)),
+                                               pn_kminf(A.z, pn_kminf(B.z, C.z))),
+                         pn_v3_make(pn_kmaxf(A.x, pn_kmaxf(B.x, C.x)), pn_kmaxf(A.y, pn_kmaxf(B.y, C.y)),
+                                    pn_kmaxf(A.z, pn_kmaxf(B.z, C.z))));
             ts[n++] = t;
         }
         bits = n ? pn_frustum_box4p(fr, lo, hi) & ((1u << n) - 1u) : 0u;
@@ -356,7 +353,7 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
                                PN_CONST pn_kbvh_node *nodes, size_t pix,
                                pn_shadow_counters *cnt, float *vis_out)
 {
-    uint32_t cell = pix_cell[pix], own = tri_id[pix], e0, e1, s0, slast, i, k = L->k, any, nq = 0u, qs[4], done = 0u;
+    uint32_t cell = pix_cell[pix], own = tri_id[pix], e0, e1, s0, slast, k = L->k, any, nq = 0u, qs[4], done = 0u;
     float blo[12], bhi[12], tlo[12], thi[12];
     uint32_t m[PN_MASK_WORDS_MAX];
     pn_frustum fr;
@@ -391,16 +388,13 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
             if (!((sbits >> cs) & 1u)) continue;
             qlast = (pn_kminu(e1, (s + 1u) * PN_GEARS_CHUNK * PN_GEARS_SUPER) - 1u) / PN_GEARS_CHUNK;
             for (q0 = pn_kmaxu(e0 / PN_GEARS_CHUNK, s * PN_GEARS_SUPER); q0 <= qlast && !done; q0 += 4u) {
-                uint32_t bits, c, w;
+                uint32_t bits, c;
                 pn_gears_boxes4(chunk_box, q0, qlast, tlo, thi);
                 bits = pn_frustum_box4p(&fr, tlo, thi);
                 for (c = 0; c < 4u && q0 + c <= qlast && !done; c++) {
                     if (!((bits >> c) & 1u)) continue;
-                    for (w = nq; w < 4u; w++) /* its queue lane and the unused ones after it */
-                        for (i = 0; i < 3u; i++) {
-                            blo[i * 4u + w] = tlo[i * 4u + c];
-                            bhi[i * 4u + w] = thi[i * 4u + c];
-                        }
+                    pn_lanes_put(blo, bhi, nq, pn_v3_make(tlo[c], tlo[4u + c], tlo[8u + c]),
+                                 pn_v3_make(thi[c], thi[4u + c], thi[8u + c]));
                     qs[nq++] = q0 + c;
                     if (nq == 4u) {
                         done = pn_gears_queue_mask(qs, nq, blo, bhi, e0, e1, own, sorted, tris, exact, &fr, &fp, O, L,

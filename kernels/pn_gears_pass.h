@@ -263,7 +263,7 @@ PN_KFN void pn_gears_boxes4(PN_CONST float *boxes, uint32_t first, uint32_t last
 PN_KFN uint32_t pn_gears_chunk_mask(uint32_t q, pn_rect rc, uint32_t e0, uint32_t e1, uint32_t own,
                                     PN_CONST uint32_t *sorted, PN_CONST float *tris, uint32_t exact,
                                     const pn_frustum *fr, const pn_foot *fp, pn_v3 O, const pn_klight *L,
-                                    const pn_ray_origin *X, uint32_t *m, uint32_t *any, pn_shadow_counters *cnt)
+                                    const pn_ray_origin *X, pn_ray_cache *RC, uint32_t *m, uint32_t *any, pn_shadow_counters *cnt)
 {
     uint32_t k = L->k, e = pn_kmaxu(e0, q * PN_GEARS_CHUNK), end = pn_kminu(q * PN_GEARS_CHUNK + PN_GEARS_CHUNK, e1);
     uint32_t ts[4], n, l, bits;
@@ -299,7 +299,7 @@ PN_KFN uint32_t pn_gears_chunk_mask(uint32_t q, pn_rect rc, uint32_t e0, uint32_
             if (!((bits >> l) & 1u) || (!exact && !pn_rect_open(m, k, r[l]))) continue;
             pn_tri_load(tris, ts[l], &A, &B, &C);
             cnt->candidates++;
-            if (pn_tri_block(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, m, r[l])) {
+            if (pn_tri_block(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, m, r[l])) {
                 cnt->blocking++;
                 *any = 1u;
             }
@@ -316,7 +316,7 @@ PN_KFN uint32_t pn_gears_chunk_mask(uint32_t q, pn_rect rc, uint32_t e0, uint32_
 PN_KFN uint32_t pn_gears_queue_mask(const uint32_t *qs, uint32_t nq, const float *blo, const float *bhi, uint32_t e0,
                                     uint32_t e1, uint32_t own, PN_CONST uint32_t *sorted, PN_CONST float *tris,
                                     uint32_t exact, const pn_frustum *fr, const pn_foot *fp, pn_v3 O,
-                                    const pn_klight *L, const pn_ray_origin *X, uint32_t *m, uint32_t *any,
+                                    const pn_klight *L, const pn_ray_origin *X, pn_ray_cache *RC, uint32_t *m, uint32_t *any,
                                     pn_shadow_counters *cnt)
 {
     pn_rect r4[4];
@@ -327,7 +327,7 @@ PN_KFN uint32_t pn_gears_queue_mask(const uint32_t *qs, uint32_t nq, const float
         for (w = 0; w < 4u; w++) r4[w] = pn_rect_full(L->k);
     }
     for (w = 0; w < nq; w++)
-        if (pn_gears_chunk_mask(qs[w], r4[w], e0, e1, own, sorted, tris, exact, fr, fp, O, L, X, m, any, cnt))
+        if (pn_gears_chunk_mask(qs[w], r4[w], e0, e1, own, sorted, tris, exact, fr, fp, O, L, X, RC, m, any, cnt))
             return 1u;
     return 0u;
 }
@@ -359,6 +359,7 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
     pn_frustum fr;
     pn_foot fp;
     pn_ray_origin X;
+    pn_ray_cache RC;
     pn_horizon H;
     pn_v3 O;
     /* A pixel has a cell only if it has an origin. */
@@ -373,6 +374,7 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
     pn_frustum_make(O, L, &fr);
     pn_foot_make(O, L, &fp);
     pn_tri_block_origin(O, L, nodes, &X);
+    pn_ray_cache_clear(&RC);
     e0 = cell_off[cell];
     e1 = cell_off[cell + 1u];
     /* The superchunks of the list, four at a time against the frustum; the chunks of those
@@ -398,7 +400,7 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
                     qs[nq++] = q0 + c;
                     if (nq == 4u) {
                         done = pn_gears_queue_mask(qs, nq, blo, bhi, e0, e1, own, sorted, tris, exact, &fr, &fp, O, L,
-                                                   &X, m, &any, cnt);
+                                                   &X, &RC, m, &any, cnt);
                         nq = 0u;
                     }
                 }
@@ -406,7 +408,7 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
         }
     }
     if (nq > 0u && !done)
-        pn_gears_queue_mask(qs, nq, blo, bhi, e0, e1, own, sorted, tris, exact, &fr, &fp, O, L, &X, m, &any, cnt);
+        pn_gears_queue_mask(qs, nq, blo, bhi, e0, e1, own, sorted, tris, exact, &fr, &fp, O, L, &X, &RC, m, &any, cnt);
     *vis_out = pn_mask_visibility(m, k);
     return 1;
 }

@@ -420,6 +420,74 @@ PN_KFN_COLD uint32_t pn_ray_decide(const pn_ray *R, const pn_klight *L, PN_CONST
     return pn_tri_sample(R->O, A, B, C, L, R->i, R->j);
 }
 
+/* 1 if triangle p blocks the ray's sample: the scene box's bound first (free per
+ * triangle), the triangle's own box's where that cannot tell, as the walk does. */
+PN_KFN uint32_t pn_ray_tri_any(const pn_ray *R, const pn_klight *L, PN_CONST float *p)
+{
+    float e[3], eb = R->ebr;
+    int32_t s;
+    pn_ray_edges(R, p, e);
+    s = pn_ray_signs(e, eb);
+    if (s == 2) {
+        eb = pn_ray_tri_bound(R, p);
+        s = pn_ray_signs(e, eb);
+    }
+    return s != 0 && pn_ray_decide(R, L, p, s, e, eb);
+}
+
+/* The rays of one origin that the reference and GEARS have built, by sample: a pixel's
+ * walk decides the same few open samples over many triangles (most of them after its mask
+ * is nearly full), and a ray's set-up (three divisions, its bounds) costs several times
+ * its test. Least recently used out, so the last PN_RAY_CACHE rays fetched stay where they
+ * are (a leaf holds on to up to PN_REF_RAYS of them); a ray is the same floats whenever it
+ * is built, so what the cache holds changes no answer. */
+#define PN_RAY_CACHE 8u
+#define PN_RAY_NOBIT 0xFFFFFFFFu
+
+typedef struct pn_ray_cache {
+    pn_ray r[PN_RAY_CACHE];
+    uint32_t bit[PN_RAY_CACHE];  /* sample j k + i, or PN_RAY_NOBIT */
+    uint32_t used[PN_RAY_CACHE]; /* the clock when last fetched */
+    uint32_t clock;
+} pn_ray_cache;
+
+PN_KFN void pn_ray_cache_clear(pn_ray_cache *RC)
+{
+    uint32_t s;
+    for (s = 0; s < PN_RAY_CACHE; s++) {
+        RC->bit[s] = PN_RAY_NOBIT;
+        RC->used[s] = 0u;
+    }
+    RC->clock = 0u;
+}
+
+/* The slot of the ray to sample (i, j), built if absent. */
+PN_KFN uint32_t pn_ray_cache_get(pn_ray_cache *RC, const pn_ray_origin *X, const pn_klight *L, int32_t i, int32_t j)
+{
+    uint32_t bit = (uint32_t)j * L->k + (uint32_t)i, s, v = 0u, f = PN_RAY_CACHE;
+    if (RC->clock == 0xFFFFFFFFu) { /* the clock wraps: the same order, as ranks (no tie: one fetch a tick) */
+        uint32_t rank[PN_RAY_CACHE], t;
+        for (s = 0; s < PN_RAY_CACHE; s++) {
+            rank[s] = 1u;
+            for (t = 0; t < PN_RAY_CACHE; t++) rank[s] += RC->used[t] < RC->used[s];
+        }
+        for (s = 0; s < PN_RAY_CACHE; s++) RC->used[s] = rank[s];
+        RC->clock = PN_RAY_CACHE;
+    }
+    RC->clock++;
+    for (s = 0; s < PN_RAY_CACHE; s++) f = RC->bit[s] == bit ? s : f; /* a select, not a branch */
+    if (f < PN_RAY_CACHE) {
+        RC->used[f] = RC->clock;
+        return f;
+    }
+    for (s = 1; s < PN_RAY_CACHE; s++)
+        if (RC->used[s] < RC->used[v]) v = s;
+    RC->bit[v] = bit;
+    RC->used[v] = RC->clock;
+    pn_ray_make(X, L, i, j, &RC->r[v]);
+    return v;
+}
+
 /* 1 if triangle p blocks the ray's sample, with the bound eb of a box holding it
  * (pn_ray_bound, or R->ebr). */
 PN_KFN uint32_t pn_ray_tri(const pn_ray *R, const pn_klight *L, PN_CONST float *p, float eb)

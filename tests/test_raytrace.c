@@ -12,10 +12,11 @@
  *    segment), dyadic coordinates with exact degeneracies, O a few ulps off the
  *    plane, tiny and huge scales, far from the origin) and lights of any orientation,
  *    pn_ray_tri() equals pn_tri_sample() for every sample, with its bound taken from the
- *    triangle's own box and from a larger one (a BVH leaf's); the slab test never rejects
+ *    triangle's own box, from a larger one (a BVH leaf's) and from the scene box's then its
+ *    own (pn_ray_tri_any); the slab test never rejects
  *    the box of a triangle that blocks; the fallbacks to pn_tri_sample are counted. And
- *    pn_tri_block (a few open samples: a ray each) sets the same bits and returns the same
- *    answer as pn_tri_mask_in from the same partial mask.
+ *    pn_tri_block (a few open samples: a ray each, from a cache the trials share) sets the
+ *    same bits and returns the same answer as pn_tri_mask_in from the same partial mask.
  * 3. Frames: the raytraced visibility buffer is byte-identical to the reference's on the
  *    built-in scenes and spot.glb, area and point light. */
 #include <math.h>
@@ -203,6 +204,7 @@ static void ray_check(pn_v3 O, const float *T, const pn_klight *L, float grow, r
             got0 = pn_ray_tri(&R, L, T, pn_ray_bound(&R, lo, hi));
             got1 = pn_ray_tri(&R, L, T, pn_ray_bound(&R, blo, bhi));
             got2 = pn_ray_tri(&R, L, T, R.ebr);
+            if (pn_ray_tri_any(&R, L, T) != got2) got2 = 2u; /* the same test, the bounds in turn */
             st->tests += 3u;
             st->blocked += want;
             if (got0 != want || got1 != want || got2 != want) {
@@ -220,6 +222,8 @@ static void ray_check(pn_v3 O, const float *T, const pn_klight *L, float grow, r
      * beyond), the rest blocked; the same bits and the same answer. */
     {
         uint32_t trial, n = L->k * L->k;
+        pn_ray_cache RC; /* shared by the trials, as by a pixel's triangles */
+        pn_ray_cache_clear(&RC);
         for (trial = 0; trial < 4u; trial++) {
             uint32_t m1[PN_MASK_WORDS_MAX], m2[PN_MASK_WORDS_MAX], w, open = 1u + (uint32_t)(rndf() * 6.0f), q, h1, h2;
             pn_rect full = pn_rect_full(L->k);
@@ -231,7 +235,7 @@ static void ray_check(pn_v3 O, const float *T, const pn_klight *L, float grow, r
             }
             memcpy(m2, m1, sizeof(m1));
             st->block_rays += n - pn_mask_count(m1, L->k) <= PN_REF_RAYS;
-            h1 = pn_tri_block(O, A, B, C, T, L, &X, m1, full);
+            h1 = pn_tri_block(O, A, B, C, T, L, &X, &RC, m1, full);
             h2 = pn_tri_mask_in(O, A, B, C, L, m2, full.i0, full.i1, full.j0, full.j1);
             st->block_tests++;
             st->block_hits += h2;

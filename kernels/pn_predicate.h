@@ -57,9 +57,11 @@ typedef struct pn_lin {
     float h0, hu, hv;
 } pn_lin;
 
+/* (2i + 1) / k - 1. k is a power of two, so 1 / k and the product are exact: the same
+ * float as the quotient, and a reciprocal a loop over samples computes once. */
 PN_KFN float pn_sample_coord(int32_t i, uint32_t k)
 {
-    return (float)(2 * i + 1) / (float)k - 1.0f;
+    return (float)(2 * i + 1) * (1.0f / (float)k) - 1.0f;
 }
 
 PN_KFN pn_lin pn_lin_neg(pn_lin a)

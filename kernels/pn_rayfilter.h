@@ -420,21 +420,6 @@ PN_KFN_COLD uint32_t pn_ray_decide(const pn_ray *R, const pn_klight *L, PN_CONST
     return pn_tri_sample(R->O, A, B, C, L, R->i, R->j);
 }
 
-/* 1 if triangle p blocks the ray's sample: the scene box's bound first (free per
- * triangle), the triangle's own box's where that cannot tell, as the walk does. */
-PN_KFN uint32_t pn_ray_tri_any(const pn_ray *R, const pn_klight *L, PN_CONST float *p)
-{
-    float e[3], eb = R->ebr;
-    int32_t s;
-    pn_ray_edges(R, p, e);
-    s = pn_ray_signs(e, eb);
-    if (s == 2) {
-        eb = pn_ray_tri_bound(R, p);
-        s = pn_ray_signs(e, eb);
-    }
-    return s != 0 && pn_ray_decide(R, L, p, s, e, eb);
-}
-
 /* The rays of one origin that the reference and GEARS have built, by sample: a pixel's
  * walk decides the same few open samples over many triangles (most of them after its mask
  * is nearly full), and a ray's set-up (three divisions, its bounds) costs several times

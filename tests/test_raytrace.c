@@ -12,8 +12,7 @@
  *    segment), dyadic coordinates with exact degeneracies, O a few ulps off the
  *    plane, tiny and huge scales, far from the origin) and lights of any orientation,
  *    pn_ray_tri() equals pn_tri_sample() for every sample, with its bound taken from the
- *    triangle's own box, from a larger one (a BVH leaf's) and from the scene box's then its
- *    own (pn_ray_tri_any); the slab test never rejects
+ *    triangle's own box and from a larger one (a BVH leaf's); the slab test never rejects
  *    the box of a triangle that blocks; the fallbacks to pn_tri_sample are counted. And
  *    pn_tri_block (a few open samples: a ray each, from a cache the trials share) sets the
  *    same bits and returns the same answer as pn_tri_mask_in from the same partial mask.
@@ -204,7 +203,6 @@ static void ray_check(pn_v3 O, const float *T, const pn_klight *L, float grow, r
             got0 = pn_ray_tri(&R, L, T, pn_ray_bound(&R, lo, hi));
             got1 = pn_ray_tri(&R, L, T, pn_ray_bound(&R, blo, bhi));
             got2 = pn_ray_tri(&R, L, T, R.ebr);
-            if (pn_ray_tri_any(&R, L, T) != got2) got2 = 2u; /* the same test, the bounds in turn */
             st->tests += 3u;
             st->blocked += want;
             if (got0 != want || got1 != want || got2 != want) {

@@ -208,6 +208,16 @@ PN_KFN void pn_lanes_put(float *l4, float *h4, uint32_t c, pn_v3 lo, pn_v3 hi)
     }
 }
 
+/* pn_lanes_put with the box of triangle ABC. */
+PN_KFN void pn_lanes_put_tri(float *l4, float *h4, uint32_t c, pn_v3 A, pn_v3 B, pn_v3 C)
+{
+    pn_lanes_put(l4, h4, c,
+                 pn_v3_make(pn_kminf(A.x, pn_kminf(B.x, C.x)), pn_kminf(A.y, pn_kminf(B.y, C.y)),
+                            pn_kminf(A.z, pn_kminf(B.z, C.z))),
+                 pn_v3_make(pn_kmaxf(A.x, pn_kmaxf(B.x, C.x)), pn_kmaxf(A.y, pn_kmaxf(B.y, C.y)),
+                            pn_kmaxf(A.z, pn_kmaxf(B.z, C.z))));
+}
+
 /* The samples whose segments from O can meet each of four boxes, box c being
  * lo[a * 4 + c], hi[a * 4 + c] over axes a (a wide node's children, copied out of its
  * pn_kbvh4), into out[c]. Branch-free over the lanes, so a compiler may run the four
@@ -270,69 +280,6 @@ PN_KFN pn_rect pn_foot_box(const pn_foot *fp, pn_v3 lo, pn_v3 hi)
  * and the builder's order, it is as good or better on every scene tried. Only the order
  * (and so the counters) depends on it, never the mask. */
 PN_KFN float pn_foot_order(const pn_foot *fp, pn_v3 lo, pn_v3 hi) { return pn_v3_dot(pn_v3_add(lo, hi), fp->dir); }
-
-/* Light coordinate range [*lo, *hi] of the central projections from O of the points
- * whose (g, w) are those of the vertices (g, w within eg, ew; w > ew for all three). The
- * projection of a triangle wholly in front of O's plane is the triangle of its projected
- * vertices (parts beyond the light plane project too, which only widens the range). With
- * q = g / w rounded (u relative), the exact quotient is within (eg + |q| ew) / (w - ew)
- * + u |q| of it. */
-PN_KFN void pn_foot_verts(float c, float ec, float D, float eD, const float *g, float eg, const float *w, float ew,
-                          float *lo, float *hi)
-{
-    float qlo = PN_KINF, qhi = -PN_KINF, rlo, rhi;
-    uint32_t v;
-    for (v = 0; v < 3u; v++) {
-        float q = g[v] / w[v], aq = pn_kfabs(q);
-        float e = (eg + aq * ew) / (w[v] - ew) + 2.0f * PN_KU * aq;
-        qlo = pn_kminf(qlo, q - e);
-        qhi = pn_kmaxf(qhi, q + e);
-    }
-    rlo = qlo * (qlo >= 0.0f ? D - eD : D + eD);
-    rhi = qhi * (qhi >= 0.0f ? D + eD : D - eD);
-    *lo = (c + rlo) - (ec + 1e-6f * (pn_kfabs(c) + pn_kfabs(rlo)));
-    *hi = (c + rhi) + (ec + 1e-6f * (pn_kfabs(c) + pn_kfabs(rhi)));
-}
-
-/* The samples whose segments from O can meet triangle ABC: from its projected vertices
- * when all three are clearly in front of O's plane, else from its box. */
-PN_KFN pn_rect pn_foot_tri(const pn_foot *fp, pn_v3 A, pn_v3 B, pn_v3 C)
-{
-    float ga[3], gb[3], w[3], mag = 0.0f, ew, ega, egb, lo, hi;
-    pn_v3 d[3];
-    uint32_t v;
-    pn_rect r;
-    if (!fp->on) return pn_rect_full(fp->k);
-    d[0] = pn_v3_sub(A, fp->O);
-    d[1] = pn_v3_sub(B, fp->O);
-    d[2] = pn_v3_sub(C, fp->O);
-    for (v = 0; v < 3u; v++) {
-        mag = pn_kmaxf(mag, pn_v3_l1(d[v]));
-        w[v] = -pn_v3_dot(d[v], fp->N);
-        ga[v] = pn_v3_dot(d[v], fp->Ua);
-        gb[v] = pn_v3_dot(d[v], fp->Va);
-    }
-    ew = 16.0f * PN_KU * mag + PN_KTINY;
-    /* Every vertex behind O's plane or every vertex beyond the light plane: nothing to
-     * cross. A vertex near O's plane: the box's rule, which handles w -> 0. */
-    if (pn_kmaxf(w[0], pn_kmaxf(w[1], w[2])) + ew <= 0.0f ||
-        pn_kminf(w[0], pn_kminf(w[1], w[2])) - ew > fp->D + fp->eD)
-        return pn_rect_make(0, -1, 0, -1);
-    if (!(pn_kminf(w[0], pn_kminf(w[1], w[2])) > 2.0f * ew))
-        return pn_foot_box(fp,
-                           pn_v3_make(pn_kminf(A.x, pn_kminf(B.x, C.x)), pn_kminf(A.y, pn_kminf(B.y, C.y)),
-                                      pn_kminf(A.z, pn_kminf(B.z, C.z))),
-                           pn_v3_make(pn_kmaxf(A.x, pn_kmaxf(B.x, C.x)), pn_kmaxf(A.y, pn_kmaxf(B.y, C.y)),
-                                      pn_kmaxf(A.z, pn_kmaxf(B.z, C.z))));
-    ega = 32.0f * PN_KU * mag * fp->ua_inf + PN_KTINY;
-    egb = 32.0f * PN_KU * mag * fp->va_inf + PN_KTINY;
-    pn_foot_verts(fp->aO, fp->ea, fp->D, fp->eD, ga, ega, w, ew, &lo, &hi);
-    pn_foot_index(&lo, &hi, 1u, fp->k, &r.i0, &r.i1);
-    if (r.i0 > r.i1) return pn_rect_make(0, -1, 0, -1);
-    pn_foot_verts(fp->bO, fp->eb, fp->D, fp->eD, gb, egb, w, ew, &lo, &hi);
-    pn_foot_index(&lo, &hi, 1u, fp->k, &r.j0, &r.j1);
-    return r;
-}
 
 /* The samples of rectangle r that mask m (bit j k + i) has not blocked yet, row by row:
  * up to `most` of them into (si, sj); returns their count, or most + 1 when there are

@@ -421,56 +421,37 @@ PN_KFN_COLD uint32_t pn_ray_decide(const pn_ray *R, const pn_klight *L, PN_CONST
 }
 
 /* The rays of one origin that the reference and GEARS have built, by sample: a pixel's
- * walk decides the same few open samples over many triangles (most of them after its mask
- * is nearly full), and a ray's set-up (three divisions, its bounds) costs several times
- * its test. Least recently used out, so the last PN_RAY_CACHE rays fetched stay where they
- * are (a leaf holds on to up to PN_REF_RAYS of them); a ray is the same floats whenever it
- * is built, so what the cache holds changes no answer. */
-#define PN_RAY_CACHE 8u
+ * walk decides the same few open samples over many triangles, and a ray's set-up (three
+ * divisions, its bounds) costs several times its test. Direct-mapped: sample (i, j) has
+ * slot (i ^ (j * PN_RAY_CACHE_J)) mod PN_RAY_CACHE, so the samples of a row, and of a
+ * column for k = 16 and 32, have slots of their own; a fetched ray is to be used before
+ * the next fetch, which may take its slot. A ray is the same floats whenever it is built,
+ * so what the cache holds changes no answer. */
+#define PN_RAY_CACHE 16u
+#define PN_RAY_CACHE_J 5u
 #define PN_RAY_NOBIT 0xFFFFFFFFu
 
 typedef struct pn_ray_cache {
     pn_ray r[PN_RAY_CACHE];
-    uint32_t bit[PN_RAY_CACHE];  /* sample j k + i, or PN_RAY_NOBIT */
-    uint32_t used[PN_RAY_CACHE]; /* the clock when last fetched */
-    uint32_t clock;
+    uint32_t bit[PN_RAY_CACHE]; /* sample j k + i, or PN_RAY_NOBIT */
 } pn_ray_cache;
 
 PN_KFN void pn_ray_cache_clear(pn_ray_cache *RC)
 {
     uint32_t s;
-    for (s = 0; s < PN_RAY_CACHE; s++) {
-        RC->bit[s] = PN_RAY_NOBIT;
-        RC->used[s] = 0u;
-    }
-    RC->clock = 0u;
+    for (s = 0; s < PN_RAY_CACHE; s++) RC->bit[s] = PN_RAY_NOBIT;
 }
 
-/* The slot of the ray to sample (i, j), built if absent. */
+/* The ray to sample (i, j), built if its slot holds another. */
 PN_KFN uint32_t pn_ray_cache_get(pn_ray_cache *RC, const pn_ray_origin *X, const pn_klight *L, int32_t i, int32_t j)
 {
-    uint32_t bit = (uint32_t)j * L->k + (uint32_t)i, s, v = 0u, f = PN_RAY_CACHE;
-    if (RC->clock == 0xFFFFFFFFu) { /* the clock wraps: the same order, as ranks (no tie: one fetch a tick) */
-        uint32_t rank[PN_RAY_CACHE], t;
-        for (s = 0; s < PN_RAY_CACHE; s++) {
-            rank[s] = 1u;
-            for (t = 0; t < PN_RAY_CACHE; t++) rank[s] += RC->used[t] < RC->used[s];
-        }
-        for (s = 0; s < PN_RAY_CACHE; s++) RC->used[s] = rank[s];
-        RC->clock = PN_RAY_CACHE;
+    uint32_t bit = (uint32_t)j * L->k + (uint32_t)i;
+    uint32_t s = ((uint32_t)i ^ ((uint32_t)j * PN_RAY_CACHE_J)) & (PN_RAY_CACHE - 1u);
+    if (RC->bit[s] != bit) {
+        RC->bit[s] = bit;
+        pn_ray_make(X, L, i, j, &RC->r[s]);
     }
-    RC->clock++;
-    for (s = 0; s < PN_RAY_CACHE; s++) f = RC->bit[s] == bit ? s : f; /* a select, not a branch */
-    if (f < PN_RAY_CACHE) {
-        RC->used[f] = RC->clock;
-        return f;
-    }
-    for (s = 1; s < PN_RAY_CACHE; s++)
-        if (RC->used[s] < RC->used[v]) v = s;
-    RC->bit[v] = bit;
-    RC->used[v] = RC->clock;
-    pn_ray_make(X, L, i, j, &RC->r[v]);
-    return v;
+    return s;
 }
 
 /* 1 if triangle p blocks the ray's sample, with the bound eb of a box holding it

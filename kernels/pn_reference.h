@@ -29,9 +29,6 @@
  * 512 M with no rays, 411 M with up to 2, 404 M with 4, 402 M with 8, 407 M with 16; room
  * 190.5 M, 191.2 M, 191.3 M, 193.7 M, 204.8 M. */
 #define PN_REF_RAYS 4u
-#if PN_RAY_CACHE <= PN_REF_RAYS
-#error "a leaf holds on to PN_REF_RAYS cached rays: PN_RAY_CACHE must exceed it"
-#endif
 
 /* ORs into m the samples of rectangle r (which holds every sample triangle ABC can block
  * from O: its footprint, or the whole grid) that the triangle blocks and m has not; p is
@@ -207,7 +204,7 @@ PN_KFN void pn_tri_load(PN_CONST float *tris, uint32_t t, pn_v3 *A, pn_v3 *B, pn
 /* Per-work-item counters, summed by the host (integer adds: order-independent). */
 typedef struct pn_shadow_counters {
     uint32_t candidates; /* triangles handed to the predicate (pn_tri_block: rays or forms) */
-    uint32_t blocking;   /* ...that blocked at least one sample */
+    uint32_t blocking;   /* ...that blocked at least one sample (a leaf decided ray by ray: each blocked ray) */
     uint32_t lit;        /* pixels in front of the light */
     uint32_t overflow;   /* traversal stack overflows (must stay 0) */
     uint32_t nodes;      /* BVH nodes whose boxes were tested */
@@ -223,20 +220,17 @@ typedef struct pn_shadow_counters {
  * time (pn_foot_box4); the survivors go on the stack in pn_foot_order(): the child whose
  * centre lies farther from the light toward O is walked first (near occluders have the
  * large footprints that fill a mask soonest). At a leaf (a binary leaf node) whose box
- * holds at most PN_REF_RAYS open samples, each triangle meets their rays (pn_ray_tri; the
- * rays from the pixel's cache, the filter's bound from the leaf's box once per ray:
- * a footprint per triangle costs more than the few rays it would spare). At any other
- * leaf, the footprints of its triangles' boxes, four at a time (pn_foot_box4), and a
- * triangle whose rectangle holds no open sample is skipped before any of the predicate's
- * set-up; pn_tri_block decides the open samples it holds (a few: a ray each; more: the
- * forms over its rows). Measured against building each ray where it is tested and
- * bounding it by the triangle's box (callgrind, reference pass, 128x128, k = 16, one
- * thread): dragon 1,233 M -> 1,143 M, buddha 1,261 -> 1,173, spheres 1,168 -> 1,046, bunny
- * 751 -> 706, room 762 -> 761. The boxes' footprints four at a time replaced each
- * triangle's own (its projected vertices, scalar, with three divisions a vertex): more
- * instructions on the default x86-64 target (dragon 1,143 M -> 1,177 M, buddha 1,173 ->
- * 1,221) but less time where the lanes are wide (-march=native, 256x256, one thread,
- * medians of 7: dragon -3.8%, buddha -1.0%, spheres +-0). The result
+ * holds at most PN_REF_RAYS open samples, each one's ray meets the leaf's triangles until
+ * one blocks it (pn_ray_tri; the rays from the pixel's cache, the filter's bound from the
+ * leaf's box once per ray: a footprint per triangle costs more than the few rays it would
+ * spare). At any other leaf, the footprints of its triangles' boxes, four at a time
+ * (pn_foot_box4), and a triangle whose rectangle holds no open sample is skipped before
+ * any of the predicate's set-up; pn_tri_block decides the open samples it holds (a few: a
+ * ray each; more: the forms over its rows). Measured (callgrind, reference pass, 128x128,
+ * k = 16, one thread, default x86-64 target) against building each ray where it is
+ * tested, bounding it by the triangle's box and taking each triangle's own footprint
+ * (its projected vertices): dragon 1,233 M -> 1,144 M, buddha 1,261 -> 1,190, spheres
+ * 1,168 -> 1,032, bunny 751 -> 700, room 762 -> 725. The result
  * is the OR over every triangle that can block an open sample, so it is the same mask in
  * any order and over any tree; only the counters depend on them. */
 PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris,
@@ -323,43 +317,28 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
             int32_t si[PN_REF_RAYS], sj[PN_REF_RAYS];
             uint32_t q, nf = pn_rect_few(m, k, rb, PN_REF_RAYS, si, sj);
             if (nf <= PN_REF_RAYS) {
-                /* A few open samples in the leaf's rectangle: their rays (from the cache,
-                 * which keeps the leaf's nf <= PN_REF_RAYS < PN_RAY_CACHE slots while no
-                 * other ray is fetched) against each triangle, with the filter's bound from
-                 * the leaf's box, once per ray (a split triangle's from its own). */
-                uint32_t slot[PN_REF_RAYS], bit[PN_REF_RAYS], s;
-                float eb[PN_REF_RAYS], lo[3], hi[3];
-                pn_ray_node_box(nd, lo, hi);
+                /* A few open samples in the leaf's rectangle: each one's ray (from the
+                 * pixel's cache) against the leaf's triangles until one blocks it, with
+                 * the filter's bound from the leaf's box (a split triangle's from its own). */
+                uint32_t s, ntri = 0u;
+                for (q = 0; q < nd->count; q++) ntri += (tri_index[nd->first + q] & PN_REF_TRI) != own;
+                if (nf > 0u) cnt->candidates += ntri;
                 for (s = 0; s < nf; s++) {
-                    slot[s] = pn_ray_cache_get(&RC, &X, L, si[s], sj[s]);
-                    bit[s] = (uint32_t)sj[s] * k + (uint32_t)si[s];
-                    eb[s] = pn_ray_bound(&RC.r[slot[s]], lo, hi);
-                }
-                for (q = 0; q < nd->count && nf > 0u; q++) {
-                    uint32_t ref = tri_index[nd->first + q], t = ref & PN_REF_TRI, hit = 0u;
-                    PN_CONST float *p = tris + (size_t)t * 9u;
-                    if (t == own) continue;
-                    cnt->candidates++; /* nf > 0: the samples left are open */
-                    for (s = 0; s < nf; s++) {
-                        const pn_ray *R = &RC.r[slot[s]];
-                        if (pn_ray_tri(R, L, p, (ref & PN_REF_SPLIT) ? pn_ray_tri_bound(R, p) : eb[s])) {
-                            m[bit[s] >> 5] |= 1u << (bit[s] & 31u);
-                            hit = 1u;
+                    const pn_ray *R = &RC.r[pn_ray_cache_get(&RC, &X, L, si[s], sj[s])];
+                    float lo[3], hi[3], eb;
+                    pn_ray_node_box(nd, lo, hi);
+                    eb = pn_ray_bound(R, lo, hi);
+                    for (q = 0; q < nd->count; q++) {
+                        uint32_t ref = tri_index[nd->first + q], t = ref & PN_REF_TRI;
+                        PN_CONST float *p = tris + (size_t)t * 9u;
+                        if (t == own) continue;
+                        if (pn_ray_tri(R, L, p, (ref & PN_REF_SPLIT) ? pn_ray_tri_bound(R, p) : eb)) {
+                            uint32_t bit = (uint32_t)sj[s] * k + (uint32_t)si[s];
+                            m[bit >> 5] |= 1u << (bit & 31u);
+                            cnt->blocking++;
+                            any = 1u;
+                            break;
                         }
-                    }
-                    if (hit) {
-                        uint32_t w = 0u;
-                        cnt->blocking++;
-                        any = 1u;
-                        /* keep the samples still open */
-                        for (s = 0; s < nf; s++) {
-                            if ((m[bit[s] >> 5] >> (bit[s] & 31u)) & 1u) continue;
-                            slot[w] = slot[s];
-                            bit[w] = bit[s];
-                            eb[w] = eb[s];
-                            w++;
-                        }
-                        nf = w;
                     }
                 }
             } else {

@@ -27,8 +27,12 @@
  * reference's predicate calls had a single open sample left, each paying the forms'
  * set-up over the whole grid for it. Measured (callgrind, reference pass, 64x64, k = 16): dragon
  * 512 M with no rays, 411 M with up to 2, 404 M with 4, 402 M with 8, 407 M with 16; room
- * 190.5 M, 191.2 M, 191.3 M, 193.7 M, 204.8 M. */
-#define PN_REF_RAYS 4u
+ * 190.5 M, 191.2 M, 191.3 M, 193.7 M, 204.8 M. Since a leaf's rays stop at their first
+ * blocker and come from the pixel's cache (pn_ray_cache), 8 beats 4 (wall, -march=native,
+ * 256x256, one thread, medians of 5 alternated: spheres -6.7%, buddha -3.3%, bunny -4.2%,
+ * dragon -1.4%, room +1.9%) and 16 is no better than 8 (spheres +1.0%, dragon -0.2%,
+ * buddha -1.3%). */
+#define PN_REF_RAYS 8u
 
 /* ORs into m the samples of rectangle r (which holds every sample triangle ABC can block
  * from O: its footprint, or the whole grid) that the triangle blocks and m has not; p is

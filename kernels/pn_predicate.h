@@ -175,6 +175,13 @@ PN_KFN void pn_rows_narrow(pn_lin f, uint32_t k, float thr, int32_t *lo, int32_t
     pn_narrow(1, f.h0, f.hv, a * f.hu, pn_recip(f.hv), k, thr, lo, hi);
 }
 
+/* Sets sample (i, j)'s bit, j k + i. */
+PN_KFN void pn_mask_set(uint32_t *m, uint32_t k, int32_t i, int32_t j)
+{
+    uint32_t bit = (uint32_t)j * k + (uint32_t)i;
+    m[bit >> 5] |= 1u << (bit & 31u);
+}
+
 PN_KFN void pn_mask_set_run(uint32_t *m, uint32_t k, int32_t j, int32_t lo, int32_t hi)
 {
     uint32_t bit = (uint32_t)j * k + (uint32_t)lo;
@@ -566,10 +573,8 @@ PN_KFN void pn_horizon_mask(const pn_horizon *H, const pn_klight *L, uint32_t *m
     if (-pn_lin_max(pn_lin_neg(H->f), k) >= H->err) return;
     for (j = 0; j < k; j++)
         for (i = 0; i < k; i++)
-            if (pn_horizon_at(H, L, pn_sample_coord((int32_t)i, k), pn_sample_coord((int32_t)j, k))) {
-                uint32_t bit = j * k + i;
-                m[bit >> 5] |= 1u << (bit & 31u);
-            }
+            if (pn_horizon_at(H, L, pn_sample_coord((int32_t)i, k), pn_sample_coord((int32_t)j, k)))
+                pn_mask_set(m, k, (int32_t)i, (int32_t)j);
 }
 
 /* The horizon of the pixel whose own triangle is `own` in tris (9 floats a triangle). */

@@ -46,7 +46,8 @@
  * from O: its footprint, or the whole grid) that the triangle blocks and m has not; p is
  * its 9 floats, X the rays' set-up for O (pn_ray_origin_make), RC the rays already built
  * from it. Returns 1 if it blocked one. Up to PN_REF_RAYS open samples: a ray each
- * (pn_ray_tri_any); more: pn_tri_mask_in over r's rows. Either way each sample gets the
+ * (pn_ray_tri, the filter's bound from the triangle's own box); more: pn_tri_mask_in over
+ * r's rows. Either way each sample gets the
  * predicate's exact answer, so m is the same. */
 PN_KFN uint32_t pn_tri_block(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, PN_CONST float *p, const pn_klight *L,
                              const pn_ray_origin *X, pn_ray_cache *RC, uint32_t *m, pn_rect r)
@@ -57,10 +58,9 @@ PN_KFN uint32_t pn_tri_block(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, PN_CONST float 
     nf = pn_rect_few(m, k, r, PN_REF_RAYS, si, sj);
     if (nf > PN_REF_RAYS) return pn_tri_mask_in(O, A, B, C, L, m, r.i0, r.i1, r.j0, r.j1);
     for (s = 0; s < nf; s++) {
-        uint32_t slot = pn_ray_cache_get(RC, X, L, si[s], sj[s]);
-        if (pn_ray_tri(&RC->r[slot], L, p, pn_ray_tri_bound(&RC->r[slot], p))) {
-            uint32_t bit = (uint32_t)sj[s] * k + (uint32_t)si[s];
-            m[bit >> 5] |= 1u << (bit & 31u);
+        const pn_ray *R = &RC->r[pn_ray_cache_get(RC, X, L, si[s], sj[s])];
+        if (pn_ray_tri(R, L, p, pn_ray_tri_bound(R, p))) {
+            pn_mask_set(m, k, si[s], sj[s]);
             hit = 1u;
         }
     }
@@ -199,12 +199,6 @@ PN_KFN uint32_t pn_frustum_box4p(const pn_frustum *fr, const float *lo, const fl
     return bits;
 }
 
-PN_KFN int pn_frustum_box(const pn_frustum *fr, PN_CONST pn_kbvh_node *nd)
-{
-    return pn_frustum_aabb(fr, pn_v3_make(nd->bmin[0], nd->bmin[1], nd->bmin[2]),
-                           pn_v3_make(nd->bmax[0], nd->bmax[1], nd->bmax[2]));
-}
-
 PN_KFN void pn_tri_load(PN_CONST float *tris, uint32_t t, pn_v3 *A, pn_v3 *B, pn_v3 *C)
 {
     PN_CONST float *p = tris + (size_t)t * 9u;
@@ -222,6 +216,53 @@ typedef struct pn_shadow_counters {
     uint32_t nodes;      /* BVH nodes whose boxes were tested */
 } pn_shadow_counters;
 
+/* The triangles of a list (index entries list[0 .. n), PN_REF_TRI masking the id; a BVH
+ * leaf's or a GEARS chunk's) into mask m, four at a time: with `cull`, their boxes against
+ * the frustum (the conservative test pn_frustum_box4p); their boxes' footprints
+ * (pn_foot_box4; with `exact`, the whole light: GEARS' statistics compute every
+ * assignment's whole mask), then pn_tri_block on each whose rectangle still holds an open
+ * sample (every one with `exact`). Sets *any when a triangle blocks; returns 1 when the
+ * mask is full (never with `exact`). */
+PN_KFN_HOT uint32_t pn_tris_block4(PN_CONST uint32_t *list, uint32_t n, uint32_t own, uint32_t cull, uint32_t exact,
+                                   PN_CONST float *tris, const pn_frustum *fr, const pn_foot *fp, pn_v3 O,
+                                   const pn_klight *L, const pn_ray_origin *X, pn_ray_cache *RC, uint32_t *m,
+                                   uint32_t *any, pn_shadow_counters *cnt)
+{
+    uint32_t k = L->k, e = 0u, ts[4], nt, l, bits;
+    float lo[12], hi[12]; /* the boxes of up to four triangles, as lanes (pn_lanes_put) */
+    pn_rect r[4];
+    while (e < n) {
+        for (nt = 0; nt < 4u && e < n; e++) {
+            uint32_t t = list[e] & PN_REF_TRI;
+            pn_v3 A, B, C;
+            if (t == own) continue;
+            pn_tri_load(tris, t, &A, &B, &C);
+            pn_lanes_put_tri(lo, hi, nt, A, B, C);
+            ts[nt++] = t;
+        }
+        if (!nt) continue;
+        bits = (cull ? pn_frustum_box4p(fr, lo, hi) : 0xFu) & ((1u << nt) - 1u);
+        if (!bits) continue;
+        if (exact) {
+            for (l = 0; l < 4u; l++) r[l] = pn_rect_full(k);
+        } else {
+            pn_foot_box4(fp, lo, hi, r);
+        }
+        for (l = 0; l < nt; l++) {
+            pn_v3 A, B, C;
+            if (!((bits >> l) & 1u) || (!exact && !pn_rect_open(m, k, r[l]))) continue;
+            pn_tri_load(tris, ts[l], &A, &B, &C);
+            cnt->candidates++;
+            if (pn_tri_block(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, m, r[l])) {
+                cnt->blocking++;
+                *any = 1u;
+            }
+            if (!exact && pn_mask_full(m, k)) return 1u;
+        }
+    }
+    return 0u;
+}
+
 /* Visibility of one G-buffer pixel (P, unit geometric normal nrm, own triangle id).
  *
  * The walk (over the four-wide tree, pn_kbvh4) keeps the mask m of samples found blocked
@@ -232,16 +273,15 @@ typedef struct pn_shadow_counters {
  * time (pn_foot_box4), or, when the node's rectangle holds at most PN_REF_NODE_RAYS open
  * samples, by those samples' rays (pn_ray_box4: a child's rectangle is then the one around
  * the samples whose segments may meet its box); the survivors go on the stack in
- * pn_foot_order(): the child whose
- * centre lies farther from the light toward O is walked first (near occluders have the
- * large footprints that fill a mask soonest). At a leaf (a binary leaf node) whose box
+ * pn_foot_order(): the child whose centre lies farther from the light toward O is walked
+ * first (near occluders have the large footprints that fill a mask soonest). At a leaf (a binary leaf node) whose box
  * holds at most PN_REF_RAYS open samples, each one's ray meets the leaf's triangles until
  * one blocks it (pn_ray_tri; the rays from the pixel's cache, the filter's bound from the
  * leaf's box once per ray: a footprint per triangle costs more than the few rays it would
- * spare). At any other leaf, the footprints of its triangles' boxes, four at a time
- * (pn_foot_box4), and a triangle whose rectangle holds no open sample is skipped before
- * any of the predicate's set-up; pn_tri_block decides the open samples it holds (a few: a
- * ray each; more: the forms over its rows). Measured (callgrind, reference pass, 128x128,
+ * spare). At any other leaf (pn_tris_block4, GEARS' chunk step too), the footprints of its
+ * triangles' boxes, four at a time, and a triangle whose rectangle holds no open sample is
+ * skipped before any of the predicate's set-up; pn_tri_block decides the open samples it
+ * holds (a few: a ray each; more: the forms over its rows). Measured (callgrind, reference pass, 128x128,
  * k = 16, one thread, default x86-64 target) against building each ray where it is
  * tested, bounding it by the triangle's box and taking each triangle's own footprint
  * (its projected vertices): dragon 1,233 M -> 1,144 M, buddha 1,261 -> 1,190, spheres
@@ -360,54 +400,29 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
                 /* A few open samples in the leaf's rectangle: each one's ray (from the
                  * pixel's cache) against the leaf's triangles until one blocks it, with
                  * the filter's bound from the leaf's box (a split triangle's from its own). */
-                uint32_t s, ntri = 0u;
-                for (q = 0; q < nd->count; q++) ntri += (tri_index[nd->first + q] & PN_REF_TRI) != own;
-                if (nf > 0u) cnt->candidates += ntri;
+                uint32_t s;
+                float lo[3], hi[3];
+                pn_ray_node_box(nd, lo, hi);
+                /* nf >= 1: rb held an open sample when popped */
+                for (q = 0; q < nd->count; q++) cnt->candidates += (tri_index[nd->first + q] & PN_REF_TRI) != own;
                 for (s = 0; s < nf; s++) {
                     const pn_ray *R = &RC.r[pn_ray_cache_get(&RC, &X, L, si[s], sj[s])];
-                    float lo[3], hi[3], eb;
-                    pn_ray_node_box(nd, lo, hi);
-                    eb = pn_ray_bound(R, lo, hi);
+                    float eb = pn_ray_bound(R, lo, hi);
                     for (q = 0; q < nd->count; q++) {
                         uint32_t ref = tri_index[nd->first + q], t = ref & PN_REF_TRI;
                         PN_CONST float *p = tris + (size_t)t * 9u;
                         if (t == own) continue;
                         if (pn_ray_tri(R, L, p, (ref & PN_REF_SPLIT) ? pn_ray_tri_bound(R, p) : eb)) {
-                            uint32_t bit = (uint32_t)sj[s] * k + (uint32_t)si[s];
-                            m[bit >> 5] |= 1u << (bit & 31u);
+                            pn_mask_set(m, k, si[s], sj[s]);
                             cnt->blocking++;
                             any = 1u;
                             break;
                         }
                     }
                 }
-            } else {
-                /* four triangles at a time: their boxes' footprints (pn_foot_box4) */
-                for (q = 0; q < nd->count; q += 4u) {
-                    uint32_t ts[4], n = 0u, l, qq;
-                    float tlo[12], thi[12];
-                    pn_rect r4[4];
-                    for (qq = q; qq < q + 4u && qq < nd->count; qq++) {
-                        uint32_t t = tri_index[nd->first + qq] & PN_REF_TRI;
-                        pn_v3 A, B, C;
-                        if (t == own) continue;
-                        pn_tri_load(tris, t, &A, &B, &C);
-                        pn_lanes_put_tri(tlo, thi, n, A, B, C);
-                        ts[n++] = t;
-                    }
-                    if (!n) continue;
-                    pn_foot_box4(&fp, tlo, thi, r4);
-                    for (l = 0; l < n; l++) {
-                        pn_v3 A, B, C;
-                        if (!pn_rect_open(m, k, r4[l])) continue;
-                        pn_tri_load(tris, ts[l], &A, &B, &C);
-                        cnt->candidates++;
-                        if (pn_tri_block(O, A, B, C, tris + (size_t)ts[l] * 9u, L, &X, &RC, m, r4[l])) {
-                            cnt->blocking++;
-                            any = 1u;
-                        }
-                    }
-                }
+            } else if (pn_tris_block4(tri_index + nd->first, nd->count, own, 0u, 0u, tris, &fr, &fp, O, L, &X, &RC, m,
+                                      &any, cnt)) {
+                break; /* the mask is full */
             }
             if (any && pn_mask_full(m, k)) break;
         }

@@ -58,7 +58,7 @@ void pn_masks_compare(const pn_masks *a, const pn_masks *b, pn_mask_diff *d);
 
 /* Our exact masks, computed in the tool from the library's own kernels/ predicate
  * (pn_tri_mask) over the triangles a host-side BVH cannot rule out for the pixel's light
- * frustum (pn_frustum_box, the reference's conservative cull). This is what the reference
+ * frustum (pn_frustum_aabb, the reference's conservative cull). This is what the reference
  * ORs per pixel; popcounts are checked against the reference's visibility by the caller.
  * vis (may be NULL) receives the visibility of each pixel, the horizon of the own triangle
  * included. cull_tol is the library's for the scene (pn_stats), so that the culls are the

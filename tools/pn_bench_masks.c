@@ -2,7 +2,7 @@
  * benchmark's bit-level comparison with Embree (see pn_bench.h).
  *
  * The library reports visibility, not masks, so the tool recomputes the masks with the
- * library's own kernels (pn_shadow_origin, pn_frustum_make/pn_frustum_box, pn_tri_mask)
+ * library's own kernels (pn_shadow_origin, pn_frustum_make/pn_frustum_aabb, pn_tri_mask)
  * over a BVH of its own: any conservative candidate set gives the same OR, and the caller
  * checks every popcount against the reference's visibility buffer. */
 #include <stdlib.h>
@@ -277,7 +277,9 @@ static void pn_mask_pixel(pn_mask_task *tk, size_t pix)
     stack[sp++] = 0;
     while (sp > 0) {
         const pn_kbvh_node *nd = b->nodes + stack[--sp];
-        if (!pn_frustum_box(&fr, nd)) continue;
+        if (!pn_frustum_aabb(&fr, pn_v3_make(nd->bmin[0], nd->bmin[1], nd->bmin[2]),
+                             pn_v3_make(nd->bmax[0], nd->bmax[1], nd->bmax[2])))
+            continue;
         if (nd->count == 0u) {
             if (sp + 2u > PN_HBVH_STACK) {
                 tk->depth_overflow = 1;

@@ -114,24 +114,24 @@ PN_KFN void pn_foot_make(pn_v3 O, const pn_klight *L, pn_foot *fp)
     fp->on = fp->D > 2.0f * fp->eD && fp->aO == fp->aO && fp->bO == fp->bO;
 }
 
-/* Lanes c < n (n <= 4): sample indices [n0, n1][c] whose coordinate (2 i + 1) / k - 1 can
- * lie in [lo, hi][c]; NaN in either bound: all. Loops of selects, no branch, so that a
- * caller's four lanes (pn_foot_box4) run side by side. */
-PN_KFN_HOT void pn_foot_index(const float *lo, const float *hi, uint32_t n, uint32_t k, int32_t *n0, int32_t *n1)
+/* Lanes c < 4: sample indices [n0, n1][c] whose coordinate (2 i + 1) / k - 1 can lie in
+ * [lo, hi][c]; NaN in either bound: all. Loops of selects, no branch, so that the four
+ * lanes (pn_foot_box4) run side by side. */
+PN_KFN_HOT void pn_foot_index(const float *lo, const float *hi, uint32_t k, int32_t *n0, int32_t *n1)
 {
     float fk = (float)k, a[4], b[4];
     int32_t nan[4], ia[4], ib[4];
     uint32_t c;
-    for (c = 0; c < n; c++) {
+    for (c = 0; c < 4u; c++) {
         nan[c] = !(lo[c] == lo[c]) | !(hi[c] == hi[c]);
         a[c] = pn_kclampf(((lo[c] + 1.0f) * fk - 1.0f) * 0.5f - 1e-5f, 0, (int32_t)k);
         b[c] = pn_kclampf(((hi[c] + 1.0f) * fk - 1.0f) * 0.5f + 1e-5f, -1, (int32_t)k - 1);
     }
-    for (c = 0; c < n; c++) { /* pn_kceil_clamp and pn_kfloor_clamp, in two loops */
+    for (c = 0; c < 4u; c++) { /* pn_kceil_clamp and pn_kfloor_clamp, in two loops */
         ia[c] = pn_kceil_in(a[c]);
         ib[c] = pn_kfloor_in(b[c]);
     }
-    for (c = 0; c < n; c++) {
+    for (c = 0; c < 4u; c++) {
         n0[c] = nan[c] ? 0 : ia[c];
         n1[c] = nan[c] ? (int32_t)k - 1 : ib[c];
     }
@@ -191,7 +191,7 @@ PN_KFN_HOT void pn_foot_axis4(float o, float eo, float eu, const float *glo, con
         gl[c] = (o + rlo) - (eo + 1e-6f * (pn_kfabs(o) + pn_kfabs(rlo)));
         gh[c] = (o + rhi) + (eo + 1e-6f * (pn_kfabs(o) + pn_kfabs(rhi)));
     }
-    pn_foot_index(gl, gh, 4u, k, n0, n1);
+    pn_foot_index(gl, gh, k, n0, n1);
 }
 
 /* Box [lo, hi] into lane c of four-lane arrays (l4[a * 4 + c], h4[a * 4 + c] over axes a)

@@ -216,14 +216,15 @@ static void ray_check(pn_v3 O, const float *T, const pn_klight *L, float grow, r
             if (want && !pn_ray_box(&R, &nd, &tn)) st->cull_misses++;
         }
     /* pn_tri_block (the reference's and GEARS' per-triangle step) against pn_tri_mask_in
-     * from the same partial mask: 1 to 2 PN_REF_RAYS open samples (rays up to PN_REF_RAYS, the forms
-     * beyond), the rest blocked; the same bits and the same answer. */
+     * from the same partial mask: up to 2 PN_REF_RAYS draws of an open sample (rays up to
+     * PN_REF_RAYS open, the forms beyond), the rest blocked; the same bits and answer. */
     {
         uint32_t trial, n = L->k * L->k;
         pn_ray_cache RC; /* shared by the trials, as by a pixel's triangles */
         pn_ray_cache_clear(&RC);
         for (trial = 0; trial < 4u; trial++) {
-            uint32_t m1[PN_MASK_WORDS_MAX], m2[PN_MASK_WORDS_MAX], w, open = 1u + (uint32_t)(rndf() * (float)(2u * PN_REF_RAYS)), q, h1, h2;
+            uint32_t m1[PN_MASK_WORDS_MAX], m2[PN_MASK_WORDS_MAX], w, q, h1, h2;
+            uint32_t open = 1u + (uint32_t)(rndf() * (float)(2u * PN_REF_RAYS));
             pn_rect full = pn_rect_full(L->k);
             pn_mask_clear(m1);
             for (q = 0; q < n; q++) m1[q >> 5] |= 1u << (q & 31u);

@@ -113,7 +113,9 @@ static void one_scene(const char *source, int builtin)
         pn_setup_free(&s);
         return;
     }
-    CHECK(pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
+    /* As the CLI uploads it: the ground marked receiver-only, which the light-space
+     * algorithms read (the exact ones do not). */
+    CHECK(pn_setup_upload(h.ctx, &s) == PN_OK);
     for (li = 0; li < 2; li++) {
         pn_light light = s.light;
         if (li == 1) memset(light.u, 0, sizeof(light.u)), memset(light.v, 0, sizeof(light.v));

@@ -87,7 +87,7 @@ typedef struct pn_kocc {
  * Light frame: origin at the light centre, axes lview's r, u, f; depth z along f. */
 typedef struct pn_kmc {
     float d;          /* centre of projection behind the light centre (0: point light) */
-    float sfac;       /* res * d: a region's side in texels is sfac (z - zb) / (z (zb + d)) */
+    float sfac;       /* res |U| / tx: a region's side in texels is sfac (z - zb) / (z (zb + d)) */
     float bias_k;     /* adaptive bias (eq. 3.2) per unit of (z + d) / cos */
     float blur_depth; /* blur: a neighbour's weight / (1 + |depth - centre| blur_depth / centre) */
     float pad0, pad1, pad2, pad3;

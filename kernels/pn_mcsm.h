@@ -6,8 +6,13 @@
  * from a centre of projection d behind the light centre whose frustum passes through the
  * light's edges and holds every lit shadow-ray origin (pn_lview_window; the thesis' eq. 3.1
  * places the projection point so that "the entire light fits within the view frustum"):
- * then every segment from a point of the light to an origin projects inside the layers
+ * then every segment from a point of the light to an origin projects inside that frustum
  * (§3, "every point along the ray projects to a point in the interior of the depth map").
+ * The map's window is then narrowed to the image of the occluders' box
+ * (pn_lview_fit_occluders): where the receivers reach far beyond the occluders (a ground
+ * to the horizon) the thesis' window spends most texels where no occluder is. A point whose
+ * image lies beyond the narrowed map lies in no occluder; each ray's search is clipped to
+ * the map (pn_mc_clip) and a region reaching beyond it counts those texels empty.
  * A point light has d = 0: its one ray projects to a single texel (a shadow-map test).
  *
  * Layers (§3.3). Over the fragments of every triangle not marked receiver-only
@@ -102,6 +107,10 @@
 /* Neighbours whose normal is more than about 37 degrees off the centre's take no part in
  * its blur. */
 #define PN_MC_BLUR_COS 0.8f
+/* Texels beyond each side of the map that a ray's search still walks (pn_mc_clip): room
+ * for the rounding of the clip's parameters (the window is at most 256 times narrower than
+ * the light's image, so a relative error of 1e-6 moves an image point by well under one). */
+#define PN_MC_CLIP_TEXELS 4.0f
 /* Per-row class counters (pool mc_words, PN_MC_WORDS per row). */
 #define PN_MC_WORD_LIT 0u
 #define PN_MC_WORD_UMBRA 1u
@@ -441,13 +450,39 @@ PN_KFN int pn_mc_hier(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
 }
 
 /* Bounds of the layers over the texel box around two image points (one texel of margin
- * for rounding). */
+ * for rounding). Texels beyond the map are empty (the window holds every occluder): they
+ * leave the smallest near and largest far depths as they are and make the largest near
+ * depth +inf, as an empty texel of the map does. */
 PN_KFN void pn_mc_region(const pn_mc_ctx *m, float ax, float ay, float bx, float by, float *v)
 {
-    int32_t lim = 1 << 24;
-    pn_nb_mm_rect(m->nb, m->mc->res, m->mc->levels, pn_kfloor_clamp(pn_kminf(ax, bx), -lim, lim) - 1,
-                  pn_kfloor_clamp(pn_kminf(ay, by), -lim, lim) - 1, pn_kceil_clamp(pn_kmaxf(ax, bx), -lim, lim) + 1,
-                  pn_kceil_clamp(pn_kmaxf(ay, by), -lim, lim) + 1, v);
+    int32_t lim = 1 << 24, R = (int32_t)m->mc->res;
+    int32_t x0 = pn_kfloor_clamp(pn_kminf(ax, bx), -lim, lim) - 1, y0 = pn_kfloor_clamp(pn_kminf(ay, by), -lim, lim) - 1;
+    int32_t x1 = pn_kceil_clamp(pn_kmaxf(ax, bx), -lim, lim) + 1, y1 = pn_kceil_clamp(pn_kmaxf(ay, by), -lim, lim) + 1;
+    pn_nb_mm_rect(m->nb, m->mc->res, m->mc->levels, x0, y0, x1, y1, v);
+    if (x0 < 0 || y0 < 0 || x1 > R || y1 > R) v[2] = PN_KINF;
+}
+
+/* Narrows [t0, t1] to the part of ray r whose image lies within the map widened by
+ * PN_MC_CLIP_TEXELS on each side: beyond the map lies no occluder (the window holds their
+ * box), so the searches need not walk there. Per side, x(t) - k (t z_E + d) <= 0 with
+ * k = +-tx (+-ty) is linear in t. Empty: t0 > t1. */
+PN_KFN void pn_mc_clip_side(float a, float b, float *t0, float *t1)
+{
+    if (b > 0.0f)
+        *t1 = pn_kminf(*t1, -a / b);
+    else if (b < 0.0f)
+        *t0 = pn_kmaxf(*t0, -a / b);
+    else if (a > 0.0f)
+        *t0 = PN_KINF;
+}
+PN_KFN void pn_mc_clip(const pn_mc_ctx *m, const pn_mc_ray *r, float *t0, float *t1)
+{
+    float g = 1.0f + 2.0f * PN_MC_CLIP_TEXELS / (float)m->mc->res, kx = m->tx * g, ky = m->ty * g, d = m->mc->d;
+    float dx = r->xe - r->xs, dy = r->ye - r->ys;
+    pn_mc_clip_side(r->xs - kx * d, dx - kx * r->ze, t0, t1);
+    pn_mc_clip_side(-r->xs - kx * d, -dx - kx * r->ze, t0, t1);
+    pn_mc_clip_side(r->ys - ky * d, dy - ky * r->ze, t0, t1);
+    pn_mc_clip_side(-r->ys - ky * d, -dy - ky * r->ze, t0, t1);
 }
 
 /* Pixel classes (the counters). */
@@ -568,6 +603,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
             }
             t0 = zlo / ze * (1.0f - PN_MC_T_SLACK);
             t1 = pn_kminf(tend, zhi / ze * (1.0f + PN_MC_T_SLACK));
+            pn_mc_clip(m, &r, &t0, &t1);
             if (classify) {
                 /* The ray's end inside a texel's interval: blocked with one lookup. */
                 int s = pn_mc_state(m, pn_mc_at(&r, tend));

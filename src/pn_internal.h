@@ -90,6 +90,9 @@ struct pn_context {
     uint32_t bvh_nodes, bvh_depth, bvh_max_leaf, bvh_tris, bvh_refs;
     uint32_t bvh_wide; /* four-wide nodes */
     float scene_min[3], scene_max[3], scene_diag;
+    /* box of the occluders (every triangle not marked receiver-only; pn_occluder_box),
+     * empty (min > max) when every triangle is a receiver */
+    float occ_min[3], occ_max[3];
     /* execution */
     pn_parallel_for_fn parallel_for;
     void *parallel_user;
@@ -170,6 +173,11 @@ typedef struct pn_lwin {
 } pn_lwin;
 int pn_lview_window(const pn_context *ctx, const float *box, uint32_t height, uint32_t res, const pn_klight *L, float ha,
                     float hb, pn_kview *lv, pn_lwin *w);
+/* Narrows the window (*w, lv's tan_half and aspect) of an area light's view to the image
+ * of the occluders' box (ctx->occ_min / occ_max, clipped to the light plane's front), widened
+ * by two texels of res for rounding, where that is smaller: a point beyond it lies in no
+ * occluder. */
+void pn_lview_fit_occluders(const pn_context *ctx, uint32_t res, const pn_klight *L, pn_kview *lv, pn_lwin *w);
 pn_status pn_carve(const pn_limits *limits, pn_layout *out);
 void pn_frame_reset(pn_context *ctx);
 void *pn_frame_alloc(pn_context *ctx, size_t count, size_t elem, const char *pool);

@@ -94,5 +94,45 @@ int pn_lview_window(const pn_context *ctx, const float *box, uint32_t height, ui
     w->ty = ty;
     return 1;
 }
+
+void pn_lview_fit_occluders(const pn_context *ctx, uint32_t res, const pn_klight *L, pn_kview *lv, pn_lwin *w)
+{
+    /* The box's corners in the light frame, then the polytope box n {z >= 0}: the corners in
+     * front and the edges' crossings of the light plane. |x| / (z + d) is quasi-convex (its
+     * sublevel sets are wedges), so its largest value over the polytope is at a vertex. */
+    pn_v3 P[8];
+    float mx = 0.0f, my = 0.0f, grow = 1.0f + 4.0f / (float)res, tx, ty;
+    uint32_t i, b, any = 0u;
+    if (L->is_point || !(w->d > 0.0f) || !(ctx->occ_min[0] <= ctx->occ_max[0])) return;
+    for (i = 0; i < 8u; i++)
+        P[i] = pn_lview_frame(lv, L, pn_v3_make((i & 1u) ? ctx->occ_max[0] : ctx->occ_min[0],
+                                                (i & 2u) ? ctx->occ_max[1] : ctx->occ_min[1],
+                                                (i & 4u) ? ctx->occ_max[2] : ctx->occ_min[2]));
+    for (i = 0; i < 8u; i++) {
+        if (P[i].z >= 0.0f) {
+            mx = pn_kmaxf(mx, pn_kfabs(P[i].x) / (P[i].z + w->d));
+            my = pn_kmaxf(my, pn_kfabs(P[i].y) / (P[i].z + w->d));
+            any = 1u;
+        }
+        for (b = 1u; b < 8u; b <<= 1) {
+            pn_v3 Q = P[i ^ b];
+            if (P[i].z < 0.0f && Q.z >= 0.0f) {
+                /* The edge's crossing of z = 0, depth d from the centre of projection. */
+                float s = P[i].z / (P[i].z - Q.z);
+                mx = pn_kmaxf(mx, pn_kfabs(P[i].x + s * (Q.x - P[i].x)) / w->d);
+                my = pn_kmaxf(my, pn_kfabs(P[i].y + s * (Q.y - P[i].y)) / w->d);
+            }
+        }
+    }
+    if (!any && !(mx > 0.0f || my > 0.0f)) return; /* no occluder in front of the light */
+    /* At most 256 times narrower than the window the origins asked for (which holds the
+     * light's image: kernels/pn_mcsm.h PN_MC_CLIP_TEXELS counts on it). */
+    tx = pn_kmaxf(mx * grow, w->tx * (1.0f / 256.0f));
+    ty = pn_kmaxf(my * grow, w->ty * (1.0f / 256.0f));
+    if (tx < w->tx) w->tx = tx;
+    if (ty < w->ty) w->ty = ty;
+    lv->tan_half = w->ty;
+    lv->aspect = w->tx / w->ty;
+}
 #endif
 #endif

@@ -84,6 +84,8 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
         return st;
     front = pn_lview_window(ctx, s.box, fs->height, res, &K->light, K->lview_ha, K->lview_hb, &K->lview, &w);
     if (front) {
+        /* The layers need only hold the occluders: beyond their box's image a ray meets none. */
+        pn_lview_fit_occluders(ctx, res, &K->light, &K->lview, &w);
         mc->d = w.d;
         mc->sfac = K->light.is_point ? 0.0f : (float)res * K->lview_ha / w.tx;
         /* eq. 3.2: half a texel's diagonal at depth z + d, sqrt(2) z tan(fov / 2) / w. */

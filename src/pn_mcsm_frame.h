@@ -2,7 +2,8 @@
  * port (src/pn_mcsm.c) over the passes of kernels/pn_passes.h:
  *
  *   pools; the light view's axes (pn_light_view)
- *   [row bounds of the lit origins] -> centre of projection, window (host, pn_lview_window)
+ *   [row bounds of the lit origins] -> centre of projection, window (host, pn_lview_window),
+ *                                      narrowed to the occluders' box (pn_lview_fit_occluders)
  *   [rows per triangle] [bands: near and far layers of the occluders]      layers
  *   [N-buffer levels 1 .. top, a row per item]                             N-buffer
  *   [pixel: classification, n x n hashed rays through the layers]          rays

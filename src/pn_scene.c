@@ -9,6 +9,25 @@
 
 static int pn_coord_ok(float v) { return pn_finite(v) && v <= PN_MAX_COORD && v >= -PN_MAX_COORD; }
 
+/* The box of every triangle not marked receiver-only (the light-space algorithms' occluders;
+ * empty, min > max, when there is none). */
+static void pn_occluder_box(pn_context *ctx)
+{
+    uint32_t t, k;
+    for (k = 0; k < 3u; k++) {
+        ctx->occ_min[k] = PN_MAX_COORD;
+        ctx->occ_max[k] = -PN_MAX_COORD;
+    }
+    for (t = 0; t < ctx->tri_count; t++) {
+        const float *p = ctx->tris + (size_t)t * 9u;
+        if (ctx->flags[t] & PN_TRI_RECEIVER) continue;
+        for (k = 0; k < 9u; k++) {
+            ctx->occ_min[k % 3u] = pn_kminf(ctx->occ_min[k % 3u], p[k]);
+            ctx->occ_max[k % 3u] = pn_kmaxf(ctx->occ_max[k % 3u], p[k]);
+        }
+    }
+}
+
 pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_count,
                        const uint32_t *indices, uint32_t triangle_count)
 {
@@ -83,6 +102,7 @@ pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_
     }
     ctx->tri_count = triangle_count;
     ctx->degenerate = degenerate;
+    pn_occluder_box(ctx);
     memcpy(ctx->scene_min, lo, sizeof(lo));
     memcpy(ctx->scene_max, hi, sizeof(hi));
     {
@@ -110,13 +130,14 @@ pn_status pn_scene_set_receivers(pn_context *ctx, uint32_t first, uint32_t count
     if (first > ctx->tri_count || count > ctx->tri_count - first)
         return pn_fail(ctx, PN_E_INDEX_RANGE, "pn_scene_set_receivers: triangles %u + %u exceed the scene's %u", first,
                        count, ctx->tri_count);
-    /* Only the flag byte changes: the BVH, the bounds and every exact algorithm's input
-     * stay as they were. A device port copies the flags again (the version changes). */
+    /* Only the flag bytes and the occluders' box change: the BVH, the scene's bounds and
+     * every exact algorithm's input stay as they were. A device port copies the flags again (the version changes). */
     for (t = 0; t < ctx->tri_count; t++) {
         uint8_t f = (uint8_t)(ctx->flags[t] & ~PN_TRI_RECEIVER);
         if (t >= first && t - first < count) f |= (uint8_t)PN_TRI_RECEIVER;
         ctx->flags[t] = f;
     }
+    pn_occluder_box(ctx);
     ctx->scene_version++;
     return PN_OK;
 }

@@ -18,6 +18,12 @@
  *    a context whose mc_map_max is 64 has a smaller arena and renders at that size; the
  *    stats add up (lit + umbra + penumbra = lit pixels, rays <= penumbra x n^2) and with a
  *    clock the stage times lie inside the shadow pass.
+ * 7. The layers hold the occluders and no more: over random lights and occluder boxes
+ *    (some across the light plane), pn_lview_fit_occluders only narrows the window, and
+ *    every point of the box in front of the light plane that projected inside it still
+ *    does; over
+ *    random rays, pn_mc_clip keeps every parameter whose image lies in the map (checked
+ *    in double).
  * The thesis' claims, on every scene, are the benchmark's (docs/bench/RESULTS.md). */
 #include <math.h>
 #include <stddef.h>
@@ -25,6 +31,7 @@
 #include <string.h>
 
 #include "penumbra/penumbra.h"
+#include "pn_internal.h"
 #include "pn_mcsm.h"
 #include "pn_scenes.h"
 #include "pn_setup.h"
@@ -154,9 +161,9 @@ static void test_square(void)
 /* With one layer, the classification and every early-out are exact for the model. */
 static void test_classify_exact(void)
 {
-    static const char *const scenes[3] = {"spheres", "elongated-cube", "thin"};
+    static const char *const scenes[4] = {"square", "spheres", "elongated-cube", "thin"};
     int i;
-    for (i = 0; i < 3; i++) {
+    for (i = 0; i < 4; i++) {
         pn_setup s;
         pn_host h;
         pn_frame_options o;
@@ -281,6 +288,128 @@ static void test_options_and_pools(void)
     pn_setup_free(&s);
 }
 
+
+static uint32_t g_seed = 12345u;
+static float urand(float lo, float hi)
+{
+    g_seed = g_seed * 1664525u + 1013904223u;
+    return lo + (hi - lo) * (float)(g_seed >> 8) / 16777216.0f;
+}
+
+/* Point p's light-frame coordinates in double (origin c, axes r, u, f). */
+static void frame_d(const pn_kview *lv, const float *c, const double *p, double *o)
+{
+    double rel[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+    o[0] = rel[0] * lv->r[0] + rel[1] * lv->r[1] + rel[2] * lv->r[2];
+    o[1] = rel[0] * lv->u[0] + rel[1] * lv->u[1] + rel[2] * lv->u[2];
+    o[2] = rel[0] * lv->f[0] + rel[1] * lv->f[1] + rel[2] * lv->f[2];
+}
+
+static void test_window_and_clip(void)
+{
+    pn_setup s;
+    pn_host h;
+    uint32_t it, narrowed = 0u, crossing = 0u, clipped = 0u, inside_pts = 0u;
+    if (!open_scene("square", &s, &h, 1, 1)) return;
+    for (it = 0; it < 3000u; it++) {
+        pn_klight L;
+        pn_kview lv;
+        pn_lwin w;
+        float ang = urand(0.0f, 6.2831853f), tilt = urand(-0.6f, 0.6f), ha = urand(0.05f, 1.0f), hb = urand(0.05f, 1.0f);
+        float tx0, ty0, a, b;
+        uint32_t res = it % 3u == 0u ? 64u : 512u, k, j;
+        pn_context *ctx = h.ctx;
+        double lo[3], hi[3], q[3];
+        memset(&L, 0, sizeof(L));
+        L.c[0] = urand(-2.0f, 2.0f);
+        L.c[1] = urand(1.0f, 4.0f);
+        L.c[2] = urand(-2.0f, 2.0f);
+        /* A light facing down, tilted: U, V orthogonal, N = U^ x V^. */
+        L.U[0] = ha * cosf(ang);
+        L.U[2] = ha * sinf(ang);
+        L.V[0] = -hb * sinf(ang) * cosf(tilt);
+        L.V[1] = hb * sinf(tilt);
+        L.V[2] = hb * cosf(ang) * cosf(tilt);
+        L.N[0] = (L.U[1] * L.V[2] - L.U[2] * L.V[1]) / (ha * hb);
+        L.N[1] = (L.U[2] * L.V[0] - L.U[0] * L.V[2]) / (ha * hb);
+        L.N[2] = (L.U[0] * L.V[1] - L.U[1] * L.V[0]) / (ha * hb);
+        if (L.N[1] > 0.0f)
+            for (k = 0; k < 3u; k++) L.N[k] = -L.N[k], L.V[k] = -L.V[k];
+        L.k = 16u;
+        for (k = 0; k < 3u; k++) {
+            float m0 = urand(-3.0f, 3.0f), m1 = urand(-3.0f, 3.0f);
+            if (k == 1u) m0 = urand(-1.0f, L.c[1] + 0.5f), m1 = urand(-1.0f, L.c[1] + 0.5f);
+            ctx->occ_min[k] = m0 < m1 ? m0 : m1;
+            ctx->occ_max[k] = m0 < m1 ? m1 : m0 + 0.01f;
+            lo[k] = ctx->occ_min[k];
+            hi[k] = ctx->occ_max[k];
+        }
+        crossing += ctx->occ_max[1] > L.c[1];
+        pn_light_view(ctx, &L, res, &lv);
+        /* The window pn_lview_window leaves: the frustum through the light's edges. */
+        w.d = urand(0.02f, 1.0f);
+        w.zmax = 10.0f;
+        w.tx = tx0 = ha / w.d;
+        w.ty = ty0 = hb / w.d;
+        lv.tan_half = w.ty;
+        lv.aspect = w.tx / w.ty;
+        pn_lview_fit_occluders(ctx, res, &L, &lv, &w);
+        CHECK_MSG(w.tx <= tx0 && w.ty <= ty0 && w.tx > 0.0f && w.ty > 0.0f, "window %g x %g widened from %g x %g", w.tx,
+                  w.ty, tx0, ty0);
+        CHECK(lv.tan_half == w.ty && lv.aspect == w.tx / w.ty);
+        narrowed += w.tx < tx0 || w.ty < ty0;
+        /* The box's corners and random points of it, in front of the light plane. */
+        for (j = 0; j < 64u; j++) {
+            double p[3];
+            for (k = 0; k < 3u; k++)
+                p[k] = j < 8u ? ((j >> k) & 1u ? hi[k] : lo[k]) : lo[k] + (hi[k] - lo[k]) * (double)urand(0.0f, 1.0f);
+            frame_d(&lv, L.c, p, q);
+            /* No ray reaches beyond the window the origins asked for. */
+            if (q[2] < 0.0 || !(fabs(q[0]) <= (double)tx0 * (q[2] + w.d) && fabs(q[1]) <= (double)ty0 * (q[2] + w.d)))
+                continue;
+            inside_pts++;
+            CHECK_MSG(fabs(q[0]) <= (double)w.tx * (q[2] + w.d) && fabs(q[1]) <= (double)w.ty * (q[2] + w.d),
+                      "occluder point (%g, %g, %g) beyond the window %g x %g (d %g)", q[0], q[1], q[2], w.tx, w.ty, w.d);
+        }
+        /* Rays from the light to origins in front of it, clipped to the map. */
+        {
+            pn_kmc mc;
+            pn_mc_ctx m;
+            pn_mc_ray r;
+            float t0 = 0.0f, t1 = 1.0f;
+            memset(&mc, 0, sizeof(mc));
+            memset(&m, 0, sizeof(m));
+            mc.d = w.d;
+            mc.res = res;
+            m.mc = &mc;
+            m.tx = w.tx;
+            m.ty = w.ty;
+            a = urand(-1.0f, 1.0f);
+            b = urand(-1.0f, 1.0f);
+            r.xs = a * ha;
+            r.ys = b * hb;
+            r.ze = urand(0.01f, 6.0f);
+            r.xe = urand(-3.0f, 3.0f) * r.ze;
+            r.ye = urand(-3.0f, 3.0f) * r.ze;
+            pn_mc_clip(&m, &r, &t0, &t1);
+            clipped += t0 > 0.0f || t1 < 1.0f;
+            for (j = 0; j <= 256u; j++) {
+                double t = (double)j / 256.0, x = r.xs + t * ((double)r.xe - r.xs), y = r.ys + t * ((double)r.ye - r.ys);
+                double zd = t * r.ze + w.d;
+                if (fabs(x) < (double)w.tx * zd && fabs(y) < (double)w.ty * zd)
+                    CHECK_MSG(t >= (double)t0 && t <= (double)t1, "ray parameter %g in the map, clip kept [%g, %g]", t, t0,
+                              t1);
+            }
+        }
+    }
+    fprintf(stderr, "window: %u of 3000 narrowed (%u boxes across the light plane), %u box points checked; %u rays clipped\n",
+            narrowed, crossing, inside_pts, clipped);
+    CHECK_MSG(narrowed > 500u && crossing > 100u && clipped > 1000u, "narrowed %u, crossing %u, clipped %u: too few to test",
+              narrowed, crossing, clipped);
+    pn_host_close(&h);
+    pn_setup_free(&s);
+}
+
 int main(void)
 {
     if (!(pn_build_info() & PN_BUILD_MCSM)) {
@@ -288,6 +417,7 @@ int main(void)
         return 0;
     }
     RUN(test_hash);
+    RUN(test_window_and_clip);
     RUN(test_square);
     RUN(test_classify_exact);
     RUN(test_determinism_and_stats);

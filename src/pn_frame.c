@@ -441,7 +441,7 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     fs.K.mc.layers = opt->mc_layers ? opt->mc_layers : 2u;
     fs.K.mc.search = opt->mc_search ? opt->mc_search : PN_MC_SEARCH_HIER;
     fs.K.mc.rays = opt->mc_rays ? opt->mc_rays : 3u;
-    fs.K.mc.blur = opt->mc_blur == PN_MC_BLUR_OFF ? 0u : opt->mc_blur ? opt->mc_blur : 2u;
+    fs.K.mc.blur = opt->mc_blur == PN_MC_BLUR_OFF ? 0u : opt->mc_blur ? opt->mc_blur : 1u;
     fs.K.mc.flags = opt->mc_flags;
     fs.K.mc.seed = opt->mc_seed;
 #endif

@@ -1575,7 +1575,7 @@ typedef struct mc_cfg {
 /* The claims table: the default (what --algo mcsm renders; the thesis' preferred version) and
  * one change of it per row; the thesis' other version is three layers with linear/binary
  * search. "Two layers, hierarchical, blur off" is the blur-off row. */
-#define MC_CFGS 7
+#define MC_CFGS 8
 static const mc_cfg mc_cfgs[MC_CFGS] = {
     {"default (2 layers, hierarchical, 3x3 rays, default blur)", 0u, 0u, 0u, 0u, 0u, 0u},
     {"1 layer, linear", 1u, PN_MC_SEARCH_LINEAR, 0u, 0u, 0u, 0u},
@@ -1584,6 +1584,7 @@ static const mc_cfg mc_cfgs[MC_CFGS] = {
     {"2x2 rays", 0u, 0u, 2u, 0u, 0u, 0u},
     {"4x4 rays", 0u, 0u, 4u, 0u, 0u, 0u},
     {"blur off (2 layers, hierarchical)", 0u, 0u, 0u, PN_MC_BLUR_OFF, 0u, 0u},
+    {"blur radius 2", 0u, 0u, 0u, 2u, 0u, 0u},
 };
 /* The leak table on closed-box (hierarchical search, 3x3 rays, the default blur throughout). */
 #define MC_LEAK_CFGS 5

@@ -323,7 +323,7 @@ typedef struct pn_frame_options {
     uint32_t mc_search;    /* PN_MC_SEARCH_*; 0: PN_MC_SEARCH_HIER */
     uint32_t mc_rays;      /* n: n x n jittered rays per pixel, 1 .. 8; 0: 3 */
     uint32_t mc_blur;      /* depth- and normal-aware blur radius in pixels, 1 .. 8, or
-                              PN_MC_BLUR_OFF; 0: 2 */
+                              PN_MC_BLUR_OFF; 0: 1 */
     uint32_t mc_map;       /* depth-layer texels per axis, 8 .. limits.mc_map_max; 0: the
                               smaller of 512 and the limit */
     uint32_t mc_flags;     /* PN_MC_NO_BIAS: no adaptive bias (eq. 3.2); PN_MC_NO_CLASSIFY:

@@ -202,7 +202,6 @@ PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris
 {
     uint32_t y0 = band * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND - 1u, t, y, x;
     pn_band_walk bw;
-    pn_v3 f = pn_v3_make(v->f[0], v->f[1], v->f[2]);
     if (y1 >= v->height) y1 = v->height - 1u;
     for (y = y0; y <= y1; y++)
         for (x = 0; x < v->width; x++) {
@@ -218,11 +217,10 @@ PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris
         for (y = rt.y0; y <= rt.y1; y++) {
             int32_t xi;
             for (xi = rt.x0; xi <= rt.x1; xi++) {
-                float tt, z;
-                pn_v3 dir;
+                float z;
                 PN_GLOBAL float *T;
-                if (!pn_raster_tri_hit(v, &rt, (uint32_t)xi, y, &tt, &dir)) continue;
-                z = tt * pn_v3_dot(dir, f) - mc->d;
+                if (!pn_raster_tri_axial(v, &rt, (uint32_t)xi, y, &z)) continue;
+                z -= mc->d;
                 if (!(z > 0.0f)) continue;
                 T = nb + ((size_t)y * v->width + (uint32_t)xi) * PN_NB_MM;
                 T[0] = pn_kminf(T[0], z);

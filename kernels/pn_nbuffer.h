@@ -78,29 +78,47 @@ PN_KFN void pn_nb_mm_add(float *v, PN_CONST float *t)
     v[2] = pn_kmaxf(v[2], t[2]);
 }
 
-/* Row y of min / max level l >= 1 (levels of res^2 texels of PN_NB_MM floats in lv). */
+/* Row y of min / max level l >= 1 (levels of res^2 texels of PN_NB_MM floats in lv). The
+ * columns whose four lookups all lie in the texture (every one but the first -a and the
+ * last b) take them without a test; the same four, in the same order, as the edges'. */
 PN_KFN void pn_nb_mm_row(uint32_t res, uint32_t l, uint32_t y, PN_GLOBAL float *lv)
 {
-    int32_t a, b, ya, yb;
-    uint32_t x;
+    int32_t a, b, ya, yb, R = (int32_t)res, x, xlo, xhi;
     PN_CONST float *lo = lv + (size_t)(l - 1u) * res * res * PN_NB_MM;
     PN_GLOBAL float *out = lv + ((size_t)l * res * res + (size_t)y * res) * PN_NB_MM;
+    PN_CONST float *ra, *rb;
     pn_nb_offsets(l, &a, &b);
     ya = (int32_t)y + a;
     yb = (int32_t)y + b;
-    for (x = 0; x < res; x++) {
-        int32_t xa = (int32_t)x + a, xb = (int32_t)x + b;
+    ra = ya >= 0 && ya < R ? lo + (size_t)ya * res * PN_NB_MM : 0;
+    rb = yb >= 0 && yb < R ? lo + (size_t)yb * res * PN_NB_MM : 0;
+    xlo = pn_kmini(-a, R);
+    xhi = pn_kmaxi(R - b, xlo);
+    for (x = 0; x < R; x++) {
+        int32_t xa = x + a, xb = x + b;
         float v[PN_NB_MM];
-        pn_nb_mm_empty(v);
-        if (ya >= 0 && ya < (int32_t)res) {
-            PN_CONST float *r = lo + (size_t)ya * res * PN_NB_MM;
-            if (xa >= 0) pn_nb_mm_add(v, r + (size_t)xa * PN_NB_MM);
-            if (xb < (int32_t)res) pn_nb_mm_add(v, r + (size_t)xb * PN_NB_MM);
+        if (x == xlo && ra && rb) {
+            /* The interior, both rows in the texture. */
+            for (; x < xhi; x++) {
+                PN_CONST float *p = ra + (size_t)(x + a) * PN_NB_MM, *q = ra + (size_t)(x + b) * PN_NB_MM;
+                PN_CONST float *r = rb + (size_t)(x + a) * PN_NB_MM, *t = rb + (size_t)(x + b) * PN_NB_MM;
+                PN_GLOBAL float *o = out + (size_t)x * PN_NB_MM;
+                o[0] = pn_kminf(pn_kminf(pn_kminf(pn_kminf(PN_KINF, p[0]), q[0]), r[0]), t[0]);
+                o[1] = pn_kmaxf(pn_kmaxf(pn_kmaxf(pn_kmaxf(-PN_KINF, p[1]), q[1]), r[1]), t[1]);
+                o[2] = pn_kmaxf(pn_kmaxf(pn_kmaxf(pn_kmaxf(-PN_KINF, p[2]), q[2]), r[2]), t[2]);
+            }
+            if (x >= R) break;
+            xa = x + a;
+            xb = x + b;
         }
-        if (yb >= 0 && yb < (int32_t)res) {
-            PN_CONST float *r = lo + (size_t)yb * res * PN_NB_MM;
-            if (xa >= 0) pn_nb_mm_add(v, r + (size_t)xa * PN_NB_MM);
-            if (xb < (int32_t)res) pn_nb_mm_add(v, r + (size_t)xb * PN_NB_MM);
+        pn_nb_mm_empty(v);
+        if (ra) {
+            if (xa >= 0) pn_nb_mm_add(v, ra + (size_t)xa * PN_NB_MM);
+            if (xb < R) pn_nb_mm_add(v, ra + (size_t)xb * PN_NB_MM);
+        }
+        if (rb) {
+            if (xa >= 0) pn_nb_mm_add(v, rb + (size_t)xa * PN_NB_MM);
+            if (xb < R) pn_nb_mm_add(v, rb + (size_t)xb * PN_NB_MM);
         }
         out[(size_t)x * PN_NB_MM + 0u] = v[0];
         out[(size_t)x * PN_NB_MM + 1u] = v[1];

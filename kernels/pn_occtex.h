@@ -114,12 +114,11 @@ PN_KFN void pn_occ_band(const pn_kview *v, const pn_kocc *o, PN_CONST float *tri
         for (y = rt.y0; y <= rt.y1; y++) {
             int32_t xi;
             for (xi = rt.x0; xi <= rt.x1; xi++) {
-                float tt;
-                pn_v3 dir;
+                float z;
                 int32_t sl;
                 uint32_t m;
-                if (!pn_raster_tri_hit(v, &rt, (uint32_t)xi, y, &tt, &dir)) continue;
-                sl = pn_occ_slice_of(o, tt * pn_v3_dot(dir, f) - o->d);
+                if (!pn_raster_tri_axial(v, &rt, (uint32_t)xi, y, &z)) continue;
+                sl = pn_occ_slice_of(o, z - o->d);
                 /* The deepest slice holds receivers only: no point lies below its plane. */
                 if (sl < 0 || (uint32_t)sl >= last) continue;
                 m = 1u << (uint32_t)sl;

@@ -25,18 +25,19 @@
 
 #define PN_RASTER_EMPTY 0xFFFFFFFFu
 
-/* Unit primary ray direction of pixel (x, y) (CLI conventions). */
-PN_KFN pn_v3 pn_ray_dir(const pn_kview *v, uint32_t x, uint32_t y)
+/* Primary ray direction of pixel (x, y) (CLI conventions) scaled to unit depth along the
+ * view axis f, and the unit one. */
+PN_KFN pn_v3 pn_ray_dir_axial(const pn_kview *v, uint32_t x, uint32_t y)
 {
     float sx = 2.0f * ((float)x + 0.5f) / (float)v->width - 1.0f;
     float sy = 1.0f - 2.0f * ((float)y + 0.5f) / (float)v->height;
     float a = sx * v->tan_half * v->aspect;
     float b = sy * v->tan_half;
-    pn_v3 d = pn_v3_make(v->f[0] + a * v->r[0] + b * v->u[0],
-                         v->f[1] + a * v->r[1] + b * v->u[1],
-                         v->f[2] + a * v->r[2] + b * v->u[2]);
-    return pn_v3_normalize(d);
+    return pn_v3_make(v->f[0] + a * v->r[0] + b * v->u[0], v->f[1] + a * v->r[1] + b * v->u[1],
+                      v->f[2] + a * v->r[2] + b * v->u[2]);
 }
+
+PN_KFN pn_v3 pn_ray_dir(const pn_kview *v, uint32_t x, uint32_t y) { return pn_v3_normalize(pn_ray_dir_axial(v, x, y)); }
 
 PN_KFN pn_v3 pn_view_eye(const pn_kview *v) { return pn_v3_make(v->eye[0], v->eye[1], v->eye[2]); }
 
@@ -324,6 +325,19 @@ PN_KFN_HOT int pn_raster_tri_hit(const pn_kview *v, const pn_raster_tri *rt, uin
     if (den == 0.0f) return 0;
     *t = rt->nA / den;
     return *t > 0.0f;
+}
+
+/* Whether the set-up triangle covers the centre of pixel (x, y) in front of the eye (the
+ * same test as pn_raster_tri_hit), and then *z: its point's depth along the view axis f
+ * (the light-space maps' depth), from the pixel's ray scaled to unit depth: no square root. */
+PN_KFN_HOT int pn_raster_tri_axial(const pn_kview *v, const pn_raster_tri *rt, uint32_t x, uint32_t y, float *z)
+{
+    float den;
+    if (!pn_edges_inside(rt->e, rt->poly.n, (float)x + 0.5f, (float)y + 0.5f)) return 0;
+    den = pn_v3_dot(rt->n, pn_ray_dir_axial(v, x, y));
+    if (den == 0.0f) return 0;
+    *z = rt->nA / den;
+    return *z > 0.0f;
 }
 
 /* Rasterizes the band walk's triangles into rows [row0, row1] of the G-buffer. depth and

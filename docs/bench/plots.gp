@@ -27,16 +27,17 @@ plot 'data/tradeoff_square.dat' every ::0::0 using 2:3 with points pt 7 ps 1.6 l
      'data/tradeoff_square.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
      'data/tradeoff_square.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
      'data/tradeoff_square.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
-     'data/tradeoff_square.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
-     'data/tradeoff_square.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
-     'data/tradeoff_square.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_square.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
-     'data/tradeoff_square.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
-     'data/tradeoff_square.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
-     'data/tradeoff_square.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
-     'data/tradeoff_square.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
-     'data/tradeoff_square.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
-     'data/tradeoff_square.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
+     'data/tradeoff_square.dat' every ::15::15 using 2:3 with points pt 15 ps 1.6 lc 16 title 'MCSM blur radius 2', \
+     'data/tradeoff_square.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges blended (default)', \
+     'data/tradeoff_square.dat' every ::17::17 using 2:3 with points pt 12 ps 1.6 lc 18 title 'wedges additive', \
+     'data/tradeoff_square.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_square.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex max', \
+     'data/tradeoff_square.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex clamped sum', \
+     'data/tradeoff_square.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex N-buffer', \
+     'data/tradeoff_square.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex mipmap', \
+     'data/tradeoff_square.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 4 slices', \
+     'data/tradeoff_square.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex 8 slices', \
+     'data/tradeoff_square.dat' every ::25::25 using 2:3 with points pt 11 ps 1.6 lc 26 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -68,16 +69,17 @@ plot 'data/tradeoff_spheres.dat' every ::0::0 using 2:3 with points pt 7 ps 1.6 
      'data/tradeoff_spheres.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
      'data/tradeoff_spheres.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
      'data/tradeoff_spheres.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
-     'data/tradeoff_spheres.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
-     'data/tradeoff_spheres.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
-     'data/tradeoff_spheres.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_spheres.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
-     'data/tradeoff_spheres.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
-     'data/tradeoff_spheres.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
-     'data/tradeoff_spheres.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
-     'data/tradeoff_spheres.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
-     'data/tradeoff_spheres.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
-     'data/tradeoff_spheres.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
+     'data/tradeoff_spheres.dat' every ::15::15 using 2:3 with points pt 15 ps 1.6 lc 16 title 'MCSM blur radius 2', \
+     'data/tradeoff_spheres.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges blended (default)', \
+     'data/tradeoff_spheres.dat' every ::17::17 using 2:3 with points pt 12 ps 1.6 lc 18 title 'wedges additive', \
+     'data/tradeoff_spheres.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_spheres.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex max', \
+     'data/tradeoff_spheres.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex clamped sum', \
+     'data/tradeoff_spheres.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex N-buffer', \
+     'data/tradeoff_spheres.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex mipmap', \
+     'data/tradeoff_spheres.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 4 slices', \
+     'data/tradeoff_spheres.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex 8 slices', \
+     'data/tradeoff_spheres.dat' every ::25::25 using 2:3 with points pt 11 ps 1.6 lc 26 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -109,16 +111,17 @@ plot 'data/tradeoff_elongated-cube.dat' every ::0::0 using 2:3 with points pt 7 
      'data/tradeoff_elongated-cube.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
      'data/tradeoff_elongated-cube.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
      'data/tradeoff_elongated-cube.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
-     'data/tradeoff_elongated-cube.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
-     'data/tradeoff_elongated-cube.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
-     'data/tradeoff_elongated-cube.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_elongated-cube.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
-     'data/tradeoff_elongated-cube.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
-     'data/tradeoff_elongated-cube.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
-     'data/tradeoff_elongated-cube.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
-     'data/tradeoff_elongated-cube.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
-     'data/tradeoff_elongated-cube.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
-     'data/tradeoff_elongated-cube.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
+     'data/tradeoff_elongated-cube.dat' every ::15::15 using 2:3 with points pt 15 ps 1.6 lc 16 title 'MCSM blur radius 2', \
+     'data/tradeoff_elongated-cube.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges blended (default)', \
+     'data/tradeoff_elongated-cube.dat' every ::17::17 using 2:3 with points pt 12 ps 1.6 lc 18 title 'wedges additive', \
+     'data/tradeoff_elongated-cube.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_elongated-cube.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex max', \
+     'data/tradeoff_elongated-cube.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex clamped sum', \
+     'data/tradeoff_elongated-cube.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex N-buffer', \
+     'data/tradeoff_elongated-cube.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex mipmap', \
+     'data/tradeoff_elongated-cube.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 4 slices', \
+     'data/tradeoff_elongated-cube.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex 8 slices', \
+     'data/tradeoff_elongated-cube.dat' every ::25::25 using 2:3 with points pt 11 ps 1.6 lc 26 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -150,16 +153,17 @@ plot 'data/tradeoff_thin.dat' every ::0::0 using 2:3 with points pt 7 ps 1.6 lc 
      'data/tradeoff_thin.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
      'data/tradeoff_thin.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
      'data/tradeoff_thin.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
-     'data/tradeoff_thin.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
-     'data/tradeoff_thin.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
-     'data/tradeoff_thin.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_thin.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
-     'data/tradeoff_thin.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
-     'data/tradeoff_thin.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
-     'data/tradeoff_thin.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
-     'data/tradeoff_thin.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
-     'data/tradeoff_thin.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
-     'data/tradeoff_thin.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
+     'data/tradeoff_thin.dat' every ::15::15 using 2:3 with points pt 15 ps 1.6 lc 16 title 'MCSM blur radius 2', \
+     'data/tradeoff_thin.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges blended (default)', \
+     'data/tradeoff_thin.dat' every ::17::17 using 2:3 with points pt 12 ps 1.6 lc 18 title 'wedges additive', \
+     'data/tradeoff_thin.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_thin.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex max', \
+     'data/tradeoff_thin.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex clamped sum', \
+     'data/tradeoff_thin.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex N-buffer', \
+     'data/tradeoff_thin.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex mipmap', \
+     'data/tradeoff_thin.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 4 slices', \
+     'data/tradeoff_thin.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex 8 slices', \
+     'data/tradeoff_thin.dat' every ::25::25 using 2:3 with points pt 11 ps 1.6 lc 26 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -191,16 +195,17 @@ plot 'data/tradeoff_room.dat' every ::0::0 using 2:3 with points pt 7 ps 1.6 lc 
      'data/tradeoff_room.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
      'data/tradeoff_room.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
      'data/tradeoff_room.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
-     'data/tradeoff_room.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
-     'data/tradeoff_room.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
-     'data/tradeoff_room.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_room.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
-     'data/tradeoff_room.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
-     'data/tradeoff_room.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
-     'data/tradeoff_room.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
-     'data/tradeoff_room.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
-     'data/tradeoff_room.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
-     'data/tradeoff_room.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
+     'data/tradeoff_room.dat' every ::15::15 using 2:3 with points pt 15 ps 1.6 lc 16 title 'MCSM blur radius 2', \
+     'data/tradeoff_room.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges blended (default)', \
+     'data/tradeoff_room.dat' every ::17::17 using 2:3 with points pt 12 ps 1.6 lc 18 title 'wedges additive', \
+     'data/tradeoff_room.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_room.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex max', \
+     'data/tradeoff_room.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex clamped sum', \
+     'data/tradeoff_room.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex N-buffer', \
+     'data/tradeoff_room.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex mipmap', \
+     'data/tradeoff_room.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 4 slices', \
+     'data/tradeoff_room.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex 8 slices', \
+     'data/tradeoff_room.dat' every ::25::25 using 2:3 with points pt 11 ps 1.6 lc 26 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -212,35 +217,35 @@ set output 'gallery/cad_infineon_easypim2b.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 145 ms"
+set title "reference, 156 ms"
 plot 'work/gallery/cad_infineon_easypim2b/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/cad_infineon_easypim2b/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 163 ms"
+set title "GEARS, 180 ms"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 632 ms"
+set title "raytrace, 666 ms"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 216 ms"
+set title "SRT, 231 ms"
 plot 'work/gallery/cad_infineon_easypim2b/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 70.8 ms"
+set title "occtex, 76.4 ms"
 plot 'work/gallery/cad_infineon_easypim2b/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 39.8 ms"
+set title "MCSM, 46.4 ms"
 plot 'work/gallery/cad_infineon_easypim2b/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 102 ms"
+set title "wedges, 108 ms"
 plot 'work/gallery/cad_infineon_easypim2b/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 857 ms"
+set title "Embree visibility, 895 ms"
 plot 'work/gallery/cad_infineon_easypim2b/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.4425% px)"
 plot 'work/gallery/cad_infineon_easypim2b/embree_error.png' binary filetype=png with rgbimage
@@ -275,16 +280,17 @@ plot 'data/tradeoff_cad_infineon_easypim2b.dat' every ::0::0 using 2:3 with poin
      'data/tradeoff_cad_infineon_easypim2b.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
      'data/tradeoff_cad_infineon_easypim2b.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
      'data/tradeoff_cad_infineon_easypim2b.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
-     'data/tradeoff_cad_infineon_easypim2b.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::15::15 using 2:3 with points pt 15 ps 1.6 lc 16 title 'MCSM blur radius 2', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges blended (default)', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::17::17 using 2:3 with points pt 12 ps 1.6 lc 18 title 'wedges additive', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex max', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex clamped sum', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex N-buffer', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex mipmap', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 4 slices', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex 8 slices', \
+     'data/tradeoff_cad_infineon_easypim2b.dat' every ::25::25 using 2:3 with points pt 11 ps 1.6 lc 26 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -296,35 +302,35 @@ set output 'gallery/chess_set.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 79.9 ms"
+set title "reference, 82.7 ms"
 plot 'work/gallery/chess_set/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/chess_set/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 117 ms"
+set title "GEARS, 128 ms"
 plot 'work/gallery/chess_set/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/chess_set/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 797 ms"
+set title "raytrace, 847 ms"
 plot 'work/gallery/chess_set/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/chess_set/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 129 ms"
+set title "SRT, 140 ms"
 plot 'work/gallery/chess_set/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/chess_set/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 72.2 ms"
+set title "occtex, 75.9 ms"
 plot 'work/gallery/chess_set/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/chess_set/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 38.8 ms"
+set title "MCSM, 42.7 ms"
 plot 'work/gallery/chess_set/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/chess_set/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 63.9 ms"
+set title "wedges, 66.5 ms"
 plot 'work/gallery/chess_set/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/chess_set/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 919 ms"
+set title "Embree visibility, 990 ms"
 plot 'work/gallery/chess_set/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.2148% px)"
 plot 'work/gallery/chess_set/embree_error.png' binary filetype=png with rgbimage
@@ -359,16 +365,17 @@ plot 'data/tradeoff_chess_set.dat' every ::0::0 using 2:3 with points pt 7 ps 1.
      'data/tradeoff_chess_set.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
      'data/tradeoff_chess_set.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
      'data/tradeoff_chess_set.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
-     'data/tradeoff_chess_set.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
-     'data/tradeoff_chess_set.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
-     'data/tradeoff_chess_set.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_chess_set.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
-     'data/tradeoff_chess_set.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
-     'data/tradeoff_chess_set.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
-     'data/tradeoff_chess_set.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
-     'data/tradeoff_chess_set.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
-     'data/tradeoff_chess_set.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
-     'data/tradeoff_chess_set.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
+     'data/tradeoff_chess_set.dat' every ::15::15 using 2:3 with points pt 15 ps 1.6 lc 16 title 'MCSM blur radius 2', \
+     'data/tradeoff_chess_set.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges blended (default)', \
+     'data/tradeoff_chess_set.dat' every ::17::17 using 2:3 with points pt 12 ps 1.6 lc 18 title 'wedges additive', \
+     'data/tradeoff_chess_set.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_chess_set.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex max', \
+     'data/tradeoff_chess_set.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex clamped sum', \
+     'data/tradeoff_chess_set.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex N-buffer', \
+     'data/tradeoff_chess_set.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex mipmap', \
+     'data/tradeoff_chess_set.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 4 slices', \
+     'data/tradeoff_chess_set.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex 8 slices', \
+     'data/tradeoff_chess_set.dat' every ::25::25 using 2:3 with points pt 11 ps 1.6 lc 26 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -380,35 +387,35 @@ set output 'gallery/happy_buddha_100k.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 695 ms"
+set title "reference, 766 ms"
 plot 'work/gallery/happy_buddha_100k/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/happy_buddha_100k/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 1389 ms"
+set title "GEARS, 1472 ms"
 plot 'work/gallery/happy_buddha_100k/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1879 ms"
+set title "raytrace, 1948 ms"
 plot 'work/gallery/happy_buddha_100k/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 748 ms"
+set title "SRT, 800 ms"
 plot 'work/gallery/happy_buddha_100k/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 73.9 ms"
+set title "occtex, 75.0 ms"
 plot 'work/gallery/happy_buddha_100k/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 57.2 ms"
+set title "MCSM, 65.4 ms"
 plot 'work/gallery/happy_buddha_100k/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 487 ms"
+set title "wedges, 507 ms"
 plot 'work/gallery/happy_buddha_100k/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1304 ms"
+set title "Embree visibility, 1354 ms"
 plot 'work/gallery/happy_buddha_100k/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8091% px)"
 plot 'work/gallery/happy_buddha_100k/embree_error.png' binary filetype=png with rgbimage
@@ -443,16 +450,17 @@ plot 'data/tradeoff_happy_buddha_100k.dat' every ::0::0 using 2:3 with points pt
      'data/tradeoff_happy_buddha_100k.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
      'data/tradeoff_happy_buddha_100k.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
      'data/tradeoff_happy_buddha_100k.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
-     'data/tradeoff_happy_buddha_100k.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
+     'data/tradeoff_happy_buddha_100k.dat' every ::15::15 using 2:3 with points pt 15 ps 1.6 lc 16 title 'MCSM blur radius 2', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges blended (default)', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::17::17 using 2:3 with points pt 12 ps 1.6 lc 18 title 'wedges additive', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex max', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex clamped sum', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex N-buffer', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex mipmap', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 4 slices', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex 8 slices', \
+     'data/tradeoff_happy_buddha_100k.dat' every ::25::25 using 2:3 with points pt 11 ps 1.6 lc 26 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -464,19 +472,19 @@ set output 'gallery/spot.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 199 ms"
+set title "reference, 202 ms"
 plot 'work/gallery/spot/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/spot/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 257 ms"
+set title "GEARS, 258 ms"
 plot 'work/gallery/spot/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/spot/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1088 ms"
+set title "raytrace, 1101 ms"
 plot 'work/gallery/spot/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/spot/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 238 ms"
+set title "SRT, 244 ms"
 plot 'work/gallery/spot/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/spot/SRT error.png' binary filetype=png with rgbimage
@@ -484,15 +492,15 @@ set title "occtex, 63.8 ms"
 plot 'work/gallery/spot/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/spot/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 47.1 ms"
+set title "MCSM, 50.9 ms"
 plot 'work/gallery/spot/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/spot/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 37.4 ms"
+set title "wedges, 36.7 ms"
 plot 'work/gallery/spot/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/spot/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1053 ms"
+set title "Embree visibility, 1102 ms"
 plot 'work/gallery/spot/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (1.2997% px)"
 plot 'work/gallery/spot/embree_error.png' binary filetype=png with rgbimage
@@ -527,16 +535,17 @@ plot 'data/tradeoff_spot.dat' every ::0::0 using 2:3 with points pt 7 ps 1.6 lc 
      'data/tradeoff_spot.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
      'data/tradeoff_spot.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
      'data/tradeoff_spot.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
-     'data/tradeoff_spot.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
-     'data/tradeoff_spot.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
-     'data/tradeoff_spot.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_spot.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
-     'data/tradeoff_spot.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
-     'data/tradeoff_spot.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
-     'data/tradeoff_spot.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
-     'data/tradeoff_spot.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
-     'data/tradeoff_spot.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
-     'data/tradeoff_spot.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
+     'data/tradeoff_spot.dat' every ::15::15 using 2:3 with points pt 15 ps 1.6 lc 16 title 'MCSM blur radius 2', \
+     'data/tradeoff_spot.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges blended (default)', \
+     'data/tradeoff_spot.dat' every ::17::17 using 2:3 with points pt 12 ps 1.6 lc 18 title 'wedges additive', \
+     'data/tradeoff_spot.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_spot.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex max', \
+     'data/tradeoff_spot.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex clamped sum', \
+     'data/tradeoff_spot.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex N-buffer', \
+     'data/tradeoff_spot.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex mipmap', \
+     'data/tradeoff_spot.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 4 slices', \
+     'data/tradeoff_spot.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex 8 slices', \
+     'data/tradeoff_spot.dat' every ::25::25 using 2:3 with points pt 11 ps 1.6 lc 26 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -548,35 +557,35 @@ set output 'gallery/stanford_bunny.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 438 ms"
+set title "reference, 441 ms"
 plot 'work/gallery/stanford_bunny/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_bunny/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 877 ms"
+set title "GEARS, 913 ms"
 plot 'work/gallery/stanford_bunny/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1703 ms"
+set title "raytrace, 1752 ms"
 plot 'work/gallery/stanford_bunny/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 489 ms"
+set title "SRT, 507 ms"
 plot 'work/gallery/stanford_bunny/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 66.7 ms"
+set title "occtex, 69.0 ms"
 plot 'work/gallery/stanford_bunny/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 55.3 ms"
+set title "MCSM, 58.0 ms"
 plot 'work/gallery/stanford_bunny/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 92.0 ms"
+set title "wedges, 94.5 ms"
 plot 'work/gallery/stanford_bunny/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1341 ms"
+set title "Embree visibility, 1375 ms"
 plot 'work/gallery/stanford_bunny/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.7610% px)"
 plot 'work/gallery/stanford_bunny/embree_error.png' binary filetype=png with rgbimage
@@ -611,16 +620,17 @@ plot 'data/tradeoff_stanford_bunny.dat' every ::0::0 using 2:3 with points pt 7 
      'data/tradeoff_stanford_bunny.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
      'data/tradeoff_stanford_bunny.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
      'data/tradeoff_stanford_bunny.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
-     'data/tradeoff_stanford_bunny.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
-     'data/tradeoff_stanford_bunny.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
-     'data/tradeoff_stanford_bunny.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_stanford_bunny.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
-     'data/tradeoff_stanford_bunny.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
-     'data/tradeoff_stanford_bunny.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
-     'data/tradeoff_stanford_bunny.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
-     'data/tradeoff_stanford_bunny.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
-     'data/tradeoff_stanford_bunny.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
-     'data/tradeoff_stanford_bunny.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
+     'data/tradeoff_stanford_bunny.dat' every ::15::15 using 2:3 with points pt 15 ps 1.6 lc 16 title 'MCSM blur radius 2', \
+     'data/tradeoff_stanford_bunny.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges blended (default)', \
+     'data/tradeoff_stanford_bunny.dat' every ::17::17 using 2:3 with points pt 12 ps 1.6 lc 18 title 'wedges additive', \
+     'data/tradeoff_stanford_bunny.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_stanford_bunny.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex max', \
+     'data/tradeoff_stanford_bunny.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex clamped sum', \
+     'data/tradeoff_stanford_bunny.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex N-buffer', \
+     'data/tradeoff_stanford_bunny.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex mipmap', \
+     'data/tradeoff_stanford_bunny.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 4 slices', \
+     'data/tradeoff_stanford_bunny.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex 8 slices', \
+     'data/tradeoff_stanford_bunny.dat' every ::25::25 using 2:3 with points pt 11 ps 1.6 lc 26 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -632,35 +642,35 @@ set output 'gallery/stanford_dragon.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 769 ms"
+set title "reference, 757 ms"
 plot 'work/gallery/stanford_dragon/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_dragon/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 1765 ms"
+set title "GEARS, 1745 ms"
 plot 'work/gallery/stanford_dragon/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2331 ms"
+set title "raytrace, 2241 ms"
 plot 'work/gallery/stanford_dragon/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 889 ms"
+set title "SRT, 888 ms"
 plot 'work/gallery/stanford_dragon/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 112 ms"
+set title "occtex, 113 ms"
 plot 'work/gallery/stanford_dragon/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 82.3 ms"
+set title "MCSM, 100 ms"
 plot 'work/gallery/stanford_dragon/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 507 ms"
+set title "wedges, 498 ms"
 plot 'work/gallery/stanford_dragon/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1513 ms"
+set title "Embree visibility, 1479 ms"
 plot 'work/gallery/stanford_dragon/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8690% px)"
 plot 'work/gallery/stanford_dragon/embree_error.png' binary filetype=png with rgbimage
@@ -695,16 +705,17 @@ plot 'data/tradeoff_stanford_dragon.dat' every ::0::0 using 2:3 with points pt 7
      'data/tradeoff_stanford_dragon.dat' every ::12::12 using 2:3 with points pt 15 ps 1.6 lc 13 title 'MCSM 2x2 rays', \
      'data/tradeoff_stanford_dragon.dat' every ::13::13 using 2:3 with points pt 15 ps 1.6 lc 14 title 'MCSM 4x4 rays', \
      'data/tradeoff_stanford_dragon.dat' every ::14::14 using 2:3 with points pt 15 ps 1.6 lc 15 title 'MCSM blur off (2 layers, hierarchical)', \
-     'data/tradeoff_stanford_dragon.dat' every ::15::15 using 2:3 with points pt 12 ps 1.6 lc 16 title 'wedges blended (default)', \
-     'data/tradeoff_stanford_dragon.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges additive', \
-     'data/tradeoff_stanford_dragon.dat' every ::17::17 using 2:3 with points pt 11 ps 1.6 lc 18 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
-     'data/tradeoff_stanford_dragon.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex max', \
-     'data/tradeoff_stanford_dragon.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex clamped sum', \
-     'data/tradeoff_stanford_dragon.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex N-buffer', \
-     'data/tradeoff_stanford_dragon.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex mipmap', \
-     'data/tradeoff_stanford_dragon.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex 4 slices', \
-     'data/tradeoff_stanford_dragon.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 8 slices', \
-     'data/tradeoff_stanford_dragon.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex leak fix'
+     'data/tradeoff_stanford_dragon.dat' every ::15::15 using 2:3 with points pt 15 ps 1.6 lc 16 title 'MCSM blur radius 2', \
+     'data/tradeoff_stanford_dragon.dat' every ::16::16 using 2:3 with points pt 12 ps 1.6 lc 17 title 'wedges blended (default)', \
+     'data/tradeoff_stanford_dragon.dat' every ::17::17 using 2:3 with points pt 12 ps 1.6 lc 18 title 'wedges additive', \
+     'data/tradeoff_stanford_dragon.dat' every ::18::18 using 2:3 with points pt 11 ps 1.6 lc 19 title 'occtex default (summed-area table, product, 16 slices, no leak fix)', \
+     'data/tradeoff_stanford_dragon.dat' every ::19::19 using 2:3 with points pt 11 ps 1.6 lc 20 title 'occtex max', \
+     'data/tradeoff_stanford_dragon.dat' every ::20::20 using 2:3 with points pt 11 ps 1.6 lc 21 title 'occtex clamped sum', \
+     'data/tradeoff_stanford_dragon.dat' every ::21::21 using 2:3 with points pt 11 ps 1.6 lc 22 title 'occtex N-buffer', \
+     'data/tradeoff_stanford_dragon.dat' every ::22::22 using 2:3 with points pt 11 ps 1.6 lc 23 title 'occtex mipmap', \
+     'data/tradeoff_stanford_dragon.dat' every ::23::23 using 2:3 with points pt 11 ps 1.6 lc 24 title 'occtex 4 slices', \
+     'data/tradeoff_stanford_dragon.dat' every ::24::24 using 2:3 with points pt 11 ps 1.6 lc 25 title 'occtex 8 slices', \
+     'data/tradeoff_stanford_dragon.dat' every ::25::25 using 2:3 with points pt 11 ps 1.6 lc 26 title 'occtex leak fix'
 unset logscale x
 set yrange [*:*]
 set offsets 0,0,0,0
@@ -723,7 +734,7 @@ unset xlabel
 set xtics rotate by -30
 set grid ytics
 set key inside top right
-set yrange [0.2903:30]
+set yrange [0.289191:30]
 set arrow 1 from graph 0, first 1 to graph 1, first 1 nohead dt 2
 set arrow 2 from graph 0, first 10 to graph 1, first 10 nohead dt 3 lc rgb 'red'
 set label 1 'goal 10x' at graph 0.01, first 10 offset 0,0.6 tc rgb 'red'
@@ -756,7 +767,7 @@ plot 'data/mc_convergence_square.dat' using 2:3 with linespoints lw 2 pt 7 lc 1 
      'data/mc_convergence_spot.dat' using 2:3 with linespoints lw 2 pt 7 lc 9 title 'spot', \
      'data/mc_convergence_stanford_bunny.dat' using 2:3 with linespoints lw 2 pt 7 lc 10 title 'stanford_bunny', \
      'data/mc_convergence_stanford_dragon.dat' using 2:3 with linespoints lw 2 pt 7 lc 11 title 'stanford_dragon', \
-     0.221253 * x**-0.5 with lines dt 2 lc rgb 'black' title 'slope -1/2', 0.221253 * x**-0.75 with lines dt 3 lc rgb 'gray40' title 'slope -3/4'
+     0.222289 * x**-0.5 with lines dt 2 lc rgb 'black' title 'slope -1/2', 0.222289 * x**-0.75 with lines dt 3 lc rgb 'gray40' title 'slope -3/4'
 unset logscale xy
 set xrange [*:*]
 reset

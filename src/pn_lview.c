@@ -124,7 +124,7 @@ void pn_lview_fit_occluders(const pn_context *ctx, uint32_t res, const pn_klight
             }
         }
     }
-    if (!any && !(mx > 0.0f || my > 0.0f)) return; /* no occluder in front of the light */
+    if (!any) return; /* no occluder in front of the light (no corner in front, no crossing) */
     /* At most 256 times narrower than the window the origins asked for (which holds the
      * light's image: kernels/pn_mcsm.h PN_MC_CLIP_TEXELS counts on it). */
     tx = pn_kmaxf(mx * grow, w->tx * (1.0f / 256.0f));

@@ -256,8 +256,8 @@ PN_KFN_HOT uint32_t pn_tris_block4(PN_CONST uint32_t *list, uint32_t n, uint32_t
             if (pn_tri_block(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, m, r[l])) {
                 cnt->blocking++;
                 *any = 1u;
+                if (!exact && pn_mask_full(m, k)) return 1u; /* only a block grows the mask */
             }
-            if (!exact && pn_mask_full(m, k)) return 1u;
         }
     }
     return 0u;

@@ -90,7 +90,8 @@ struct pn_context {
     uint32_t bvh_nodes, bvh_depth, bvh_max_leaf, bvh_tris, bvh_refs;
     uint32_t bvh_wide; /* four-wide nodes */
     float scene_min[3], scene_max[3], scene_diag;
-    /* box of the occluders (every triangle not marked receiver-only; pn_occluder_box),
+    /* box of the occluders (every triangle not marked receiver-only: the triangles' box at
+     * pn_scene_set, pn_occluder_box at pn_scene_set_receivers),
      * empty (min > max) when every triangle is a receiver */
     float occ_min[3], occ_max[3];
     /* execution */

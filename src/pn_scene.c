@@ -102,9 +102,11 @@ pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_
     }
     ctx->tri_count = triangle_count;
     ctx->degenerate = degenerate;
-    pn_occluder_box(ctx);
     memcpy(ctx->scene_min, lo, sizeof(lo));
     memcpy(ctx->scene_max, hi, sizeof(hi));
+    /* No triangle is receiver-only yet: the occluders' box is the triangles' box. */
+    memcpy(ctx->occ_min, lo, sizeof(lo));
+    memcpy(ctx->occ_max, hi, sizeof(hi));
     {
         pn_v3 d = pn_v3_make(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
         ctx->scene_diag = pn_ksqrt(pn_v3_dot(d, d));

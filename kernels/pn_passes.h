@@ -197,26 +197,33 @@ PN_KFN void pn_e_gears_row_cells(PN_GLOBAL uint8_t *A, const pn_kpools *P, const
                            PN_POOL(uint32_t, cell_cur));
 }
 
-/* Triangle: how many pairs it makes in the tile, into tri_off[t]. */
-PN_KFN void pn_e_gears_count(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+/* Raster position r (the BVH's leaf order, kernels/pn_raster.h): how many pairs its
+ * triangle makes in the tile, into tri_off[r] (0 past the raster order's entries). */
+PN_KFN void pn_e_gears_count(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
 {
-    PN_POOL(uint32_t, tri_off)[t] = pn_gears_tri_count(PN_POOL(const pn_cellrect, rects),
-                                                       PN_POOL(const uint32_t, cell_pix),
-                                                       PN_POOL(const pn_kfaces, faces)->res, &K->tile, t);
+    PN_POOL(uint32_t, tri_off)[r] =
+        r < K->raster_tris ? pn_gears_tri_count(PN_POOL(const pn_cellrect, rects), PN_POOL(const uint32_t, cell_pix),
+                                                PN_POOL(const pn_kfaces, faces)->res, &K->tile,
+                                                PN_POOL(const uint32_t, rindex)[r])
+                           : 0u;
 }
 
-/* Triangle: its pairs (cell, t) from tri_off[t] (the prefix-summed counts) on. */
-PN_KFN void pn_e_gears_scatter(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+/* Raster position r: its triangle's pairs (cell, r) from tri_off[r] (the prefix-summed
+ * counts) on. */
+PN_KFN void pn_e_gears_scatter(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
 {
-    pn_gears_tri_scatter(PN_POOL(const pn_cellrect, rects), PN_POOL(const uint32_t, cell_pix),
-                         PN_POOL(const pn_kfaces, faces)->res, &K->tile, t, PN_POOL(const uint32_t, tri_off)[t],
-                         PN_POOL(uint32_t, pairs));
+    if (r < K->raster_tris)
+        pn_gears_tri_scatter(PN_POOL(const pn_cellrect, rects), PN_POOL(const uint32_t, cell_pix),
+                             PN_POOL(const pn_kfaces, faces)->res, &K->tile, PN_POOL(const uint32_t, rindex)[r], r,
+                             PN_POOL(const uint32_t, tri_off)[r], PN_POOL(uint32_t, pairs));
 }
 
-/* Superchunk s of the tile's cell-sorted list: the boxes of its chunks and its own. */
+/* Superchunk: its entries' raster positions turned into triangle ids, the boxes of its
+ * chunks and its own box. */
 PN_KFN void pn_e_gears_chunks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t s)
 {
-    pn_gears_chunk_boxes(PN_POOL(const uint32_t, sorted), K->tile.pairs, PN_POOL(const float, tris), s,
+    pn_gears_chunk_boxes(PN_POOL(uint32_t, sorted), K->tile.pairs, PN_POOL(const uint32_t, rindex),
+                         PN_POOL(const float, tris), s,
                          PN_POOL(float, chunk_box), PN_POOL(float, super_box));
 }
 

@@ -23,7 +23,7 @@ typedef struct pn_gears_frame {
     uint32_t *cell_cur;  /* [cells]: sort scratch; the counts of a grid row being split */
     uint32_t *row_pairs; /* [rows * 2]: pairs per global grid row, low and high word */
     uint32_t *pairs;     /* [pool * 2]: (global cell, triangle) */
-    uint32_t *sorted;    /* [pool]: triangles by cell, ascending within a cell */
+    uint32_t *sorted;    /* [pool]: triangles by cell, in raster order within a cell */
     float *chunk_box;    /* [pool / PN_GEARS_CHUNK + 1][6]: box of each chunk of sorted */
     float *super_box;    /* [pool / (PN_GEARS_CHUNK PN_GEARS_SUPER) + 1][6]: of each superchunk */
     uint32_t cells_max;  /* capacity of the per-cell pools */
@@ -343,8 +343,9 @@ static pn_status pn_gears_tile(pn_frame_state *fs, pn_gears_frame_pools *g)
         (st = pn_dev_to_host(fs, g->tri_off + T, sizeof(uint32_t))) != PN_OK ||
         (st = pn_gears_tile_pairs(fs->ctx, g, g->tri_off[T])) != PN_OK)
         return st;
-    /* Pairs are scattered in triangle order, so each cell's triangles ascend: the sort by
-     * cell is the one stable order on every port. */
+    /* Pairs are scattered in raster order (work item r: the triangle rindex[r], pair value
+     * r), so each cell's values ascend: the sort by cell is the one stable order on every
+     * port; the chunk pass turns the values into triangle ids. */
     if ((st = pn_dev_run(fs, PN_K_GEARS_SCATTER, T)) != PN_OK ||
         (st = pn_dev_sort_pairs(fs, g->pairs, g->tri_off[T], g->cells, g->sorted, g->cell_off, g->cell_cur)) != PN_OK ||
         (st = pn_dev_to_host(fs, g->cell_off, ((size_t)g->cells + 1u) * 4u)) != PN_OK)

@@ -221,8 +221,8 @@ typedef struct pn_shadow_counters {
  * the frustum (the conservative test pn_frustum_box4p); their boxes' footprints
  * (pn_foot_box4; with `exact`, the whole light: GEARS' statistics compute every
  * assignment's whole mask), then pn_tri_block on each whose rectangle still holds an open
- * sample (every one with `exact`). Sets *any when a triangle blocks; returns 1 when the
- * mask is full (never with `exact`). */
+ * sample (every one with `exact`, each on a mask of its own, ORed into m). Sets *any when
+ * a triangle blocks; returns 1 when the mask is full (never with `exact`). */
 PN_KFN_HOT uint32_t pn_tris_block4(PN_CONST uint32_t *list, uint32_t n, uint32_t own, uint32_t cull, uint32_t exact,
                                    PN_CONST float *tris, const pn_frustum *fr, const pn_foot *fp, pn_v3 O,
                                    const pn_klight *L, const pn_ray_origin *X, pn_ray_cache *RC, uint32_t *m,
@@ -253,6 +253,19 @@ PN_KFN_HOT uint32_t pn_tris_block4(PN_CONST uint32_t *list, uint32_t n, uint32_t
             if (!((bits >> l) & 1u) || (!exact && !pn_rect_open(m, k, r[l]))) continue;
             pn_tri_load(tris, ts[l], &A, &B, &C);
             cnt->candidates++;
+            if (exact) {
+                /* The triangle's whole mask on its own: "blocking" counts the triangles
+                 * that block any sample (paper Table 6's necessary assignments), whatever
+                 * the others blocked before them; m gets the same union. */
+                uint32_t tm[PN_MASK_WORDS_MAX], w;
+                pn_mask_clear(tm);
+                if (pn_tri_block(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, tm, r[l])) {
+                    cnt->blocking++;
+                    *any = 1u;
+                    for (w = 0; w < pn_mask_words(k); w++) m[w] |= tm[w];
+                }
+                continue;
+            }
             if (pn_tri_block(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, m, r[l])) {
                 cnt->blocking++;
                 *any = 1u;

@@ -12,8 +12,9 @@
 #include "pn_test.h"
 #include "pn_test_geom.h"
 
-static int render(pn_host *h, const pn_setup *s, const pn_camera *cam, const pn_light *light, uint32_t w,
-                  uint32_t hh, uint32_t k, pn_frame *fr)
+/* A frame of `algo` (exact_stats as given) at the scene's eps. */
+static int render_algo(pn_host *h, const pn_setup *s, const pn_camera *cam, const pn_light *light, uint32_t w,
+                       uint32_t hh, uint32_t k, pn_algo algo, uint32_t exact_stats, pn_frame *fr)
 {
     pn_frame_options opt;
     pn_frame_options_default(&opt);
@@ -21,11 +22,19 @@ static int render(pn_host *h, const pn_setup *s, const pn_camera *cam, const pn_
     opt.height = hh;
     opt.k = k;
     opt.eps = s->eps;
+    opt.algo = algo;
+    opt.exact_stats = exact_stats;
     if (pn_render(h->ctx, cam, light, &opt, fr) != PN_OK) {
         fprintf(stderr, "render: %s\n", pn_last_error(h->ctx));
         return 1;
     }
     return 0;
+}
+
+static int render(pn_host *h, const pn_setup *s, const pn_camera *cam, const pn_light *light, uint32_t w,
+                  uint32_t hh, uint32_t k, pn_frame *fr)
+{
+    return render_algo(h, s, cam, light, w, hh, k, PN_ALGO_REFERENCE, 0u, fr);
 }
 
 /* ---- square: closed form --------------------------------------------------------------- */
@@ -119,14 +128,17 @@ static pn_v3 tri_v(const pn_mesh *m, uint32_t t, int c)
     return pn_v3_make(p[0], p[1], p[2]);
 }
 
-/* Brute-force visibility of pixel px with every triangle tried. */
-static float brute_pixel(const pn_mesh *m, const pn_frame *fr, size_t px, const pn_klight *kl)
+/* Brute-force visibility of pixel px with every triangle tried, each on a mask of its own
+ * ORed into the pixel's; *blocking: how many of them block a sample (paper Table 6's
+ * necessary assignments of the pixel; 0 without an origin). */
+static float brute_pixel(const pn_mesh *m, const pn_frame *fr, size_t px, const pn_klight *kl, uint32_t *blocking)
 {
-    uint32_t mask[PN_MASK_WORDS_MAX], t;
+    uint32_t mask[PN_MASK_WORDS_MAX], one[PN_MASK_WORDS_MAX], t, w;
     pn_v3 P = pn_v3_make(fr->position[px * 3], fr->position[px * 3 + 1], fr->position[px * 3 + 2]);
     pn_v3 n = pn_v3_make(fr->normal[px * 3], fr->normal[px * 3 + 1], fr->normal[px * 3 + 2]);
     pn_v3 O;
     pn_horizon H;
+    *blocking = 0u;
     if (fr->tri_id[px] == PN_NO_TRIANGLE) return 1.0f;
     if (!pn_shadow_origin(P, n, kl, &O)) return 0.0f;
     pn_mask_clear(mask);
@@ -136,7 +148,10 @@ static float brute_pixel(const pn_mesh *m, const pn_frame *fr, size_t px, const 
         pn_v3 A = tri_v(m, t, 0), B = tri_v(m, t, 1), C = tri_v(m, t, 2);
         pn_v3 cr = pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
         if (t == fr->tri_id[px] || (cr.x == 0.0f && cr.y == 0.0f && cr.z == 0.0f)) continue;
-        pn_tri_mask(O, A, B, C, kl, mask);
+        pn_mask_clear(one);
+        pn_tri_mask(O, A, B, C, kl, one);
+        *blocking += pn_mask_count(one, kl->k) != 0u;
+        for (w = 0; w < PN_MASK_WORDS_MAX; w++) mask[w] |= one[w];
     }
     return pn_mask_visibility(mask, kl->k);
 }
@@ -149,6 +164,7 @@ static void brute_compare(const char *name, pn_setup *s, const pn_light *light, 
     pn_klight kl = klight_of(light, k, s->eps, 0.0f);
     size_t px;
     uint32_t diff = 0, partial = 0, lit = 0;
+    uint64_t necessary = 0;
     REQUIRE(pn_host_open(&h, s->mesh.triangle_count, w, hh, 2, err, sizeof(err)) == 0);
     REQUIRE(pn_scene_set(h.ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices, s->mesh.triangle_count) == PN_OK);
     REQUIRE(render(&h, s, &s->camera, light, w, hh, k, &fr) == 0);
@@ -159,7 +175,9 @@ static void brute_compare(const char *name, pn_setup *s, const pn_light *light, 
         CHECK(st.cull_tol > 0.0f);
     }
     for (px = 0; px < (size_t)w * hh; px++) {
-        float b = brute_pixel(&s->mesh, &fr, px, &kl);
+        uint32_t nb;
+        float b = brute_pixel(&s->mesh, &fr, px, &kl, &nb);
+        necessary += nb;
         if (memcmp(&b, &fr.visibility[px], sizeof(float)) != 0) {
             if (diff < 5) fprintf(stderr, "%s: pixel %zu: reference %.9g, brute force %.9g\n", name, px, fr.visibility[px], b);
             diff++;
@@ -172,6 +190,21 @@ static void brute_compare(const char *name, pn_setup *s, const pn_light *light, 
     CHECK(diff == 0u);
     CHECK(lit > 0u);
     if (!kl.is_point) CHECK(partial > 0u);
+#if PN_ENABLE_GEARS
+    {
+        /* GEARS with exact statistics counts, per pixel, the triangles of its cell that
+         * block a sample: with a conservative grid that is every triangle that does, in
+         * any order of the cell's list. */
+        pn_frame gf;
+        pn_stats st;
+        REQUIRE(render_algo(&h, s, &s->camera, light, w, hh, k, PN_ALGO_GEARS, 1u, &gf) == 0);
+        REQUIRE(pn_get_stats(h.ctx, &st) == PN_OK);
+        fprintf(stderr, "%s k=%u: GEARS necessary assignments %llu, brute force %llu\n", name, kl.k,
+                (unsigned long long)st.shadow_blocking, (unsigned long long)necessary);
+        CHECK(st.shadow_blocking == necessary);
+        CHECK(necessary > 0u);
+    }
+#endif
     pn_host_close(&h);
 }
 

@@ -174,6 +174,14 @@ PN_KFN void pn_e_gears_pixel_cells(PN_GLOBAL uint8_t *A, const pn_kpools *P, con
                         PN_POOL(uint32_t, cell_pix));
 }
 
+/* Global grid row: its prefix count of cells with pixels (row_pre). */
+PN_KFN void pn_e_gears_row_prefix(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
+{
+    (void)K;
+    pn_gears_row_prefix(PN_POOL(const uint32_t, cell_pix), PN_POOL(const pn_kfaces, faces)->res, r,
+                        PN_POOL(uint32_t, row_pre));
+}
+
 /* Triangle: its rectangle of cells on every face. */
 PN_KFN void pn_e_gears_tri_rects(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
 {
@@ -186,7 +194,7 @@ PN_KFN void pn_e_gears_row_pairs(PN_GLOBAL uint8_t *A, const pn_kpools *P, const
 {
     (void)K;
     pn_gears_tri_row_pairs(PN_POOL(const pn_kfaces, faces), PN_POOL(const pn_cellrect, rects),
-                           PN_POOL(const uint32_t, cell_pix), t, PN_POOL(uint32_t, row_pairs));
+                           PN_POOL(const uint32_t, row_pre), t, PN_POOL(uint32_t, row_pairs));
 }
 
 /* Triangle: its pairs per cell of grid row (tile.face, tile.r0), into cell_cur[0 .. res). */
@@ -202,7 +210,7 @@ PN_KFN void pn_e_gears_row_cells(PN_GLOBAL uint8_t *A, const pn_kpools *P, const
 PN_KFN void pn_e_gears_count(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
 {
     PN_POOL(uint32_t, tri_off)[r] =
-        r < K->raster_tris ? pn_gears_tri_count(PN_POOL(const pn_cellrect, rects), PN_POOL(const uint32_t, cell_pix),
+        r < K->raster_tris ? pn_gears_tri_count(PN_POOL(const pn_cellrect, rects), PN_POOL(const uint32_t, row_pre),
                                                 PN_POOL(const pn_kfaces, faces)->res, &K->tile,
                                                 PN_POOL(const uint32_t, rindex)[r])
                            : 0u;
@@ -619,6 +627,7 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
     X(GEARS_ORIGINS, gears_origins, 1, 1)           \
     X(GEARS_PROJECT, gears_project, 1, 1)           \
     X(GEARS_PIXEL_CELLS, gears_pixel_cells, 64, 1024) \
+    X(GEARS_ROW_PREFIX, gears_row_prefix, 64, 16)   \
     X(GEARS_TRI_RECTS, gears_tri_rects, 64, 4096)   \
     X(GEARS_ROW_PAIRS, gears_row_pairs, 64, 4096)   \
     X(GEARS_ROW_CELLS, gears_row_cells, 64, 4096)   \

@@ -65,6 +65,7 @@ static int pn_gears_pools(const pn_limits *l, uint64_t *off)
                pn_bump(off, l->max_height, 32u, &dummy) &&                /* row boxes */
                pn_bump(off, cells + 1u, 4u, &dummy) &&                    /* cell offsets */
                pn_bump(off, cells, 4u, &dummy) &&                         /* pixels per cell */
+               pn_bump(off, 6u * g * (g + 1u), 4u, &dummy) &&             /* row prefixes */
                pn_bump(off, cells, 4u, &dummy) &&                         /* cell cursors */
                pn_bump(off, 6u * g, 8u, &dummy) &&                        /* pairs per grid row */
                pn_bump(off, pn_gears_pairs_max(l), 8u, &dummy) &&         /* pairs */

@@ -20,6 +20,7 @@ typedef struct pn_gears_frame {
     float *row_box;      /* [height * 8]: box of a row's origins (3-D, then projected 2-D) */
     uint32_t *cell_off;  /* [cells + 1]: a tile's pairs per cell, prefix-summed */
     uint32_t *cell_pix;  /* [cells]: pixels per cell */
+    uint32_t *row_pre;   /* [rows][res + 1]: per grid row, the cells with pixels left of each column */
     uint32_t *cell_cur;  /* [cells]: sort scratch; the counts of a grid row being split */
     uint32_t *row_pairs; /* [rows * 2]: pairs per global grid row, low and high word */
     uint32_t *pairs;     /* [pool * 2]: (global cell, triangle) */
@@ -155,6 +156,7 @@ static pn_status pn_gears_begin(pn_frame_state *fs, pn_gears_frame_pools *g)
         !(g->row_box = (float *)pn_frame_alloc(ctx, fs->height, 32u, "gears row boxes")) ||
         !(g->cell_off = (uint32_t *)pn_frame_alloc(ctx, cmax + 1u, 4u, "gears cell offsets")) ||
         !(g->cell_pix = (uint32_t *)pn_frame_alloc(ctx, cmax, 4u, "gears pixels per cell")) ||
+        !(g->row_pre = (uint32_t *)pn_frame_alloc(ctx, 6u * (size_t)gmax * (gmax + 1u), 4u, "gears row prefixes")) ||
         !(g->cell_cur = (uint32_t *)pn_frame_alloc(ctx, cmax, 4u, "gears cell cursors")) ||
         !(g->row_pairs = (uint32_t *)pn_frame_alloc(ctx, 6u * (size_t)gmax, 8u, "gears pairs per row")) ||
         !(g->pairs = (uint32_t *)pn_frame_alloc(ctx, g->pool, 8u, "gears pairs")) ||
@@ -172,6 +174,7 @@ static pn_status pn_gears_begin(pn_frame_state *fs, pn_gears_frame_pools *g)
     P->row_box = pn_dev_off(ctx, g->row_box);
     P->cell_off = pn_dev_off(ctx, g->cell_off);
     P->cell_pix = pn_dev_off(ctx, g->cell_pix);
+    P->row_pre = pn_dev_off(ctx, g->row_pre);
     P->cell_cur = pn_dev_off(ctx, g->cell_cur);
     P->row_pairs = pn_dev_off(ctx, g->row_pairs);
     P->pairs = pn_dev_off(ctx, g->pairs);
@@ -384,6 +387,7 @@ pn_status pn_gears_frame(pn_frame_state *fs)
     }
     if ((st = pn_dev_fill(fs, g.cell_pix, g.cells, 0u)) != PN_OK ||
         (st = pn_dev_run(fs, PN_K_GEARS_PIXEL_CELLS, fs->width * H)) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_GEARS_ROW_PREFIX, g.rows)) != PN_OK ||
         (st = pn_dev_to_host(fs, g.cell_pix, (size_t)g.cells * 4u)) != PN_OK)
         return st;
 

@@ -203,13 +203,14 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
 #if PN_ENABLE_GEARS
 /* GEARS frame pools at the default pair pool and grid maximum: the grid cameras (1 KB);
  * per triangle 6 cell rectangles (48) and a pair offset (4); per pixel its cell (4); per
- * row an origin box (32); per cell (6 faces) offsets and counts (12); per pair 12, a
- * 24-byte box per 8 pairs and per 64 (src/pn_gears.c's chunk and superchunk boxes), plus
- * one of each. */
+ * row an origin box (32); per cell (6 faces) offsets, counts, cursors and a row prefix
+ * entry (16); per grid row its pair count (8) and prefix end (4); per pair 12, a 24-byte
+ * box per 8 pairs and per 64 (src/pn_gears.c's chunk and superchunk boxes), plus one of
+ * each. */
 #define PN_GEARS_BYTES_MAX(t, w, h)                                                         \
     (1024u + (size_t)(t) * 52u + 4u + (size_t)(w) * (size_t)(h) * 4u + (size_t)(h) * 32u +           \
-     6u * (size_t)PN_GEARS_GRID_MAX * (size_t)PN_GEARS_GRID_MAX * 12u + 4u +                  \
-     6u * (size_t)PN_GEARS_GRID_MAX * 8u + (size_t)PN_GEARS_PAIRS * 15u + (size_t)PN_GEARS_PAIRS / 64u * 24u + 48u)
+     6u * (size_t)PN_GEARS_GRID_MAX * (size_t)PN_GEARS_GRID_MAX * 16u + 4u +                  \
+     6u * (size_t)PN_GEARS_GRID_MAX * 12u + (size_t)PN_GEARS_PAIRS * 15u + (size_t)PN_GEARS_PAIRS / 64u * 24u + 48u)
 #else
 #define PN_GEARS_BYTES_MAX(t, w, h) ((size_t)0)
 #endif

@@ -78,12 +78,34 @@ PN_KFN void pn_nb_mm_add(float *v, PN_CONST float *t)
     v[2] = pn_kmaxf(v[2], t[2]);
 }
 
-/* Row y of min / max level l >= 1 (levels of res^2 texels of PN_NB_MM floats in lv). The
- * columns whose four lookups all lie in the texture (every one but the first -a and the
- * last b) take them without a test; the same four, in the same order, as the edges'. */
+/* Texel x of a level row from rows ra, rb of the level below (0: outside the texture) and
+ * columns x + a, x + b, each lookup tested against the texture. */
+PN_KFN void pn_nb_mm_edge(PN_CONST float *ra, PN_CONST float *rb, int32_t R, int32_t x, int32_t a, int32_t b,
+                          PN_GLOBAL float *out)
+{
+    int32_t xa = x + a, xb = x + b;
+    float v[PN_NB_MM];
+    pn_nb_mm_empty(v);
+    if (ra) {
+        if (xa >= 0) pn_nb_mm_add(v, ra + (size_t)xa * PN_NB_MM);
+        if (xb < R) pn_nb_mm_add(v, ra + (size_t)xb * PN_NB_MM);
+    }
+    if (rb) {
+        if (xa >= 0) pn_nb_mm_add(v, rb + (size_t)xa * PN_NB_MM);
+        if (xb < R) pn_nb_mm_add(v, rb + (size_t)xb * PN_NB_MM);
+    }
+    out[(size_t)x * PN_NB_MM + 0u] = v[0];
+    out[(size_t)x * PN_NB_MM + 1u] = v[1];
+    out[(size_t)x * PN_NB_MM + 2u] = v[2];
+}
+
+/* Row y of min / max level l >= 1 (levels of res^2 texels of PN_NB_MM floats in lv). When
+ * both rows lie in the texture, the columns whose four lookups all do (every one but the
+ * first -a and the last b) take them without a test: the same four, in the same order, as
+ * pn_nb_mm_edge's. */
 PN_KFN void pn_nb_mm_row(uint32_t res, uint32_t l, uint32_t y, PN_GLOBAL float *lv)
 {
-    int32_t a, b, ya, yb, R = (int32_t)res, x, xlo, xhi;
+    int32_t a, b, ya, yb, R = (int32_t)res, x = 0, xlo, xhi;
     PN_CONST float *lo = lv + (size_t)(l - 1u) * res * res * PN_NB_MM;
     PN_GLOBAL float *out = lv + ((size_t)l * res * res + (size_t)y * res) * PN_NB_MM;
     PN_CONST float *ra, *rb;
@@ -92,38 +114,23 @@ PN_KFN void pn_nb_mm_row(uint32_t res, uint32_t l, uint32_t y, PN_GLOBAL float *
     yb = (int32_t)y + b;
     ra = ya >= 0 && ya < R ? lo + (size_t)ya * res * PN_NB_MM : 0;
     rb = yb >= 0 && yb < R ? lo + (size_t)yb * res * PN_NB_MM : 0;
-    xlo = pn_kmini(-a, R);
-    xhi = pn_kmaxi(R - b, xlo);
-    for (x = 0; x < R; x++) {
-        int32_t xa = x + a, xb = x + b;
-        float v[PN_NB_MM];
-        if (x == xlo && ra && rb) {
-            /* The interior, both rows in the texture. */
-            for (; x < xhi; x++) {
-                PN_CONST float *p = ra + (size_t)(x + a) * PN_NB_MM, *q = ra + (size_t)(x + b) * PN_NB_MM;
-                PN_CONST float *r = rb + (size_t)(x + a) * PN_NB_MM, *t = rb + (size_t)(x + b) * PN_NB_MM;
-                PN_GLOBAL float *o = out + (size_t)x * PN_NB_MM;
-                o[0] = pn_kminf(pn_kminf(pn_kminf(pn_kminf(PN_KINF, p[0]), q[0]), r[0]), t[0]);
-                o[1] = pn_kmaxf(pn_kmaxf(pn_kmaxf(pn_kmaxf(-PN_KINF, p[1]), q[1]), r[1]), t[1]);
-                o[2] = pn_kmaxf(pn_kmaxf(pn_kmaxf(pn_kmaxf(-PN_KINF, p[2]), q[2]), r[2]), t[2]);
-            }
-            if (x >= R) break;
-            xa = x + a;
-            xb = x + b;
+    if (ra && rb) {
+        xlo = pn_kmini(-a, R);
+        xhi = pn_kmaxi(R - b, xlo);
+        for (; x < xlo; x++) pn_nb_mm_edge(ra, rb, R, x, a, b, out);
+        for (; x < xhi; x++) {
+            float v[PN_NB_MM];
+            pn_nb_mm_empty(v);
+            pn_nb_mm_add(v, ra + (size_t)(x + a) * PN_NB_MM);
+            pn_nb_mm_add(v, ra + (size_t)(x + b) * PN_NB_MM);
+            pn_nb_mm_add(v, rb + (size_t)(x + a) * PN_NB_MM);
+            pn_nb_mm_add(v, rb + (size_t)(x + b) * PN_NB_MM);
+            out[(size_t)x * PN_NB_MM + 0u] = v[0];
+            out[(size_t)x * PN_NB_MM + 1u] = v[1];
+            out[(size_t)x * PN_NB_MM + 2u] = v[2];
         }
-        pn_nb_mm_empty(v);
-        if (ra) {
-            if (xa >= 0) pn_nb_mm_add(v, ra + (size_t)xa * PN_NB_MM);
-            if (xb < R) pn_nb_mm_add(v, ra + (size_t)xb * PN_NB_MM);
-        }
-        if (rb) {
-            if (xa >= 0) pn_nb_mm_add(v, rb + (size_t)xa * PN_NB_MM);
-            if (xb < R) pn_nb_mm_add(v, rb + (size_t)xb * PN_NB_MM);
-        }
-        out[(size_t)x * PN_NB_MM + 0u] = v[0];
-        out[(size_t)x * PN_NB_MM + 1u] = v[1];
-        out[(size_t)x * PN_NB_MM + 2u] = v[2];
     }
+    for (; x < R; x++) pn_nb_mm_edge(ra, rb, R, x, a, b, out);
 }
 
 /* The min / max box of level l starting at level-0 texel (X, Y), added into v. */

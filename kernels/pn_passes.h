@@ -205,25 +205,22 @@ PN_KFN void pn_e_gears_row_cells(PN_GLOBAL uint8_t *A, const pn_kpools *P, const
                            PN_POOL(uint32_t, cell_cur));
 }
 
-/* Raster position r (the BVH's leaf order, kernels/pn_raster.h): how many pairs its
- * triangle makes in the tile, into tri_off[r] (0 past the raster order's entries). */
+/* Raster position r (the BVH's leaf order, kernels/pn_raster.h; r < K->raster_tris): how
+ * many pairs its triangle makes in the tile, into tri_off[r]. */
 PN_KFN void pn_e_gears_count(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
 {
-    PN_POOL(uint32_t, tri_off)[r] =
-        r < K->raster_tris ? pn_gears_tri_count(PN_POOL(const pn_cellrect, rects), PN_POOL(const uint32_t, row_pre),
-                                                PN_POOL(const pn_kfaces, faces)->res, &K->tile,
-                                                PN_POOL(const uint32_t, rindex)[r])
-                           : 0u;
+    PN_POOL(uint32_t, tri_off)[r] = pn_gears_tri_count(PN_POOL(const pn_cellrect, rects), PN_POOL(const uint32_t, row_pre),
+                                                       PN_POOL(const pn_kfaces, faces)->res, &K->tile,
+                                                       PN_POOL(const uint32_t, rindex)[r]);
 }
 
 /* Raster position r: its triangle's pairs (cell, r) from tri_off[r] (the prefix-summed
  * counts) on. */
 PN_KFN void pn_e_gears_scatter(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
 {
-    if (r < K->raster_tris)
-        pn_gears_tri_scatter(PN_POOL(const pn_cellrect, rects), PN_POOL(const uint32_t, cell_pix),
-                             PN_POOL(const pn_kfaces, faces)->res, &K->tile, PN_POOL(const uint32_t, rindex)[r], r,
-                             PN_POOL(const uint32_t, tri_off)[r], PN_POOL(uint32_t, pairs));
+    pn_gears_tri_scatter(PN_POOL(const pn_cellrect, rects), PN_POOL(const uint32_t, cell_pix),
+                         PN_POOL(const pn_kfaces, faces)->res, &K->tile, PN_POOL(const uint32_t, rindex)[r], r,
+                         PN_POOL(const uint32_t, tri_off)[r], PN_POOL(uint32_t, pairs));
 }
 
 /* Superchunk: its entries' raster positions turned into triangle ids, the boxes of its

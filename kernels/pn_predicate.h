@@ -612,6 +612,13 @@ PN_KFN void pn_mask_clear(uint32_t *m)
     for (w = 0; w < PN_MASK_WORDS_MAX; w++) m[w] = 0u;
 }
 
+/* m |= o over the words of k x k samples. */
+PN_KFN void pn_mask_or(uint32_t *m, const uint32_t *o, uint32_t k)
+{
+    uint32_t w;
+    for (w = 0; w < pn_mask_words(k); w++) m[w] |= o[w];
+}
+
 PN_KFN uint32_t pn_mask_count(const uint32_t *m, uint32_t k)
 {
     uint32_t w, n = 0, words = pn_mask_words(k);

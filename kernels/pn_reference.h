@@ -228,7 +228,7 @@ PN_KFN_HOT uint32_t pn_tris_block4(PN_CONST uint32_t *list, uint32_t n, uint32_t
                                    const pn_klight *L, const pn_ray_origin *X, pn_ray_cache *RC, uint32_t *m,
                                    uint32_t *any, pn_shadow_counters *cnt)
 {
-    uint32_t k = L->k, e = 0u, ts[4], nt, l, bits;
+    uint32_t k = L->k, e = 0u, ts[4], nt, l, bits, tm[PN_MASK_WORDS_MAX];
     float lo[12], hi[12]; /* the boxes of up to four triangles, as lanes (pn_lanes_put) */
     pn_rect r[4];
     while (e < n) {
@@ -253,23 +253,17 @@ PN_KFN_HOT uint32_t pn_tris_block4(PN_CONST uint32_t *list, uint32_t n, uint32_t
             if (!((bits >> l) & 1u) || (!exact && !pn_rect_open(m, k, r[l]))) continue;
             pn_tri_load(tris, ts[l], &A, &B, &C);
             cnt->candidates++;
-            if (exact) {
-                /* The triangle's whole mask on its own: "blocking" counts the triangles
-                 * that block any sample (paper Table 6's necessary assignments), whatever
-                 * the others blocked before them; m gets the same union. */
-                uint32_t tm[PN_MASK_WORDS_MAX], w;
-                pn_mask_clear(tm);
-                if (pn_tri_block(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, tm, r[l])) {
-                    cnt->blocking++;
-                    *any = 1u;
-                    for (w = 0; w < pn_mask_words(k); w++) m[w] |= tm[w];
-                }
-                continue;
-            }
-            if (pn_tri_block(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, m, r[l])) {
+            /* With `exact`, the triangle's whole mask on its own (tm), ORed into m:
+             * "blocking" then counts the triangles that block any sample (paper Table 6's
+             * necessary assignments), whatever the others blocked before them. */
+            if (exact) pn_mask_clear(tm);
+            if (pn_tri_block(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, exact ? tm : m, r[l])) {
                 cnt->blocking++;
                 *any = 1u;
-                if (!exact && pn_mask_full(m, k)) return 1u; /* only a block grows the mask */
+                if (exact)
+                    pn_mask_or(m, tm, k);
+                else if (pn_mask_full(m, k))
+                    return 1u; /* only a block grows the mask */
             }
         }
     }

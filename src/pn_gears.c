@@ -340,23 +340,23 @@ static void pn_gears_end(pn_context *ctx, const pn_gears_frame_pools *g)
  * superchunk boxes -> masks. */
 static pn_status pn_gears_tile(pn_frame_state *fs, pn_gears_frame_pools *g)
 {
-    uint32_t T = fs->ctx->tri_count;
+    uint32_t R = fs->K.raster_tris; /* the raster order's entries: every triangle but the degenerate */
     pn_status st;
-    if ((st = pn_dev_run(fs, PN_K_GEARS_COUNT, T)) != PN_OK || (st = pn_dev_scan(fs, g->tri_off, T)) != PN_OK ||
-        (st = pn_dev_to_host(fs, g->tri_off + T, sizeof(uint32_t))) != PN_OK ||
-        (st = pn_gears_tile_pairs(fs->ctx, g, g->tri_off[T])) != PN_OK)
+    if ((st = pn_dev_run(fs, PN_K_GEARS_COUNT, R)) != PN_OK || (st = pn_dev_scan(fs, g->tri_off, R)) != PN_OK ||
+        (st = pn_dev_to_host(fs, g->tri_off + R, sizeof(uint32_t))) != PN_OK ||
+        (st = pn_gears_tile_pairs(fs->ctx, g, g->tri_off[R])) != PN_OK)
         return st;
     /* Pairs are scattered in raster order (work item r: the triangle rindex[r], pair value
      * r), so each cell's values ascend: the sort by cell is the one stable order on every
      * port; the chunk pass turns the values into triangle ids. */
-    if ((st = pn_dev_run(fs, PN_K_GEARS_SCATTER, T)) != PN_OK ||
-        (st = pn_dev_sort_pairs(fs, g->pairs, g->tri_off[T], g->cells, g->sorted, g->cell_off, g->cell_cur)) != PN_OK ||
+    if ((st = pn_dev_run(fs, PN_K_GEARS_SCATTER, R)) != PN_OK ||
+        (st = pn_dev_sort_pairs(fs, g->pairs, g->tri_off[R], g->cells, g->sorted, g->cell_off, g->cell_cur)) != PN_OK ||
         (st = pn_dev_to_host(fs, g->cell_off, ((size_t)g->cells + 1u) * 4u)) != PN_OK)
         return st;
     pn_gears_tile_cells(g);
-    fs->K.tile.pairs = g->tri_off[T];
+    fs->K.tile.pairs = g->tri_off[R];
     if ((st = pn_dev_run(fs, PN_K_GEARS_CHUNKS,
-                         (g->tri_off[T] + PN_GEARS_CHUNK * PN_GEARS_SUPER - 1u) / (PN_GEARS_CHUNK * PN_GEARS_SUPER))) !=
+                         (g->tri_off[R] + PN_GEARS_CHUNK * PN_GEARS_SUPER - 1u) / (PN_GEARS_CHUNK * PN_GEARS_SUPER))) !=
         PN_OK)
         return st;
     return pn_dev_run(fs, PN_K_GEARS_MASKS, fs->width * fs->height);

@@ -133,7 +133,7 @@ static pn_v3 tri_v(const pn_mesh *m, uint32_t t, int c)
  * necessary assignments of the pixel; 0 without an origin). */
 static float brute_pixel(const pn_mesh *m, const pn_frame *fr, size_t px, const pn_klight *kl, uint32_t *blocking)
 {
-    uint32_t mask[PN_MASK_WORDS_MAX], one[PN_MASK_WORDS_MAX], t, w;
+    uint32_t mask[PN_MASK_WORDS_MAX], one[PN_MASK_WORDS_MAX], t;
     pn_v3 P = pn_v3_make(fr->position[px * 3], fr->position[px * 3 + 1], fr->position[px * 3 + 2]);
     pn_v3 n = pn_v3_make(fr->normal[px * 3], fr->normal[px * 3 + 1], fr->normal[px * 3 + 2]);
     pn_v3 O;
@@ -151,7 +151,7 @@ static float brute_pixel(const pn_mesh *m, const pn_frame *fr, size_t px, const 
         pn_mask_clear(one);
         pn_tri_mask(O, A, B, C, kl, one);
         *blocking += pn_mask_count(one, kl->k) != 0u;
-        for (w = 0; w < PN_MASK_WORDS_MAX; w++) mask[w] |= one[w];
+        pn_mask_or(mask, one, kl->k);
     }
     return pn_mask_visibility(mask, kl->k);
 }

@@ -318,7 +318,12 @@ static pn_status pn_gbuffer(pn_frame_state *fs)
 }
 
 /* The shadow pass of the frame's algorithm. Every algorithm leaves the visibility buffer
- * and one pn_shadow_counters per row (zeroed here first) for the host. */
+ * and one pn_shadow_counters per row (zeroed here first) for the host. Kept out of line
+ * (one call a frame): the profiling scripts (tools/bench_profile.sh, tools/exact_profile.sh)
+ * switch callgrind's collection on by this function's name. */
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
 static pn_status pn_shadow(pn_frame_state *fs)
 {
     uint32_t npix = fs->width * fs->height;

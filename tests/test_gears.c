@@ -62,6 +62,11 @@ static void exact_scene(const char *src, int builtin, uint32_t w, uint32_t hh, c
                         st.gears_assignments ? 100.0 * (double)st.shadow_blocking / (double)st.gears_assignments : 0.0);
                 CHECK_MSG(d == 0u, "%s", what);
                 CHECK(st.gears_faces == (q == nk ? 6u : 1u));
+                /* Boxes tested (shadow_nodes): a pixel whose cell holds n entries meets at
+                 * most n/64 + 2 superchunks and n/8 + 2 chunks, and some when n > 0. */
+                CHECK_MSG(st.shadow_nodes <= st.gears_assignments * 9u / 64u + 4u * (uint64_t)st.lit_pixels,
+                          "%s: %llu boxes", what, (unsigned long long)st.shadow_nodes);
+                CHECK_MSG(st.gears_assignments == 0u || st.shadow_nodes > 0u, "%s: no box tested", what);
             }
         }
     }

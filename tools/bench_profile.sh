@@ -5,7 +5,7 @@
 # the time goes"). Instruction counts, unlike times, do not move with the machine's load.
 #   usage: tools/bench_profile.sh PENUMBRA_BENCH PENUMBRA_CLI SCENES_DIR [SCENE] [SIZE]
 # Each algorithm runs in its own valgrind process (penumbra_bench --algos X --lean) with
-# collection switched on only inside the shadow pass (pn_scalar_shadow, pn_embree_shadow);
+# collection switched on only inside the shadow pass (src/pn_frame.c pn_shadow, pn_embree_shadow);
 # the CLI's --stats gives the predicate counters of the same frame, natively.
 # Valgrind emulates no AVX-512: Embree runs its AVX2 code under it (natively it may pick
 # AVX-512), so its counts are those of the AVX2 kernels.
@@ -31,7 +31,7 @@ trap 'rm -rf "$work"' EXIT
 for a in reference GEARS raytrace embree; do
   case $a in
     embree) sel=raytrace,embree toggle=pn_embree_shadow ;; # some frame must give the G-buffer
-    *) sel=$a toggle=pn_scalar_shadow ;;
+    *) sel=$a toggle=pn_shadow ;;
   esac
   echo "bench_profile: callgrind $a ($scene ${size}x$size)" >&2
   valgrind --tool=callgrind --callgrind-out-file="$work/$a.cg" --collect-atstart=no --toggle-collect="$toggle" \

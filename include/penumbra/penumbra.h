@@ -408,8 +408,9 @@ typedef struct pn_stats {
                                     its filtered lookups, = occ_lookups) */
     uint64_t shadow_blocking;    /* ...of which blocked at least one sample (per pixel;
                                     PN_ALGO_RAYTRACE: blocked rays) */
-    uint64_t shadow_nodes;       /* BVH nodes whose boxes the shadow pass tested (0 for
-                                    GEARS, which walks no BVH) */
+    uint64_t shadow_nodes;       /* BVH nodes whose boxes the shadow pass tested (GEARS,
+                                    which walks no BVH: its cell lists' superchunk and chunk
+                                    boxes tested against a pixel's light frustum) */
     uint32_t lit_pixels;         /* pixels that see a triangle facing the light */
     float cull_tol;              /* last frame, scene units: slack of the conservative culls
                                     (their own rounding; the predicate is exact) */

@@ -2672,7 +2672,7 @@ static void print_report(report *r, const bench_opts *o, FILE *out, const char *
     fprintf(out, "\"necessary / total\" is paper Table 6: triangle-to-pixel assignments that block at least one "
                  "sample, over all assignments the grid made (a GEARS frame with `exact_stats = 1`).\n\n");
     fprintf(out, "Why GEARS is not faster than the reference (issue 14), in instructions, boxes and predicate calls "
-                 "per lit pixel: [gears-vs-reference.md](gears-vs-reference.md) (tools/exact_profile.sh, run by "
+                 "per lit pixel: [docs/gears-vs-reference.md](../gears-vs-reference.md) (tools/exact_profile.sh, run by "
                  "hand).\n\n");
     fprintf(out, "![GEARS speed-ups](speedup.png)\n\n");
     if (!o->quick)

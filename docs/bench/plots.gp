@@ -217,35 +217,35 @@ set output 'gallery/cad_infineon_easypim2b.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 148 ms"
+set title "reference, 166 ms"
 plot 'work/gallery/cad_infineon_easypim2b/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/cad_infineon_easypim2b/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 184 ms"
+set title "GEARS, 205 ms"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 639 ms"
+set title "raytrace, 694 ms"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 222 ms"
+set title "SRT, 239 ms"
 plot 'work/gallery/cad_infineon_easypim2b/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 77.3 ms"
+set title "occtex, 79.2 ms"
 plot 'work/gallery/cad_infineon_easypim2b/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 46.8 ms"
+set title "MCSM, 47.3 ms"
 plot 'work/gallery/cad_infineon_easypim2b/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 109 ms"
+set title "wedges, 118 ms"
 plot 'work/gallery/cad_infineon_easypim2b/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 900 ms"
+set title "Embree visibility, 966 ms"
 plot 'work/gallery/cad_infineon_easypim2b/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.4425% px)"
 plot 'work/gallery/cad_infineon_easypim2b/embree_error.png' binary filetype=png with rgbimage
@@ -302,35 +302,35 @@ set output 'gallery/chess_set.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 84.8 ms"
+set title "reference, 87.2 ms"
 plot 'work/gallery/chess_set/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/chess_set/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 102 ms"
+set title "GEARS, 111 ms"
 plot 'work/gallery/chess_set/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/chess_set/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 856 ms"
+set title "raytrace, 889 ms"
 plot 'work/gallery/chess_set/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/chess_set/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 144 ms"
+set title "SRT, 146 ms"
 plot 'work/gallery/chess_set/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/chess_set/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 76.7 ms"
+set title "occtex, 79.1 ms"
 plot 'work/gallery/chess_set/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/chess_set/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 43.3 ms"
+set title "MCSM, 46.0 ms"
 plot 'work/gallery/chess_set/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/chess_set/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 67.6 ms"
+set title "wedges, 71.7 ms"
 plot 'work/gallery/chess_set/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/chess_set/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 982 ms"
+set title "Embree visibility, 1033 ms"
 plot 'work/gallery/chess_set/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.2148% px)"
 plot 'work/gallery/chess_set/embree_error.png' binary filetype=png with rgbimage
@@ -387,19 +387,19 @@ set output 'gallery/happy_buddha_100k.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 716 ms"
+set title "reference, 807 ms"
 plot 'work/gallery/happy_buddha_100k/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/happy_buddha_100k/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 977 ms"
+set title "GEARS, 1088 ms"
 plot 'work/gallery/happy_buddha_100k/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1963 ms"
+set title "raytrace, 2120 ms"
 plot 'work/gallery/happy_buddha_100k/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 804 ms"
+set title "SRT, 866 ms"
 plot 'work/gallery/happy_buddha_100k/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/SRT error.png' binary filetype=png with rgbimage
@@ -407,15 +407,15 @@ set title "occtex, 78.9 ms"
 plot 'work/gallery/happy_buddha_100k/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 66.8 ms"
+set title "MCSM, 69.2 ms"
 plot 'work/gallery/happy_buddha_100k/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 505 ms"
+set title "wedges, 552 ms"
 plot 'work/gallery/happy_buddha_100k/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1377 ms"
+set title "Embree visibility, 1430 ms"
 plot 'work/gallery/happy_buddha_100k/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8091% px)"
 plot 'work/gallery/happy_buddha_100k/embree_error.png' binary filetype=png with rgbimage
@@ -472,35 +472,35 @@ set output 'gallery/spot.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 203 ms"
+set title "reference, 211 ms"
 plot 'work/gallery/spot/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/spot/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 209 ms"
+set title "GEARS, 216 ms"
 plot 'work/gallery/spot/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/spot/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1134 ms"
+set title "raytrace, 1159 ms"
 plot 'work/gallery/spot/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/spot/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 248 ms"
+set title "SRT, 257 ms"
 plot 'work/gallery/spot/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/spot/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 66.6 ms"
+set title "occtex, 68.6 ms"
 plot 'work/gallery/spot/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/spot/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 50.9 ms"
+set title "MCSM, 52.2 ms"
 plot 'work/gallery/spot/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/spot/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 37.6 ms"
+set title "wedges, 38.9 ms"
 plot 'work/gallery/spot/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/spot/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1097 ms"
+set title "Embree visibility, 1130 ms"
 plot 'work/gallery/spot/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (1.2997% px)"
 plot 'work/gallery/spot/embree_error.png' binary filetype=png with rgbimage
@@ -557,35 +557,35 @@ set output 'gallery/stanford_bunny.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 469 ms"
+set title "reference, 465 ms"
 plot 'work/gallery/stanford_bunny/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_bunny/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 541 ms"
+set title "GEARS, 538 ms"
 plot 'work/gallery/stanford_bunny/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1832 ms"
+set title "raytrace, 1852 ms"
 plot 'work/gallery/stanford_bunny/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 530 ms"
+set title "SRT, 526 ms"
 plot 'work/gallery/stanford_bunny/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 72.1 ms"
+set title "occtex, 71.0 ms"
 plot 'work/gallery/stanford_bunny/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 59.7 ms"
+set title "MCSM, 58.8 ms"
 plot 'work/gallery/stanford_bunny/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 101 ms"
+set title "wedges, 99.4 ms"
 plot 'work/gallery/stanford_bunny/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1428 ms"
+set title "Embree visibility, 1410 ms"
 plot 'work/gallery/stanford_bunny/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.7610% px)"
 plot 'work/gallery/stanford_bunny/embree_error.png' binary filetype=png with rgbimage
@@ -642,35 +642,35 @@ set output 'gallery/stanford_dragon.png'
 set multiplot layout 1,16 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 813 ms"
+set title "reference, 792 ms"
 plot 'work/gallery/stanford_dragon/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_dragon/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 1503 ms"
+set title "GEARS, 1429 ms"
 plot 'work/gallery/stanford_dragon/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2447 ms"
+set title "raytrace, 2341 ms"
 plot 'work/gallery/stanford_dragon/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 948 ms"
+set title "SRT, 919 ms"
 plot 'work/gallery/stanford_dragon/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 115 ms"
+set title "occtex, 111 ms"
 plot 'work/gallery/stanford_dragon/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 108 ms"
+set title "MCSM, 102 ms"
 plot 'work/gallery/stanford_dragon/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 522 ms"
+set title "wedges, 511 ms"
 plot 'work/gallery/stanford_dragon/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1582 ms"
+set title "Embree visibility, 1506 ms"
 plot 'work/gallery/stanford_dragon/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8690% px)"
 plot 'work/gallery/stanford_dragon/embree_error.png' binary filetype=png with rgbimage

@@ -203,6 +203,11 @@ static void brute_compare(const char *name, pn_setup *s, const pn_light *light, 
                 (unsigned long long)st.shadow_blocking, (unsigned long long)necessary);
         CHECK(st.shadow_blocking == necessary);
         CHECK(necessary > 0u);
+        /* With exact statistics no superchunk is skipped but by the frustum test, which
+         * runs on all of them: a pixel whose cell holds n entries tests at least
+         * ceil(n / 64) superchunk boxes (shadow_nodes counts them with the chunks'). */
+        CHECK_MSG(st.shadow_nodes * 64u >= st.gears_assignments, "%s: %llu boxes for %llu assignments", name,
+                  (unsigned long long)st.shadow_nodes, (unsigned long long)st.gears_assignments);
     }
 #endif
     pn_host_close(&h);

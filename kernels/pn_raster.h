@@ -193,7 +193,7 @@ PN_KFN uint32_t pn_raster_rows(const pn_kview *v, PN_CONST float *tris, PN_CONST
 {
     PN_CONST float *p = tris + (size_t)t * 9u;
     pn_poly poly;
-    float lo, hi;
+    float lo, hi, xlo, xhi;
     uint32_t i;
     int32_t y0, y1;
     if (flags[t] & PN_TRI_DEGENERATE) return PN_RASTER_EMPTY;
@@ -202,14 +202,22 @@ PN_KFN uint32_t pn_raster_rows(const pn_kview *v, PN_CONST float *tris, PN_CONST
     if (poly.n == 0u) return PN_RASTER_EMPTY;
     lo = poly.y[0];
     hi = poly.y[0];
+    xlo = poly.x[0];
+    xhi = poly.x[0];
     for (i = 1; i < poly.n; i++) {
         lo = pn_kminf(lo, poly.y[i]);
         hi = pn_kmaxf(hi, poly.y[i]);
+        xlo = pn_kminf(xlo, poly.x[i]);
+        xhi = pn_kmaxf(xhi, poly.x[i]);
     }
-    /* Centre y + 0.5 in [lo, hi]. */
+    /* Centre y + 0.5 in [lo, hi]; and some column's centre in [xlo, xhi]: the columns
+     * pn_raster_tri_setup draws (a triangle between two column centres, common among
+     * the dense meshes' sub-texel triangles, is set up nowhere). */
     y0 = pn_kceil_clamp(lo - 0.5f, 0, (int32_t)v->height);
     y1 = pn_kfloor_clamp(hi - 0.5f, -1, (int32_t)v->height - 1);
     if (y0 > y1) return PN_RASTER_EMPTY;
+    if (pn_kceil_clamp(xlo - 0.5f, 0, (int32_t)v->width) > pn_kfloor_clamp(xhi - 0.5f, -1, (int32_t)v->width - 1))
+        return PN_RASTER_EMPTY;
     return (uint32_t)y0 | ((uint32_t)y1 << 16);
 }
 

@@ -38,6 +38,7 @@ typedef ulong uint64_t;
 #define pn_kfabs(x) fabs(x)
 #define PN_KINF INFINITY
 #define pn_katomic_add(p, v) atomic_add((p), (v))
+#define pn_kclz(x) clz((uint)(x))
 /* The OpenCL port passes the host's configuration as build options (-D...), so both
  * ports size their private arrays alike. */
 #if !defined(PN_MASK_WORDS_MAX) || !defined(PN_BVH_STACK) || !defined(PN_ENABLE_REFERENCE) || \
@@ -70,6 +71,9 @@ typedef ulong uint64_t;
  * library call, so it stays freestanding. Relaxed: only the sum matters, and the caller's
  * parallel-for joins before anything reads it. */
 #define pn_katomic_add(p, v) __atomic_fetch_add((p), (v), __ATOMIC_RELAXED)
+/* Leading zero bits of a non-zero uint32_t (OpenCL's clz; lzcnt or bsr on x86, clz on
+ * ARMv7-M): no library call either. */
+#define pn_kclz(x) ((uint32_t)__builtin_clz((unsigned)(x)))
 #endif
 
 #endif

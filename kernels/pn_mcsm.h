@@ -244,7 +244,8 @@ typedef struct pn_mc_ctx {
     const pn_kmc *mc;
     PN_CONST float *nb;    /* N-buffer levels */
     PN_CONST float *depth; /* G-buffer depth (third layer) */
-    float tx, ty;          /* the layers' window half-tans */
+    float tx, ty;          /* the layers' window half-tans (pn_project_camera's factors) */
+    float hw, hh;          /* half the layers' size in texels */
     uint32_t steps;        /* search steps so far */
     uint32_t capped;       /* searches stopped at the cap */
 } pn_mc_ctx;
@@ -259,10 +260,33 @@ PN_KFN pn_v3 pn_mc_at(const pn_mc_ray *r, float t)
     return pn_v3_make(r->xs + t * (r->xe - r->xs), r->ys + t * (r->ye - r->ys), t * r->ze);
 }
 
-/* Image of a light-frame point in the layers, continuous texel coordinates. */
+/* The per-pixel context over view, light view lv, light L, parameters mc, the N-buffer nb
+ * and the G-buffer's depth. */
+PN_KFN void pn_mc_ctx_init(pn_mc_ctx *m, const pn_kview *view, const pn_kview *lv, const pn_klight *L,
+                           const pn_kmc *mc, PN_CONST float *nb, PN_CONST float *depth)
+{
+    m->view = view;
+    m->lv = lv;
+    m->L = L;
+    m->mc = mc;
+    m->nb = nb;
+    m->depth = depth;
+    m->tx = lv->tan_half * lv->aspect;
+    m->ty = lv->tan_half;
+    m->hw = 0.5f * (float)lv->width;
+    m->hh = 0.5f * (float)lv->height;
+    m->steps = 0u;
+    m->capped = 0u;
+}
+
+/* Image of a light-frame point in the layers, continuous texel coordinates:
+ * pn_project_camera of (p.x, p.y, p.z + d) in lv, the same operations on factors
+ * computed once. */
 PN_KFN void pn_mc_proj(const pn_mc_ctx *m, pn_v3 p, float *px, float *py)
 {
-    pn_project_camera(m->lv, pn_v3_make(p.x, p.y, p.z + m->mc->d), px, py);
+    float z = p.z + m->mc->d;
+    *px = (p.x / (z * m->tx) + 1.0f) * m->hw;
+    *py = (1.0f - p.y / (z * m->ty)) * m->hh;
 }
 
 /* Level-0 texel holding a light-frame point (clamped to the map); *outside: the point's

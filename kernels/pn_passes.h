@@ -486,16 +486,7 @@ PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
         PN_POOL(float, vis)[pix] = 0.0f;
         return;
     }
-    m.view = &K->view;
-    m.lv = &K->lview;
-    m.L = &K->light;
-    m.mc = &K->mc;
-    m.nb = PN_POOL(const float, mc_nb);
-    m.depth = PN_POOL(const float, depth);
-    m.tx = K->lview.tan_half * K->lview.aspect;
-    m.ty = K->lview.tan_half;
-    m.steps = 0u;
-    m.capped = 0u;
+    pn_mc_ctx_init(&m, &K->view, &K->lview, &K->light, &K->mc, PN_POOL(const float, mc_nb), PN_POOL(const float, depth));
     PN_POOL(float, vis)[pix] = pn_mc_pixel(&m, pix % W, pix / W, nrm, O, &cls, &rays);
     c.lit = 1u;
     c.candidates = rays;

@@ -41,7 +41,7 @@ PN_KFN int pn_gears_origin(const pn_klight *L, PN_CONST uint32_t *tri_id, PN_CON
  * its origins into row_box[y * 8 ..]. */
 PN_KFN void pn_gears_origins_row(const pn_klight *L, uint32_t width, uint32_t y, PN_CONST uint32_t *tri_id,
                                  PN_CONST float *pos, PN_CONST float *nrm, PN_GLOBAL float *vis,
-                                 PN_GLOBAL float *row_box, PN_GLOBAL pn_shadow_counters *cnt)
+                                 PN_GLOBAL float *row_box, PN_GLOBAL pn_row_counters *cnt)
 {
     float b[6];
     uint32_t x, i, lit = 0;
@@ -58,10 +58,10 @@ PN_KFN void pn_gears_origins_row(const pn_klight *L, uint32_t width, uint32_t y,
         pn_box3_add(b, O);
     }
     for (i = 0; i < 6u; i++) row_box[(size_t)y * 8u + i] = b[i];
-    cnt[y].candidates = 0u;
-    cnt[y].blocking = 0u;
-    cnt[y].lit = lit;
-    cnt[y].overflow = 0u;
+    cnt[y].c.candidates = 0u;
+    cnt[y].c.blocking = 0u;
+    cnt[y].c.lit = lit;
+    cnt[y].c.overflow = 0u;
 }
 
 /* Row y: the 2-D box of its origins projected by the area light's grid camera. */

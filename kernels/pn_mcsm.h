@@ -115,12 +115,14 @@
  * for the rounding of the clip's parameters (the window is at most 256 times narrower than
  * the light's image, so a relative error of 1e-6 moves an image point by well under one). */
 #define PN_MC_CLIP_TEXELS 4.0f
-/* Per-row class counters (pool mc_words, PN_MC_WORDS per row). */
+/* Per-row class counters (pool mc_words, PN_MC_WORDS used of PN_MC_ROW_WORDS per row: a
+ * row's words fill a cache line of their own, like pn_row_counters). */
 #define PN_MC_WORD_LIT 0u
 #define PN_MC_WORD_UMBRA 1u
 #define PN_MC_WORD_PENUMBRA 2u
 #define PN_MC_WORD_CAPPED 3u
 #define PN_MC_WORDS 4u
+#define PN_MC_ROW_WORDS 16u
 
 /* ---- The sample hash: Appendix A's reduced MD5 ------------------------------------------- */
 

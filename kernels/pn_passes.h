@@ -16,7 +16,7 @@
  *          cheap items, few for items that walk a BVH or a cell list. The per-pixel shadow
  *          passes take 1024 pixels a task (two rows at 512 wide): each pixel adds into its
  *          row's counters atomically, and two threads in one row fight over that row's cache
- *          line. Measured at 512x512 on 2 threads against 64 a task: MCSM's pixel pass 16%
+ *          line (pn_row_counters gives every row its own). Measured at 512x512 on 2 threads against 64 a task: MCSM's pixel pass 16%
  *          faster on chess_set; the reference 1% and GEARS 3% faster there, 7-8% on square,
  *          where a pixel costs least.
  *
@@ -136,7 +136,7 @@ PN_KFN void pn_pixel_shadow(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
                                PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), &K->light, &c);
     (void)rays;
     PN_POOL(float, vis)[pix] = v;
-    pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
+    pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);
 }
 
 #if PN_ENABLE_REFERENCE
@@ -160,7 +160,7 @@ PN_KFN void pn_e_gears_origins(PN_GLOBAL uint8_t *A, const pn_kpools *P, const p
 {
     pn_gears_origins_row(&K->light, K->view.width, y, PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos),
                          PN_POOL(const float, nrm), PN_POOL(float, vis), PN_POOL(float, row_box),
-                         PN_POOL(pn_shadow_counters, counters));
+                         PN_POOL(pn_row_counters, counters));
 }
 
 /* Row: the box of its origins projected by the area light's grid camera (face 0). */
@@ -250,7 +250,7 @@ PN_KFN void pn_e_gears_masks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
                              PN_POOL(const pn_kbvh_node, nodes), pix, &c, &v))
         return;
     PN_POOL(float, vis)[pix] = v;
-    pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
+    pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);
 }
 #endif
 
@@ -345,7 +345,7 @@ PN_KFN void pn_e_srt_classify(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn
                         PN_POOL(const uint32_t, srt_tile_mask), pix, &v, &lit);
     PN_POOL(float, vis)[pix] = v;
     c.lit = lit;
-    pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
+    pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);
 }
 
 /* Pixel: its place in the dense PIP list (pip_off is the flags' exclusive prefix sum). */
@@ -366,7 +366,7 @@ PN_KFN void pn_e_srt_exact(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kp
         PN_POOL(const uint32_t, tri_id)[pix], PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
         PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), &K->light, &c);
     c.lit = 0u; /* counted by the classification */
-    pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
+    pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);
 }
 #endif
 
@@ -420,7 +420,7 @@ PN_KFN void pn_e_occ_init(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
                                pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u), &K->light, &O);
     PN_POOL(float, vis)[pix] = (id == PN_NO_PIXEL_TRIANGLE || lit) ? 1.0f : 0.0f;
     c.lit = lit ? 1u : 0u;
-    pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
+    pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);
 }
 
 /* Pixel: slice K->occ.slice's occlusion combined into its visibility. */
@@ -453,7 +453,7 @@ PN_KFN void pn_e_occ_finish(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
     pn_horizon_mask(&H, &K->light, m);
     PN_POOL(float, vis)[pix] = PN_POOL(const float, vis)[pix] * pn_mask_visibility(m, K->light.k);
     c.candidates = pn_occ_lookups(&K->lview, &K->light, &K->occ, O);
-    if (c.candidates) pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / K->view.width, &c);
+    if (c.candidates) pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);
 }
 #endif
 
@@ -479,7 +479,7 @@ PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
 {
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
     uint32_t id = PN_POOL(const uint32_t, tri_id)[pix], W = K->view.width, cls, rays;
-    PN_GLOBAL uint32_t *words = PN_POOL(uint32_t, mc_words) + (size_t)(pix / W) * PN_MC_WORDS;
+    PN_GLOBAL uint32_t *words = PN_POOL(uint32_t, mc_words) + (size_t)(pix / W) * PN_MC_ROW_WORDS;
     pn_v3 nrm, O;
     pn_mc_ctx m;
     if (id == PN_NO_PIXEL_TRIANGLE) {
@@ -496,7 +496,7 @@ PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     c.lit = 1u;
     c.candidates = rays;
     c.nodes = m.steps;
-    pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / W, &c);
+    pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / W].c, &c);
     if (cls != PN_MC_CLASS_NONE) pn_katomic_add(words + (cls - 1u), 1u);
     if (m.capped) pn_katomic_add(words + PN_MC_WORD_CAPPED, m.capped);
 }
@@ -584,7 +584,7 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     }
     PN_POOL(float, vis)[pix] = v;
     c.lit = 1u;
-    pn_counters_add(PN_POOL(pn_shadow_counters, counters) + pix / W, &c);
+    pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / W].c, &c);
 }
 #endif
 

@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "pn_internal.h"
-#include "pn_reference.h" /* pn_shadow_counters */
+#include "pn_reference.h" /* pn_row_counters */
 #if PN_ENABLE_GEARS
 #include "pn_gears_pass.h" /* pn_kfaces */
 #endif
@@ -26,6 +26,9 @@ static int pn_bump(uint64_t *off, uint64_t count, uint64_t elem, size_t *out)
     return 1;
 }
 
+/* A row's counters fill one cache line (kernels/pn_reference.h). */
+typedef char pn_row_counters_is_64[sizeof(pn_row_counters) == 64u ? 1 : -1];
+
 /* The frame pools, in allocation order; pn_frame.c allocates exactly these (any frame
  * within the limits fits, because each is at most its size here). */
 static int pn_frame_pools_common(const pn_limits *l, uint64_t *off)
@@ -40,7 +43,7 @@ static int pn_frame_pools_common(const pn_limits *l, uint64_t *off)
           pn_bump(off, px, 4u, &dummy) &&                     /* rgba */
           pn_bump(off, l->max_triangles, sizeof(uint32_t), &dummy) && /* raster rows */
           pn_bump(off, PN_RASTER_CHUNKS(l->max_triangles), sizeof(uint32_t), &dummy) && /* chunks */
-          pn_bump(off, l->max_height, sizeof(pn_shadow_counters), &dummy)))
+          pn_bump(off, l->max_height, sizeof(pn_row_counters), &dummy)))
         return 0;
     return 1;
 }
@@ -134,7 +137,7 @@ static int pn_mc_pools(const pn_limits *l, uint64_t *off)
     return pn_bump(off, l->max_height, 4u * PN_LVIEW_BOX_FLOATS, &dummy) &&     /* row bounds */
            pn_bump(off, (uint64_t)pn_occ_levels((uint32_t)r) * r * r, 12u, &dummy) && /* N-buffer */
            pn_bump(off, px, 4u, &dummy) &&                                     /* blur buffer */
-           pn_bump(off, l->max_height, 16u, &dummy);                           /* counters */
+           pn_bump(off, l->max_height, 64u, &dummy);                           /* counters */
 #else
     (void)l;
     (void)off;

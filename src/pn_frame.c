@@ -318,7 +318,7 @@ static pn_status pn_gbuffer(pn_frame_state *fs)
 }
 
 /* The shadow pass of the frame's algorithm. Every algorithm leaves the visibility buffer
- * and one pn_shadow_counters per row (zeroed here first) for the host. Kept out of line
+ * and one pn_row_counters per row (zeroed here first) for the host. Kept out of line
  * (one call a frame): the profiling scripts (tools/bench_profile.sh, tools/exact_profile.sh)
  * switch callgrind's collection on by this function's name. */
 #if defined(__GNUC__)
@@ -328,7 +328,7 @@ static pn_status pn_shadow(pn_frame_state *fs)
 {
     uint32_t npix = fs->width * fs->height;
     pn_status st;
-    if ((st = pn_dev_fill(fs, fs->counters, fs->height * (uint32_t)(sizeof(pn_shadow_counters) / 4u), 0u)) != PN_OK)
+    if ((st = pn_dev_fill(fs, fs->counters, fs->height * (uint32_t)(sizeof(pn_row_counters) / 4u), 0u)) != PN_OK)
         return st;
     switch (fs->algo) {
 #if PN_ENABLE_REFERENCE
@@ -355,7 +355,7 @@ static pn_status pn_shadow(pn_frame_state *fs)
     default: return pn_fail(fs->ctx, PN_E_UNSUPPORTED, "algorithm %u not available", fs->algo);
     }
     if (st != PN_OK || (st = pn_dev_to_host(fs, fs->vis, (size_t)npix * sizeof(float))) != PN_OK) return st;
-    return pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_shadow_counters));
+    return pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_row_counters));
 }
 
 static pn_status pn_shade(pn_frame_state *fs)
@@ -466,7 +466,7 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
         !(fs.rows = (uint32_t *)pn_frame_alloc(ctx, ctx->tri_count, sizeof(uint32_t), "raster rows")) ||
         !(fs.chunks = (uint32_t *)pn_frame_alloc(ctx, PN_RASTER_CHUNKS(ctx->tri_count), sizeof(uint32_t),
                                                  "raster chunks")) ||
-        !(fs.counters = pn_frame_alloc(ctx, opt->height, sizeof(pn_shadow_counters), "shadow counters")))
+        !(fs.counters = pn_frame_alloc(ctx, opt->height, sizeof(pn_row_counters), "shadow counters")))
         return PN_E_POOL_EXHAUSTED;
     pn_frame_pool_offsets(&fs);
 
@@ -478,14 +478,14 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     ctx->pass_ns[PN_PASS_SHADOW] = pn_dev_timestamp(&fs) - t0;
     {
         /* Integer sums of the rows' counters: any port, any schedule alike. */
-        const pn_shadow_counters *cnt = (const pn_shadow_counters *)fs.counters;
+        const pn_row_counters *cnt = (const pn_row_counters *)fs.counters;
         uint32_t y;
         for (y = 0; y < fs.height; y++) {
-            fs.candidates += cnt[y].candidates;
-            fs.blocking += cnt[y].blocking;
-            fs.nodes += cnt[y].nodes;
-            fs.lit += cnt[y].lit;
-            fs.overflow += cnt[y].overflow;
+            fs.candidates += cnt[y].c.candidates;
+            fs.blocking += cnt[y].c.blocking;
+            fs.nodes += cnt[y].c.nodes;
+            fs.lit += cnt[y].c.lit;
+            fs.overflow += cnt[y].c.overflow;
         }
     }
     if (fs.overflow)

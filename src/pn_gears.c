@@ -194,7 +194,7 @@ static uint32_t pn_gears_cameras(pn_context *ctx, const pn_frame_state *fs, pn_g
     uint32_t y, f, G = g->faces->res;
     pn_box3_empty(obox);
     for (y = 0; y < fs->height; y++) {
-        g->lit += ((const pn_shadow_counters *)fs->counters)[y].lit;
+        g->lit += ((const pn_row_counters *)fs->counters)[y].c.lit;
         pn_box_join_n(obox, g->row_box + (size_t)y * 8u, 6u);
     }
     if (g->lit == 0u) return 0;
@@ -374,7 +374,7 @@ pn_status pn_gears_frame(pn_frame_state *fs)
     /* A.1/A.2: origins, cameras, grid bounds, pixel cells. */
     if ((st = pn_dev_run(fs, PN_K_GEARS_ORIGINS, H)) != PN_OK ||
         (st = pn_dev_to_host(fs, g.row_box, (size_t)H * 32u)) != PN_OK ||
-        (st = pn_dev_to_host(fs, fs->counters, (size_t)H * sizeof(pn_shadow_counters))) != PN_OK)
+        (st = pn_dev_to_host(fs, fs->counters, (size_t)H * sizeof(pn_row_counters))) != PN_OK)
         return st;
     if (!pn_gears_cameras(ctx, fs, &g)) return PN_OK;
     if ((st = pn_dev_to_device(fs, g.faces, sizeof(pn_kfaces))) != PN_OK) return st;

@@ -55,7 +55,7 @@ typedef struct pn_frame_state {
     uint8_t *rgba;      /* 4 bytes per pixel, r g b a */
     uint32_t *rows;     /* rasterizer set-up: pixel-row range per triangle */
     uint32_t *chunks;   /* the band walk's: pixel-row range per chunk of the BVH's leaf order */
-    void *counters;     /* per-row shadow counters (pn_shadow_counters[height]) */
+    void *counters;     /* per-row shadow counters (pn_row_counters[height]) */
     uint64_t candidates, blocking, nodes;
     uint32_t lit, overflow;
 } pn_frame_state;

@@ -13,7 +13,8 @@
 typedef char pn_mc_consts_agree[PN_MC_S_LINEAR == PN_MC_SEARCH_LINEAR && PN_MC_S_HIER == PN_MC_SEARCH_HIER &&
                                         PN_MC_F_NO_BIAS == PN_MC_NO_BIAS && PN_MC_F_NO_CLASSIFY == PN_MC_NO_CLASSIFY &&
                                         PN_MC_RAYS_MAX == 8u && PN_MC_BLUR_MAX + 1u <= 12u &&
-                                        PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS && PN_MC_WORDS == 4u
+                                        PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS && PN_MC_WORDS == 4u &&
+                                        PN_MC_ROW_WORDS == 16u /* 64 bytes a row in pn_mc_pools (src/pn_arena.c) */
                                     ? 1
                                     : -1];
 
@@ -21,7 +22,7 @@ typedef struct pn_mc_pools {
     float *box;      /* [height * PN_LVIEW_BOX]: row bounds (kernels/pn_lview.h) */
     float *nb;       /* [levels * res^2 * PN_NB_MM]: the N-buffer, level 0 the layers */
     float *tmp;      /* [width * height]: the blur's other buffer */
-    uint32_t *words; /* [height * PN_MC_WORDS]: class counters per row */
+    uint32_t *words; /* [height * PN_MC_ROW_WORDS]: class counters per row */
 } pn_mc_pools;
 
 static pn_status pn_mc_begin(pn_frame_state *fs, pn_mc_pools *s, uint32_t res)
@@ -33,7 +34,7 @@ static pn_status pn_mc_begin(pn_frame_state *fs, pn_mc_pools *s, uint32_t res)
     if (!(s->box = (float *)pn_frame_alloc(ctx, fs->height, 4u * PN_LVIEW_BOX_FLOATS, "mcsm row bounds")) ||
         !(s->nb = (float *)pn_frame_alloc(ctx, (size_t)pn_occ_levels(res) * res * res, 4u * PN_NB_MM, "mcsm N-buffer")) ||
         !(s->tmp = (float *)pn_frame_alloc(ctx, px, 4u, "mcsm blur buffer")) ||
-        !(s->words = (uint32_t *)pn_frame_alloc(ctx, fs->height, 4u * PN_MC_WORDS, "mcsm counters")))
+        !(s->words = (uint32_t *)pn_frame_alloc(ctx, fs->height, 4u * PN_MC_ROW_WORDS, "mcsm counters")))
         return PN_E_POOL_EXHAUSTED;
     P->lview_box = pn_dev_off(ctx, s->box);
     P->mc_nb = pn_dev_off(ctx, s->nb);
@@ -78,7 +79,7 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
     pn_mc_weights(mc);
     ctx->mc.map = res;
 
-    if ((st = pn_dev_fill(fs, s.words, fs->height * PN_MC_WORDS, 0u)) != PN_OK ||
+    if ((st = pn_dev_fill(fs, s.words, fs->height * PN_MC_ROW_WORDS, 0u)) != PN_OK ||
         (st = pn_dev_run(fs, PN_K_LVIEW_BOUNDS, fs->height)) != PN_OK ||
         (st = pn_dev_to_host(fs, s.box, (size_t)fs->height * 4u * PN_LVIEW_BOX)) != PN_OK)
         return st;
@@ -116,12 +117,12 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
             return st;
         ctx->mc.ns_blur = pn_dev_timestamp(fs) - t0;
     }
-    if ((st = pn_dev_to_host(fs, s.words, (size_t)fs->height * 4u * PN_MC_WORDS)) != PN_OK ||
-        (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_shadow_counters))) != PN_OK)
+    if ((st = pn_dev_to_host(fs, s.words, (size_t)fs->height * 4u * PN_MC_ROW_WORDS)) != PN_OK ||
+        (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_row_counters))) != PN_OK)
         return st;
     for (y = 0; y < fs->height; y++) {
-        const uint32_t *wd = s.words + (size_t)y * PN_MC_WORDS;
-        const pn_shadow_counters *c = (const pn_shadow_counters *)fs->counters + y;
+        const uint32_t *wd = s.words + (size_t)y * PN_MC_ROW_WORDS;
+        const pn_shadow_counters *c = &((const pn_row_counters *)fs->counters)[y].c;
         ctx->mc.lit += wd[PN_MC_WORD_LIT];
         ctx->mc.umbra += wd[PN_MC_WORD_UMBRA];
         ctx->mc.penumbra += wd[PN_MC_WORD_PENUMBRA];

@@ -178,10 +178,10 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
         ctx->occ.ns_lookup += t1 - t2;
     }
     if ((st = pn_dev_run(fs, PN_K_OCC_FINISH, npix)) != PN_OK ||
-        (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_shadow_counters))) != PN_OK)
+        (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_row_counters))) != PN_OK)
         return st;
     ctx->occ.ns_lookup += pn_dev_timestamp(fs) - t1;
-    for (y = 0; y < fs->height; y++) lookups += ((const pn_shadow_counters *)fs->counters)[y].candidates;
+    for (y = 0; y < fs->height; y++) lookups += ((const pn_row_counters *)fs->counters)[y].c.candidates;
     ctx->occ.lookups = lookups;
     return PN_OK;
 }

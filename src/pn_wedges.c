@@ -125,11 +125,11 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
     ctx->wg.ns_binning = t1 - t0;
     t0 = t1;
     if ((st = pn_dev_run(fs, PN_K_WG_PIXEL, npix)) != PN_OK ||
-        (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_shadow_counters))) != PN_OK)
+        (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_row_counters))) != PN_OK)
         return st;
     ctx->wg.ns_pixels = pn_dev_timestamp(fs) - t0;
     for (y = 0; y < fs->height; y++) {
-        const pn_shadow_counters *c = (const pn_shadow_counters *)fs->counters + y;
+        const pn_shadow_counters *c = &((const pn_row_counters *)fs->counters)[y].c;
         ctx->wg.evaluated += c->candidates;
         ctx->wg.touched += c->blocking;
         ctx->wg.hard_blockers += c->nodes;

@@ -80,7 +80,7 @@
  * memory cost (the thesis says so, and limits its maps to 1024): 12 bytes per texel per
  * level (min near, max far, max near as floats), floor(log2 res) + 1 levels, level 0 being
  * the layers themselves: 30 MiB at 512, 132 MiB at 1024. Plus 4 bytes per pixel (the
- * blur's other buffer) and 16 per row. Range 8 .. 2048. */
+ * blur's other buffer) and 64 per row. Range 8 .. 2048. */
 #ifndef PN_MCSM_MAP_MAX
 #define PN_MCSM_MAP_MAX 512u
 #endif

@@ -146,7 +146,7 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
  * PN_MAX_WIDTH, PN_MAX_HEIGHT)]. A test checks it never falls below pn_arena_size. */
 #define PN_ARENA_BYTES_MAX(t, w, h)                                                         \
     ((size_t)(17u * 1024u) + (size_t)(t) * 112u + (size_t)(w) * (size_t)(h) * 40u +          \
-     (size_t)(h) * 16u + 32u * (size_t)PN_ARENA_ALIGN + PN_GEARS_BYTES_MAX(t, w, h) +      \
+     (size_t)(h) * 64u + 32u * (size_t)PN_ARENA_ALIGN + PN_GEARS_BYTES_MAX(t, w, h) +      \
      PN_SRT_BYTES_MAX(t, w, h) + PN_OCCTEX_BYTES_MAX(t, w, h) + PN_MCSM_BYTES_MAX(t, w, h) +     \
      PN_WEDGES_BYTES_MAX(t, w, h) + PN_BVH_BYTES_MAX(t))
 /* The split BVH references a context of t triangles reserves by default (limits.bvh_refs
@@ -174,10 +174,10 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
 #endif
 #if PN_ENABLE_MCSM
 /* Monte Carlo shadow-map frame pools at the default map maximum: per texel 12 per N-buffer
- * level (12 bound floor(log2 2048) + 1 = 12); per pixel 4; per row 32 + 16; the rest 64. */
+ * level (12 bound floor(log2 2048) + 1 = 12); per pixel 4; per row 32 + 64; the rest 64. */
 #define PN_MCSM_BYTES_MAX(t, w, h)                                                          \
     ((size_t)PN_MCSM_MAP_MAX * (size_t)PN_MCSM_MAP_MAX * 144u + (size_t)(w) * (size_t)(h) * 4u + \
-     (size_t)(h) * 48u + 64u)
+     (size_t)(h) * 96u + 64u)
 #else
 #define PN_MCSM_BYTES_MAX(t, w, h) ((size_t)0)
 #endif

@@ -693,4 +693,13 @@ PN_KFN void pn_mc_blur_pixel(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t 
     dst[pix] = sum / wsum;
 }
 
+/* Row y of one direction of the blur, pixel by pixel. */
+PN_KFN void pn_mc_blur_row(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t y, uint32_t vertical,
+                           PN_CONST uint32_t *ids, PN_CONST float *depth, PN_CONST float *nrm, PN_CONST float *src,
+                           PN_GLOBAL float *dst)
+{
+    uint32_t x;
+    for (x = 0; x < W; x++) pn_mc_blur_pixel(mc, W, H, x, y, vertical, ids, depth, nrm, src, dst);
+}
+
 #endif

@@ -113,7 +113,8 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
     ctx->mc.ns_rays = t1 - t0;
     t0 = t1;
     if (front && mc->blur > 0u) {
-        if ((st = pn_dev_run(fs, PN_K_MC_BLUR_H, npix)) != PN_OK || (st = pn_dev_run(fs, PN_K_MC_BLUR_V, npix)) != PN_OK)
+        if ((st = pn_dev_run(fs, PN_K_MC_BLUR_H, fs->height)) != PN_OK ||
+            (st = pn_dev_run(fs, PN_K_MC_BLUR_V, fs->height)) != PN_OK)
             return st;
         ctx->mc.ns_blur = pn_dev_timestamp(fs) - t0;
     }

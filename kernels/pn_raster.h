@@ -24,6 +24,9 @@
 #include "pn_ktypes.h"
 
 #define PN_RASTER_EMPTY 0xFFFFFFFFu
+/* Pixel centres up to which the rows pass tests a triangle's coverage itself
+ * (pn_raster_rows). */
+#define PN_RASTER_ROWS_TEST 4u
 
 /* Primary ray direction of pixel (x, y) (CLI conventions) scaled to unit depth along the
  * view axis f, and the unit one. */
@@ -195,7 +198,7 @@ PN_KFN uint32_t pn_raster_rows(const pn_kview *v, PN_CONST float *tris, PN_CONST
     pn_poly poly;
     float lo, hi, xlo, xhi;
     uint32_t i;
-    int32_t y0, y1;
+    int32_t y0, y1, x0, x1;
     if (flags[t] & PN_TRI_DEGENERATE) return PN_RASTER_EMPTY;
     pn_poly_make(v, pn_v3_make(p[0], p[1], p[2]), pn_v3_make(p[3], p[4], p[5]),
                  pn_v3_make(p[6], p[7], p[8]), &poly);
@@ -216,8 +219,26 @@ PN_KFN uint32_t pn_raster_rows(const pn_kview *v, PN_CONST float *tris, PN_CONST
     y0 = pn_kceil_clamp(lo - 0.5f, 0, (int32_t)v->height);
     y1 = pn_kfloor_clamp(hi - 0.5f, -1, (int32_t)v->height - 1);
     if (y0 > y1) return PN_RASTER_EMPTY;
-    if (pn_kceil_clamp(xlo - 0.5f, 0, (int32_t)v->width) > pn_kfloor_clamp(xhi - 0.5f, -1, (int32_t)v->width - 1))
-        return PN_RASTER_EMPTY;
+    x0 = pn_kceil_clamp(xlo - 0.5f, 0, (int32_t)v->width);
+    x1 = pn_kfloor_clamp(xhi - 0.5f, -1, (int32_t)v->width - 1);
+    if (x0 > x1) return PN_RASTER_EMPTY;
+    if ((x1 - x0 + 1) * (y1 - y0 + 1) <= (int32_t)PN_RASTER_ROWS_TEST) {
+        /* A few centres to look at (a small triangle): test them with the set-up's own
+         * polygon and edge functions, and keep only the rows of those it covers, or none:
+         * every band then skips it, or sets it up once. */
+        pn_edge2 e[4];
+        int32_t x, y, c0 = y1 + 1, c1 = y0 - 1;
+        pn_edges_make(&poly, e);
+        for (y = y0; y <= y1; y++)
+            for (x = x0; x <= x1; x++)
+                if (pn_edges_inside(e, poly.n, (float)x + 0.5f, (float)y + 0.5f)) {
+                    c0 = pn_kmini(c0, y);
+                    c1 = pn_kmaxi(c1, y);
+                }
+        if (c0 > c1) return PN_RASTER_EMPTY;
+        y0 = c0;
+        y1 = c1;
+    }
     return (uint32_t)y0 | ((uint32_t)y1 << 16);
 }
 

@@ -90,7 +90,8 @@ typedef struct pn_kmc {
     float sfac;       /* res |U| / tx: a region's side in texels is sfac (z - zb) / (z (zb + d)) */
     float bias_k;     /* adaptive bias (eq. 3.2) per unit of (z + d) / cos */
     float blur_depth; /* blur: a neighbour's weight / (1 + |depth - centre| blur_depth / centre) */
-    float pad0, pad1, pad2, pad3;
+    float whole[3];   /* the N-buffer's bound over the whole map (pn_nb_mm_rect), once a frame */
+    float pad3;
     uint32_t res;     /* texels per axis */
     uint32_t levels;  /* N-buffer levels: floor(log2 res) + 1 */
     uint32_t level;   /* the level an N-buffer pass builds */

@@ -553,9 +553,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
          * E's segment to the light centre at that depth), its smallest near depth the next
          * zb, twice, from the whole map's. */
         uint32_t it;
-        float zb;
-        pn_nb_mm_rect(m->nb, mc->res, mc->levels, 0, 0, (int32_t)mc->res, (int32_t)mc->res, q);
-        zb = q[0];
+        float zb = mc->whole[0]; /* the whole map's, src/pn_mcsm.c */
         for (it = 0; it < 2u && zb < ze; it++) {
             float s = mc->sfac * (ze - zb) / (ze * (zb + mc->d)), cx, cy, fr = zb / ze;
             pn_mc_proj(m, pn_v3_make(E.x * fr, E.y * fr, zb), &cx, &cy);

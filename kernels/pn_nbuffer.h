@@ -140,26 +140,25 @@ PN_KFN void pn_nb_mm_box(PN_CONST float *lv, uint32_t res, uint32_t l, int32_t X
     pn_nb_mm_add(v, lv + i * PN_NB_MM);
 }
 
-/* Bounds over the texel rectangle [x0, x1) x [y0, y1) (clamped to the texture; empty: the
- * identity) from four boxes of the smallest level l with 2^(l+1) >= its longer side (at
- * most the top level, whose four boxes cover the texture): a superset, so the bounds are
+/* The four boxes that bound the texel rectangle [x0, x1) x [y0, y1) (clamped to the
+ * texture): offsets in floats of their texels in lv, those of the smallest level l with
+ * 2^(l+1) >= the longer side (at most the top level, whose four boxes cover the texture);
+ * 0 when the clamped rectangle is empty, else 4. A superset, so the bounds are
  * conservative; exact when both sides are 2^l .. 2^(l+1). The level from a leading-zero
- * count, and the boxes' two columns and two rows indexed once (the searches' hot path:
- * a quarter of the Monte Carlo pixel pass went to the level's loop and the four boxes'
+ * count, and the boxes' two columns and two rows indexed once (the searches' hot path: a
+ * quarter of the Monte Carlo pixel pass went to the level's loop and the four boxes'
  * separate index arithmetic). */
-PN_KFN void pn_nb_mm_rect(PN_CONST float *lv, uint32_t res, uint32_t levels, int32_t x0, int32_t y0, int32_t x1,
-                          int32_t y1, float *v)
+PN_KFN uint32_t pn_nb_mm_rect_at(uint32_t res, uint32_t levels, int32_t x0, int32_t y0, int32_t x1, int32_t y1,
+                                 size_t *at)
 {
     int32_t m, s;
     uint32_t l;
-    size_t ca, cb, ra, rb;
-    PN_CONST float *L;
-    pn_nb_mm_empty(v);
+    size_t ca, cb, ra, rb, L;
     x0 = pn_kmaxi(x0, 0);
     y0 = pn_kmaxi(y0, 0);
     x1 = pn_kmini(x1, (int32_t)res);
     y1 = pn_kmini(y1, (int32_t)res);
-    if (x1 <= x0 || y1 <= y0) return;
+    if (x1 <= x0 || y1 <= y0) return 0u;
     m = pn_kmaxi(x1 - x0, y1 - y0);
     /* The smallest l with 2 << l >= m: 0 up to m = 2, else ceil(log2 m) - 1. */
     l = m <= 2 ? 0u : 31u - pn_kclz((uint32_t)(m - 1));
@@ -169,11 +168,23 @@ PN_KFN void pn_nb_mm_rect(PN_CONST float *lv, uint32_t res, uint32_t levels, int
     cb = (size_t)pn_nb_index(l, pn_kmaxi(x1 - s, x0), res) * PN_NB_MM;
     ra = (size_t)pn_nb_index(l, y0, res) * res * PN_NB_MM;
     rb = (size_t)pn_nb_index(l, pn_kmaxi(y1 - s, y0), res) * res * PN_NB_MM;
-    L = lv + (size_t)l * res * res * PN_NB_MM;
-    pn_nb_mm_add(v, L + ra + ca);
-    pn_nb_mm_add(v, L + ra + cb);
-    pn_nb_mm_add(v, L + rb + ca);
-    pn_nb_mm_add(v, L + rb + cb);
+    L = (size_t)l * res * res * PN_NB_MM;
+    at[0] = L + ra + ca;
+    at[1] = L + ra + cb;
+    at[2] = L + rb + ca;
+    at[3] = L + rb + cb;
+    return 4u;
+}
+
+/* Bounds over the texel rectangle [x0, x1) x [y0, y1) from pn_nb_mm_rect_at's boxes (empty:
+ * the identity). */
+PN_KFN void pn_nb_mm_rect(PN_CONST float *lv, uint32_t res, uint32_t levels, int32_t x0, int32_t y0, int32_t x1,
+                          int32_t y1, float *v)
+{
+    size_t at[4];
+    uint32_t i, n = pn_nb_mm_rect_at(res, levels, x0, y0, x1, y1, at);
+    pn_nb_mm_empty(v);
+    for (i = 0; i < n; i++) pn_nb_mm_add(v, lv + at[i]);
 }
 
 #endif

@@ -44,6 +44,21 @@ static pn_status pn_mc_begin(pn_frame_state *fs, pn_mc_pools *s, uint32_t res)
     return PN_OK;
 }
 
+/* The N-buffer's bound over the whole map, which every pixel's classification starts from:
+ * pn_nb_mm_rect's boxes, read back once a frame instead of looked up per pixel. */
+static pn_status pn_mc_whole(pn_frame_state *fs, const float *nb, pn_kmc *mc)
+{
+    size_t at[4];
+    uint32_t i, n = pn_nb_mm_rect_at(mc->res, mc->levels, 0, 0, (int32_t)mc->res, (int32_t)mc->res, at);
+    pn_status st;
+    pn_nb_mm_empty(mc->whole);
+    for (i = 0; i < n; i++) {
+        if ((st = pn_dev_to_host(fs, nb + at[i], 4u * PN_NB_MM)) != PN_OK) return st;
+        pn_nb_mm_add(mc->whole, nb + at[i]);
+    }
+    return PN_OK;
+}
+
 /* Binomial blur weights C(2r, r + i), i = 0 .. r, as floats (exact: at most C(16, 8)). */
 static void pn_mc_weights(pn_kmc *mc)
 {
@@ -102,6 +117,7 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
             mc->level = l;
             if ((st = pn_dev_run(fs, PN_K_MC_NBUF, res)) != PN_OK) return st;
         }
+        if ((st = pn_mc_whole(fs, s.nb, mc)) != PN_OK) return st;
         t1 = pn_dev_timestamp(fs);
         ctx->mc.ns_nbuffer = t1 - t0;
         t0 = t1;

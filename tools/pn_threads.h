@@ -1,7 +1,9 @@
 /* pn_threads.h - the CLI's parallel-for on pthreads, for pn_set_parallel_for(). Work items
  * are handed out one at a time through an atomic counter, so idle cores take the next
- * one; the library's results do not depend on the schedule. With progress on, a pass that
- * runs longer than a second prints its percentage to stderr. */
+ * one; the library's results do not depend on the schedule. The worker threads are started
+ * once, for the process, and wait between jobs (a job that finds them busy with another
+ * host thread's starts threads of its own). With progress on, a pass that runs longer than
+ * a second prints its percentage to stderr. */
 #ifndef PN_TOOLS_THREADS_H
 #define PN_TOOLS_THREADS_H
 

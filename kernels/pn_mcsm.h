@@ -195,9 +195,54 @@ PN_KFN void pn_mc_sample(uint32_t x, uint32_t y, uint32_t i, uint32_t j, uint32_
 
 /* ---- Layers ------------------------------------------------------------------------------ */
 
-/* Band `band` of PN_RASTER_BAND texel rows of level 0: cleared, then every fragment of every
- * occluder (not receiver-only; the band walk's, pn_raster.h) in front of the light plane
- * takes part in its texel's near and far; then max near := near. */
+/* Texel row y of level 0 of view v emptied: near +inf, far -inf. */
+PN_KFN void pn_mc_clear_row(const pn_kview *v, uint32_t y, PN_GLOBAL float *nb)
+{
+    uint32_t x;
+    for (x = 0; x < v->width; x++) {
+        PN_GLOBAL float *T = nb + ((size_t)y * v->width + x) * PN_NB_MM;
+        T[0] = PN_KINF;
+        T[1] = -PN_KINF;
+    }
+}
+
+/* The layers' rows pass (pn_raster_rows) for occluder t: a receiver-only triangle covers
+ * nothing; a small one (pn_raster_rows_small) puts its fragments into level 0 here, as the
+ * band would (pn_raster_tri_setup's plane, pn_raster_axial, the same centres), by atomic
+ * min and max, and is then drawn by no band: set up once, not again in every band it
+ * meets (the dense meshes' triangles are mostly such, in the layers' view). */
+PN_KFN uint32_t pn_mc_rows(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris, PN_CONST uint8_t *flags,
+                           uint32_t t, PN_GLOBAL float *nb)
+{
+    PN_CONST float *p = tris + (size_t)t * 9u;
+    pn_raster_small sm;
+    pn_v3 A, n;
+    float nA;
+    uint32_t r, k;
+    if (flags[t] & PN_TRI_RECEIVER) return PN_RASTER_EMPTY;
+    r = pn_raster_rows_small(v, tris, flags, t, &sm);
+    if (r == PN_RASTER_EMPTY || sm.w == 0) return r;
+    A = pn_v3_make(p[0], p[1], p[2]);
+    n = pn_tri_cross(A, pn_v3_make(p[3], p[4], p[5]), pn_v3_make(p[6], p[7], p[8]));
+    nA = pn_v3_dot(n, pn_v3_sub(A, pn_view_eye(v)));
+    for (k = 0; k < PN_RASTER_ROWS_TEST; k++) {
+        uint32_t x = (uint32_t)(sm.x0 + (int32_t)k % sm.w), y = (uint32_t)(sm.y0 + (int32_t)k / sm.w);
+        PN_GLOBAL int32_t *T;
+        float z;
+        if (!(sm.mask & (1u << k)) || !pn_raster_axial(v, n, nA, x, y, &z)) continue;
+        z -= mc->d;
+        if (!(z > 0.0f)) continue;
+        T = (PN_GLOBAL int32_t *)(nb + ((size_t)y * v->width + x) * PN_NB_MM);
+        pn_katomic_fmin(T, z);
+        pn_katomic_fmax(T + 1, z);
+    }
+    return PN_RASTER_EMPTY;
+}
+
+/* Band `band` of PN_RASTER_BAND texel rows of level 0 (emptied, and holding the small
+ * triangles' fragments, pn_mc_rows): every fragment of every other occluder (the band
+ * walk's, pn_raster.h) in front of the light plane takes part in its texel's near and far;
+ * then max near := near. */
 PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris, PN_CONST uint8_t *flags,
                        PN_CONST uint32_t *rows, PN_CONST uint32_t *chunks, PN_CONST uint32_t *index, uint32_t tri_n,
                        uint32_t band, PN_GLOBAL float *nb)
@@ -205,23 +250,18 @@ PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris
     uint32_t y0 = band * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND - 1u, t, y, x;
     pn_band_walk bw;
     if (y1 >= v->height) y1 = v->height - 1u;
-    for (y = y0; y <= y1; y++)
-        for (x = 0; x < v->width; x++) {
-            PN_GLOBAL float *T = nb + ((size_t)y * v->width + x) * PN_NB_MM;
-            T[0] = PN_KINF;
-            T[1] = -PN_KINF;
-        }
     pn_band_walk_begin(&bw, tri_n);
     while (pn_band_next(chunks, index, y0, y1, &bw, &t)) {
         pn_raster_tri rt;
         if (flags[t] & PN_TRI_RECEIVER) continue;
         if (!pn_raster_tri_setup(v, tris, rows, t, y0, y1, &rt)) continue;
         for (y = rt.y0; y <= rt.y1; y++) {
-            int32_t xi;
-            for (xi = rt.x0; xi <= rt.x1; xi++) {
+            int32_t xi, xa = rt.x0, xb = rt.x1;
+            int run = pn_raster_span(&rt, y, &xa, &xb);
+            for (xi = xa; xi <= xb; xi++) {
                 float z;
                 PN_GLOBAL float *T;
-                if (!pn_raster_tri_axial(v, &rt, (uint32_t)xi, y, &z)) continue;
+                if (!pn_raster_tri_axial(v, &rt, run, (uint32_t)xi, y, &z)) continue;
                 z -= mc->d;
                 if (!(z > 0.0f)) continue;
                 T = nb + ((size_t)y * v->width + (uint32_t)xi) * PN_NB_MM;

@@ -112,12 +112,13 @@ PN_KFN void pn_occ_band(const pn_kview *v, const pn_kocc *o, PN_CONST float *tri
         }
         if (!pn_raster_tri_setup(v, tris, rows, t, y0, y1, &rt)) continue;
         for (y = rt.y0; y <= rt.y1; y++) {
-            int32_t xi;
-            for (xi = rt.x0; xi <= rt.x1; xi++) {
+            int32_t xi, xa = rt.x0, xb = rt.x1;
+            int run = pn_raster_span(&rt, y, &xa, &xb);
+            for (xi = xa; xi <= xb; xi++) {
                 float z;
                 int32_t sl;
                 uint32_t m;
-                if (!pn_raster_tri_axial(v, &rt, (uint32_t)xi, y, &z)) continue;
+                if (!pn_raster_tri_axial(v, &rt, run, (uint32_t)xi, y, &z)) continue;
                 sl = pn_occ_slice_of(o, z - o->d);
                 /* The deepest slice holds receivers only: no point lies below its plane. */
                 if (sl < 0 || (uint32_t)sl >= last) continue;

@@ -460,6 +460,19 @@ PN_KFN void pn_e_occ_finish(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
 /* ---- Monte Carlo shadow maps (pn_mcsm.h; the frame is src/pn_mcsm.c) ------------------------ */
 
 #if PN_ENABLE_MCSM
+/* Texel row of the layers (N-buffer level 0): emptied. */
+PN_KFN void pn_e_mc_clear(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
+{
+    pn_mc_clear_row(&K->lview, y, PN_POOL(float, mc_nb));
+}
+
+/* Triangle: the layers' rows pass; a small occluder's fragments go straight into the layers. */
+PN_KFN void pn_e_mc_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+{
+    PN_POOL(uint32_t, rows)[t] = pn_mc_rows(&K->lview, &K->mc, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags),
+                                            t, PN_POOL(float, mc_nb));
+}
+
 /* Band of texel rows: the near and far layers (N-buffer level 0). */
 PN_KFN void pn_e_mc_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
 {
@@ -657,6 +670,8 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
 
 #if PN_ENABLE_MCSM
 #define PN_PASSES_MCSM(X)                                 \
+    X(MC_CLEAR, mc_clear, 4, 8)                           \
+    X(MC_ROWS, mc_rows, 64, 4096)                         \
     X(MC_BAND, mc_band, 1, 1)                             \
     X(MC_NBUF, mc_nbuf, 4, 8)                             \
     X(MC_PIXEL, mc_pixel, 16, 1024)                       \

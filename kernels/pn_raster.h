@@ -177,28 +177,41 @@ PN_KFN void pn_edges_make(const pn_poly *p, pn_edge2 *e)
     }
 }
 
+/* Whether (px, py) lies on the inside of edge e (not skipped). */
+PN_KFN_HOT int pn_edge_in(const pn_edge2 *e, float px, float py)
+{
+    float w = e->sign * ((e->bx - e->ax) * (py - e->ay) - (e->by - e->ay) * (px - e->ax));
+    return !(w < 0.0f || (w == 0.0f && !e->owns));
+}
+
 PN_KFN int pn_edges_inside(const pn_edge2 *e, uint32_t n, float px, float py)
 {
     uint32_t i;
-    for (i = 0; i < n; i++) {
-        float w;
-        if (e[i].skip) continue;
-        w = e[i].sign * ((e[i].bx - e[i].ax) * (py - e[i].ay) - (e[i].by - e[i].ay) * (px - e[i].ax));
-        if (w < 0.0f || (w == 0.0f && !e[i].owns)) return 0;
-    }
+    for (i = 0; i < n; i++)
+        if (!e[i].skip && !pn_edge_in(&e[i], px, py)) return 0;
     return 1;
 }
 
+/* The pixel centres a small triangle covers, as pn_raster_rows found them: bit
+ * (y - y0) w + (x - x0) of mask for centre (x, y); w = 0 when the triangle was not small
+ * (or covers nothing: then mask is 0 too). */
+typedef struct pn_raster_small {
+    int32_t x0, y0, w;
+    uint32_t mask;
+} pn_raster_small;
+
 /* Triangle set-up: the range of pixel rows whose centres the triangle may cover, packed
- * y0 | y1 << 16, or PN_RASTER_EMPTY. */
-PN_KFN uint32_t pn_raster_rows(const pn_kview *v, PN_CONST float *tris, PN_CONST uint8_t *flags,
-                               uint32_t t)
+ * y0 | y1 << 16, or PN_RASTER_EMPTY; *sm: the centres it covers, if it is small. */
+PN_KFN uint32_t pn_raster_rows_small(const pn_kview *v, PN_CONST float *tris, PN_CONST uint8_t *flags, uint32_t t,
+                                     pn_raster_small *sm)
 {
     PN_CONST float *p = tris + (size_t)t * 9u;
     pn_poly poly;
     float lo, hi, xlo, xhi;
     uint32_t i;
     int32_t y0, y1, x0, x1;
+    sm->w = 0;
+    sm->mask = 0u;
     if (flags[t] & PN_TRI_DEGENERATE) return PN_RASTER_EMPTY;
     pn_poly_make(v, pn_v3_make(p[0], p[1], p[2]), pn_v3_make(p[3], p[4], p[5]),
                  pn_v3_make(p[6], p[7], p[8]), &poly);
@@ -229,17 +242,27 @@ PN_KFN uint32_t pn_raster_rows(const pn_kview *v, PN_CONST float *tris, PN_CONST
         pn_edge2 e[4];
         int32_t x, y, c0 = y1 + 1, c1 = y0 - 1;
         pn_edges_make(&poly, e);
+        sm->x0 = x0;
+        sm->y0 = y0;
+        sm->w = x1 - x0 + 1;
         for (y = y0; y <= y1; y++)
             for (x = x0; x <= x1; x++)
                 if (pn_edges_inside(e, poly.n, (float)x + 0.5f, (float)y + 0.5f)) {
                     c0 = pn_kmini(c0, y);
                     c1 = pn_kmaxi(c1, y);
+                    sm->mask |= 1u << (uint32_t)((y - y0) * sm->w + (x - x0));
                 }
         if (c0 > c1) return PN_RASTER_EMPTY;
         y0 = c0;
         y1 = c1;
     }
     return (uint32_t)y0 | ((uint32_t)y1 << 16);
+}
+
+PN_KFN uint32_t pn_raster_rows(const pn_kview *v, PN_CONST float *tris, PN_CONST uint8_t *flags, uint32_t t)
+{
+    pn_raster_small sm;
+    return pn_raster_rows_small(v, tris, flags, t, &sm);
 }
 
 /* The band walk. A band of rows looks at the triangles that may cover them, not at every
@@ -307,7 +330,13 @@ typedef struct pn_raster_tri {
     uint32_t y0, y1;
     pn_v3 n;
     float nA;
+    uint32_t span; /* rows are wide enough, and the edges tame enough, for pn_raster_span */
 } pn_raster_tri;
+
+/* Columns a row must have before pn_raster_span looks for its run of covered centres, and
+ * the largest coordinate magnitude it takes (2^30). */
+#define PN_RASTER_SPAN_MIN 8
+#define PN_RASTER_SPAN_LIM 1073741824.0f
 
 /* 0 when triangle t covers nothing in rows [row0, row1] (rows[t]: pn_raster_rows). */
 PN_KFN int pn_raster_tri_setup(const pn_kview *v, PN_CONST float *tris, PN_CONST uint32_t *rows, uint32_t t,
@@ -340,33 +369,101 @@ PN_KFN int pn_raster_tri_setup(const pn_kview *v, PN_CONST float *tris, PN_CONST
     rt->x1 = pn_kfloor_clamp(xhi - 0.5f, -1, (int32_t)v->width - 1);
     rt->n = pn_tri_cross(A, B, C);
     rt->nA = pn_v3_dot(rt->n, pn_v3_sub(A, pn_view_eye(v)));
+    rt->span = rt->x1 - rt->x0 + 1 >= PN_RASTER_SPAN_MIN;
+    for (i = 0; i < rt->poly.n; i++) /* also false for not-a-number */
+        rt->span &= pn_kfabs(rt->poly.x[i]) <= PN_RASTER_SPAN_LIM && pn_kfabs(rt->poly.y[i]) <= PN_RASTER_SPAN_LIM;
+    return 1;
+}
+
+/* The columns [*xa, *xb] of row y whose centres the set-up triangle covers (none: *xa >
+ * *xb), the same centres as testing each (pn_edges_inside): 0 when the row is to be
+ * tested centre by centre instead (narrow, or edges beyond PN_RASTER_SPAN_LIM).
+ *
+ * Along a row an edge's test is monotonic in x. Its value is sign ((bx - ax)(py - ay) -
+ * (by - ay)(px - ax)), each operation rounded: the first product is fixed along the row;
+ * px - ax rounded is non-decreasing in px, and so the second product, rounded, is monotonic
+ * (its direction that of by - ay); the difference of two floats is zero exactly when they
+ * are equal and otherwise has their order's sign, and the sign is exact. So each edge keeps
+ * a run of columns that reaches one end of [x0, x1] (or all, or none, when by = ay), found
+ * by bisection with the test itself, and the covered run is their intersection. With every
+ * coordinate within 2^30 no operation overflows, so none is infinite or not a number. */
+PN_KFN int pn_raster_span(const pn_raster_tri *rt, uint32_t y, int32_t *xa, int32_t *xb)
+{
+    float py = (float)y + 0.5f;
+    int32_t lo = rt->x0, hi = rt->x1;
+    uint32_t i;
+    if (!rt->span) return 0;
+    for (i = 0; i < rt->poly.n && lo <= hi; i++) {
+        const pn_edge2 *e = &rt->e[i];
+        float dir;
+        int32_t a, b;
+        int left;
+        if (e->skip) continue;
+        dir = e->sign * (e->by - e->ay);
+        if (dir == 0.0f) {
+            if (!pn_edge_in(e, (float)lo + 0.5f, py)) hi = lo - 1;
+            continue;
+        }
+        /* left: inside up to some column (dir > 0), else from some column on. */
+        left = dir > 0.0f;
+        if (pn_edge_in(e, (float)(left ? hi : lo) + 0.5f, py)) continue; /* all of [lo, hi] */
+        if (!pn_edge_in(e, (float)(left ? lo : hi) + 0.5f, py)) {       /* none */
+            hi = lo - 1;
+            continue;
+        }
+        a = lo; /* inside when left */
+        b = hi; /* inside when not */
+        while (b - a > 1) {
+            int32_t m = a + (b - a) / 2;
+            if (pn_edge_in(e, (float)m + 0.5f, py) == left)
+                a = m;
+            else
+                b = m;
+        }
+        if (left)
+            hi = a;
+        else
+            lo = b;
+    }
+    *xa = lo;
+    *xb = hi;
     return 1;
 }
 
 /* Whether the set-up triangle covers the centre of pixel (x, y) in front of the eye, and
  * then *t: its distance along the pixel's unit primary ray *dir. */
-PN_KFN_HOT int pn_raster_tri_hit(const pn_kview *v, const pn_raster_tri *rt, uint32_t x, uint32_t y, float *t, pn_v3 *dir)
+PN_KFN_HOT int pn_raster_plane_hit(const pn_kview *v, const pn_raster_tri *rt, uint32_t x, uint32_t y, float *t,
+                                   pn_v3 *dir)
 {
     float den;
-    if (!pn_edges_inside(rt->e, rt->poly.n, (float)x + 0.5f, (float)y + 0.5f)) return 0;
     *dir = pn_ray_dir(v, x, y);
     den = pn_v3_dot(rt->n, *dir);
     if (den == 0.0f) return 0;
     *t = rt->nA / den;
     return *t > 0.0f;
 }
-
-/* Whether the set-up triangle covers the centre of pixel (x, y) in front of the eye (the
- * same test as pn_raster_tri_hit), and then *z: its point's depth along the view axis f
- * (the light-space maps' depth), from the pixel's ray scaled to unit depth: no square root. */
-PN_KFN_HOT int pn_raster_tri_axial(const pn_kview *v, const pn_raster_tri *rt, uint32_t x, uint32_t y, float *z)
+PN_KFN_HOT int pn_raster_tri_hit(const pn_kview *v, const pn_raster_tri *rt, uint32_t x, uint32_t y, float *t, pn_v3 *dir)
 {
-    float den;
     if (!pn_edges_inside(rt->e, rt->poly.n, (float)x + 0.5f, (float)y + 0.5f)) return 0;
-    den = pn_v3_dot(rt->n, pn_ray_dir_axial(v, x, y));
+    return pn_raster_plane_hit(v, rt, x, y, t, dir);
+}
+
+/* The depth along the view axis f (the light-space maps' depth) of the point of plane
+ * (n, nA) at the centre of pixel (x, y), from the pixel's ray scaled to unit depth: no square
+ * root; 0 when that point is not in front of the eye. pn_raster_tri_axial: the same where
+ * the set-up triangle covers the centre (the test of pn_raster_tri_hit; run: the centre is
+ * in the row's covered run, pn_raster_span, so known to be covered). */
+PN_KFN_HOT int pn_raster_axial(const pn_kview *v, pn_v3 n, float nA, uint32_t x, uint32_t y, float *z)
+{
+    float den = pn_v3_dot(n, pn_ray_dir_axial(v, x, y));
     if (den == 0.0f) return 0;
-    *z = rt->nA / den;
+    *z = nA / den;
     return *z > 0.0f;
+}
+PN_KFN_HOT int pn_raster_tri_axial(const pn_kview *v, const pn_raster_tri *rt, int run, uint32_t x, uint32_t y, float *z)
+{
+    if (!run && !pn_edges_inside(rt->e, rt->poly.n, (float)x + 0.5f, (float)y + 0.5f)) return 0;
+    return pn_raster_axial(v, rt->n, rt->nA, x, y, z);
 }
 
 /* Rasterizes the band walk's triangles into rows [row0, row1] of the G-buffer. depth and
@@ -383,12 +480,15 @@ PN_KFN void pn_raster_band(const pn_kview *v, PN_CONST float *tris, PN_CONST uin
         uint32_t y;
         if (!pn_raster_tri_setup(v, tris, rows, t, row0, row1, &rt)) continue;
         for (y = rt.y0; y <= rt.y1; y++) {
-            int32_t x;
-            for (x = rt.x0; x <= rt.x1; x++) {
+            int32_t x, xa = rt.x0, xb = rt.x1;
+            int run = pn_raster_span(&rt, y, &xa, &xb);
+            for (x = xa; x <= xb; x++) {
                 size_t pix = (size_t)y * v->width + (size_t)x;
                 float tt;
                 pn_v3 dir;
-                if (!pn_raster_tri_hit(v, &rt, (uint32_t)x, y, &tt, &dir)) continue;
+                if (!(run ? pn_raster_plane_hit(v, &rt, (uint32_t)x, y, &tt, &dir)
+                          : pn_raster_tri_hit(v, &rt, (uint32_t)x, y, &tt, &dir)))
+                    continue;
                 if (tt < depth[pix] || (tt == depth[pix] && t < tri_id[pix])) {
                     depth[pix] = tt;
                     tri_id[pix] = t;

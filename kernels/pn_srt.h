@@ -51,34 +51,6 @@
 /* Largest map half-extent in tan units; beyond it: PIP. */
 #define PN_SRT_TAN_MAX PN_LVIEW_TAN_MAX
 
-PN_KFN uint32_t pn_srt_fbits(float v)
-{
-#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
-    return as_uint(v);
-#else
-    union {
-        float f;
-        uint32_t u;
-    } x;
-    x.f = v;
-    return x.u;
-#endif
-}
-
-PN_KFN float pn_srt_bitsf(uint32_t v)
-{
-#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
-    return as_float(v);
-#else
-    union {
-        float f;
-        uint32_t u;
-    } x;
-    x.u = v;
-    return x.f;
-#endif
-}
-
 /* Integer atomic max of a non-negative float stored as its bits (their order is the
  * floats' order), so the result is the same whatever order work items run in. Returns
  * the bits it replaced (or kept): 0 for exactly one caller per word that starts at 0 and
@@ -86,9 +58,9 @@ PN_KFN float pn_srt_bitsf(uint32_t v)
 PN_KFN uint32_t pn_srt_atomic_fmax(PN_GLOBAL uint32_t *p, float v)
 {
 #if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
-    return atomic_max(p, pn_srt_fbits(v));
+    return atomic_max(p, pn_kfbits(v));
 #else
-    uint32_t b = pn_srt_fbits(v), cur = __atomic_load_n(p, __ATOMIC_RELAXED);
+    uint32_t b = pn_kfbits(v), cur = __atomic_load_n(p, __ATOMIC_RELAXED);
     while (cur < b && !__atomic_compare_exchange_n(p, &cur, b, 1, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
     }
     return cur;
@@ -248,13 +220,13 @@ PN_KFN void pn_srt_tile(const pn_kview *lv, float delta, float alpha, PN_CONST f
         for (x = bx * PN_SRT_TILE; x < (bx + 1u) * PN_SRT_TILE && x < res; x++) {
             size_t t = (size_t)y * res + x;
             float near, D = pn_srt_delta(depth, res, (int32_t)x, (int32_t)y, &near);
-            w = pn_kmaxf(w, pn_srt_bitsf(cons[t]));
+            w = pn_kmaxf(w, pn_kbitsf(cons[t]));
             if (!(D > delta) || !(near < PN_KINF)) continue;
             if (D < PN_KINF && ids[t] != 0xFFFFFFFFu && !(D > delta + pn_srt_slope(lv, alpha, tris, ids[t], x, y, depth[t])))
                 continue;
             w = pn_kmaxf(w, 1.0f / pn_srt_texel_z(lv, x, y, near));
         }
-    tile_w[tile] = pn_srt_fbits(w);
+    tile_w[tile] = pn_kfbits(w);
     if (w > 0.0f) pn_srt_atomic_fmax(wmax, w);
 }
 
@@ -286,13 +258,13 @@ PN_KFN void pn_srt_sweep(PN_CONST uint32_t *in, PN_GLOBAL uint32_t *out, uint32_
         for (x = 0; x < (int32_t)n; x++) {
             int32_t i = pass == 0 ? x : (int32_t)n - 1 - x;
             uint32_t wb = in[first + (uint32_t)i * stride];
-            if (pn_srt_bitsf(wb) > 0.0f) {
+            if (pn_kbitsf(wb) > 0.0f) {
                 while (tail > head && in[first + dq[tail - 1] * stride] <= wb) tail--;
                 dq[tail++] = (uint32_t)i;
             }
             while (tail > head) {
                 int32_t j = (int32_t)dq[head], d = i > j ? i - j : j - i;
-                if (d <= pn_srt_reach_tiles(r, pn_srt_bitsf(in[first + (uint32_t)j * stride]))) break;
+                if (d <= pn_srt_reach_tiles(r, pn_kbitsf(in[first + (uint32_t)j * stride]))) break;
                 head++;
             }
             if (tail > head && in[first + dq[head] * stride] > out[first + (uint32_t)i * stride])
@@ -319,7 +291,7 @@ PN_KFN uint32_t pn_srt_refine(PN_CONST uint32_t *tile_w, uint32_t tiles, int32_t
         for (x = bx - rx; x <= bx + rx; x++) {
             float w, gx, gy;
             if (x < 0 || x >= (int32_t)tiles) continue;
-            w = pn_srt_bitsf(tile_w[(size_t)y * tiles + (size_t)x]);
+            w = pn_kbitsf(tile_w[(size_t)y * tiles + (size_t)x]);
             if (!(w > cz)) continue;
             gx = (float)((x > bx ? x - bx : bx - x) - 1) * (float)PN_SRT_TILE;
             gy = (float)((y > by ? y - by : by - y) - 1) * (float)PN_SRT_TILE;

@@ -107,7 +107,7 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
         /* eq. 3.2: half a texel's diagonal at depth z + d, sqrt(2) z tan(fov / 2) / w. */
         mc->bias_k = 1.41421356f * pn_kmaxf(w.tx, w.ty) / (float)res;
         /* Layers, then the N-buffer above them. */
-        if ((st = pn_raster_setup(fs, PN_K_LMAP_ROWS)) != PN_OK ||
+        if ((st = pn_dev_run(fs, PN_K_MC_CLEAR, res)) != PN_OK || (st = pn_raster_setup(fs, PN_K_MC_ROWS)) != PN_OK ||
             (st = pn_dev_run(fs, PN_K_MC_BAND, (res + PN_RASTER_BAND - 1u) / PN_RASTER_BAND)) != PN_OK)
             return st;
         t1 = pn_dev_timestamp(fs);

@@ -120,7 +120,7 @@ pn_status pn_srt_frame(pn_frame_state *fs)
         if ((st = pn_dev_run(fs, PN_K_SRT_TILES, tiles * tiles)) != PN_OK ||
             (st = pn_dev_to_host(fs, s.words, 4u)) != PN_OK)
             return st;
-        K->srt_wmax = pn_srt_bitsf(s.words[PN_SRT_WORD_WMAX]);
+        K->srt_wmax = pn_kbitsf(s.words[PN_SRT_WORD_WMAX]);
         if ((st = pn_dev_run(fs, PN_K_SRT_TILE_ROWS, tiles)) != PN_OK ||
             (st = pn_dev_run(fs, PN_K_SRT_TILE_COLS, tiles)) != PN_OK)
             return st;

@@ -293,6 +293,20 @@ static void test_band_walk_ties(void)
  * most PN_RASTER_ROWS_TEST candidate centres (those in its box) gets exactly the rows of
  * those it covers, PN_RASTER_EMPTY for none. Random triangles from sub-pixel to a few pixels wide, some crossing
  * the near plane. */
+/* A W x H view from the origin looking down -z. */
+static void test_view(pn_kview *v, uint32_t W, uint32_t H)
+{
+    memset(v, 0, sizeof(*v));
+    v->f[2] = -1.0f;
+    v->r[0] = 1.0f;
+    v->u[1] = 1.0f;
+    v->tan_half = 0.5f;
+    v->aspect = (float)W / (float)H;
+    v->znear = 0.05f;
+    v->width = W;
+    v->height = H;
+}
+
 static void test_rows_pass(void)
 {
     enum { W = 40, H = 30, N = 20000 };
@@ -300,15 +314,7 @@ static void test_rows_pass(void)
     float tri[9];
     uint8_t flag = 0u;
     uint32_t n, emptied = 0u, tightened = 0u, drawn = 0u, bad = 0u;
-    memset(&v, 0, sizeof(v));
-    v.f[2] = -1.0f; /* looking down -z from the origin */
-    v.r[0] = 1.0f;
-    v.u[1] = 1.0f;
-    v.tan_half = 0.5f;
-    v.aspect = (float)W / (float)H;
-    v.znear = 0.05f;
-    v.width = W;
-    v.height = H;
+    test_view(&v, W, H);
     srand(7);
     for (n = 0; n < N; n++) {
         float cx = ((float)rand() / (float)RAND_MAX - 0.5f) * 2.4f, cy = ((float)rand() / (float)RAND_MAX - 0.5f) * 1.8f;
@@ -376,6 +382,96 @@ static void test_rows_pass(void)
     CHECK(tightened > 100u);
 }
 
+/* A row's covered run (pn_raster_span) against testing each of its centres
+ * (pn_edges_inside): the same columns, on polygons made to be hard for it (vertices on
+ * pixel centres, so edges through centres and the ownership rule decides; edges within a
+ * millionth of horizontal or vertical; slivers; coordinates up to 1e7 beyond the image),
+ * and on triangles through the set-up itself. */
+static uint32_t span_rows(const pn_raster_tri *rt, uint32_t H, uint32_t *rows)
+{
+    uint32_t y, bad = 0u;
+    for (y = 0; y < H; y++) {
+        int32_t xa = rt->x0, xb = rt->x1, x;
+        if (!pn_raster_span(rt, y, &xa, &xb)) continue;
+        (*rows)++;
+        for (x = rt->x0; x <= rt->x1; x++) {
+            int in = pn_edges_inside(rt->e, rt->poly.n, (float)x + 0.5f, (float)y + 0.5f);
+            bad += in != (x >= xa && x <= xb);
+        }
+    }
+    return bad;
+}
+
+static float span_coord(uint32_t k, float lim)
+{
+    float r = (float)rand() / (float)RAND_MAX;
+    switch (k % 4u) {
+    case 0: return (float)(int)(r * lim) + 0.5f;           /* a pixel centre */
+    case 1: return r * lim;                                /* anywhere */
+    case 2: return (float)(int)(r * lim);                  /* a pixel corner */
+    default: return (r - 0.5f) * 2e7f;                     /* far beyond the image */
+    }
+}
+
+static void test_span(void)
+{
+    enum { W = 96, H = 24, N = 40000 };
+    pn_kview v;
+    uint32_t n, rows = 0u, bad = 0u, set_rows = 0u, set_bad = 0u;
+    srand(11);
+    for (n = 0; n < N; n++) {
+        pn_raster_tri rt;
+        float xlo, xhi;
+        uint32_t i;
+        memset(&rt, 0, sizeof(rt));
+        rt.poly.n = 3u + n % 2u;
+        for (i = 0; i < rt.poly.n; i++) {
+            rt.poly.x[i] = span_coord(n / 2u + i, (float)W);
+            rt.poly.y[i] = span_coord(n / 3u + 2u * i, (float)H);
+        }
+        if (n % 5u == 1u) rt.poly.y[1] = rt.poly.y[0] + ((n & 8u) ? 1e-6f : -1e-6f) * rt.poly.y[0]; /* near horizontal */
+        if (n % 5u == 2u) rt.poly.x[2] = rt.poly.x[1] * (1.0f + 1e-6f);                           /* near vertical */
+        if (n % 5u == 3u) { /* sliver along a diagonal */
+            rt.poly.x[2] = rt.poly.x[0] + (rt.poly.x[1] - rt.poly.x[0]) * 0.5f + 0.01f;
+            rt.poly.y[2] = rt.poly.y[0] + (rt.poly.y[1] - rt.poly.y[0]) * 0.5f;
+        }
+        if (rt.poly.n == 4u) { /* keep the quad convex: a triangle with a point on one edge */
+            rt.poly.x[3] = 0.5f * (rt.poly.x[2] + rt.poly.x[0]);
+            rt.poly.y[3] = 0.5f * (rt.poly.y[2] + rt.poly.y[0]);
+        }
+        pn_edges_make(&rt.poly, rt.e);
+        xlo = xhi = rt.poly.x[0];
+        for (i = 1; i < rt.poly.n; i++) {
+            xlo = rt.poly.x[i] < xlo ? rt.poly.x[i] : xlo;
+            xhi = rt.poly.x[i] > xhi ? rt.poly.x[i] : xhi;
+        }
+        rt.x0 = pn_kceil_clamp(xlo - 0.5f, 0, W);
+        rt.x1 = pn_kfloor_clamp(xhi - 0.5f, -1, W - 1);
+        rt.span = 1u; /* every width, so narrow rows are searched too */
+        bad += span_rows(&rt, H, &rows);
+    }
+    /* Through the set-up: small to large triangles, some across the eye plane. */
+    test_view(&v, W, H);
+    for (n = 0; n < N / 4u; n++) {
+        float tri[9], cx = ((float)rand() / (float)RAND_MAX - 0.5f) * 4.0f, sz = 0.05f + 2.0f * (float)(n % 5u);
+        uint8_t flag = 0u;
+        uint32_t rr, k;
+        pn_raster_tri rt;
+        for (k = 0; k < 3u; k++) {
+            tri[3u * k + 0u] = cx + sz * ((float)rand() / (float)RAND_MAX - 0.5f);
+            tri[3u * k + 1u] = sz * ((float)rand() / (float)RAND_MAX - 0.5f);
+            tri[3u * k + 2u] = n % 7u == 6u && k == 0u ? 0.5f : -1.0f - (float)(n % 3u);
+        }
+        rr = pn_raster_rows(&v, tri, &flag, 0u);
+        if (rr == PN_RASTER_EMPTY || !pn_raster_tri_setup(&v, tri, &rr, 0u, 0u, H - 1u, &rt)) continue;
+        set_bad += span_rows(&rt, H, &set_rows);
+    }
+    fprintf(stderr, "span: %u rows of hard polygons, %u wrong columns; %u rows through the set-up, %u wrong\n", rows, bad,
+            set_rows, set_bad);
+    CHECK(bad == 0u && set_bad == 0u);
+    CHECK(rows > 100000u && set_rows > 10000u);
+}
+
 int main(void)
 {
     RUN(test_spot);
@@ -384,5 +480,6 @@ int main(void)
     RUN(test_near_clip);
     RUN(test_band_walk_ties);
     RUN(test_rows_pass);
+    RUN(test_span);
     return pn_test_summary();
 }

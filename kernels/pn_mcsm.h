@@ -593,12 +593,14 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
          * E's segment to the light centre at that depth), its smallest near depth the next
          * zb, twice, from the whole map's. */
         uint32_t it;
-        float zb = mc->whole[0]; /* the whole map's, src/pn_mcsm.c */
+        float zb = mc->whole[0], nz; /* the whole map's, src/pn_mcsm.c */
         for (it = 0; it < 2u && zb < ze; it++) {
             float s = mc->sfac * (ze - zb) / (ze * (zb + mc->d)), cx, cy, fr = zb / ze;
             pn_mc_proj(m, pn_v3_make(E.x * fr, E.y * fr, zb), &cx, &cy);
             pn_mc_region(m, cx - 0.5f * s, cy - 0.5f * s, cx + 0.5f * s, cy + 0.5f * s, q);
-            zb = pn_kmaxf(zb, q[0]);
+            nz = pn_kmaxf(zb, q[0]);
+            if (nz == zb) break; /* zb stays: the next region would be this one */
+            zb = nz;
         }
         if (!(zb < ze)) {
             *cls = PN_MC_CLASS_LIT;

@@ -210,7 +210,8 @@ PN_KFN void pn_mc_clear_row(const pn_kview *v, uint32_t y, PN_GLOBAL float *nb)
  * nothing; a small one (pn_raster_rows_small) puts its fragments into level 0 here, as the
  * band would (pn_raster_tri_setup's plane, pn_raster_axial, the same centres), by atomic
  * min and max, and is then drawn by no band: set up once, not again in every band it
- * meets (the dense meshes' triangles are mostly such, in the layers' view). */
+ * meets (at 512², half of CAD's band set-ups and most of the dragon's: its bands' work went
+ * from 132 M to 20 M instructions). */
 PN_KFN uint32_t pn_mc_rows(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris, PN_CONST uint8_t *flags,
                            uint32_t t, PN_GLOBAL float *nb)
 {

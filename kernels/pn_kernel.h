@@ -14,6 +14,9 @@
  *   pn_katomic_add(p, v)   32-bit unsigned atomic add into the arena, returns the old value:
  *               for order-independent reductions (counts, histograms) only, never for
  *               anything whose result depends on which work item came first
+ *   pn_katomic_imin(p, v), pn_katomic_imax(p, v)   32-bit signed atomic min / max into the
+ *               arena, return the old value: order-independent; on the bits of floats
+ *               that are >= 0 or -inf (pn_kfbits) the signed order is the floats' order
  *
  * Kernel code uses only + - * / and pn_ksqrt on float, 32-bit integers, fixed-size
  * arrays, loops and no recursion, no function pointers, no double, no libc: both
@@ -38,6 +41,8 @@ typedef ulong uint64_t;
 #define pn_kfabs(x) fabs(x)
 #define PN_KINF INFINITY
 #define pn_katomic_add(p, v) atomic_add((p), (v))
+#define pn_katomic_imin(p, v) atomic_min((p), (v))
+#define pn_katomic_imax(p, v) atomic_max((p), (v))
 #define pn_kclz(x) clz((uint)(x))
 /* The OpenCL port passes the host's configuration as build options (-D...), so both
  * ports size their private arrays alike. */
@@ -71,6 +76,16 @@ typedef ulong uint64_t;
  * library call, so it stays freestanding. Relaxed: only the sum matters, and the caller's
  * parallel-for joins before anything reads it. */
 #define pn_katomic_add(p, v) __atomic_fetch_add((p), (v), __ATOMIC_RELAXED)
+/* Min (up = 0) or max (up = 1) by compare-and-swap (the same builtins): the old value. */
+PN_KFN int32_t pn_katomic_iext(int32_t *p, int32_t v, int up)
+{
+    int32_t cur = __atomic_load_n(p, __ATOMIC_RELAXED);
+    while ((up ? v > cur : v < cur) && !__atomic_compare_exchange_n(p, &cur, v, 1, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
+    }
+    return cur;
+}
+#define pn_katomic_imin(p, v) pn_katomic_iext((p), (v), 0)
+#define pn_katomic_imax(p, v) pn_katomic_iext((p), (v), 1)
 /* Leading zero bits of a non-zero uint32_t (OpenCL's clz; lzcnt or bsr on x86, clz on
  * ARMv7-M): no library call either. */
 #define pn_kclz(x) ((uint32_t)__builtin_clz((unsigned)(x)))

@@ -116,31 +116,6 @@ PN_KFN float pn_kbitsf(uint32_t v)
 #endif
 }
 
-/* Atomic min (max) of a float v >= 0 into a word that holds a non-negative float or -inf,
- * as signed integers: over those values their order is the floats' order, so the result is
- * the same whatever order work items run in. The word is only ever read as a float after
- * the pass (the parallel-for joins first). */
-PN_KFN void pn_katomic_fmin(PN_GLOBAL int32_t *p, float v)
-{
-#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
-    (void)atomic_min(p, (int32_t)pn_kfbits(v));
-#else
-    int32_t b = (int32_t)pn_kfbits(v), cur = __atomic_load_n(p, __ATOMIC_RELAXED);
-    while (b < cur && !__atomic_compare_exchange_n(p, &cur, b, 1, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
-    }
-#endif
-}
-PN_KFN void pn_katomic_fmax(PN_GLOBAL int32_t *p, float v)
-{
-#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
-    (void)atomic_max(p, (int32_t)pn_kfbits(v));
-#else
-    int32_t b = (int32_t)pn_kfbits(v), cur = __atomic_load_n(p, __ATOMIC_RELAXED);
-    while (b > cur && !__atomic_compare_exchange_n(p, &cur, b, 1, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
-    }
-#endif
-}
-
 PN_KFN uint32_t pn_kpopcount(uint32_t v)
 {
     v = v - ((v >> 1) & 0x55555555u);

@@ -217,15 +217,13 @@ PN_KFN uint32_t pn_mc_rows(const pn_kview *v, const pn_kmc *mc, PN_CONST float *
 {
     PN_CONST float *p = tris + (size_t)t * 9u;
     pn_raster_small sm;
-    pn_v3 A, n;
+    pn_v3 n;
     float nA;
     uint32_t r, k;
     if (flags[t] & PN_TRI_RECEIVER) return PN_RASTER_EMPTY;
     r = pn_raster_rows_small(v, tris, flags, t, &sm);
     if (r == PN_RASTER_EMPTY || sm.w == 0) return r;
-    A = pn_v3_make(p[0], p[1], p[2]);
-    n = pn_tri_cross(A, pn_v3_make(p[3], p[4], p[5]), pn_v3_make(p[6], p[7], p[8]));
-    nA = pn_v3_dot(n, pn_v3_sub(A, pn_view_eye(v)));
+    nA = pn_raster_plane(v, pn_v3_make(p[0], p[1], p[2]), pn_v3_make(p[3], p[4], p[5]), pn_v3_make(p[6], p[7], p[8]), &n);
     for (k = 0; k < PN_RASTER_ROWS_TEST; k++) {
         uint32_t x = (uint32_t)(sm.x0 + (int32_t)k % sm.w), y = (uint32_t)(sm.y0 + (int32_t)k / sm.w);
         PN_GLOBAL int32_t *T;
@@ -234,8 +232,8 @@ PN_KFN uint32_t pn_mc_rows(const pn_kview *v, const pn_kmc *mc, PN_CONST float *
         z -= mc->d;
         if (!(z > 0.0f)) continue;
         T = (PN_GLOBAL int32_t *)(nb + ((size_t)y * v->width + x) * PN_NB_MM);
-        pn_katomic_fmin(T, z);
-        pn_katomic_fmax(T + 1, z);
+        pn_katomic_imin(T, (int32_t)pn_kfbits(z));     /* near: the layers hold z > 0 or +-inf */
+        pn_katomic_imax(T + 1, (int32_t)pn_kfbits(z));
     }
     return PN_RASTER_EMPTY;
 }

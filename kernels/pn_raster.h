@@ -338,6 +338,13 @@ typedef struct pn_raster_tri {
 #define PN_RASTER_SPAN_MIN 8
 #define PN_RASTER_SPAN_LIM 1073741824.0f
 
+/* Triangle ABC's plane for the depth along a pixel's ray: *n and the returned n.(A - eye). */
+PN_KFN float pn_raster_plane(const pn_kview *v, pn_v3 A, pn_v3 B, pn_v3 C, pn_v3 *n)
+{
+    *n = pn_tri_cross(A, B, C);
+    return pn_v3_dot(*n, pn_v3_sub(A, pn_view_eye(v)));
+}
+
 /* 0 when triangle t covers nothing in rows [row0, row1] (rows[t]: pn_raster_rows). */
 PN_KFN int pn_raster_tri_setup(const pn_kview *v, PN_CONST float *tris, PN_CONST uint32_t *rows, uint32_t t,
                                uint32_t row0, uint32_t row1, pn_raster_tri *rt)
@@ -367,11 +374,10 @@ PN_KFN int pn_raster_tri_setup(const pn_kview *v, PN_CONST float *tris, PN_CONST
     }
     rt->x0 = pn_kceil_clamp(xlo - 0.5f, 0, (int32_t)v->width);
     rt->x1 = pn_kfloor_clamp(xhi - 0.5f, -1, (int32_t)v->width - 1);
-    rt->n = pn_tri_cross(A, B, C);
-    rt->nA = pn_v3_dot(rt->n, pn_v3_sub(A, pn_view_eye(v)));
+    rt->nA = pn_raster_plane(v, A, B, C, &rt->n);
     rt->span = rt->x1 - rt->x0 + 1 >= PN_RASTER_SPAN_MIN;
-    for (i = 0; i < rt->poly.n; i++) /* also false for not-a-number */
-        rt->span &= pn_kfabs(rt->poly.x[i]) <= PN_RASTER_SPAN_LIM && pn_kfabs(rt->poly.y[i]) <= PN_RASTER_SPAN_LIM;
+    for (i = 0; rt->span && i < rt->poly.n; i++) /* also false for not-a-number */
+        rt->span = pn_kfabs(rt->poly.x[i]) <= PN_RASTER_SPAN_LIM && pn_kfabs(rt->poly.y[i]) <= PN_RASTER_SPAN_LIM;
     return 1;
 }
 
@@ -430,22 +436,19 @@ PN_KFN int pn_raster_span(const pn_raster_tri *rt, uint32_t y, int32_t *xa, int3
     return 1;
 }
 
-/* Whether the set-up triangle covers the centre of pixel (x, y) in front of the eye, and
- * then *t: its distance along the pixel's unit primary ray *dir. */
-PN_KFN_HOT int pn_raster_plane_hit(const pn_kview *v, const pn_raster_tri *rt, uint32_t x, uint32_t y, float *t,
-                                   pn_v3 *dir)
+/* Whether the set-up triangle covers the centre of pixel (x, y) in front of the eye (run:
+ * the centre is in the row's covered run, pn_raster_span, so known to be covered), and then
+ * *t: its distance along the pixel's unit primary ray *dir. */
+PN_KFN_HOT int pn_raster_tri_hit(const pn_kview *v, const pn_raster_tri *rt, int run, uint32_t x, uint32_t y, float *t,
+                                 pn_v3 *dir)
 {
     float den;
+    if (!run && !pn_edges_inside(rt->e, rt->poly.n, (float)x + 0.5f, (float)y + 0.5f)) return 0;
     *dir = pn_ray_dir(v, x, y);
     den = pn_v3_dot(rt->n, *dir);
     if (den == 0.0f) return 0;
     *t = rt->nA / den;
     return *t > 0.0f;
-}
-PN_KFN_HOT int pn_raster_tri_hit(const pn_kview *v, const pn_raster_tri *rt, uint32_t x, uint32_t y, float *t, pn_v3 *dir)
-{
-    if (!pn_edges_inside(rt->e, rt->poly.n, (float)x + 0.5f, (float)y + 0.5f)) return 0;
-    return pn_raster_plane_hit(v, rt, x, y, t, dir);
 }
 
 /* The depth along the view axis f (the light-space maps' depth) of the point of plane
@@ -486,9 +489,7 @@ PN_KFN void pn_raster_band(const pn_kview *v, PN_CONST float *tris, PN_CONST uin
                 size_t pix = (size_t)y * v->width + (size_t)x;
                 float tt;
                 pn_v3 dir;
-                if (!(run ? pn_raster_plane_hit(v, &rt, (uint32_t)x, y, &tt, &dir)
-                          : pn_raster_tri_hit(v, &rt, (uint32_t)x, y, &tt, &dir)))
-                    continue;
+                if (!pn_raster_tri_hit(v, &rt, run, (uint32_t)x, y, &tt, &dir)) continue;
                 if (tt < depth[pix] || (tt == depth[pix] && t < tri_id[pix])) {
                     depth[pix] = tt;
                     tri_id[pix] = t;

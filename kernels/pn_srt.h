@@ -51,20 +51,12 @@
 /* Largest map half-extent in tan units; beyond it: PIP. */
 #define PN_SRT_TAN_MAX PN_LVIEW_TAN_MAX
 
-/* Integer atomic max of a non-negative float stored as its bits (their order is the
- * floats' order), so the result is the same whatever order work items run in. Returns
- * the bits it replaced (or kept): 0 for exactly one caller per word that starts at 0 and
- * receives a positive value, whatever the order. */
+/* Atomic max of a non-negative float stored as its bits (pn_katomic_imax), whatever order
+ * work items run in. Returns the bits it replaced (or kept): 0 for exactly one caller per
+ * word that starts at 0 and receives a positive value, whatever the order. */
 PN_KFN uint32_t pn_srt_atomic_fmax(PN_GLOBAL uint32_t *p, float v)
 {
-#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
-    return atomic_max(p, pn_kfbits(v));
-#else
-    uint32_t b = pn_kfbits(v), cur = __atomic_load_n(p, __ATOMIC_RELAXED);
-    while (cur < b && !__atomic_compare_exchange_n(p, &cur, b, 1, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
-    }
-    return cur;
-#endif
+    return (uint32_t)pn_katomic_imax((PN_GLOBAL int32_t *)p, (int32_t)pn_kfbits(v));
 }
 
 /* The polygon's x-extent within the horizontal strip [y0, y1] (pixel coordinates), for a

@@ -25,7 +25,8 @@
  * Empty texels: near = +inf, far = -inf.
  *
  * N-buffer (§3.5; kernels/pn_nbuffer.h). Three channels per texel and level: min near,
- * max far, max near; level 0 is the layers (max near = near).
+ * max far, max near (stored with min near negated, so that every channel is a max:
+ * pn_nb_mm_get); level 0 is the layers (max near = near).
  *
  * Rays (§3, §3.1). Ray i of pixel (x, y) goes from a point S of the light, jittered in cell
  * i of an n x n grid by the reduced 16-step MD5 of Appendix A (pn_md5r, seeded by the pixel
@@ -142,10 +143,15 @@ PN_KFN void pn_md5r_step(uint32_t *t, uint32_t *dg, uint32_t F, uint32_t m, uint
     dg[3] += t[3];
 }
 
-#define PN_MD5R_F1(t) (((t)[0] & (t)[1]) | (~(t)[0] & (t)[2]))
-#define PN_MD5R_F2(t) (((t)[2] & (t)[0]) | (~(t)[2] & (t)[1]))
-#define PN_MD5R_F3(t) ((t)[0] ^ (t)[1] ^ (t)[2])
-#define PN_MD5R_F4(t) ((t)[1] ^ ((t)[0] | ~(t)[2]))
+/* The round functions of t0, t1, t2. */
+#define PN_MD5R_G1(a, b, c) (((a) & (b)) | (~(a) & (c)))
+#define PN_MD5R_G2(a, b, c) (((c) & (a)) | (~(c) & (b)))
+#define PN_MD5R_G3(a, b, c) ((a) ^ (b) ^ (c))
+#define PN_MD5R_G4(a, b, c) ((b) ^ ((a) | ~(c)))
+#define PN_MD5R_F1(t) PN_MD5R_G1((t)[0], (t)[1], (t)[2])
+#define PN_MD5R_F2(t) PN_MD5R_G2((t)[0], (t)[1], (t)[2])
+#define PN_MD5R_F3(t) PN_MD5R_G3((t)[0], (t)[1], (t)[2])
+#define PN_MD5R_F4(t) PN_MD5R_G4((t)[0], (t)[1], (t)[2])
 
 /* md5rand(seed, key) of Appendix A: 16 steps (four per round function); the message words
  * the appendix leaves commented out are zero. */
@@ -178,19 +184,79 @@ PN_KFN void pn_md5r(const uint32_t *seed, uint32_t key, uint32_t *out)
     pn_md5r_step(t, out, PN_MD5R_F4(t), 0u, 0xFC93A039u, 21u);
 }
 
-/* Jittered sample of ray (i, j) of the n x n grid for pixel (x, y): light coordinates
- * (a, b) in [-1, 1)^2 (the light point c + a U + b V), from the hash's first two words (24
- * bits each, converted exactly). */
+/* The digest's first two words of pn_md5r({s0, s1, s2 + l, s3}, key) for the lanes
+ * l = 0 .. PN_MD5R_LANES - 1 (the rays k .. k + 7 of a pixel): the same sixteen steps, each
+ * a loop over the lanes with no test (the compilers vectorize it), the state's rotation
+ * (tD = tD.yzwx) done by naming: a step with roles (A, B, C, D) = (t0, t1, t2, t3) writes
+ * its new t3 into A, and the next step's roles are (B, C, D, A). The digest's other two
+ * words, which the samples do not read, are not kept. tests/test_mcsm.c checks every lane
+ * against pn_md5r. */
+#define PN_MD5R_LANES 8u
+#define PN_MD5R_LSTEP(G, A, B, C, D, M, K, S)                                  \
+    for (l = 0; l < PN_MD5R_LANES; l++) {                                      \
+        uint32_t r_ = A[l] + G(A[l], B[l], C[l]) + (M) + (K);                  \
+        A[l] = B[l] + ((r_ << (S)) + (r_ >> (32u - (S))));                      \
+        g0[l] += B[l];                                                         \
+        g1[l] += C[l];                                                         \
+    }
+PN_KFN void pn_md5r_lanes(uint32_t s0, uint32_t s1, uint32_t s2, uint32_t s3, uint32_t key, uint32_t *g0,
+                          uint32_t *g1)
+{
+    uint32_t d0 = s0 ^ key, d1 = s1 ^ key, d3 = s3 ^ key, d2[PN_MD5R_LANES], A[PN_MD5R_LANES], B[PN_MD5R_LANES];
+    uint32_t C[PN_MD5R_LANES], D[PN_MD5R_LANES], l;
+    (void)D;
+    for (l = 0; l < PN_MD5R_LANES; l++) {
+        d2[l] = (s2 + l) ^ key;
+        A[l] = 0x01234567u;
+        B[l] = 0x89ABCDEFu;
+        C[l] = 0xFEDCBA98u;
+        D[l] = 0x76543210u;
+        g0[l] = 0x01234567u;
+        g1[l] = 0x89ABCDEFu;
+    }
+    PN_MD5R_LSTEP(PN_MD5R_G1, A, B, C, D, d0, 0xD76AA478u, 7u)
+    PN_MD5R_LSTEP(PN_MD5R_G1, B, C, D, A, d1, 0xE8C7B757u, 12u)
+    PN_MD5R_LSTEP(PN_MD5R_G1, C, D, A, B, d2[l], 0x242070DBu, 17u)
+    PN_MD5R_LSTEP(PN_MD5R_G1, D, A, B, C, d3, 0xC1BDCEEFu, 22u)
+    PN_MD5R_LSTEP(PN_MD5R_G2, A, B, C, D, d1, 0xF61E2562u, 5u)
+    PN_MD5R_LSTEP(PN_MD5R_G2, B, C, D, A, 0u, 0xC040B341u, 9u)
+    PN_MD5R_LSTEP(PN_MD5R_G2, C, D, A, B, 0u, 0x265E5A52u, 14u)
+    PN_MD5R_LSTEP(PN_MD5R_G2, D, A, B, C, d0, 0xE9B6C7ABu, 20u)
+    PN_MD5R_LSTEP(PN_MD5R_G3, A, B, C, D, 0u, 0xFFFA3942u, 4u)
+    PN_MD5R_LSTEP(PN_MD5R_G3, B, C, D, A, 0u, 0x8771F681u, 11u)
+    PN_MD5R_LSTEP(PN_MD5R_G3, C, D, A, B, 0u, 0x6D9D6122u, 16u)
+    PN_MD5R_LSTEP(PN_MD5R_G3, D, A, B, C, 0u, 0xFDE5380Cu, 23u)
+    PN_MD5R_LSTEP(PN_MD5R_G4, A, B, C, D, d0, 0xF4292244u, 6u)
+    PN_MD5R_LSTEP(PN_MD5R_G4, B, C, D, A, 0u, 0x432AFF98u, 10u)
+    PN_MD5R_LSTEP(PN_MD5R_G4, C, D, A, B, 0u, 0xAB9423A7u, 15u)
+    PN_MD5R_LSTEP(PN_MD5R_G4, D, A, B, C, 0u, 0xFC93A039u, 21u)
+}
+#undef PN_MD5R_LSTEP
+
+/* The seed's last word of every ray's hash. */
+#define PN_MC_SEED3 0x9E3779B9u
+
+/* Jittered sample of ray (i, j) of the n x n grid from its hash's first two words h0, h1:
+ * light coordinates (a, b) in [-1, 1)^2 (the light point c + a U + b V), 24 bits of each
+ * word converted exactly. */
+PN_KFN void pn_mc_jitter(uint32_t i, uint32_t j, uint32_t n, uint32_t h0, uint32_t h1, float *a, float *b)
+{
+    *a = 2.0f * (((float)i + (float)(h0 >> 8) * 5.9604644775390625e-8f) / (float)n) - 1.0f;
+    *b = 2.0f * (((float)j + (float)(h1 >> 8) * 5.9604644775390625e-8f) / (float)n) - 1.0f;
+}
+
+/* Jittered sample of ray (i, j) of the n x n grid for pixel (x, y): pn_md5r seeded by
+ * {x, y, j n + i, PN_MC_SEED3} and keyed by the frame key. (The pixel pass draws eight rays'
+ * hashes at once, pn_md5r_lanes.) */
 PN_KFN void pn_mc_sample(uint32_t x, uint32_t y, uint32_t i, uint32_t j, uint32_t n, uint32_t key, float *a, float *b)
 {
     uint32_t seed[4], h[4];
     seed[0] = x;
     seed[1] = y;
     seed[2] = j * n + i;
-    seed[3] = 0x9E3779B9u;
+    seed[3] = PN_MC_SEED3;
     pn_md5r(seed, key, h);
-    *a = 2.0f * (((float)i + (float)(h[0] >> 8) * 5.9604644775390625e-8f) / (float)n) - 1.0f;
-    *b = 2.0f * (((float)j + (float)(h[1] >> 8) * 5.9604644775390625e-8f) / (float)n) - 1.0f;
+    pn_mc_jitter(i, j, n, h[0], h[1], a, b);
 }
 
 /* ---- Layers ------------------------------------------------------------------------------ */
@@ -241,7 +307,7 @@ PN_KFN uint32_t pn_mc_rows(const pn_kview *v, const pn_kmc *mc, PN_CONST float *
 /* Band `band` of PN_RASTER_BAND texel rows of level 0 (emptied, and holding the small
  * triangles' fragments, pn_mc_rows): every fragment of every other occluder (the band
  * walk's, pn_raster.h) in front of the light plane takes part in its texel's near and far;
- * then max near := near. */
+ * then max near := near, and the texel is stored as the N-buffer's (near negated). */
 PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris, PN_CONST uint8_t *flags,
                        PN_CONST uint32_t *rows, PN_CONST uint32_t *chunks, PN_CONST uint32_t *index, uint32_t tri_n,
                        uint32_t band, PN_GLOBAL float *nb)
@@ -273,6 +339,7 @@ PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris
         for (x = 0; x < v->width; x++) {
             PN_GLOBAL float *T = nb + ((size_t)y * v->width + x) * PN_NB_MM;
             T[2] = T[0];
+            T[0] = -T[0]; /* stored as the N-buffer holds it (pn_nbuffer.h) */
         }
 }
 
@@ -330,8 +397,9 @@ PN_KFN void pn_mc_proj(const pn_mc_ctx *m, pn_v3 p, float *px, float *py)
     *py = (1.0f - p.y / (z * m->ty)) * m->hh;
 }
 
-/* Level-0 texel holding a light-frame point (clamped to the map); *outside: the point's
- * image lies beyond the map (the window left it out: nothing is known there). */
+/* Level-0 texel holding a light-frame point (clamped to the map), as stored (its bounds:
+ * pn_nb_mm_get); *outside: the point's image lies beyond the map (the window left it out:
+ * nothing is known there). */
 PN_KFN PN_CONST float *pn_mc_texel(const pn_mc_ctx *m, pn_v3 p, int *outside)
 {
     float px, py, R = (float)m->mc->res;
@@ -369,7 +437,8 @@ PN_KFN int pn_mc_seen(const pn_mc_ctx *m, pn_v3 p)
 PN_KFN int pn_mc_state(const pn_mc_ctx *m, pn_v3 p)
 {
     int out;
-    PN_CONST float *T = pn_mc_texel(m, p, &out);
+    float T[PN_NB_MM];
+    pn_nb_mm_get(pn_mc_texel(m, p, &out), T);
     if (out) return PN_MC_FRONT;
     if (m->mc->layers == 1u) return p.z >= T[0] ? PN_MC_INSIDE : PN_MC_FRONT;
     if (p.z < T[0]) return PN_MC_FRONT;
@@ -484,7 +553,6 @@ PN_KFN int pn_mc_hier(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
             }
             te = pn_kminf(te, tr > t ? tr : t + step);
         }
-        pn_nb_mm_empty(v);
         pn_nb_mm_box(m->nb, mc->res, l, X0, Y0, v);
         m->steps++;
         zlo = t * r->ze;
@@ -567,7 +635,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
     pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]), E = pn_lview_frame(m->lv, L, O), toc = pn_v3_sub(c, O);
     pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]), V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
     float ze = E.z, bias = 0.0f, zlo = 0.0f, zhi = PN_KINF, q[PN_NB_MM], cosv, lt;
-    uint32_t n = L->is_point ? 1u : mc->rays, i, j, open = 0u;
+    uint32_t n = L->is_point ? 1u : mc->rays, i, j, k = 0u, open = 0u, h0[PN_MD5R_LANES], h1[PN_MD5R_LANES];
     int classify = !(mc->flags & PN_MC_F_NO_CLASSIFY);
     *rays = 0u;
     *cls = PN_MC_CLASS_PENUMBRA;
@@ -616,29 +684,33 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
         /* Lit: only the horizon blocks. A light wholly in front of (behind) the surface
          * leaves every ray open (blocked): the sample points are convex combinations of the
          * corners. Otherwise the rays' light points, as they would be drawn. */
-        uint32_t k = mc->rays, vis = 0u, front = 0u, c4;
+        uint32_t g = mc->rays, vis = 0u, front = 0u, c4;
         for (c4 = 0; c4 < 4u; c4++) {
             pn_v3 S = pn_v3_add(c, pn_v3_add(pn_v3_scale(U, (c4 & 1u) ? 1.0f : -1.0f), pn_v3_scale(V, (c4 & 2u) ? 1.0f : -1.0f)));
             front += pn_v3_dot(pn_v3_sub(S, O), nrm) > 0.0f;
         }
         if (front == 4u) return 1.0f;
         if (front == 0u) return 0.0f;
-        for (j = 0; j < k; j++)
-            for (i = 0; i < k; i++) {
+        for (j = 0; j < g; j++)
+            for (i = 0; i < g; i++, k++) {
                 float a, b;
                 pn_v3 S;
-                pn_mc_sample(x, y, i, j, k, mc->seed, &a, &b);
+                if (k % PN_MD5R_LANES == 0u) pn_md5r_lanes(x, y, k, PN_MC_SEED3, mc->seed, h0, h1);
+                pn_mc_jitter(i, j, g, h0[k % PN_MD5R_LANES], h1[k % PN_MD5R_LANES], &a, &b);
                 S = pn_v3_add(c, pn_v3_add(pn_v3_scale(U, a), pn_v3_scale(V, b)));
                 vis += pn_v3_dot(pn_v3_sub(S, O), nrm) > 0.0f;
             }
-        return (float)vis / (float)(k * k);
+        return (float)vis / (float)(g * g);
     }
     for (j = 0; j < n; j++)
-        for (i = 0; i < n; i++) {
+        for (i = 0; i < n; i++, k++) {
             float a = 0.0f, b = 0.0f, len, tend, t0, t1;
             pn_v3 S, Sl;
             pn_mc_ray r;
-            if (!L->is_point) pn_mc_sample(x, y, i, j, n, mc->seed, &a, &b);
+            if (!L->is_point) {
+                if (k % PN_MD5R_LANES == 0u) pn_md5r_lanes(x, y, k, PN_MC_SEED3, mc->seed, h0, h1);
+                pn_mc_jitter(i, j, n, h0[k % PN_MD5R_LANES], h1[k % PN_MD5R_LANES], &a, &b);
+            }
             S = pn_v3_add(c, pn_v3_add(pn_v3_scale(U, a), pn_v3_scale(V, b)));
             if (!(pn_v3_dot(pn_v3_sub(S, O), nrm) > 0.0f)) continue; /* behind P's own plane */
             Sl = pn_lview_frame(m->lv, L, S);
@@ -656,8 +728,8 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
             if (L->is_point) {
                 /* One texel holds the whole ray: a shadow-map test. */
                 int out;
-                PN_CONST float *T = pn_mc_texel(m, pn_mc_at(&r, tend), &out);
-                float zend = tend * ze;
+                float T[PN_NB_MM], zend = tend * ze;
+                pn_nb_mm_get(pn_mc_texel(m, pn_mc_at(&r, tend), &out), T);
                 int blocked = !out && (mc->layers == 1u ? zend >= T[0] : zend >= T[0] && T[1] >= 0.0f);
                 if (blocked && mc->layers == 3u) {
                     float za = pn_kmaxf(T[0], 0.0f), zb2 = pn_kminf(T[1], zend);
@@ -715,6 +787,25 @@ PN_KFN void pn_mc_blur_pixel(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t 
     nc = pn_v3_load(nrm + pix * 3u);
     dc = depth[pix];
     k = mc->blur_depth / dc;
+    /* A window of one value v, 0 or 1 (lit and umbra regions: most of a frame), blurs to v
+     * with the same bytes: w v is w, or 0, so the sum is wsum's own additions, or 0. That
+     * holds when wsum is positive and finite: the centre tap counts (its normal test) with
+     * weight blur_w[0] (k finite), and no tap's weight is NaN (no NaN depth; with k finite,
+     * every other weight lies in [0, blur_w]). Then the weights need not be computed. */
+    if ((src[pix] == 0.0f || src[pix] == 1.0f) && k < PN_KINF && pn_v3_dot(nc, nc) >= PN_MC_BLUR_COS) {
+        float v = src[pix];
+        int32_t c = vertical ? (int32_t)y : (int32_t)x, n = vertical ? (int32_t)H : (int32_t)W;
+        int32_t i1 = pn_kmini(r, n - 1 - c);
+        size_t step = vertical ? W : 1u, q;
+        i = pn_kmaxi(-r, -c);
+        q = pix - (size_t)(-i) * step;
+        for (; i <= i1; i++, q += step)
+            if (ids[q] != 0xFFFFFFFFu && !(src[q] == v && depth[q] == depth[q])) break;
+        if (i > i1) {
+            dst[pix] = v;
+            return;
+        }
+    }
     for (i = -r; i <= r; i++) {
         int32_t xx = vertical ? (int32_t)x : (int32_t)x + i, yy = vertical ? (int32_t)y + i : (int32_t)y;
         size_t q;

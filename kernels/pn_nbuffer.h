@@ -61,51 +61,63 @@ PN_KFN void pn_nb_sum_row(uint32_t res, uint32_t l, uint32_t y, PN_GLOBAL uint32
 }
 
 /* Min / max texels: three floats, {min of channel 0, max of channel 1, max of channel 2}
- * (the Monte Carlo shadow maps: min near, max far, max near). Identity: {+inf, -inf, -inf}. */
+ * (the Monte Carlo shadow maps: min near, max far, max near), stored as maxima only:
+ * {-min 0, max 1, max 2}. Then every channel is a max, and a level's row is one max over a
+ * flat float array (pn_nb_mm_row: the compilers vectorize it). The same bytes as a min:
+ * -(a < b ? a : b) is (-a > -b ? -a : -b) for every pair, signed zeros and NaN included,
+ * so a sequence of maxima of negated values is the negated sequence of minima. Stored
+ * identity: {-inf, -inf, -inf}; pn_nb_mm_get turns a stored texel into the bounds. */
 #define PN_NB_MM 3u
 
 PN_KFN void pn_nb_mm_empty(float *v)
 {
-    v[0] = PN_KINF;
+    v[0] = -PN_KINF;
     v[1] = -PN_KINF;
     v[2] = -PN_KINF;
 }
 
 PN_KFN void pn_nb_mm_add(float *v, PN_CONST float *t)
 {
-    v[0] = pn_kminf(v[0], t[0]);
+    v[0] = pn_kmaxf(v[0], t[0]);
     v[1] = pn_kmaxf(v[1], t[1]);
     v[2] = pn_kmaxf(v[2], t[2]);
 }
 
-/* Texel x of a level row from rows ra, rb of the level below (0: outside the texture) and
- * columns x + a, x + b, each lookup tested against the texture. */
-PN_KFN void pn_nb_mm_edge(PN_CONST float *ra, PN_CONST float *rb, int32_t R, int32_t x, int32_t a, int32_t b,
-                          PN_GLOBAL float *out)
+/* The bounds {min near, max far, max near} of stored texel (or accumulation) t. */
+PN_KFN void pn_nb_mm_get(PN_CONST float *t, float *v)
 {
-    int32_t xa = x + a, xb = x + b;
-    float v[PN_NB_MM];
-    pn_nb_mm_empty(v);
-    if (ra) {
-        if (xa >= 0) pn_nb_mm_add(v, ra + (size_t)xa * PN_NB_MM);
-        if (xb < R) pn_nb_mm_add(v, ra + (size_t)xb * PN_NB_MM);
-    }
-    if (rb) {
-        if (xa >= 0) pn_nb_mm_add(v, rb + (size_t)xa * PN_NB_MM);
-        if (xb < R) pn_nb_mm_add(v, rb + (size_t)xb * PN_NB_MM);
-    }
-    out[(size_t)x * PN_NB_MM + 0u] = v[0];
-    out[(size_t)x * PN_NB_MM + 1u] = v[1];
-    out[(size_t)x * PN_NB_MM + 2u] = v[2];
+    v[0] = -t[0];
+    v[1] = t[1];
+    v[2] = t[2];
 }
 
-/* Row y of min / max level l >= 1 (levels of res^2 texels of PN_NB_MM floats in lv). When
- * both rows lie in the texture, the columns whose four lookups all do (every one but the
- * first -a and the last b) take them without a test: the same four, in the same order, as
- * pn_nb_mm_edge's. */
+/* Floats [0, n) of a level row's run of columns: out[i] the max, in order, of the k
+ * sources' (k = 0: the identity). Loops with no test inside (the compilers vectorize them). */
+PN_KFN void pn_nb_mm_run(PN_GLOBAL float *out, size_t n, PN_CONST float *s0, PN_CONST float *s1, PN_CONST float *s2,
+                         PN_CONST float *s3, uint32_t k)
+{
+    size_t i;
+    if (k == 0u)
+        for (i = 0; i < n; i++) out[i] = -PN_KINF;
+    else if (k == 1u)
+        for (i = 0; i < n; i++) out[i] = s0[i];
+    else if (k == 2u)
+        for (i = 0; i < n; i++) out[i] = pn_kmaxf(s0[i], s1[i]);
+    else if (k == 3u)
+        for (i = 0; i < n; i++) out[i] = pn_kmaxf(pn_kmaxf(s0[i], s1[i]), s2[i]);
+    else
+        for (i = 0; i < n; i++) out[i] = pn_kmaxf(pn_kmaxf(pn_kmaxf(s0[i], s1[i]), s2[i]), s3[i]);
+}
+
+/* Row y of min / max level l >= 1 (levels of res^2 texels of PN_NB_MM floats in lv). Texel
+ * x is the max of the level below at rows y + a, y + b and columns x + a, x + b, in that
+ * order (row a's two columns, then row b's), of those inside the texture. The row splits
+ * at columns -a and res - b into runs where the same lookups are inside, and each run is
+ * one max over a flat float array (every channel a max): a first max with the identity
+ * -inf gives the lookup itself, NaN included, so a run starts from its first lookup. */
 PN_KFN void pn_nb_mm_row(uint32_t res, uint32_t l, uint32_t y, PN_GLOBAL float *lv)
 {
-    int32_t a, b, ya, yb, R = (int32_t)res, x = 0, xlo, xhi;
+    int32_t a, b, ya, yb, R = (int32_t)res, cut[4], i;
     PN_CONST float *lo = lv + (size_t)(l - 1u) * res * res * PN_NB_MM;
     PN_GLOBAL float *out = lv + ((size_t)l * res * res + (size_t)y * res) * PN_NB_MM;
     PN_CONST float *ra, *rb;
@@ -114,30 +126,30 @@ PN_KFN void pn_nb_mm_row(uint32_t res, uint32_t l, uint32_t y, PN_GLOBAL float *
     yb = (int32_t)y + b;
     ra = ya >= 0 && ya < R ? lo + (size_t)ya * res * PN_NB_MM : 0;
     rb = yb >= 0 && yb < R ? lo + (size_t)yb * res * PN_NB_MM : 0;
-    if (ra && rb) {
-        xlo = pn_kmini(-a, R);
-        xhi = pn_kmaxi(R - b, xlo);
-        for (; x < xlo; x++) pn_nb_mm_edge(ra, rb, R, x, a, b, out);
-        for (; x < xhi; x++) {
-            float v[PN_NB_MM];
-            pn_nb_mm_empty(v);
-            pn_nb_mm_add(v, ra + (size_t)(x + a) * PN_NB_MM);
-            pn_nb_mm_add(v, ra + (size_t)(x + b) * PN_NB_MM);
-            pn_nb_mm_add(v, rb + (size_t)(x + a) * PN_NB_MM);
-            pn_nb_mm_add(v, rb + (size_t)(x + b) * PN_NB_MM);
-            out[(size_t)x * PN_NB_MM + 0u] = v[0];
-            out[(size_t)x * PN_NB_MM + 1u] = v[1];
-            out[(size_t)x * PN_NB_MM + 2u] = v[2];
-        }
+    /* Runs [cut[i], cut[i + 1]): x + a >= 0 from -a on, x + b < res up to res - b. */
+    cut[0] = 0;
+    cut[1] = pn_kmaxi(0, pn_kmini(-a, R - b));
+    cut[2] = pn_kmini(R, pn_kmaxi(-a, R - b));
+    cut[3] = R;
+    for (i = 0; i < 3; i++) {
+        int32_t x0 = cut[i], x1 = pn_kmaxi(cut[i + 1], x0);
+        PN_CONST float *s[4];
+        uint32_t k = 0u;
+        if (x1 <= x0) continue;
+        s[0] = s[1] = s[2] = s[3] = lo;
+        if (ra && x0 + a >= 0) s[k++] = ra + (size_t)(x0 + a) * PN_NB_MM;
+        if (ra && x0 + b < R) s[k++] = ra + (size_t)(x0 + b) * PN_NB_MM;
+        if (rb && x0 + a >= 0) s[k++] = rb + (size_t)(x0 + a) * PN_NB_MM;
+        if (rb && x0 + b < R) s[k++] = rb + (size_t)(x0 + b) * PN_NB_MM;
+        pn_nb_mm_run(out + (size_t)x0 * PN_NB_MM, (size_t)(x1 - x0) * PN_NB_MM, s[0], s[1], s[2], s[3], k);
     }
-    for (; x < R; x++) pn_nb_mm_edge(ra, rb, R, x, a, b, out);
 }
 
-/* The min / max box of level l starting at level-0 texel (X, Y), added into v. */
+/* The bounds of the min / max box of level l starting at level-0 texel (X, Y). */
 PN_KFN void pn_nb_mm_box(PN_CONST float *lv, uint32_t res, uint32_t l, int32_t X, int32_t Y, float *v)
 {
     size_t i = (size_t)l * res * res + (size_t)pn_nb_index(l, Y, res) * res + (size_t)pn_nb_index(l, X, res);
-    pn_nb_mm_add(v, lv + i * PN_NB_MM);
+    pn_nb_mm_get(lv + i * PN_NB_MM, v);
 }
 
 /* The four boxes that bound the texel rectangle [x0, x1) x [y0, y1) (clamped to the
@@ -177,7 +189,7 @@ PN_KFN uint32_t pn_nb_mm_rect_at(uint32_t res, uint32_t levels, int32_t x0, int3
 }
 
 /* Bounds over the texel rectangle [x0, x1) x [y0, y1) from pn_nb_mm_rect_at's boxes (empty:
- * the identity). */
+ * {+inf, -inf, -inf}). */
 PN_KFN void pn_nb_mm_rect(PN_CONST float *lv, uint32_t res, uint32_t levels, int32_t x0, int32_t y0, int32_t x1,
                           int32_t y1, float *v)
 {
@@ -185,6 +197,7 @@ PN_KFN void pn_nb_mm_rect(PN_CONST float *lv, uint32_t res, uint32_t levels, int
     uint32_t i, n = pn_nb_mm_rect_at(res, levels, x0, y0, x1, y1, at);
     pn_nb_mm_empty(v);
     for (i = 0; i < n; i++) pn_nb_mm_add(v, lv + at[i]);
+    v[0] = -v[0]; /* the bounds, as pn_nb_mm_get's */
 }
 
 #endif

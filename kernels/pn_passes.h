@@ -487,31 +487,40 @@ PN_KFN void pn_e_mc_nbuf(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
     pn_nb_mm_row(K->mc.res, K->mc.level, y, PN_POOL(float, mc_nb));
 }
 
-/* Pixel: its rays through the layers; visibility, class and counters. */
-PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+/* Pixel row y: each pixel's rays through the layers, its visibility and class; the row's
+ * counters added once. Rows, not pixels, as for the blur: a pixel item made two to four
+ * atomic adds and divided its index by the width, where most pixels (lit ones) do little
+ * else than one or two region lookups. */
+PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
 {
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
-    uint32_t id = PN_POOL(const uint32_t, tri_id)[pix], W = K->view.width, cls, rays;
-    PN_GLOBAL uint32_t *words = PN_POOL(uint32_t, mc_words) + (size_t)(pix / W) * PN_MC_ROW_WORDS;
-    pn_v3 nrm, O;
+    uint32_t W = K->view.width, x, k, n[PN_MC_WORDS] = {0u, 0u, 0u, 0u};
+    PN_GLOBAL uint32_t *words = PN_POOL(uint32_t, mc_words) + (size_t)y * PN_MC_ROW_WORDS;
     pn_mc_ctx m;
-    if (id == PN_NO_PIXEL_TRIANGLE) {
-        PN_POOL(float, vis)[pix] = 1.0f;
-        return;
-    }
-    nrm = pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u);
-    if (!pn_shadow_origin(pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u), nrm, &K->light, &O)) {
-        PN_POOL(float, vis)[pix] = 0.0f;
-        return;
-    }
     pn_mc_ctx_init(&m, &K->view, &K->lview, &K->light, &K->mc, PN_POOL(const float, mc_nb), PN_POOL(const float, depth));
-    PN_POOL(float, vis)[pix] = pn_mc_pixel(&m, pix % W, pix / W, nrm, O, &cls, &rays);
-    c.lit = 1u;
-    c.candidates = rays;
+    for (x = 0; x < W; x++) {
+        size_t pix = (size_t)y * W + x;
+        uint32_t id = PN_POOL(const uint32_t, tri_id)[pix], cls, rays;
+        pn_v3 nrm, O;
+        if (id == PN_NO_PIXEL_TRIANGLE) {
+            PN_POOL(float, vis)[pix] = 1.0f;
+            continue;
+        }
+        nrm = pn_v3_load(PN_POOL(const float, nrm) + pix * 3u);
+        if (!pn_shadow_origin(pn_v3_load(PN_POOL(const float, pos) + pix * 3u), nrm, &K->light, &O)) {
+            PN_POOL(float, vis)[pix] = 0.0f;
+            continue;
+        }
+        PN_POOL(float, vis)[pix] = pn_mc_pixel(&m, x, y, nrm, O, &cls, &rays);
+        c.lit++;
+        c.candidates += rays;
+        if (cls != PN_MC_CLASS_NONE) n[cls - 1u]++;
+    }
     c.nodes = m.steps;
-    pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / W].c, &c);
-    if (cls != PN_MC_CLASS_NONE) pn_katomic_add(words + (cls - 1u), 1u);
-    if (m.capped) pn_katomic_add(words + PN_MC_WORD_CAPPED, m.capped);
+    n[PN_MC_WORD_CAPPED] = m.capped;
+    pn_counters_add(&PN_POOL(pn_row_counters, counters)[y].c, &c);
+    for (k = 0; k < PN_MC_WORDS; k++)
+        if (n[k]) pn_katomic_add(words + k, n[k]);
 }
 
 /* Row: the blur across (visibility into the other buffer), then down (back). Rows, not
@@ -674,7 +683,7 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
     X(MC_ROWS, mc_rows, 64, 4096)                         \
     X(MC_BAND, mc_band, 1, 1)                             \
     X(MC_NBUF, mc_nbuf, 4, 8)                             \
-    X(MC_PIXEL, mc_pixel, 16, 1024)                       \
+    X(MC_PIXEL, mc_pixel, 4, 2)                           \
     X(MC_BLUR_H, mc_blur_h, 4, 8)                         \
     X(MC_BLUR_V, mc_blur_v, 4, 8)
 #else

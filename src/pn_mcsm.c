@@ -50,12 +50,14 @@ static pn_status pn_mc_whole(pn_frame_state *fs, const float *nb, pn_kmc *mc)
 {
     size_t at[4];
     uint32_t i, n = pn_nb_mm_rect_at(mc->res, mc->levels, 0, 0, (int32_t)mc->res, (int32_t)mc->res, at);
+    float s[PN_NB_MM];
     pn_status st;
-    pn_nb_mm_empty(mc->whole);
+    pn_nb_mm_empty(s);
     for (i = 0; i < n; i++) {
         if ((st = pn_dev_to_host(fs, nb + at[i], 4u * PN_NB_MM)) != PN_OK) return st;
-        pn_nb_mm_add(mc->whole, nb + at[i]);
+        pn_nb_mm_add(s, nb + at[i]);
     }
+    pn_nb_mm_get(s, mc->whole);
     return PN_OK;
 }
 
@@ -80,7 +82,7 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
     pn_kmc *mc = &K->mc;
     pn_mc_pools s;
     pn_lwin w;
-    uint32_t res = fs->mc_map, npix = fs->width * fs->height, l, y;
+    uint32_t res = fs->mc_map, l, y;
     uint64_t t0 = pn_dev_timestamp(fs), t1;
     int front;
     pn_status st;
@@ -124,7 +126,7 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
     }
     /* Without an origin in front of the light no pixel reads the layers: every pixel is
      * background (1) or unlit (0). */
-    if ((st = pn_dev_run(fs, PN_K_MC_PIXEL, npix)) != PN_OK) return st;
+    if ((st = pn_dev_run(fs, PN_K_MC_PIXEL, fs->height)) != PN_OK) return st;
     t1 = pn_dev_timestamp(fs);
     ctx->mc.ns_rays = t1 - t0;
     t0 = t1;

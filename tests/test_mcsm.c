@@ -74,6 +74,31 @@ static void test_hash(void)
                     }
             }
     CHECK_MSG(same == 0u, "%u of %u samples equal their right neighbour's", same, total);
+    /* The pixel pass's eight-lane hash (pn_md5r_lanes) is pn_md5r, lane by lane: the seeds
+     * above, then pseudo-random ones (the lane's word 2 wrapping past 2^32 among them). */
+    {
+        uint32_t r = 0x2545F491u, bad = 0u, k;
+        for (k = 0; k < 20003u; k++) {
+            uint32_t sd[5], g0[PN_MD5R_LANES], g1[PN_MD5R_LANES], l;
+            for (i = 0; i < 5u; i++) {
+                r ^= r << 13;
+                r ^= r >> 17;
+                r ^= r << 5;
+                sd[i] = k < 3u ? seeds[k][i] : k < 6u && i == 2u ? 0xFFFFFFFCu - k : r;
+            }
+            pn_md5r_lanes(sd[0], sd[1], sd[2], sd[3], sd[4], g0, g1);
+            for (l = 0; l < PN_MD5R_LANES; l++) {
+                uint32_t seed[4], out[4];
+                seed[0] = sd[0];
+                seed[1] = sd[1];
+                seed[2] = sd[2] + l;
+                seed[3] = sd[3];
+                pn_md5r(seed, sd[4], out);
+                bad += out[0] != g0[l] || out[1] != g1[l];
+            }
+        }
+        CHECK_MSG(bad == 0u, "%u of %u lanes of pn_md5r_lanes differ from pn_md5r", bad, 20003u * PN_MD5R_LANES);
+    }
 }
 
 static int open_scene(const char *name, pn_setup *s, pn_host *h, int threads, int receivers)

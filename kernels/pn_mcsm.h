@@ -354,6 +354,7 @@ typedef struct pn_mc_ctx {
     PN_CONST float *depth; /* G-buffer depth (third layer) */
     float tx, ty;          /* the layers' window half-tans (pn_project_camera's factors) */
     float hw, hh;          /* half the layers' size in texels */
+    pn_v3 corner[4];       /* the light's corners c -+ U -+ V (bit 0: +U, bit 1: +V) */
     uint32_t steps;        /* search steps so far */
     uint32_t capped;       /* searches stopped at the cap */
 } pn_mc_ctx;
@@ -373,6 +374,7 @@ PN_KFN pn_v3 pn_mc_at(const pn_mc_ray *r, float t)
 PN_KFN void pn_mc_ctx_init(pn_mc_ctx *m, const pn_kview *view, const pn_kview *lv, const pn_klight *L,
                            const pn_kmc *mc, PN_CONST float *nb, PN_CONST float *depth)
 {
+    uint32_t k;
     m->view = view;
     m->lv = lv;
     m->L = L;
@@ -385,6 +387,10 @@ PN_KFN void pn_mc_ctx_init(pn_mc_ctx *m, const pn_kview *view, const pn_kview *l
     m->hh = 0.5f * (float)lv->height;
     m->steps = 0u;
     m->capped = 0u;
+    for (k = 0; k < 4u; k++)
+        m->corner[k] = pn_v3_add(pn_v3_make(L->c[0], L->c[1], L->c[2]),
+                                 pn_v3_add(pn_v3_scale(pn_v3_make(L->U[0], L->U[1], L->U[2]), (k & 1u) ? 1.0f : -1.0f),
+                                           pn_v3_scale(pn_v3_make(L->V[0], L->V[1], L->V[2]), (k & 2u) ? 1.0f : -1.0f)));
 }
 
 /* Image of a light-frame point in the layers, continuous texel coordinates:
@@ -620,6 +626,18 @@ PN_KFN void pn_mc_clip(const pn_mc_ctx *m, const pn_mc_ray *r, float *t0, float 
     pn_mc_clip_side(-r->ys - ky * d, -dy - ky * r->ze, t0, t1);
 }
 
+/* The adaptive bias of eq. 3.2 for an origin at light depth ze with unit normal nrm and
+ * toc, the origin to the light centre: half a texel's diagonal at the origin's depth
+ * (bias_k (ze + d)), over the cosine of the angle to the light, at least PN_MC_COS_MIN. */
+PN_KFN float pn_mc_bias(const pn_kmc *mc, pn_v3 nrm, pn_v3 toc, float ze)
+{
+    float lt, cosv;
+    if (mc->flags & PN_MC_F_NO_BIAS) return 0.0f;
+    lt = pn_ksqrt(pn_v3_dot(toc, toc));
+    cosv = lt > 0.0f ? pn_v3_dot(nrm, toc) / lt : 1.0f;
+    return mc->bias_k * (ze + mc->d) / pn_kmaxf(cosv, PN_MC_COS_MIN);
+}
+
 /* Pixel classes (the counters). */
 #define PN_MC_CLASS_NONE 0u
 #define PN_MC_CLASS_LIT 1u
@@ -634,7 +652,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
     const pn_klight *L = m->L;
     pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]), E = pn_lview_frame(m->lv, L, O), toc = pn_v3_sub(c, O);
     pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]), V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
-    float ze = E.z, bias = 0.0f, zlo = 0.0f, zhi = PN_KINF, q[PN_NB_MM], cosv, lt;
+    float ze = E.z, bias = 0.0f, zlo = 0.0f, zhi = PN_KINF, q[PN_NB_MM];
     uint32_t n = L->is_point ? 1u : mc->rays, i, j, k = 0u, open = 0u, h0[PN_MD5R_LANES], h1[PN_MD5R_LANES];
     int classify = !(mc->flags & PN_MC_F_NO_CLASSIFY);
     *rays = 0u;
@@ -651,9 +669,6 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
         *cls = PN_MC_CLASS_UMBRA;
         return 0.0f;
     }
-    lt = pn_ksqrt(pn_v3_dot(toc, toc));
-    cosv = lt > 0.0f ? pn_v3_dot(nrm, toc) / lt : 1.0f;
-    if (!(mc->flags & PN_MC_F_NO_BIAS)) bias = mc->bias_k * (ze + mc->d) / pn_kmaxf(cosv, PN_MC_COS_MIN);
     if (classify && !L->is_point) {
         /* Penumbra classification (§3.6): the region every ray can reach at depth zb
          * (eq. 3.3; a square of sfac (ze - zb) / (ze (zb + d)) texels around the image of
@@ -671,24 +686,25 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
         }
         if (!(zb < ze)) {
             *cls = PN_MC_CLASS_LIT;
-            n = 0u; /* every ray unblocked but for the horizon */
-        } else if (mc->layers <= 2u && ze - bias > q[2]) {
-            *cls = PN_MC_CLASS_UMBRA;
-            return 0.0f;
+            n = 0u; /* every ray unblocked but for the horizon (and no bias needed) */
         } else {
+            bias = pn_mc_bias(mc, nrm, toc, ze);
+            if (mc->layers <= 2u && ze - bias > q[2]) {
+                *cls = PN_MC_CLASS_UMBRA;
+                return 0.0f;
+            }
             zlo = zb;
             if (mc->layers >= 2u) zhi = q[1];
         }
+    } else {
+        bias = pn_mc_bias(mc, nrm, toc, ze);
     }
     if (n == 0u) {
         /* Lit: only the horizon blocks. A light wholly in front of (behind) the surface
          * leaves every ray open (blocked): the sample points are convex combinations of the
          * corners. Otherwise the rays' light points, as they would be drawn. */
         uint32_t g = mc->rays, vis = 0u, front = 0u, c4;
-        for (c4 = 0; c4 < 4u; c4++) {
-            pn_v3 S = pn_v3_add(c, pn_v3_add(pn_v3_scale(U, (c4 & 1u) ? 1.0f : -1.0f), pn_v3_scale(V, (c4 & 2u) ? 1.0f : -1.0f)));
-            front += pn_v3_dot(pn_v3_sub(S, O), nrm) > 0.0f;
-        }
+        for (c4 = 0; c4 < 4u; c4++) front += pn_v3_dot(pn_v3_sub(m->corner[c4], O), nrm) > 0.0f;
         if (front == 4u) return 1.0f;
         if (front == 0u) return 0.0f;
         for (j = 0; j < g; j++)

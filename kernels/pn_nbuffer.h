@@ -195,9 +195,12 @@ PN_KFN void pn_nb_mm_rect(PN_CONST float *lv, uint32_t res, uint32_t levels, int
 {
     size_t at[4];
     uint32_t i, n = pn_nb_mm_rect_at(res, levels, x0, y0, x1, y1, at);
-    pn_nb_mm_empty(v);
-    for (i = 0; i < n; i++) pn_nb_mm_add(v, lv + at[i]);
-    v[0] = -v[0]; /* the bounds, as pn_nb_mm_get's */
+    float s[PN_NB_MM]; /* a local sum: through v, the compilers store and reload at each box */
+    pn_nb_mm_empty(s);
+    for (i = 0; i < n; i++) pn_nb_mm_add(s, lv + at[i]);
+    v[0] = -s[0]; /* the bounds, as pn_nb_mm_get's */
+    v[1] = s[1];
+    v[2] = s[2];
 }
 
 #endif

@@ -52,9 +52,7 @@ ir_of() { # file pattern
   awk -v pat="$2" '$0 ~ pat { gsub(",", "", $1); print $1; exit }' "$1"
 }
 total_of() { ir_of "$1" "PROGRAM TOTALS"; }
-json() { # file key
-  sed -n "s/.*\"$2\": \([0-9.]*\).*/\1/p" "$1" | head -n 1
-}
+. "$(dirname "$0")/pn_stats.sh" # json FILE KEY
 lit=$(json "$work/reference.json" lit_pixels)
 samples=$((lit * k * k))
 

@@ -20,10 +20,7 @@ command -v valgrind >/dev/null 2>&1 || { echo "exact_profile: valgrind is not in
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-json() { # file key -> number (0 when absent)
-  v=$(sed -n "s/.*\"$2\": \([0-9.]*\).*/\1/p" "$1" | head -n 1)
-  echo "${v:-0}"
-}
+. "$(dirname "$0")/pn_stats.sh" # json FILE KEY
 
 echo "| scene | lit pixels | reference: instructions / lit pixel | boxes / lit pixel | predicate calls / lit pixel | GEARS: instructions / lit pixel | of which the per-pixel step | boxes / lit pixel | cell triangles / lit pixel | predicate calls / lit pixel | GEARS vs reference (instructions) |"
 echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"

@@ -87,11 +87,12 @@ typedef struct pn_kocc {
  * Light frame: origin at the light centre, axes lview's r, u, f; depth z along f. */
 typedef struct pn_kmc {
     float d;          /* centre of projection behind the light centre (0: point light) */
-    float sfac;       /* res |U| / tx: a region's side in texels is sfac (z - zb) / (z (zb + d)) */
+    float sfac;       /* res ha / tx: a region's width in texels is sfac (z - zb) / (z (zb + d)) */
     float bias_k;     /* adaptive bias (eq. 3.2) per unit of (z + d) / cos */
     float blur_depth; /* blur: a neighbour's weight / (1 + |depth - centre| blur_depth / centre) */
     float whole[3];   /* the N-buffer's bound over the whole map (pn_nb_mm_rect), once a frame */
-    float pad3;
+    float sfac_y;     /* res hb / ty: its height, sfac_y (z - zb) / (z (zb + d)) (the window fitted
+                         to the occluders narrows tx and ty apart: the two differ) */
     uint32_t res;     /* texels per axis */
     uint32_t levels;  /* N-buffer levels: floor(log2 res) + 1 */
     uint32_t level;   /* the level an N-buffer pass builds */

@@ -38,6 +38,8 @@
  *   two layers: some point lies in its texel's [near, far];
  *   three layers: the same, unless that point is seen from the eye (in front of the
  *     G-buffer's depth at its pixel: empty space, Algorithm 1).
+ * Its end point counts (the thesis' "endpoint inside a solid object" test, one lookup): the
+ * searches walk half-open steps and would miss an end lying exactly on a solid texel's edge.
  * Visibility = unblocked rays / n^2, then the screen-space blur.
  *
  * Early-outs and shortening (§3.6, §3.7), all but the umbra test consistent with the
@@ -47,12 +49,15 @@
  * side), and a ray toward a light point behind the surface's plane is blocked (the horizon
  * of invariant 6); a pixel whose origin lies no
  * deeper than the smallest near depth of the region every ray can reach (eq. 3.3, refined
- * twice from the whole map's minimum) is lit; with one or two layers, a pixel whose every
- * ray ends behind the largest near depth of that region is umbra (the thesis' test; with
- * two layers it assumes solid occluders, with three it is off, as the thesis says); a ray
- * whose end lies inside a texel's interval is blocked; a ray whose own region has no near
- * depth before its end is unblocked; rays start at the region's smallest near depth and,
- * with two or more layers, end at its largest far depth.
+ * twice from the whole map's minimum; pn_mc_reach) is lit; with one or two layers, a pixel
+ * whose every ray ends behind the largest near depth of that region is umbra (the thesis'
+ * test; with two layers it assumes solid occluders, with three it is off, as the thesis
+ * says); a ray whose own region has no near depth before its end is unblocked; rays start
+ * at the region's smallest near depth and, with two or more layers, end at its largest far
+ * depth. With one layer every one of them gives the model's answer: test_mcsm renders
+ * the same bytes with and without them (at 512x512 on thin and the bunny; room at 512x512
+ * differs in 3 pixels, one ray each, grazing a near depth within 0.03 texel of the map's
+ * edge, where the search and the start its shortening gives it round apart).
  *
  * Searches. Linear (§3.3): samples one texel apart in the layers' image, each in front of,
  * inside or behind its texel's interval; a change between in front and behind is refined
@@ -120,9 +125,11 @@
  * row's words fill a cache line of their own, like pn_row_counters). */
 #define PN_MC_WORD_LIT 0u
 #define PN_MC_WORD_UMBRA 1u
-#define PN_MC_WORD_PENUMBRA 2u
-#define PN_MC_WORD_CAPPED 3u
-#define PN_MC_WORDS 4u
+#define PN_MC_WORD_PENUMBRA 2u      /* penumbra pixels whose rays came back mixed */
+#define PN_MC_WORD_PENUMBRA_OPEN 3u /* ...that no layer blocked (lit as far as the layers say) */
+#define PN_MC_WORD_PENUMBRA_SHUT 4u /* ...whose every sample in front was blocked */
+#define PN_MC_WORD_CAPPED 5u
+#define PN_MC_WORDS 6u
 #define PN_MC_ROW_WORDS 16u
 
 /* ---- The sample hash: Appendix A's reduced MD5 ------------------------------------------- */
@@ -603,6 +610,30 @@ PN_KFN void pn_mc_region(const pn_mc_ctx *m, float ax, float ay, float bx, float
     if (x0 < 0 || y0 < 0 || x1 > R || y1 > R) v[2] = PN_KINF;
 }
 
+/* The box, in continuous texel coordinates b = {x0, y0, x1, y1}, that the images of the
+ * rays from every point of the light to the light-frame point E (image ex, ey) stay in from
+ * depth zb on (0 <= zb < E.z): eq. 3.3's region, the light's section at zb, sfac
+ * (ze - zb) / (ze (zb + d)) by sfac_y (ze - zb) / (ze (zb + d)) texels around the image of
+ * E's segment to the light centre at that depth, and E's image. A ray's image is a segment
+ * from its point at zb to E's image, so the rays fill the hull of the two. The section
+ * holds E's image when E lies in eq. 3.1's frustum (|E.x| / (ze + d) <= ha / d, and so for
+ * y); an origin the window had to leave out (beyond PN_LVIEW_TAN_MAX) does not, and its
+ * image widens the box. The two sides differ: the window fitted to the occluders narrows
+ * tx and ty apart (one side for both let rays out of a region: 8 of bunny's pixels at
+ * 512x512, one layer, lit where its rays are blocked; test_mcsm checks the box over random
+ * windows and rays). */
+PN_KFN void pn_mc_reach(const pn_mc_ctx *m, pn_v3 E, float ex, float ey, float zb, float *b)
+{
+    const pn_kmc *mc = m->mc;
+    float ze = E.z, den = ze * (zb + mc->d), sx = mc->sfac * (ze - zb) / den, sy = mc->sfac_y * (ze - zb) / den;
+    float cx, cy, fr = zb / ze;
+    pn_mc_proj(m, pn_v3_make(E.x * fr, E.y * fr, zb), &cx, &cy);
+    b[0] = pn_kminf(cx - 0.5f * sx, ex);
+    b[1] = pn_kminf(cy - 0.5f * sy, ey);
+    b[2] = pn_kmaxf(cx + 0.5f * sx, ex);
+    b[3] = pn_kmaxf(cy + 0.5f * sy, ey);
+}
+
 /* Narrows [t0, t1] to the part of ray r whose image lies within the map widened by
  * PN_MC_CLIP_TEXELS on each side: beyond the map lies no occluder (the window holds their
  * box), so the searches need not walk there. Per side, x(t) - k (t z_E + d) <= 0 with
@@ -638,11 +669,18 @@ PN_KFN float pn_mc_bias(const pn_kmc *mc, pn_v3 nrm, pn_v3 toc, float ze)
     return mc->bias_k * (ze + mc->d) / pn_kmaxf(cosv, PN_MC_COS_MIN);
 }
 
-/* Pixel classes (the counters). */
+/* Pixel classes (the counters: class c counts in word c - 1). A pixel the classification
+ * left potentially in penumbra is then told apart by what its rays found: some blocked and
+ * some not (PENUMBRA), none blocked by the layers (PENUMBRA_OPEN: the classification could
+ * have called it lit; its visibility is the horizon's alone), or samples in front of its
+ * surface and every one of them blocked by the layers (PENUMBRA_SHUT). The last two measure how tight the classification is (§3.6:
+ * "two iterations are generally sufficient to produce a tight bound around penumbrae"). */
 #define PN_MC_CLASS_NONE 0u
 #define PN_MC_CLASS_LIT 1u
 #define PN_MC_CLASS_UMBRA 2u
 #define PN_MC_CLASS_PENUMBRA 3u
+#define PN_MC_CLASS_PENUMBRA_OPEN 4u
+#define PN_MC_CLASS_PENUMBRA_SHUT 5u
 
 /* Visibility of one lit G-buffer pixel (x, y): point P, unit normal nrm, shadow-ray origin O.
  * *cls: its class; *rays: rays searched. */
@@ -653,7 +691,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
     pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]), E = pn_lview_frame(m->lv, L, O), toc = pn_v3_sub(c, O);
     pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]), V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
     float ze = E.z, bias = 0.0f, zlo = 0.0f, zhi = PN_KINF, q[PN_NB_MM];
-    uint32_t n = L->is_point ? 1u : mc->rays, i, j, k = 0u, open = 0u, h0[PN_MD5R_LANES], h1[PN_MD5R_LANES];
+    uint32_t n = L->is_point ? 1u : mc->rays, i, j, k = 0u, open = 0u, ahead = 0u, h0[PN_MD5R_LANES], h1[PN_MD5R_LANES];
     int classify = !(mc->flags & PN_MC_F_NO_CLASSIFY);
     *rays = 0u;
     *cls = PN_MC_CLASS_PENUMBRA;
@@ -670,16 +708,14 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
         return 0.0f;
     }
     if (classify && !L->is_point) {
-        /* Penumbra classification (§3.6): the region every ray can reach at depth zb
-         * (eq. 3.3; a square of sfac (ze - zb) / (ze (zb + d)) texels around the image of
-         * E's segment to the light centre at that depth), its smallest near depth the next
-         * zb, twice, from the whole map's. */
+        /* Penumbra classification (§3.6): the region every ray can reach from depth zb on
+         * (pn_mc_reach), its smallest near depth the next zb, twice, from the whole map's. */
         uint32_t it;
-        float zb = mc->whole[0], nz; /* the whole map's, src/pn_mcsm.c */
+        float zb = mc->whole[0], nz, ex, ey, b[4]; /* the whole map's, src/pn_mcsm.c */
+        pn_mc_proj(m, E, &ex, &ey);
         for (it = 0; it < 2u && zb < ze; it++) {
-            float s = mc->sfac * (ze - zb) / (ze * (zb + mc->d)), cx, cy, fr = zb / ze;
-            pn_mc_proj(m, pn_v3_make(E.x * fr, E.y * fr, zb), &cx, &cy);
-            pn_mc_region(m, cx - 0.5f * s, cy - 0.5f * s, cx + 0.5f * s, cy + 0.5f * s, q);
+            pn_mc_reach(m, E, ex, ey, zb, b);
+            pn_mc_region(m, b[0], b[1], b[2], b[3], q);
             nz = pn_kmaxf(zb, q[0]);
             if (nz == zb) break; /* zb stays: the next region would be this one */
             zb = nz;
@@ -729,6 +765,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
             }
             S = pn_v3_add(c, pn_v3_add(pn_v3_scale(U, a), pn_v3_scale(V, b)));
             if (!(pn_v3_dot(pn_v3_sub(S, O), nrm) > 0.0f)) continue; /* behind P's own plane */
+            ahead++;
             Sl = pn_lview_frame(m->lv, L, S);
             r.xs = Sl.x;
             r.ys = Sl.y;
@@ -759,11 +796,17 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
             t0 = zlo / ze * (1.0f - PN_MC_T_SLACK);
             t1 = pn_kminf(tend, zhi / ze * (1.0f + PN_MC_T_SLACK));
             pn_mc_clip(m, &r, &t0, &t1);
-            if (classify) {
-                /* The ray's end inside a texel's interval: blocked with one lookup. */
+            {
+                /* The ray's end inside a texel's interval: blocked, with one lookup. Part of
+                 * the model, not only an early-out: the searches walk [t0, t1) and leave out
+                 * the end itself, and an end exactly on the edge of a solid texel (thin,
+                 * 512x512: a ray whose image ends at x = 426.000) is blocked by this test
+                 * and by no search step. */
                 int s = pn_mc_state(m, pn_mc_at(&r, tend));
                 m->steps++;
                 if (s == PN_MC_INSIDE) continue;
+            }
+            if (classify) {
                 if (t0 < t1) {
                     /* The ray's own region (§3.7): nothing before its end, or shortened. */
                     float ax, ay, bx, by;
@@ -782,6 +825,8 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
             *rays += 1u;
             if (!(mc->search == PN_MC_S_LINEAR ? pn_mc_linear(m, &r, t0, t1) : pn_mc_hier(m, &r, t0, t1))) open++;
         }
+    /* open: the samples in front of P's plane (ahead) that no layer blocked */
+    *cls = open == ahead ? PN_MC_CLASS_PENUMBRA_OPEN : (open == 0u ? PN_MC_CLASS_PENUMBRA_SHUT : PN_MC_CLASS_PENUMBRA);
     return (float)open / (float)(n * n);
 }
 

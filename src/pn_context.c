@@ -184,6 +184,8 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out)
     s.mc_penumbra = ctx->mc.penumbra;
     s.mc_rays = ctx->mc.rays;
     s.mc_steps = ctx->mc.steps;
+    s.mc_penumbra_open = ctx->mc.penumbra_open;
+    s.mc_penumbra_shut = ctx->mc.penumbra_shut;
     s.mc_capped = ctx->mc.capped;
     s.mc_ns_layers = ctx->mc.ns_layers;
     s.mc_ns_nbuffer = ctx->mc.ns_nbuffer;

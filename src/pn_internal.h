@@ -118,7 +118,7 @@ struct pn_context {
         uint64_t texels, lookups, ns_slice, ns_filter, ns_lookup;
     } occ;
     struct {
-        uint32_t map, lit, umbra, penumbra, capped;
+        uint32_t map, lit, umbra, penumbra, penumbra_open, penumbra_shut, capped;
         uint64_t rays, steps, ns_layers, ns_nbuffer, ns_rays, ns_blur;
     } mc;
     struct {

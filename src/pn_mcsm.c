@@ -13,7 +13,7 @@
 typedef char pn_mc_consts_agree[PN_MC_S_LINEAR == PN_MC_SEARCH_LINEAR && PN_MC_S_HIER == PN_MC_SEARCH_HIER &&
                                         PN_MC_F_NO_BIAS == PN_MC_NO_BIAS && PN_MC_F_NO_CLASSIFY == PN_MC_NO_CLASSIFY &&
                                         PN_MC_RAYS_MAX == 8u && PN_MC_BLUR_MAX + 1u <= 12u &&
-                                        PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS && PN_MC_WORDS == 4u &&
+                                        PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS && PN_MC_WORDS == 6u &&
                                         PN_MC_ROW_WORDS == 16u /* 64 bytes a row in pn_mc_pools (src/pn_arena.c) */
                                     ? 1
                                     : -1];
@@ -106,6 +106,7 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
         pn_lview_fit_occluders(ctx, res, &K->light, &K->lview, &w);
         mc->d = w.d;
         mc->sfac = K->light.is_point ? 0.0f : (float)res * K->lview_ha / w.tx;
+        mc->sfac_y = K->light.is_point ? 0.0f : (float)res * K->lview_hb / w.ty;
         /* eq. 3.2: half a texel's diagonal at depth z + d, sqrt(2) z tan(fov / 2) / w. */
         mc->bias_k = 1.41421356f * pn_kmaxf(w.tx, w.ty) / (float)res;
         /* Layers, then the N-buffer above them. */
@@ -144,7 +145,9 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
         const pn_shadow_counters *c = &((const pn_row_counters *)fs->counters)[y].c;
         ctx->mc.lit += wd[PN_MC_WORD_LIT];
         ctx->mc.umbra += wd[PN_MC_WORD_UMBRA];
-        ctx->mc.penumbra += wd[PN_MC_WORD_PENUMBRA];
+        ctx->mc.penumbra += wd[PN_MC_WORD_PENUMBRA] + wd[PN_MC_WORD_PENUMBRA_OPEN] + wd[PN_MC_WORD_PENUMBRA_SHUT];
+        ctx->mc.penumbra_open += wd[PN_MC_WORD_PENUMBRA_OPEN];
+        ctx->mc.penumbra_shut += wd[PN_MC_WORD_PENUMBRA_SHUT];
         ctx->mc.capped += wd[PN_MC_WORD_CAPPED];
         ctx->mc.rays += c->candidates;
         ctx->mc.steps += c->nodes;

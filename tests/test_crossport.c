@@ -141,6 +141,8 @@ static int same_frame(const char *what, const pn_xframe *a, const pn_xframe *b)
     SAME_STAT(mc_lit);
     SAME_STAT(mc_umbra);
     SAME_STAT(mc_penumbra);
+    SAME_STAT(mc_penumbra_open);
+    SAME_STAT(mc_penumbra_shut);
     SAME_STAT(mc_rays);
     SAME_STAT(mc_steps);
     SAME_STAT(mc_capped);

@@ -211,6 +211,7 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
             (double)st->occ_ns_slice * 1e-6, (double)st->occ_ns_filter * 1e-6, (double)st->occ_ns_lookup * 1e-6);
     fprintf(f, "  \"mc_map\": %u,\n  \"mc_lit\": %u,\n  \"mc_umbra\": %u,\n  \"mc_penumbra\": %u,\n",
             st->mc_map, st->mc_lit, st->mc_umbra, st->mc_penumbra);
+    fprintf(f, "  \"mc_penumbra_open\": %u,\n  \"mc_penumbra_shut\": %u,\n", st->mc_penumbra_open, st->mc_penumbra_shut);
     fprintf(f, "  \"mc_rays\": %llu,\n  \"mc_steps\": %llu,\n  \"mc_capped\": %u,\n", (unsigned long long)st->mc_rays,
             (unsigned long long)st->mc_steps, st->mc_capped);
     fprintf(f, "  \"ms_mc_layers\": %.3f,\n  \"ms_mc_nbuffer\": %.3f,\n  \"ms_mc_rays\": %.3f,\n  \"ms_mc_blur\": %.3f,\n",

@@ -447,6 +447,10 @@ typedef struct pn_stats {
     uint32_t mc_lit, mc_umbra, mc_penumbra; /* lit pixels the classification called fully lit,
                                     umbra (with those whose surface faces away from the
                                     light centre), or potentially in penumbra (rays traced) */
+    uint32_t mc_penumbra_open;   /* ...of the penumbra pixels, those whose rays no layer
+                                    blocked (the classification could have called them lit) */
+    uint32_t mc_penumbra_shut;   /* ...and those with samples in front of their surface, every
+                                    one of them blocked by the layers (the rest: mixed) */
     uint64_t mc_rays;            /* rays searched through the layers (after the early-outs) */
     uint64_t mc_steps;           /* search steps: N-buffer boxes or linear samples looked up */
     uint32_t mc_capped;          /* searches stopped by the step cap (taken as unblocked) */

@@ -7,13 +7,21 @@
  * (l >= 1): boxes of side 2^l centred on lattice point x + 1 (Curtis 2009 §3.5 moves
  * Decoret's lower-left texels to the centre, which keeps information near the edges).
  * Level l >= 1 is built from level l - 1 by four lookups at offsets a, b per axis
- * (pn_nb_offsets); texels outside the texture are the reduction's identity. Levels are
- * stored one after another, res^2 texels each.
+ * (pn_nb_offsets); lookups at texels outside the texture give the reduction's identity.
+ * Levels are stored one after another, res^2 texels each.
  *
- * Lookups. pn_nb_index gives the texel of level l whose box starts at level-0 texel X;
- * clamped to the texture, the box it returns still holds the in-texture part of the box
- * asked for (a superset: conservative for min / max bounds). pn_nb_rect bounds any
- * rectangle with four boxes. */
+ * Edges. A texel whose box lies inside the texture holds exactly that box. One whose box
+ * reaches beyond an edge holds less than the texture's part of it: a lower box whose index
+ * lies outside is skipped though its box may reach in (level 2's texel 0 holds [1, 3), not
+ * column 0; texel res - 2 of level 3 misses column res - 1). The Monte Carlo shadow maps
+ * read boxes inside the texture only (pn_nb_mm_box, pn_nb_mm_rect_at); the occlusion
+ * textures' N-buffer filter reads the edge texels as they are, so within 2^(l-1) texels of
+ * an edge its level-l means count less than the kernel holds (an approximation of that
+ * filter, on top of its bilinear one).
+ *
+ * Lookups. pn_nb_index gives the texel of level l whose box starts at level-0 texel X,
+ * exact for boxes inside the texture. pn_nb_mm_rect_at bounds any rectangle with four
+ * boxes inside the texture, pn_nb_mm_box any box by the one inside against the edge. */
 #ifndef PN_NBUFFER_H
 #define PN_NBUFFER_H
 
@@ -26,7 +34,11 @@ PN_KFN void pn_nb_offsets(uint32_t l, int32_t *a, int32_t *b)
     *b = l == 1u ? 1 : (int32_t)(1u << (l - 2u));
 }
 
-/* Level l's texel whose box starts at level-0 texel X, clamped to [0, res). */
+/* Level l's texel whose box starts at level-0 texel X, clamped to [0, res). Texel i of
+ * level l >= 1 holds the box [i + 1 - 2^(l-1), i + 1 + 2^(l-1)) where that box lies inside
+ * the texture; nearer the edges it holds less than the texture's part of it (the builder
+ * skips lower boxes whose index lies outside, though their boxes reach in: texel 0 of
+ * level 2 holds [1, 3), not column 0). Exact for 0 <= X <= res - 2^l, the boxes inside. */
 PN_KFN int32_t pn_nb_index(uint32_t l, int32_t X, uint32_t res)
 {
     int32_t i = l == 0u ? X : X - 1 + (int32_t)(1u << (l - 1u));
@@ -145,10 +157,16 @@ PN_KFN void pn_nb_mm_row(uint32_t res, uint32_t l, uint32_t y, PN_GLOBAL float *
     }
 }
 
-/* The bounds of the min / max box of level l starting at level-0 texel (X, Y). */
+/* Bounds of the min / max box of level l starting at level-0 texel (X, Y), of its part
+ * inside the texture: a box reaching beyond an edge is looked up as the one of its size
+ * inside against that edge, which holds that part (pn_nb_index is exact only inside: with
+ * the index clamped instead, MCSM's search skipped occluders on the map's first and last
+ * columns and rows: room, 512x512, 3 pixels). */
 PN_KFN void pn_nb_mm_box(PN_CONST float *lv, uint32_t res, uint32_t l, int32_t X, int32_t Y, float *v)
 {
-    size_t i = (size_t)l * res * res + (size_t)pn_nb_index(l, Y, res) * res + (size_t)pn_nb_index(l, X, res);
+    int32_t hi = (int32_t)res - (1 << l);
+    size_t i = (size_t)l * res * res + (size_t)pn_nb_index(l, pn_kmaxi(0, pn_kmini(Y, hi)), res) * res +
+               (size_t)pn_nb_index(l, pn_kmaxi(0, pn_kmini(X, hi)), res);
     pn_nb_mm_get(lv + i * PN_NB_MM, v);
 }
 
@@ -176,6 +194,10 @@ PN_KFN uint32_t pn_nb_mm_rect_at(uint32_t res, uint32_t levels, int32_t x0, int3
     l = m <= 2 ? 0u : 31u - pn_kclz((uint32_t)(m - 1));
     if (l + 1u > levels) l = levels - 1u;
     s = 1 << l;
+    /* Boxes inside the texture, where pn_nb_index is exact: a first box starting after
+     * res - s moves back to it (it still holds [x0, x1)'s start; the second its end). */
+    x0 = pn_kmini(x0, (int32_t)res - s);
+    y0 = pn_kmini(y0, (int32_t)res - s);
     ca = (size_t)pn_nb_index(l, x0, res) * PN_NB_MM;
     cb = (size_t)pn_nb_index(l, pn_kmaxi(x1 - s, x0), res) * PN_NB_MM;
     ra = (size_t)pn_nb_index(l, y0, res) * res * PN_NB_MM;

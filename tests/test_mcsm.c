@@ -537,6 +537,79 @@ static void test_window_and_clip(void)
     pn_setup_free(&s);
 }
 
+/* The N-buffer's boxes against brute force: over random layers (a third of the texels
+ * empty) of 16, 32 and 64 texels a side, every box of every level that the searches can ask
+ * for (pn_nb_mm_box, starting anywhere from 2^l - 1 texels before the map to its last
+ * texel), and random rectangles (pn_nb_mm_rect), bound the texels of theirs inside the map:
+ * min near no larger, max far and max near no smaller. */
+static void test_nbuffer_boxes(void)
+{
+    enum { RMAX = 64, LMAX = 7 };
+    static float nb[LMAX * RMAX * RMAX * PN_NB_MM];
+    static const uint32_t sizes[3] = {16u, 32u, 64u};
+    uint32_t si, boxes = 0u, bad = 0u, rects = 0u, bad_rects = 0u;
+    for (si = 0; si < 3u; si++) {
+        uint32_t res = sizes[si], levels = 1u, l, y, i;
+        while ((2u << (levels - 1u)) <= res) levels++;
+        for (i = 0; i < res * res; i++) {
+            float *T = nb + (size_t)i * PN_NB_MM, near = urand(0.1f, 1.0f), far = near + urand(0.0f, 0.5f);
+            if (urand(0.0f, 1.0f) < 0.33f) near = PN_KINF, far = -PN_KINF;
+            T[0] = -near; /* stored as pn_mc_band leaves it */
+            T[1] = far;
+            T[2] = near;
+        }
+        for (l = 1; l < levels; l++)
+            for (y = 0; y < res; y++) pn_nb_mm_row(res, l, y, nb);
+        for (l = 0; l < levels; l++) {
+            int32_t B = 1 << l, X, Y, step = res == 64u ? 3 : 1;
+            for (Y = 1 - B; Y < (int32_t)res; Y += step)
+                for (X = 1 - B; X < (int32_t)res; X += step) {
+                    float v[PN_NB_MM], mn = PN_KINF, mf = -PN_KINF, mxn = -PN_KINF;
+                    int32_t a, b;
+                    for (b = Y < 0 ? 0 : Y; b < Y + B && b < (int32_t)res; b++)
+                        for (a = X < 0 ? 0 : X; a < X + B && a < (int32_t)res; a++) {
+                            const float *T = nb + ((size_t)b * res + (size_t)a) * PN_NB_MM;
+                            mn = pn_kminf(mn, -T[0]);
+                            mf = pn_kmaxf(mf, T[1]);
+                            mxn = pn_kmaxf(mxn, T[2]);
+                        }
+                    pn_nb_mm_box(nb, res, l, X, Y, v);
+                    boxes++;
+                    if (!(v[0] <= mn && v[1] >= mf && v[2] >= mxn)) {
+                        if (bad < 5u)
+                            fprintf(stderr, "res %u level %u box at (%d, %d): %g %g %g, its texels %g %g %g\n", res, l, X, Y,
+                                    v[0], v[1], v[2], mn, mf, mxn);
+                        bad++;
+                    }
+                }
+        }
+        for (i = 0; i < 2000u; i++) {
+            int32_t x0 = (int32_t)urand(-8.0f, (float)res), y0 = (int32_t)urand(-8.0f, (float)res);
+            int32_t x1 = x0 + 1 + (int32_t)urand(0.0f, (float)res), y1 = y0 + 1 + (int32_t)urand(0.0f, (float)res), a, b;
+            float v[PN_NB_MM], mn = PN_KINF, mf = -PN_KINF, mxn = -PN_KINF;
+            for (b = y0 < 0 ? 0 : y0; b < y1 && b < (int32_t)res; b++)
+                for (a = x0 < 0 ? 0 : x0; a < x1 && a < (int32_t)res; a++) {
+                    const float *T = nb + ((size_t)b * res + (size_t)a) * PN_NB_MM;
+                    mn = pn_kminf(mn, -T[0]);
+                    mf = pn_kmaxf(mf, T[1]);
+                    mxn = pn_kmaxf(mxn, T[2]);
+                }
+            pn_nb_mm_rect(nb, res, levels, x0, y0, x1, y1, v);
+            rects++;
+            if (!(v[0] <= mn && v[1] >= mf && v[2] >= mxn)) {
+                if (bad < 5u)
+                    fprintf(stderr, "res %u rect [%d, %d) x [%d, %d): %g %g %g, its texels %g %g %g\n", res, x0, x1, y0, y1,
+                            v[0], v[1], v[2], mn, mf, mxn);
+                bad++;
+                bad_rects++;
+            }
+        }
+    }
+    fprintf(stderr, "N-buffer: %u boxes and %u rectangles against their texels, %u boxes and %u rectangles not bounded\n",
+            boxes, rects, bad - bad_rects, bad_rects);
+    CHECK_MSG(bad == 0u, "%u of %u boxes and rectangles do not bound their texels", bad, boxes + rects);
+}
+
 int main(void)
 {
     if (!(pn_build_info() & PN_BUILD_MCSM)) {
@@ -545,6 +618,7 @@ int main(void)
     }
     RUN(test_hash);
     RUN(test_window_and_clip);
+    RUN(test_nbuffer_boxes);
     RUN(test_square);
     RUN(test_classify_exact);
     RUN(test_classify_exact_512);

@@ -683,13 +683,107 @@ PN_KFN float pn_mc_bias(const pn_kmc *mc, pn_v3 nrm, pn_v3 toc, float ze)
 #define PN_MC_CLASS_PENUMBRA_OPEN 4u
 #define PN_MC_CLASS_PENUMBRA_SHUT 5u
 
-/* Visibility of one lit G-buffer pixel (x, y): point P, unit normal nrm, shadow-ray origin O.
- * *cls: its class; *rays: rays searched. */
-PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 O, uint32_t *cls, uint32_t *rays)
+/* Pixels of a row that the classification first tests as one run (pn_mc_run). */
+#define PN_MC_RUN 16u
+
+/* A G-buffer pixel as the pixel pass takes it (pn_mc_run). */
+#define PN_MC_PX_NONE 0u     /* no surface: visibility 1 */
+#define PN_MC_PX_NO_ORIGIN 1u /* no shadow-ray origin (pn_shadow_origin): visibility 0 */
+#define PN_MC_PX_SURFACE 2u  /* the fields below hold */
+typedef struct pn_mc_px {
+    pn_v3 nrm, O, E; /* unit normal, shadow-ray origin, O in the light frame */
+    float ex, ey;    /* E's image (when first) */
+    float b[4];      /* first: the classification's first region, pn_mc_reach at whole[0] */
+    uint32_t kind;   /* PN_MC_PX_* */
+    uint32_t first;  /* the classification looks at it: facing the light, E beyond whole[0] */
+} pn_mc_px;
+
+/* The run of count G-buffer pixels from pix on (ids, pos, nrm) into px[0 .. count), and
+ * whether the classification may call every one lit at once. Each pixel that the
+ * classification would look at has its first region, pn_mc_reach at the whole map's
+ * nearest depth zb: the rays from every light point to it stay there from zb on. When no
+ * occluder in the union of those regions is nearer than the farthest of their origins, no
+ * ray of any of them meets a layer: each is lit, as its own first region would have told
+ * (a region's lookup covers a superset of its box, pn_nb_mm_rect_at, and the union's can
+ * miss part of one pixel's: that part holds none of the pixel's rays, so the pixel would
+ * have traced them all unblocked, the same visibility). One lookup for the run instead of
+ * one or two per lit pixel, most of a frame (chess, 512x512: the classification's 247,934
+ * lookups become 84,290 and 16,384 runs'; its pass 6% fewer instructions, 11% less time).
+ * Without the classification (point light, PN_MC_F_NO_CLASSIFY): 0. */
+PN_KFN int pn_mc_run(const pn_mc_ctx *m, PN_CONST uint32_t *ids, PN_CONST float *pos, PN_CONST float *nrm, size_t pix,
+                     uint32_t count, pn_mc_px *px)
 {
     const pn_kmc *mc = m->mc;
     const pn_klight *L = m->L;
-    pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]), E = pn_lview_frame(m->lv, L, O), toc = pn_v3_sub(c, O);
+    pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]);
+    float zb = mc->whole[0], zmax = 0.0f, u[4], q[PN_NB_MM];
+    uint32_t i, any = 0u;
+    int classify = !(mc->flags & PN_MC_F_NO_CLASSIFY) && !L->is_point;
+    u[0] = u[1] = PN_KINF;
+    u[2] = u[3] = -PN_KINF;
+    for (i = 0; i < count; i++, pix++) {
+        pn_mc_px *p = px + i;
+        p->first = 0u;
+        if (ids[pix] == 0xFFFFFFFFu) { /* PN_NO_PIXEL_TRIANGLE */
+            p->kind = PN_MC_PX_NONE;
+            continue;
+        }
+        p->nrm = pn_v3_load(nrm + pix * 3u);
+        if (!pn_shadow_origin(pn_v3_load(pos + pix * 3u), p->nrm, L, &p->O)) {
+            p->kind = PN_MC_PX_NO_ORIGIN;
+            continue;
+        }
+        p->kind = PN_MC_PX_SURFACE;
+        p->E = pn_lview_frame(m->lv, L, p->O);
+        /* umbra before any classification (pn_mc_pixel), or lit by the whole map alone */
+        if (!classify || !(p->E.z > 0.0f) || pn_v3_dot(p->nrm, pn_v3_sub(c, p->O)) < 0.0f || !(zb < p->E.z))
+            continue;
+        p->first = 1u;
+        pn_mc_proj(m, p->E, &p->ex, &p->ey);
+        pn_mc_reach(m, p->E, p->ex, p->ey, zb, p->b);
+        u[0] = pn_kminf(u[0], p->b[0]);
+        u[1] = pn_kminf(u[1], p->b[1]);
+        u[2] = pn_kmaxf(u[2], p->b[2]);
+        u[3] = pn_kmaxf(u[3], p->b[3]);
+        zmax = pn_kmaxf(zmax, p->E.z);
+        any = 1u;
+    }
+    if (!classify) return 0;
+    if (!any) return 1;
+    pn_mc_region(m, u[0], u[1], u[2], u[3], q);
+    return !(pn_kmaxf(zb, q[0]) < zmax);
+}
+
+/* The first two hash words of rays k .. of pixel (x, y) (n2 rays in all) into h0, h1 at
+ * k % PN_MD5R_LANES: eight lanes at once, or the last ray alone (the ninth of 3x3: eight
+ * lanes cost about what three single hashes do). The same words either way (test_mcsm). */
+PN_KFN void pn_mc_hashes(uint32_t x, uint32_t y, uint32_t k, uint32_t n2, uint32_t key, uint32_t *h0, uint32_t *h1)
+{
+    uint32_t l, seed[4], h[4];
+    if (n2 - k > 1u) {
+        pn_md5r_lanes(x, y, k, PN_MC_SEED3, key, h0, h1);
+        return;
+    }
+    seed[0] = x;
+    seed[1] = y;
+    seed[3] = PN_MC_SEED3;
+    for (l = 0; l < n2 - k; l++) {
+        seed[2] = k + l;
+        pn_md5r(seed, key, h);
+        h0[l] = h[0];
+        h1[l] = h[1];
+    }
+}
+
+/* Visibility of G-buffer pixel (x, y), a surface with a shadow-ray origin as pn_mc_run gave
+ * it (p); run_lit: pn_mc_run said its run is lit. *cls: its class; *rays: rays searched. */
+PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p, int run_lit, uint32_t *cls,
+                         uint32_t *rays)
+{
+    const pn_kmc *mc = m->mc;
+    const pn_klight *L = m->L;
+    pn_v3 nrm = p->nrm, O = p->O, E = p->E;
+    pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]), toc = pn_v3_sub(c, O);
     pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]), V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
     float ze = E.z, bias = 0.0f, zlo = 0.0f, zhi = PN_KINF, q[PN_NB_MM];
     uint32_t n = L->is_point ? 1u : mc->rays, i, j, k = 0u, open = 0u, ahead = 0u, h0[PN_MD5R_LANES], h1[PN_MD5R_LANES];
@@ -708,14 +802,18 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
         *cls = PN_MC_CLASS_UMBRA;
         return 0.0f;
     }
-    if (classify && !L->is_point) {
+    if (classify && !L->is_point && run_lit) {
+        *cls = PN_MC_CLASS_LIT;
+        n = 0u;
+    } else if (classify && !L->is_point) {
         /* Penumbra classification (§3.6): the region every ray can reach from depth zb on
          * (pn_mc_reach), its smallest near depth the next zb, twice, from the whole map's. */
         uint32_t it;
-        float zb = mc->whole[0], nz, ex, ey, b[4]; /* the whole map's, src/pn_mcsm.c */
-        pn_mc_proj(m, E, &ex, &ey);
+        float zb = mc->whole[0], nz, b[4]; /* the whole map's, src/pn_mcsm.c */
         for (it = 0; it < 2u && zb < ze; it++) {
-            pn_mc_reach(m, E, ex, ey, zb, b);
+            /* the first region pn_mc_run's (p->first: zb < ze here) */
+            if (it == 0u) b[0] = p->b[0], b[1] = p->b[1], b[2] = p->b[2], b[3] = p->b[3];
+            else pn_mc_reach(m, E, p->ex, p->ey, zb, b);
             pn_mc_region(m, b[0], b[1], b[2], b[3], q);
             nz = pn_kmaxf(zb, q[0]);
             if (nz == zb) break; /* zb stays: the next region would be this one */
@@ -748,7 +846,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
             for (i = 0; i < g; i++, k++) {
                 float a, b;
                 pn_v3 S;
-                if (k % PN_MD5R_LANES == 0u) pn_md5r_lanes(x, y, k, PN_MC_SEED3, mc->seed, h0, h1);
+                if (k % PN_MD5R_LANES == 0u) pn_mc_hashes(x, y, k, g * g, mc->seed, h0, h1);
                 pn_mc_jitter(i, j, g, h0[k % PN_MD5R_LANES], h1[k % PN_MD5R_LANES], &a, &b);
                 S = pn_v3_add(c, pn_v3_add(pn_v3_scale(U, a), pn_v3_scale(V, b)));
                 vis += pn_v3_dot(pn_v3_sub(S, O), nrm) > 0.0f;
@@ -761,7 +859,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, pn_v3 nrm, pn_v3 
             pn_v3 S, Sl;
             pn_mc_ray r;
             if (!L->is_point) {
-                if (k % PN_MD5R_LANES == 0u) pn_md5r_lanes(x, y, k, PN_MC_SEED3, mc->seed, h0, h1);
+                if (k % PN_MD5R_LANES == 0u) pn_mc_hashes(x, y, k, n * n, mc->seed, h0, h1);
                 pn_mc_jitter(i, j, n, h0[k % PN_MD5R_LANES], h1[k % PN_MD5R_LANES], &a, &b);
             }
             S = pn_v3_add(c, pn_v3_add(pn_v3_scale(U, a), pn_v3_scale(V, b)));

@@ -490,31 +490,32 @@ PN_KFN void pn_e_mc_nbuf(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
 /* Pixel row y: each pixel's rays through the layers, its visibility and class; the row's
  * counters added once. Rows, not pixels, as for the blur: a pixel item made two to four
  * atomic adds and divided its index by the width, where most pixels (lit ones) do little
- * else than one or two region lookups. */
+ * else than one or two region lookups. The row goes in runs of PN_MC_RUN pixels
+ * (pn_mc_run: their origins once, and one lookup that may find the whole run lit). */
 PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
 {
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
-    uint32_t W = K->view.width, x, k, n[PN_MC_WORDS] = {0u, 0u, 0u, 0u, 0u, 0u};
+    uint32_t W = K->view.width, x0, i, k, n[PN_MC_WORDS] = {0u, 0u, 0u, 0u, 0u, 0u};
     PN_GLOBAL uint32_t *words = PN_POOL(uint32_t, mc_words) + (size_t)y * PN_MC_ROW_WORDS;
     pn_mc_ctx m;
+    pn_mc_px px[PN_MC_RUN];
     pn_mc_ctx_init(&m, &K->view, &K->lview, &K->light, &K->mc, PN_POOL(const float, mc_nb), PN_POOL(const float, depth));
-    for (x = 0; x < W; x++) {
-        size_t pix = (size_t)y * W + x;
-        uint32_t id = PN_POOL(const uint32_t, tri_id)[pix], cls, rays;
-        pn_v3 nrm, O;
-        if (id == PN_NO_PIXEL_TRIANGLE) {
-            PN_POOL(float, vis)[pix] = 1.0f;
-            continue;
+    for (x0 = 0; x0 < W; x0 += PN_MC_RUN) {
+        uint32_t count = pn_kminu(PN_MC_RUN, W - x0);
+        size_t pix0 = (size_t)y * W + x0;
+        int run_lit = pn_mc_run(&m, PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos), PN_POOL(const float, nrm),
+                                pix0, count, px);
+        for (i = 0; i < count; i++) {
+            uint32_t cls, rays;
+            if (px[i].kind != PN_MC_PX_SURFACE) {
+                PN_POOL(float, vis)[pix0 + i] = px[i].kind == PN_MC_PX_NONE ? 1.0f : 0.0f;
+                continue;
+            }
+            PN_POOL(float, vis)[pix0 + i] = pn_mc_pixel(&m, x0 + i, y, px + i, run_lit, &cls, &rays);
+            c.lit++;
+            c.candidates += rays;
+            if (cls != PN_MC_CLASS_NONE) n[cls - 1u]++;
         }
-        nrm = pn_v3_load(PN_POOL(const float, nrm) + pix * 3u);
-        if (!pn_shadow_origin(pn_v3_load(PN_POOL(const float, pos) + pix * 3u), nrm, &K->light, &O)) {
-            PN_POOL(float, vis)[pix] = 0.0f;
-            continue;
-        }
-        PN_POOL(float, vis)[pix] = pn_mc_pixel(&m, x, y, nrm, O, &cls, &rays);
-        c.lit++;
-        c.candidates += rays;
-        if (cls != PN_MC_CLASS_NONE) n[cls - 1u]++;
     }
     c.nodes = m.steps;
     n[PN_MC_WORD_CAPPED] = m.capped;

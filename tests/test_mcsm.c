@@ -102,6 +102,25 @@ static void test_hash(void)
         }
         CHECK_MSG(bad == 0u, "%u of %u lanes of pn_md5r_lanes differ from pn_md5r", bad, 20003u * PN_MD5R_LANES);
     }
+    /* The pixel pass's hashes (pn_mc_hashes: eight lanes, or the last one or two rays
+     * alone) are pn_mc_sample's, for every ray of every grid n = 1 .. 8, over pixels and
+     * keys; and ray k's hash words, not another's. */
+    {
+        uint32_t n, bad = 0u, total = 0u, px;
+        for (n = 1u; n <= 8u; n++)
+            for (px = 0; px < 40u; px++) {
+                uint32_t x = px * 977u, y = px * 31u + n, key = px * 0x9E3779B9u, k, h0[PN_MD5R_LANES], h1[PN_MD5R_LANES];
+                for (k = 0; k < n * n; k++) {
+                    float a, b, a2, b2;
+                    if (k % PN_MD5R_LANES == 0u) pn_mc_hashes(x, y, k, n * n, key, h0, h1);
+                    pn_mc_jitter(k % n, k / n, n, h0[k % PN_MD5R_LANES], h1[k % PN_MD5R_LANES], &a, &b);
+                    pn_mc_sample(x, y, k % n, k / n, n, key, &a2, &b2);
+                    bad += memcmp(&a, &a2, sizeof a) != 0 || memcmp(&b, &b2, sizeof b) != 0;
+                    total++;
+                }
+            }
+        CHECK_MSG(bad == 0u, "%u of %u rays' pn_mc_hashes samples differ from pn_mc_sample's", bad, total);
+    }
 }
 
 /* A built-in scene (builtin != 0) or a .glb, on a context for w x hh frames. */

@@ -1,10 +1,14 @@
 # Flags every library translation unit is built with (issue #2): strict C99, warnings as
 # errors, no floating-point contraction (bit-identical ports), no VLAs, per-function stack
-# usage files. PN_LIBRARY_C_OPTIONS is also what tests/CMakeLists.txt compiles its probes
+# usage files; and no trapping math: the library reads no floating-point exception flag, so
+# the compiler may evaluate an operation whose result a select may drop (if-conversion),
+# which lets it vectorize loops of selects such as MCSM's eight-ray set-up (kernels/
+# pn_mcsm.h). It changes no value: no reassociation, contraction or finite-math assumption
+# comes with it (the golden frames and the cross-port tests are the same bytes). PN_LIBRARY_C_OPTIONS is also what tests/CMakeLists.txt compiles its probes
 # with (no_vla_compiles), so the tests exercise exactly these flags.
 set(PN_LIBRARY_C_OPTIONS
     -std=c99 -Wall -Wextra -Wpedantic -Wundef -Werror -Wvla -Wshadow -Wstrict-prototypes
-    -ffp-contract=off -fno-math-errno -fstack-usage)
+    -ffp-contract=off -fno-math-errno -fno-trapping-math -fstack-usage)
 
 # GCC >= 10 also writes a per-object call graph (<object stem>.ci, VCG format) with each
 # function's frame size (su) and its dynamically sized stack objects (da: VLAs, alloca).

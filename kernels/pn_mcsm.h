@@ -414,13 +414,18 @@ PN_KFN void pn_mc_proj(const pn_mc_ctx *m, pn_v3 p, float *px, float *py)
 /* Level-0 texel holding a light-frame point (clamped to the map), as stored (its bounds:
  * pn_nb_mm_get); *outside: the point's image lies beyond the map (the window left it out:
  * nothing is known there). */
-PN_KFN PN_CONST float *pn_mc_texel(const pn_mc_ctx *m, pn_v3 p, int *outside)
+PN_KFN PN_CONST float *pn_mc_texel_img(const pn_mc_ctx *m, float px, float py, int *outside)
 {
-    float px, py, R = (float)m->mc->res;
+    float R = (float)m->mc->res;
     int32_t last = (int32_t)m->mc->res - 1;
-    pn_mc_proj(m, p, &px, &py);
     *outside = !(px >= 0.0f && py >= 0.0f && px < R && py < R);
     return m->nb + ((size_t)pn_kfloor_clamp(py, 0, last) * m->mc->res + (size_t)pn_kfloor_clamp(px, 0, last)) * PN_NB_MM;
+}
+PN_KFN PN_CONST float *pn_mc_texel(const pn_mc_ctx *m, pn_v3 p, int *outside)
+{
+    float px, py;
+    pn_mc_proj(m, p, &px, &py);
+    return pn_mc_texel_img(m, px, py, outside);
 }
 
 /* Third layer: whether the light-frame point p is seen from the eye (in front of the
@@ -448,17 +453,23 @@ PN_KFN int pn_mc_seen(const pn_mc_ctx *m, pn_v3 p)
 #define PN_MC_FRONT 0
 #define PN_MC_INSIDE 1
 #define PN_MC_BEHIND 2
-PN_KFN int pn_mc_state(const pn_mc_ctx *m, pn_v3 p)
+PN_KFN int pn_mc_state_img(const pn_mc_ctx *m, pn_v3 p, float px, float py)
 {
     int out;
     float T[PN_NB_MM];
-    pn_nb_mm_get(pn_mc_texel(m, p, &out), T);
+    pn_nb_mm_get(pn_mc_texel_img(m, px, py, &out), T);
     if (out) return PN_MC_FRONT;
     if (m->mc->layers == 1u) return p.z >= T[0] ? PN_MC_INSIDE : PN_MC_FRONT;
     if (p.z < T[0]) return PN_MC_FRONT;
     if (p.z > T[1]) return PN_MC_BEHIND;
     if (m->mc->layers == 3u && pn_mc_seen(m, p)) return PN_MC_FRONT;
     return PN_MC_INSIDE;
+}
+PN_KFN int pn_mc_state(const pn_mc_ctx *m, pn_v3 p)
+{
+    float px, py;
+    pn_mc_proj(m, p, &px, &py);
+    return pn_mc_state_img(m, p, px, py);
 }
 
 PN_KFN int pn_mc_same_texel(const pn_mc_ctx *m, pn_v3 a, pn_v3 b)
@@ -641,12 +652,13 @@ PN_KFN void pn_mc_reach(const pn_mc_ctx *m, pn_v3 E, float ex, float ey, float z
  * k = +-tx (+-ty) is linear in t. Empty: t0 > t1. */
 PN_KFN void pn_mc_clip_side(float a, float b, float *t0, float *t1)
 {
-    if (b > 0.0f)
-        *t1 = pn_kminf(*t1, -a / b);
-    else if (b < 0.0f)
-        *t0 = pn_kmaxf(*t0, -a / b);
-    else if (a > 0.0f)
-        *t0 = PN_KINF;
+    /* Selects, not branches (the pixel pass sets up eight rays in one loop the compilers
+     * vectorize): b > 0 bounds t1, b < 0 bounds t0, and b = 0 (or NaN) with a > 0 leaves
+     * nothing. The quotient is computed on every path and used on the first two. */
+    float q = -a / b, lo = pn_kmaxf(*t0, q), hi = pn_kminf(*t1, q);
+    int pos = b > 0.0f, neg = b < 0.0f, shut = !pos & !neg & (a > 0.0f);
+    *t1 = pos ? hi : *t1;
+    *t0 = neg ? lo : (shut ? PN_KINF : *t0);
 }
 PN_KFN void pn_mc_clip(const pn_mc_ctx *m, const pn_mc_ray *r, float *t0, float *t1)
 {
@@ -853,18 +865,59 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
             }
         return (float)vis / (float)(g * g);
     }
-    for (j = 0; j < n; j++)
-        for (i = 0; i < n; i++, k++) {
-            float a = 0.0f, b = 0.0f, len, tend, t0, t1;
+    if (L->is_point) {
+        /* One ray to the light's centre, and one texel holds it: a shadow-map test. */
+        float len = pn_ksqrt(pn_v3_dot(pn_v3_sub(O, c), pn_v3_sub(O, c))), tend, zend, T[PN_NB_MM];
+        pn_v3 Sl = pn_lview_frame(m->lv, L, c);
+        pn_mc_ray r;
+        int out, blocked;
+        *cls = PN_MC_CLASS_PENUMBRA_OPEN;
+        if (!(pn_v3_dot(toc, nrm) > 0.0f)) return 0.0f; /* behind P's own plane: no sample ahead */
+        r.xs = Sl.x;
+        r.ys = Sl.y;
+        r.xe = E.x;
+        r.ye = E.y;
+        r.ze = ze;
+        tend = len > bias ? 1.0f - bias / len : 0.0f;
+        if (!(tend > 0.0f)) return 1.0f;
+        zend = tend * ze;
+        pn_nb_mm_get(pn_mc_texel(m, pn_mc_at(&r, tend), &out), T);
+        blocked = !out && (mc->layers == 1u ? zend >= T[0] : zend >= T[0] && T[1] >= 0.0f);
+        if (blocked && mc->layers == 3u) {
+            float za = pn_kmaxf(T[0], 0.0f), zb2 = pn_kminf(T[1], zend);
+            blocked = !pn_mc_seen(m, pn_mc_at(&r, 0.5f * (za + zb2) / ze));
+        }
+        *rays += 1u;
+        m->steps++;
+        *cls = blocked ? PN_MC_CLASS_PENUMBRA_SHUT : PN_MC_CLASS_PENUMBRA_OPEN;
+        return blocked ? 0.0f : 1.0f;
+    }
+    for (k = 0; k < n * n; k += PN_MD5R_LANES) {
+        /* Eight rays at a time: their set-up (sample, plane test, light-frame start, biased
+         * end, the clip to the map, the images of the end and of the searched range's ends)
+         * in one loop with no branch, which the compilers vectorize; then each ray's
+         * lookups and search in order. Every ray's float operations are the ones it had
+         * alone, in the same order. */
+        uint32_t cnt = pn_kminu(PN_MD5R_LANES, n * n - k), l;
+        uint32_t li[PN_MD5R_LANES], lj[PN_MD5R_LANES];
+        int ah[PN_MD5R_LANES];
+        float xs[PN_MD5R_LANES], ys[PN_MD5R_LANES], te[PN_MD5R_LANES], lt0[PN_MD5R_LANES], lt1[PN_MD5R_LANES];
+        float epx[PN_MD5R_LANES], epy[PN_MD5R_LANES], ax[PN_MD5R_LANES], ay[PN_MD5R_LANES], bx[PN_MD5R_LANES],
+            by[PN_MD5R_LANES];
+        float t0s = zlo / ze * (1.0f - PN_MC_T_SLACK), t1s = zhi / ze * (1.0f + PN_MC_T_SLACK);
+        pn_mc_hashes(x, y, k, n * n, mc->seed, h0, h1);
+        for (l = 0, i = k % n, j = k / n; l < cnt; l++) {
+            li[l] = i;
+            lj[l] = j;
+            if (++i == n) i = 0u, j++;
+        }
+        for (l = 0; l < cnt; l++) {
+            float a, b, len, bl, tend, t0 = t0s, t1;
             pn_v3 S, Sl;
             pn_mc_ray r;
-            if (!L->is_point) {
-                if (k % PN_MD5R_LANES == 0u) pn_mc_hashes(x, y, k, n * n, mc->seed, h0, h1);
-                pn_mc_jitter(i, j, n, h0[k % PN_MD5R_LANES], h1[k % PN_MD5R_LANES], &a, &b);
-            }
+            pn_mc_jitter(li[l], lj[l], n, h0[l], h1[l], &a, &b);
             S = pn_v3_add(c, pn_v3_add(pn_v3_scale(U, a), pn_v3_scale(V, b)));
-            if (!(pn_v3_dot(pn_v3_sub(S, O), nrm) > 0.0f)) continue; /* behind P's own plane */
-            ahead++;
+            ah[l] = pn_v3_dot(pn_v3_sub(S, O), nrm) > 0.0f; /* else behind P's own plane */
             Sl = pn_lview_frame(m->lv, L, S);
             r.xs = Sl.x;
             r.ys = Sl.y;
@@ -872,50 +925,49 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
             r.ye = E.y;
             r.ze = ze;
             len = pn_ksqrt(pn_v3_dot(pn_v3_sub(O, S), pn_v3_sub(O, S)));
-            tend = len > bias ? 1.0f - bias / len : 0.0f;
-            if (!(tend > 0.0f)) {
+            bl = 1.0f - bias / len; /* on every path: a select, not a branch */
+            tend = len > bias ? bl : 0.0f;
+            t1 = pn_kminf(tend, t1s);
+            pn_mc_clip(m, &r, &t0, &t1);
+            pn_mc_proj(m, pn_mc_at(&r, tend), &epx[l], &epy[l]);
+            pn_mc_proj(m, pn_mc_at(&r, t0), &ax[l], &ay[l]);
+            pn_mc_proj(m, pn_mc_at(&r, t1), &bx[l], &by[l]);
+            xs[l] = r.xs;
+            ys[l] = r.ys;
+            te[l] = tend;
+            lt0[l] = t0;
+            lt1[l] = t1;
+        }
+        for (l = 0; l < cnt; l++) {
+            float t0 = lt0[l], t1 = lt1[l];
+            pn_mc_ray r;
+            if (!ah[l]) continue;
+            ahead++;
+            if (!(te[l] > 0.0f)) {
                 open++;
                 continue;
             }
-            if (L->is_point) {
-                /* One texel holds the whole ray: a shadow-map test. */
-                int out;
-                float T[PN_NB_MM], zend = tend * ze;
-                pn_nb_mm_get(pn_mc_texel(m, pn_mc_at(&r, tend), &out), T);
-                int blocked = !out && (mc->layers == 1u ? zend >= T[0] : zend >= T[0] && T[1] >= 0.0f);
-                if (blocked && mc->layers == 3u) {
-                    float za = pn_kmaxf(T[0], 0.0f), zb2 = pn_kminf(T[1], zend);
-                    blocked = !pn_mc_seen(m, pn_mc_at(&r, 0.5f * (za + zb2) / ze));
-                }
-                *rays += 1u;
-                m->steps++;
-                open += !blocked;
-                continue;
-            }
-            t0 = zlo / ze * (1.0f - PN_MC_T_SLACK);
-            t1 = pn_kminf(tend, zhi / ze * (1.0f + PN_MC_T_SLACK));
-            pn_mc_clip(m, &r, &t0, &t1);
+            r.xs = xs[l];
+            r.ys = ys[l];
+            r.xe = E.x;
+            r.ye = E.y;
+            r.ze = ze;
             {
                 /* The ray's end inside a texel's interval: blocked, with one lookup. Part of
                  * the model, not only an early-out: the searches walk [t0, t1) and leave out
                  * the end itself, and an end exactly on the edge of a solid texel (thin,
                  * 512x512: a ray whose image ends at x = 426.000) is blocked by this test
                  * and by no search step. */
-                int s = pn_mc_state(m, pn_mc_at(&r, tend));
+                int st = pn_mc_state_img(m, pn_mc_at(&r, te[l]), epx[l], epy[l]);
                 m->steps++;
-                if (s == PN_MC_INSIDE) continue;
+                if (st == PN_MC_INSIDE) continue;
             }
-            if (classify) {
-                if (t0 < t1) {
-                    /* The ray's own region (§3.7): nothing before its end, or shortened. */
-                    float ax, ay, bx, by;
-                    pn_mc_proj(m, pn_mc_at(&r, t0), &ax, &ay);
-                    pn_mc_proj(m, pn_mc_at(&r, t1), &bx, &by);
-                    pn_mc_region(m, ax, ay, bx, by, q);
-                    m->steps++;
-                    t0 = pn_kmaxf(t0, q[0] / ze * (1.0f - PN_MC_T_SLACK));
-                    if (mc->layers >= 2u) t1 = pn_kminf(t1, q[1] / ze * (1.0f + PN_MC_T_SLACK));
-                }
+            if (classify && t0 < t1) {
+                /* The ray's own region (§3.7): nothing before its end, or shortened. */
+                pn_mc_region(m, ax[l], ay[l], bx[l], by[l], q);
+                m->steps++;
+                t0 = pn_kmaxf(t0, q[0] / ze * (1.0f - PN_MC_T_SLACK));
+                if (mc->layers >= 2u) t1 = pn_kminf(t1, q[1] / ze * (1.0f + PN_MC_T_SLACK));
             }
             if (!(t0 <= t1)) {
                 open++;
@@ -924,6 +976,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
             *rays += 1u;
             if (!(mc->search == PN_MC_S_LINEAR ? pn_mc_linear(m, &r, t0, t1) : pn_mc_hier(m, &r, t0, t1))) open++;
         }
+    }
     /* open: the samples in front of P's plane (ahead) that no layer blocked */
     *cls = open == ahead ? PN_MC_CLASS_PENUMBRA_OPEN : (open == 0u ? PN_MC_CLASS_PENUMBRA_SHUT : PN_MC_CLASS_PENUMBRA);
     return (float)open / (float)(n * n);

@@ -590,18 +590,17 @@ PN_KFN void pn_horizon_of(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris
 
 /* From the G-buffer point P and unit geometric normal nrm, the shadow-ray origin
  * O = P + eps*n with n turned toward the light centre. Returns 0 when P cannot see the
- * light at all (behind a one-sided area light: (P - c).N <= 0), else 1. */
+ * light at all (behind a one-sided area light: (P - c).N <= 0; *O is then written but
+ * means nothing), else 1. Selects, no branch: a loop over pixels that calls it can be
+ * vectorized (MCSM's runs, pn_mc_run). */
 PN_KFN int pn_shadow_origin(pn_v3 P, pn_v3 nrm, const pn_klight *L, pn_v3 *O)
 {
     pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]);
-    pn_v3 toc = pn_v3_sub(c, P);
-    if (!L->is_point) {
-        pn_v3 N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
-        if (!(pn_v3_dot(pn_v3_sub(P, c), N) > 0.0f)) return 0;
-    }
-    if (pn_v3_dot(nrm, toc) < 0.0f) nrm = pn_v3_scale(nrm, -1.0f);
-    *O = pn_v3_add(P, pn_v3_scale(nrm, L->eps));
-    return 1;
+    pn_v3 toc = pn_v3_sub(c, P), N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
+    int sees = pn_v3_dot(pn_v3_sub(P, c), N) > 0.0f;
+    float s = pn_v3_dot(nrm, toc) < 0.0f ? -1.0f : 1.0f; /* n * -1 and n * 1 are exact */
+    *O = pn_v3_add(P, pn_v3_scale(pn_v3_scale(nrm, s), L->eps));
+    return L->is_point ? 1 : sees;
 }
 
 PN_KFN uint32_t pn_mask_words(uint32_t k) { return (k * k + 31u) >> 5; }

@@ -1020,65 +1020,79 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
 
 /* ---- Blur ------------------------------------------------------------------------------------ */
 
-/* Pixel (x, y) of one direction of the separable blur: src into dst. */
-PN_KFN void pn_mc_blur_pixel(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t x, uint32_t y, uint32_t vertical,
-                             PN_CONST uint32_t *ids, PN_CONST float *depth, PN_CONST float *nrm, PN_CONST float *src,
-                             PN_GLOBAL float *dst)
+/* Pixels of a row the blur takes at a time (pn_mc_blur_row). */
+#define PN_MC_BLUR_RUN 64u
+
+/* Tap q of one pixel of the blur (centre normal nc, depth dc, depth factor k; wi: the
+ * tap's binomial weight), added to its sums: a tap in the image (in), not background, and
+ * within PN_MC_BLUR_COS of the centre's normal (the thesis' "robust implementation": no
+ * blur across a crease) adds w src[q] and w, w = wi / (1 + |depth[q] - dc| k); any other
+ * adds +0 to each (the sums start at +0 and only grow: the same bytes as adding nothing). */
+PN_KFN void pn_mc_blur_tap(float wi, size_t q, int in, float ncx, float ncy, float ncz, float dc, float k,
+                           PN_CONST uint32_t *ids, PN_CONST float *depth, PN_CONST float *nrm, PN_CONST float *src,
+                           float *sum, float *wsum)
 {
-    size_t pix = (size_t)y * W + x;
-    float dc, sum = 0.0f, wsum = 0.0f, k;
-    int32_t i, r = (int32_t)mc->blur;
-    pn_v3 nc;
-    if (ids[pix] == 0xFFFFFFFFu) {
-        dst[pix] = src[pix];
-        return;
-    }
-    nc = pn_v3_load(nrm + pix * 3u);
-    dc = depth[pix];
-    k = mc->blur_depth / dc;
-    /* A window of one value v, 0 or 1 (lit and umbra regions: most of a frame), blurs to v
-     * with the same bytes: w v is w, or 0, so the sum is wsum's own additions, or 0. That
-     * holds when wsum is positive and finite: the centre tap counts (its normal test) with
-     * weight blur_w[0] (k finite), and no tap's weight is NaN (no NaN depth; with k finite,
-     * every other weight lies in [0, blur_w]). Then the weights need not be computed. */
-    if ((src[pix] == 0.0f || src[pix] == 1.0f) && k < PN_KINF && pn_v3_dot(nc, nc) >= PN_MC_BLUR_COS) {
-        float v = src[pix];
-        int32_t c = vertical ? (int32_t)y : (int32_t)x, n = vertical ? (int32_t)H : (int32_t)W;
-        int32_t i1 = pn_kmini(r, n - 1 - c);
-        size_t step = vertical ? W : 1u, q;
-        i = pn_kmaxi(-r, -c);
-        q = pix - (size_t)(-i) * step;
-        for (; i <= i1; i++, q += step)
-            if (ids[q] != 0xFFFFFFFFu && !(src[q] == v && depth[q] == depth[q])) break;
-        if (i > i1) {
-            dst[pix] = v;
-            return;
-        }
-    }
-    for (i = -r; i <= r; i++) {
-        int32_t xx = vertical ? (int32_t)x : (int32_t)x + i, yy = vertical ? (int32_t)y + i : (int32_t)y;
-        size_t q;
-        float dd, w;
-        if (xx < 0 || yy < 0 || xx >= (int32_t)W || yy >= (int32_t)H) continue;
-        q = (size_t)yy * W + (uint32_t)xx;
-        if (ids[q] == 0xFFFFFFFFu) continue;
-        /* Normal sensitivity (the thesis' "robust implementation"): no blur across a crease. */
-        if (!(pn_v3_dot(nc, pn_v3_load(nrm + q * 3u)) >= PN_MC_BLUR_COS)) continue;
-        dd = depth[q] - dc;
-        w = mc->blur_w[i < 0 ? -i : i] / (1.0f + pn_kfabs(dd) * k);
-        sum += w * src[q];
-        wsum += w;
-    }
-    dst[pix] = sum / wsum;
+    pn_v3 nq = pn_v3_load(nrm + q * 3u);
+    int inc = in && ids[q] != 0xFFFFFFFFu && pn_v3_dot(pn_v3_make(ncx, ncy, ncz), nq) >= PN_MC_BLUR_COS;
+    float w = wi / (1.0f + pn_kfabs(depth[q] - dc) * k), ws = w * src[q];
+    *sum += inc ? ws : 0.0f;
+    *wsum += inc ? w : 0.0f;
 }
 
-/* Row y of one direction of the blur, pixel by pixel. */
+/* Row y of one direction of the separable blur (vertical: down the columns), src into dst.
+ * A pixel's taps i = -r .. r in that order, each weighed by its binomial weight over
+ * 1 + |depth difference| blur_depth / centre depth; its value sum / wsum, or its own for
+ * background. Runs of PN_MC_BLUR_RUN pixels, tap by tap across the run, in loops with no
+ * branch that the compilers vectorize (a tap's pixels are consecutive in memory but at the
+ * row's two ends across, where the run takes the taps beyond the image as empty). A window
+ * of one value v, 0 or 1, gives v: w v is w, or 0, so sum is wsum's own additions, or 0
+ * (the centre tap counts, so wsum > 0). */
 PN_KFN void pn_mc_blur_row(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t y, uint32_t vertical,
                            PN_CONST uint32_t *ids, PN_CONST float *depth, PN_CONST float *nrm, PN_CONST float *src,
                            PN_GLOBAL float *dst)
 {
-    uint32_t x;
-    for (x = 0; x < W; x++) pn_mc_blur_pixel(mc, W, H, x, y, vertical, ids, depth, nrm, src, dst);
+    int32_t r = (int32_t)mc->blur, i;
+    uint32_t x0;
+    for (x0 = 0; x0 < W; x0 += PN_MC_BLUR_RUN) {
+        uint32_t n = pn_kminu(PN_MC_BLUR_RUN, W - x0), l;
+        float sum[PN_MC_BLUR_RUN], wsum[PN_MC_BLUR_RUN], k[PN_MC_BLUR_RUN], dc[PN_MC_BLUR_RUN];
+        float ncx[PN_MC_BLUR_RUN], ncy[PN_MC_BLUR_RUN], ncz[PN_MC_BLUR_RUN];
+        size_t pix0 = (size_t)y * W + x0;
+        for (l = 0; l < n; l++) {
+            pn_v3 nc = pn_v3_load(nrm + (pix0 + l) * 3u);
+            ncx[l] = nc.x;
+            ncy[l] = nc.y;
+            ncz[l] = nc.z;
+            dc[l] = depth[pix0 + l];
+            k[l] = mc->blur_depth / dc[l];
+            sum[l] = 0.0f;
+            wsum[l] = 0.0f;
+        }
+        for (i = -r; i <= r; i++) {
+            float wi = mc->blur_w[i < 0 ? -i : i];
+            if (vertical) {
+                size_t base;
+                if ((int32_t)y + i < 0 || (int32_t)y + i >= (int32_t)H) continue; /* adds nothing */
+                base = (size_t)((int32_t)y + i) * W + x0;
+                for (l = 0; l < n; l++)
+                    pn_mc_blur_tap(wi, base + l, 1, ncx[l], ncy[l], ncz[l], dc[l], k[l], ids, depth, nrm, src, &sum[l],
+                                   &wsum[l]);
+            } else if ((int32_t)x0 + i >= 0 && (int32_t)(x0 + n) + i <= (int32_t)W) {
+                size_t base = (size_t)y * W + (size_t)((int32_t)x0 + i);
+                for (l = 0; l < n; l++)
+                    pn_mc_blur_tap(wi, base + l, 1, ncx[l], ncy[l], ncz[l], dc[l], k[l], ids, depth, nrm, src, &sum[l],
+                                   &wsum[l]);
+            } else {
+                for (l = 0; l < n; l++) {
+                    int32_t xx = (int32_t)(x0 + l) + i;
+                    int in = xx >= 0 && xx < (int32_t)W;
+                    pn_mc_blur_tap(wi, (size_t)y * W + (in ? (uint32_t)xx : x0 + l), in, ncx[l], ncy[l], ncz[l], dc[l],
+                                   k[l], ids, depth, nrm, src, &sum[l], &wsum[l]);
+                }
+            }
+        }
+        for (l = 0; l < n; l++) dst[pix0 + l] = ids[pix0 + l] == 0xFFFFFFFFu ? src[pix0 + l] : sum[l] / wsum[l];
+    }
 }
 
 #endif

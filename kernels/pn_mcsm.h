@@ -1033,7 +1033,8 @@ PN_KFN void pn_mc_blur_tap(float wi, size_t q, int in, float ncx, float ncy, flo
                            float *sum, float *wsum)
 {
     pn_v3 nq = pn_v3_load(nrm + q * 3u);
-    int inc = in && ids[q] != 0xFFFFFFFFu && pn_v3_dot(pn_v3_make(ncx, ncy, ncz), nq) >= PN_MC_BLUR_COS;
+    /* & rather than &&: every load made (q is in the image), no branch on any of them */
+    int inc = in & (ids[q] != 0xFFFFFFFFu) & (pn_v3_dot(pn_v3_make(ncx, ncy, ncz), nq) >= PN_MC_BLUR_COS);
     float w = wi / (1.0f + pn_kfabs(depth[q] - dc) * k), ws = w * src[q];
     *sum += inc ? ws : 0.0f;
     *wsum += inc ? w : 0.0f;
@@ -1046,7 +1047,8 @@ PN_KFN void pn_mc_blur_tap(float wi, size_t q, int in, float ncx, float ncy, flo
  * branch that the compilers vectorize (a tap's pixels are consecutive in memory but at the
  * row's two ends across, where the run takes the taps beyond the image as empty). A window
  * of one value v, 0 or 1, gives v: w v is w, or 0, so sum is wsum's own additions, or 0
- * (the centre tap counts, so wsum > 0). */
+ * (the centre tap counts, so wsum > 0); a run whose whole window is so is written v
+ * without its sums. */
 PN_KFN void pn_mc_blur_row(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t y, uint32_t vertical,
                            PN_CONST uint32_t *ids, PN_CONST float *depth, PN_CONST float *nrm, PN_CONST float *src,
                            PN_GLOBAL float *dst)
@@ -1067,6 +1069,46 @@ PN_KFN void pn_mc_blur_row(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t y,
             k[l] = mc->blur_depth / dc[l];
             sum[l] = 0.0f;
             wsum[l] = 0.0f;
+        }
+        {
+            /* A run whose whole window holds one value v, 0 or 1 (background aside, no NaN
+             * depth), and whose pixels all count their centre tap (k finite, the normal's
+             * own test): every pixel gets v, which its sums would give (most of a frame:
+             * lit and umbra regions; on a target without vector units this is most of the
+             * blur's saving). Tests with &, no branch. */
+            uint32_t u0 = 1u, u1 = 1u, ok = 1u;
+            int32_t a, e;
+            for (l = 0; l < n; l++) {
+                uint32_t bg = ids[pix0 + l] == 0xFFFFFFFFu;
+                ok &= bg | ((k[l] < PN_KINF) & (ncx[l] * ncx[l] + ncy[l] * ncy[l] + ncz[l] * ncz[l] >= PN_MC_BLUR_COS));
+            }
+            if (vertical) {
+                for (i = -r; i <= r; i++) {
+                    size_t base;
+                    if ((int32_t)y + i < 0 || (int32_t)y + i >= (int32_t)H) continue;
+                    base = (size_t)((int32_t)y + i) * W + x0;
+                    for (l = 0; l < n; l++) {
+                        size_t q = base + l;
+                        uint32_t bg = ids[q] == 0xFFFFFFFFu, real = depth[q] == depth[q];
+                        u0 &= bg | ((src[q] == 0.0f) & real);
+                        u1 &= bg | ((src[q] == 1.0f) & real);
+                    }
+                }
+            } else {
+                a = pn_kmaxi((int32_t)x0 - r, 0);
+                e = pn_kmini((int32_t)(x0 + n) + r, (int32_t)W);
+                for (i = a; i < e; i++) {
+                    size_t q = (size_t)y * W + (uint32_t)i;
+                    uint32_t bg = ids[q] == 0xFFFFFFFFu, real = depth[q] == depth[q];
+                    u0 &= bg | ((src[q] == 0.0f) & real);
+                    u1 &= bg | ((src[q] == 1.0f) & real);
+                }
+            }
+            if (ok & (u0 | u1)) {
+                float v = u1 ? 1.0f : 0.0f; /* both: every pixel is background */
+                for (l = 0; l < n; l++) dst[pix0 + l] = ids[pix0 + l] == 0xFFFFFFFFu ? src[pix0 + l] : v;
+                continue;
+            }
         }
         for (i = -r; i <= r; i++) {
             float wi = mc->blur_w[i < 0 ? -i : i];

@@ -704,10 +704,12 @@ PN_KFN float pn_mc_bias(const pn_kmc *mc, pn_v3 nrm, pn_v3 toc, float ze)
 #define PN_MC_PX_SURFACE 2u  /* the fields below hold */
 typedef struct pn_mc_px {
     pn_v3 nrm, O, E; /* unit normal, shadow-ray origin, O in the light frame */
-    float ex, ey;    /* E's image (when first) */
-    float b[4];      /* first: the classification's first region, pn_mc_reach at whole[0] */
+    float ex, ey;    /* E's image, and */
+    float b[4];      /* the classification's first region (pn_mc_reach at whole[0]): set
+                      * when the classification looks at the pixel (faces, E beyond whole[0]) */
     uint32_t kind;   /* PN_MC_PX_* */
-    uint32_t first;  /* the classification looks at it: facing the light, E beyond whole[0] */
+    uint32_t faces;  /* E in front of the light plane and the normal toward the light centre
+                      * (else umbra before any classification, pn_mc_pixel) */
     uint32_t front;  /* the light's corners on the front side of its plane (0 .. 4) */
 } pn_mc_px;
 
@@ -732,7 +734,7 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, PN_CONST uint32_t *ids, PN_CONST float 
     float zb = mc->whole[0], zmax = 0.0f, u[4], q[PN_NB_MM];
     float Ox[PN_MC_RUN], Oy[PN_MC_RUN], Oz[PN_MC_RUN], Ex[PN_MC_RUN], Ey[PN_MC_RUN], Ez[PN_MC_RUN];
     float ex[PN_MC_RUN], ey[PN_MC_RUN], b0[PN_MC_RUN], b1[PN_MC_RUN], b2[PN_MC_RUN], b3[PN_MC_RUN];
-    int sees[PN_MC_RUN], looks[PN_MC_RUN], front[PN_MC_RUN];
+    int sees[PN_MC_RUN], faces[PN_MC_RUN], front[PN_MC_RUN];
     uint32_t i, any = 0u;
     int classify = !(mc->flags & PN_MC_F_NO_CLASSIFY) && !L->is_point;
     /* Every pixel's origin, light-frame point, image and first region, in one loop with no
@@ -744,9 +746,7 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, PN_CONST uint32_t *ids, PN_CONST float 
         float b[4], x, y;
         sees[i] = pn_shadow_origin(pn_v3_load(pos + (pix + i) * 3u), n, L, &O);
         E = pn_lview_frame(m->lv, L, O);
-        /* facing the light (else umbra before any classification, pn_mc_pixel) and beyond
-         * the whole map's nearest depth (else lit by it alone) */
-        looks[i] = E.z > 0.0f && !(pn_v3_dot(n, pn_v3_sub(c, O)) < 0.0f) && zb < E.z;
+        faces[i] = E.z > 0.0f && !(pn_v3_dot(n, pn_v3_sub(c, O)) < 0.0f);
         front[i] = (pn_v3_dot(pn_v3_sub(m->corner[0], O), n) > 0.0f) + (pn_v3_dot(pn_v3_sub(m->corner[1], O), n) > 0.0f) +
                    (pn_v3_dot(pn_v3_sub(m->corner[2], O), n) > 0.0f) + (pn_v3_dot(pn_v3_sub(m->corner[3], O), n) > 0.0f);
         pn_mc_proj(m, E, &x, &y);
@@ -768,7 +768,6 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, PN_CONST uint32_t *ids, PN_CONST float 
     u[2] = u[3] = -PN_KINF;
     for (i = 0; i < count; i++) {
         pn_mc_px *p = px + i;
-        p->first = 0u;
         if (ids[pix + i] == 0xFFFFFFFFu) { /* PN_NO_PIXEL_TRIANGLE */
             p->kind = PN_MC_PX_NONE;
             continue;
@@ -782,8 +781,10 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, PN_CONST uint32_t *ids, PN_CONST float 
         p->O = pn_v3_make(Ox[i], Oy[i], Oz[i]);
         p->E = pn_v3_make(Ex[i], Ey[i], Ez[i]);
         p->front = (uint32_t)front[i];
-        if (!classify || !looks[i]) continue;
-        p->first = 1u;
+        p->faces = (uint32_t)faces[i];
+        /* the classification looks at it: facing, and beyond the whole map's nearest depth
+         * (else lit by it alone) */
+        if (!classify || !faces[i] || !(zb < Ez[i])) continue;
         p->ex = ex[i];
         p->ey = ey[i];
         p->b[0] = b0[i];
@@ -808,20 +809,18 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, PN_CONST uint32_t *ids, PN_CONST float 
  * lanes cost about what three single hashes do). The same words either way (test_mcsm). */
 PN_KFN void pn_mc_hashes(uint32_t x, uint32_t y, uint32_t k, uint32_t n2, uint32_t key, uint32_t *h0, uint32_t *h1)
 {
-    uint32_t l, seed[4], h[4];
+    uint32_t seed[4], h[4];
     if (n2 - k > 1u) {
         pn_md5r_lanes(x, y, k, PN_MC_SEED3, key, h0, h1);
         return;
     }
     seed[0] = x;
     seed[1] = y;
+    seed[2] = k;
     seed[3] = PN_MC_SEED3;
-    for (l = 0; l < n2 - k; l++) {
-        seed[2] = k + l;
-        pn_md5r(seed, key, h);
-        h0[l] = h[0];
-        h1[l] = h[1];
-    }
+    pn_md5r(seed, key, h);
+    h0[0] = h[0];
+    h1[0] = h[1];
 }
 
 /* Visibility of G-buffer pixel (x, y), a surface with a shadow-ray origin as pn_mc_run gave
@@ -847,7 +846,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
      * back side, so without it such a face is lit through its own solid. Otherwise nrm
      * faces the light centre, and a ray toward a light point behind its plane is blocked
      * (invariant 6's horizon). An origin on or behind the light plane sees no light. */
-    if (!(ze > 0.0f) || pn_v3_dot(nrm, toc) < 0.0f) {
+    if (!p->faces) { /* pn_mc_run: !(E.z > 0) or the normal's dot with toc below 0 */
         *cls = PN_MC_CLASS_UMBRA;
         return 0.0f;
     }
@@ -860,7 +859,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
         uint32_t it;
         float zb = mc->whole[0], nz, b[4]; /* the whole map's, src/pn_mcsm.c */
         for (it = 0; it < 2u && zb < ze; it++) {
-            /* the first region pn_mc_run's (p->first: zb < ze here) */
+            /* the first region pn_mc_run's (it set it: the pixel faces, zb < ze here) */
             if (it == 0u) b[0] = p->b[0], b[1] = p->b[1], b[2] = p->b[2], b[3] = p->b[3];
             else pn_mc_reach(m, E, p->ex, p->ey, zb, b);
             pn_mc_region(m, b[0], b[1], b[2], b[3], q);
@@ -907,7 +906,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
         pn_v3 Sl = pn_lview_frame(m->lv, L, c);
         pn_mc_ray r;
         int out, blocked;
-        *cls = PN_MC_CLASS_PENUMBRA_OPEN;
+        *cls = PN_MC_CLASS_PENUMBRA_OPEN; /* no sample blocked by a layer, on the two returns below */
         if (!(pn_v3_dot(toc, nrm) > 0.0f)) return 0.0f; /* behind P's own plane: no sample ahead */
         r.xs = Sl.x;
         r.ys = Sl.y;
@@ -1080,7 +1079,8 @@ PN_KFN void pn_mc_blur_row(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t y,
             int32_t a, e;
             for (l = 0; l < n; l++) {
                 uint32_t bg = ids[pix0 + l] == 0xFFFFFFFFu;
-                ok &= bg | ((k[l] < PN_KINF) & (ncx[l] * ncx[l] + ncy[l] * ncy[l] + ncz[l] * ncz[l] >= PN_MC_BLUR_COS));
+                pn_v3 nc = pn_v3_make(ncx[l], ncy[l], ncz[l]);
+                ok &= bg | ((k[l] < PN_KINF) & (pn_v3_dot(nc, nc) >= PN_MC_BLUR_COS));
             }
             if (vertical) {
                 for (i = -r; i <= r; i++) {

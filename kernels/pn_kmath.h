@@ -71,18 +71,21 @@ PN_KFN uint32_t pn_kmaxu(uint32_t a, uint32_t b) { return a > b ? a : b; }
  * loop over lanes (pn_foot_index) can run each half side by side. */
 PN_KFN float pn_kclampf(float v, int32_t lo, int32_t hi)
 {
-    float fl = (float)lo, fh = (float)hi;
-    return v > fl ? (v < fh ? v : fh) : fl;
+    /* Two flat selects, and the roundings below add a comparison's 0 or 1: written so, GCC
+     * vectorizes a loop over lanes that clamps and converts (as nested selects it keeps a
+     * branch there: the rows pass's eight triangles, pn_raster_rows_group). */
+    float fl = (float)lo, fh = (float)hi, c = v > fl ? v : fl;
+    return c < fh ? c : fh;
 }
 PN_KFN int32_t pn_kfloor_in(float v)
 {
     int32_t i = (int32_t)v; /* truncation toward zero */
-    return (float)i > v ? i - 1 : i;
+    return i - (int32_t)((float)i > v);
 }
 PN_KFN int32_t pn_kceil_in(float v)
 {
     int32_t i = (int32_t)v;
-    return (float)i < v ? i + 1 : i;
+    return i + (int32_t)((float)i < v);
 }
 PN_KFN int32_t pn_kfloor_clamp(float v, int32_t lo, int32_t hi) { return pn_kfloor_in(pn_kclampf(v, lo, hi)); }
 PN_KFN int32_t pn_kceil_clamp(float v, int32_t lo, int32_t hi) { return pn_kceil_in(pn_kclampf(v, lo, hi)); }

@@ -280,36 +280,41 @@ PN_KFN void pn_mc_clear_row(const pn_kview *v, uint32_t y, PN_GLOBAL float *nb)
     }
 }
 
-/* The layers' rows pass (pn_raster_rows) for occluder t: a receiver-only triangle covers
- * nothing; a small one (pn_raster_rows_small) puts its fragments into level 0 here, as the
- * band would (pn_raster_tri_setup's plane, pn_raster_axial, the same centres), by atomic
- * min and max, and is then drawn by no band: set up once, not again in every band it
- * meets (at 512², half of CAD's band set-ups and most of the dragon's: its bands' work went
- * from 132 M to 20 M instructions). */
-PN_KFN uint32_t pn_mc_rows(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris, PN_CONST uint8_t *flags,
-                           uint32_t t, PN_GLOBAL float *nb)
+/* The layers' rows pass for group g of the n triangles (pn_raster_rows_group): a
+ * receiver-only triangle covers nothing; a small one puts its fragments into level 0 here,
+ * as the band would (pn_raster_tri_setup's plane, pn_raster_axial, the same centres), by
+ * atomic min and max, and is then drawn by no band: set up once, not again in every band
+ * it meets (at 512², half of CAD's band set-ups and most of the dragon's: its bands' work
+ * went from 132 M to 20 M instructions). rows[t]: what the bands draw of t. */
+PN_KFN void pn_mc_rows(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris, PN_CONST uint8_t *flags, uint32_t n,
+                       uint32_t g, PN_GLOBAL uint32_t *rows, PN_GLOBAL float *nb)
 {
-    PN_CONST float *p = tris + (size_t)t * 9u;
-    pn_raster_small sm;
-    pn_v3 n;
-    float nA;
-    uint32_t r, k;
-    if (flags[t] & PN_TRI_RECEIVER) return PN_RASTER_EMPTY;
-    r = pn_raster_rows_small(v, tris, flags, t, &sm);
-    if (r == PN_RASTER_EMPTY || sm.w == 0) return r;
-    nA = pn_raster_plane(v, pn_v3_make(p[0], p[1], p[2]), pn_v3_make(p[3], p[4], p[5]), pn_v3_make(p[6], p[7], p[8]), &n);
-    for (k = 0; k < PN_RASTER_ROWS_TEST; k++) {
-        uint32_t x = (uint32_t)(sm.x0 + (int32_t)k % sm.w), y = (uint32_t)(sm.y0 + (int32_t)k / sm.w);
-        PN_GLOBAL int32_t *T;
-        float z;
-        if (!(sm.mask & (1u << k)) || !pn_raster_axial(v, n, nA, x, y, &z)) continue;
-        z -= mc->d;
-        if (!(z > 0.0f)) continue;
-        T = (PN_GLOBAL int32_t *)(nb + ((size_t)y * v->width + x) * PN_NB_MM);
-        pn_katomic_imin(T, (int32_t)pn_kfbits(z));     /* near: the layers hold z > 0 or +-inf */
-        pn_katomic_imax(T + 1, (int32_t)pn_kfbits(z));
+    uint32_t r[PN_RASTER_GROUP], t0 = g * PN_RASTER_GROUP, count = pn_kminu(PN_RASTER_GROUP, n - t0), i, k;
+    pn_raster_small sm[PN_RASTER_GROUP];
+    pn_raster_rows_group(v, tris, flags, t0, count, PN_TRI_RECEIVER, r, sm);
+    for (i = 0; i < count; i++) {
+        PN_CONST float *p = tris + (size_t)(t0 + i) * 9u;
+        pn_v3 nv;
+        float nA;
+        if (r[i] == PN_RASTER_EMPTY || sm[i].w == 0) {
+            rows[t0 + i] = r[i];
+            continue;
+        }
+        rows[t0 + i] = PN_RASTER_EMPTY;
+        nA = pn_raster_plane(v, pn_v3_make(p[0], p[1], p[2]), pn_v3_make(p[3], p[4], p[5]), pn_v3_make(p[6], p[7], p[8]),
+                             &nv);
+        for (k = 0; k < PN_RASTER_ROWS_TEST; k++) {
+            uint32_t x = (uint32_t)(sm[i].x0 + (int32_t)k % sm[i].w), y = (uint32_t)(sm[i].y0 + (int32_t)k / sm[i].w);
+            PN_GLOBAL int32_t *T;
+            float z;
+            if (!(sm[i].mask & (1u << k)) || !pn_raster_axial(v, nv, nA, x, y, &z)) continue;
+            z -= mc->d;
+            if (!(z > 0.0f)) continue;
+            T = (PN_GLOBAL int32_t *)(nb + ((size_t)y * v->width + x) * PN_NB_MM);
+            pn_katomic_imin(T, (int32_t)pn_kfbits(z)); /* near: the layers hold z > 0 or +-inf */
+            pn_katomic_imax(T + 1, (int32_t)pn_kfbits(z));
+        }
     }
-    return PN_RASTER_EMPTY;
 }
 
 /* Band `band` of PN_RASTER_BAND texel rows of level 0 (emptied, and holding the small
@@ -414,12 +419,16 @@ PN_KFN void pn_mc_proj(const pn_mc_ctx *m, pn_v3 p, float *px, float *py)
 /* Level-0 texel holding a light-frame point (clamped to the map), as stored (its bounds:
  * pn_nb_mm_get); *outside: the point's image lies beyond the map (the window left it out:
  * nothing is known there). */
-PN_KFN PN_CONST float *pn_mc_texel_img(const pn_mc_ctx *m, float px, float py, int *outside)
+PN_KFN uint32_t pn_mc_texel_at(const pn_mc_ctx *m, float px, float py, int *outside)
 {
     float R = (float)m->mc->res;
     int32_t last = (int32_t)m->mc->res - 1;
-    *outside = !(px >= 0.0f && py >= 0.0f && px < R && py < R);
-    return m->nb + ((size_t)pn_kfloor_clamp(py, 0, last) * m->mc->res + (size_t)pn_kfloor_clamp(px, 0, last)) * PN_NB_MM;
+    *outside = !((px >= 0.0f) & (py >= 0.0f) & (px < R) & (py < R));
+    return ((uint32_t)pn_kfloor_clamp(py, 0, last) * m->mc->res + (uint32_t)pn_kfloor_clamp(px, 0, last)) * PN_NB_MM;
+}
+PN_KFN PN_CONST float *pn_mc_texel_img(const pn_mc_ctx *m, float px, float py, int *outside)
+{
+    return m->nb + pn_mc_texel_at(m, px, py, outside);
 }
 PN_KFN PN_CONST float *pn_mc_texel(const pn_mc_ctx *m, pn_v3 p, int *outside)
 {
@@ -453,17 +462,24 @@ PN_KFN int pn_mc_seen(const pn_mc_ctx *m, pn_v3 p)
 #define PN_MC_FRONT 0
 #define PN_MC_INSIDE 1
 #define PN_MC_BEHIND 2
-PN_KFN int pn_mc_state_img(const pn_mc_ctx *m, pn_v3 p, float px, float py)
+/* ...of the level-0 texel at offset `at` (pn_mc_texel_at; out: beyond the map) */
+PN_KFN int pn_mc_state_at(const pn_mc_ctx *m, pn_v3 p, uint32_t at, int out)
 {
-    int out;
     float T[PN_NB_MM];
-    pn_nb_mm_get(pn_mc_texel_img(m, px, py, &out), T);
+    pn_nb_mm_get(m->nb + at, T);
     if (out) return PN_MC_FRONT;
     if (m->mc->layers == 1u) return p.z >= T[0] ? PN_MC_INSIDE : PN_MC_FRONT;
     if (p.z < T[0]) return PN_MC_FRONT;
     if (p.z > T[1]) return PN_MC_BEHIND;
     if (m->mc->layers == 3u && pn_mc_seen(m, p)) return PN_MC_FRONT;
     return PN_MC_INSIDE;
+}
+/* ...of the texel holding image (px, py) */
+PN_KFN int pn_mc_state_img(const pn_mc_ctx *m, pn_v3 p, float px, float py)
+{
+    int out;
+    uint32_t at = pn_mc_texel_at(m, px, py, &out);
+    return pn_mc_state_at(m, p, at, out);
 }
 PN_KFN int pn_mc_state(const pn_mc_ctx *m, pn_v3 p)
 {
@@ -612,14 +628,33 @@ PN_KFN int pn_mc_hier(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
 /* Bounds of the layers over the texel box around two image points (one texel of margin
  * for rounding). Texels beyond the map are empty (the window holds every occluder): they
  * leave the smallest near and largest far depths as they are and make the largest near
- * depth +inf, as an empty texel of the map does. */
-PN_KFN void pn_mc_region(const pn_mc_ctx *m, float ax, float ay, float bx, float by, float *v)
+ * depth +inf, as an empty texel of the map does. pn_mc_region_at: where the lookup reads
+ * (pn_nb_mm_rect_at's boxes) and whether the box reaches beyond the map. The image
+ * coordinates are clamped to [-(res + 2), res + 2] before their conversion: a side beyond
+ * the map only counts as beyond it (*beyond compares with 0 and res, pn_nb_mm_rect_at
+ * clamps to [0, res], a box wholly beyond is empty either way), so every bound past res + 1
+ * gives the same lookup; one the compiler cannot fold to a constant keeps GCC's loop over
+ * eight rays vectorized (with constant bounds it keeps a branch there). */
+PN_KFN uint32_t pn_mc_region_at(const pn_mc_ctx *m, float ax, float ay, float bx, float by, uint32_t *at, int *beyond)
 {
-    int32_t lim = 1 << 24, R = (int32_t)m->mc->res;
+    int32_t R = (int32_t)m->mc->res, lim = R + 2;
     int32_t x0 = pn_kfloor_clamp(pn_kminf(ax, bx), -lim, lim) - 1, y0 = pn_kfloor_clamp(pn_kminf(ay, by), -lim, lim) - 1;
     int32_t x1 = pn_kceil_clamp(pn_kmaxf(ax, bx), -lim, lim) + 1, y1 = pn_kceil_clamp(pn_kmaxf(ay, by), -lim, lim) + 1;
-    pn_nb_mm_rect(m->nb, m->mc->res, m->mc->levels, x0, y0, x1, y1, v);
-    if (x0 < 0 || y0 < 0 || x1 > R || y1 > R) v[2] = PN_KINF;
+    *beyond = (x0 < 0) | (y0 < 0) | (x1 > R) | (y1 > R);
+    return pn_nb_mm_rect_at(m->mc->res, m->mc->levels, x0, y0, x1, y1, at);
+}
+/* The bounds of a region whose boxes pn_mc_region_at gave. */
+PN_KFN void pn_mc_region_get(const pn_mc_ctx *m, const uint32_t *at, uint32_t n, int beyond, float *v)
+{
+    pn_nb_mm_rect_get(m->nb, at, n, v);
+    if (beyond) v[2] = PN_KINF;
+}
+PN_KFN void pn_mc_region(const pn_mc_ctx *m, float ax, float ay, float bx, float by, float *v)
+{
+    uint32_t at[4], n;
+    int beyond;
+    n = pn_mc_region_at(m, ax, ay, bx, by, at, &beyond);
+    pn_mc_region_get(m, at, n, beyond, v);
 }
 
 /* The box, in continuous texel coordinates b = {x0, y0, x1, y1}, that the images of the
@@ -833,7 +868,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
     pn_v3 nrm = p->nrm, O = p->O, E = p->E;
     pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]), toc = pn_v3_sub(c, O);
     pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]), V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
-    float ze = E.z, bias = 0.0f, zlo = 0.0f, zhi = PN_KINF, q[PN_NB_MM];
+    float ze = E.z, bias = 0.0f, zlo = 0.0f, zhi = PN_KINF, q[PN_NB_MM] = {0.0f, 0.0f, 0.0f};
     uint32_t n = L->is_point ? 1u : mc->rays, i, j, k = 0u, open = 0u, ahead = 0u, h0[PN_MD5R_LANES], h1[PN_MD5R_LANES];
     int classify = !(mc->flags & PN_MC_F_NO_CLASSIFY);
     *rays = 0u;
@@ -929,13 +964,15 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
     }
     for (k = 0; k < n * n; k += PN_MD5R_LANES) {
         /* Eight rays at a time: their set-up (sample, plane test, light-frame start, biased
-         * end, the clip to the map, the images of the end and of the searched range's ends)
-         * in one loop with no branch, which the compilers vectorize; then each ray's
-         * lookups and search in order. Every ray's float operations are the ones it had
+         * end, the clip to the map, the images of the end and of the searched range's ends;
+         * then where the end's texel and the ray's own region lie in the N-buffer) in loops
+         * with no branch, which the compilers vectorize; then each ray's lookups and
+         * search in order. Every ray's float operations are the ones it had
          * alone, in the same order. */
         uint32_t cnt = pn_kminu(PN_MD5R_LANES, n * n - k), l;
-        uint32_t li[PN_MD5R_LANES], lj[PN_MD5R_LANES];
-        int ah[PN_MD5R_LANES];
+        uint32_t li[PN_MD5R_LANES], lj[PN_MD5R_LANES], eat[PN_MD5R_LANES], rn[PN_MD5R_LANES], ra0[PN_MD5R_LANES],
+            ra1[PN_MD5R_LANES], ra2[PN_MD5R_LANES], ra3[PN_MD5R_LANES];
+        int ah[PN_MD5R_LANES], eout[PN_MD5R_LANES], rbey[PN_MD5R_LANES];
         float xs[PN_MD5R_LANES], ys[PN_MD5R_LANES], te[PN_MD5R_LANES], lt0[PN_MD5R_LANES], lt1[PN_MD5R_LANES];
         float epx[PN_MD5R_LANES], epy[PN_MD5R_LANES], ax[PN_MD5R_LANES], ay[PN_MD5R_LANES], bx[PN_MD5R_LANES],
             by[PN_MD5R_LANES];
@@ -974,6 +1011,17 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
             lt1[l] = t1;
         }
         for (l = 0; l < cnt; l++) {
+            /* where the two lookups below read: the end's texel, the ray's own region (a
+             * loop of its own: in the one above, GCC vectorizes neither) */
+            uint32_t at4[4];
+            eat[l] = pn_mc_texel_at(m, epx[l], epy[l], &eout[l]);
+            rn[l] = pn_mc_region_at(m, ax[l], ay[l], bx[l], by[l], at4, &rbey[l]);
+            ra0[l] = at4[0];
+            ra1[l] = at4[1];
+            ra2[l] = at4[2];
+            ra3[l] = at4[3];
+        }
+        for (l = 0; l < cnt; l++) {
             float t0 = lt0[l], t1 = lt1[l];
             pn_mc_ray r;
             if (!ah[l]) continue;
@@ -993,13 +1041,18 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
                  * the end itself, and an end exactly on the edge of a solid texel (thin,
                  * 512x512: a ray whose image ends at x = 426.000) is blocked by this test
                  * and by no search step. */
-                int st = pn_mc_state_img(m, pn_mc_at(&r, te[l]), epx[l], epy[l]);
+                int st = pn_mc_state_at(m, pn_mc_at(&r, te[l]), eat[l], eout[l]);
                 m->steps++;
                 if (st == PN_MC_INSIDE) continue;
             }
             if (classify && t0 < t1) {
                 /* The ray's own region (§3.7): nothing before its end, or shortened. */
-                pn_mc_region(m, ax[l], ay[l], bx[l], by[l], q);
+                uint32_t at4[4];
+                at4[0] = ra0[l];
+                at4[1] = ra1[l];
+                at4[2] = ra2[l];
+                at4[3] = ra3[l];
+                pn_mc_region_get(m, at4, rn[l], rbey[l], q);
                 m->steps++;
                 t0 = pn_kmaxf(t0, q[0] / ze * (1.0f - PN_MC_T_SLACK));
                 if (mc->layers >= 2u) t1 = pn_kminf(t1, q[1] / ze * (1.0f + PN_MC_T_SLACK));

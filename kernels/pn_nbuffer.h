@@ -173,56 +173,64 @@ PN_KFN void pn_nb_mm_box(PN_CONST float *lv, uint32_t res, uint32_t l, int32_t X
 /* The four boxes that bound the texel rectangle [x0, x1) x [y0, y1) (clamped to the
  * texture): offsets in floats of their texels in lv, those of the smallest level l with
  * 2^(l+1) >= the longer side (at most the top level, whose four boxes cover the texture);
- * 0 when the clamped rectangle is empty, else 4. A superset, so the bounds are
- * conservative; exact when both sides are 2^l .. 2^(l+1). The level from a leading-zero
- * count, and the boxes' two columns and two rows indexed once (the searches' hot path: a
- * quarter of the Monte Carlo pixel pass went to the level's loop and the four boxes'
- * separate index arithmetic). */
+ * 0 when the clamped rectangle is empty, else 4 (the offsets are then of some texels, not
+ * to be read). A superset, so the bounds are conservative; exact when both sides are
+ * 2^l .. 2^(l+1). The level from the exponent of a float, the boxes' two columns and two
+ * rows indexed once, and no branch: the searches' hot path, which the Monte Carlo pixel
+ * pass computes for eight rays at once in a loop the compilers vectorize. Offsets in 32
+ * bits: levels res^2 PN_NB_MM floats fit for res up to 9000 (PN_MCSM_MAP_MAX is at most
+ * 2048). */
 PN_KFN uint32_t pn_nb_mm_rect_at(uint32_t res, uint32_t levels, int32_t x0, int32_t y0, int32_t x1, int32_t y1,
-                                 size_t *at)
+                                 uint32_t *at)
 {
-    int32_t m, s;
-    uint32_t l;
-    size_t ca, cb, ra, rb, L;
+    int32_t m, s, R = (int32_t)res;
+    uint32_t l, n, ca, cb, ra, rb, L;
     x0 = pn_kmaxi(x0, 0);
     y0 = pn_kmaxi(y0, 0);
-    x1 = pn_kmini(x1, (int32_t)res);
-    y1 = pn_kmini(y1, (int32_t)res);
-    if (x1 <= x0 || y1 <= y0) return 0u;
+    x1 = pn_kmini(x1, R);
+    y1 = pn_kmini(y1, R);
+    n = (x1 > x0) & (y1 > y0) ? 4u : 0u;
     m = pn_kmaxi(x1 - x0, y1 - y0);
-    /* The smallest l with 2 << l >= m: 0 up to m = 2, else ceil(log2 m) - 1. */
-    l = m <= 2 ? 0u : 31u - pn_kclz((uint32_t)(m - 1));
-    if (l + 1u > levels) l = levels - 1u;
+    /* The smallest l with 2 << l >= m: 0 up to m = 2, else floor(log2(m - 1)), the
+     * exponent of m - 1 as a float (exact: m <= res < 2^24). */
+    l = m <= 2 ? 0u : (pn_kfbits((float)(m - 1)) >> 23) - 127u;
+    l = pn_kminu(l, levels - 1u);
     s = 1 << l;
     /* Boxes inside the texture, where pn_nb_index is exact: a first box starting after
      * res - s moves back to it (it still holds [x0, x1)'s start; the second its end). */
-    x0 = pn_kmini(x0, (int32_t)res - s);
-    y0 = pn_kmini(y0, (int32_t)res - s);
-    ca = (size_t)pn_nb_index(l, x0, res) * PN_NB_MM;
-    cb = (size_t)pn_nb_index(l, pn_kmaxi(x1 - s, x0), res) * PN_NB_MM;
-    ra = (size_t)pn_nb_index(l, y0, res) * res * PN_NB_MM;
-    rb = (size_t)pn_nb_index(l, pn_kmaxi(y1 - s, y0), res) * res * PN_NB_MM;
-    L = (size_t)l * res * res * PN_NB_MM;
+    x0 = pn_kmini(x0, R - s);
+    y0 = pn_kmini(y0, R - s);
+    ca = (uint32_t)pn_nb_index(l, x0, res) * PN_NB_MM;
+    cb = (uint32_t)pn_nb_index(l, pn_kmaxi(x1 - s, x0), res) * PN_NB_MM;
+    ra = (uint32_t)pn_nb_index(l, y0, res) * res * PN_NB_MM;
+    rb = (uint32_t)pn_nb_index(l, pn_kmaxi(y1 - s, y0), res) * res * PN_NB_MM;
+    L = l * res * res * PN_NB_MM;
     at[0] = L + ra + ca;
     at[1] = L + ra + cb;
     at[2] = L + rb + ca;
     at[3] = L + rb + cb;
-    return 4u;
+    return n;
 }
 
-/* Bounds over the texel rectangle [x0, x1) x [y0, y1) from pn_nb_mm_rect_at's boxes (empty:
+/* Bounds {min near, max far, max near} of the n boxes at (pn_nb_mm_rect_at; empty:
  * {+inf, -inf, -inf}). */
-PN_KFN void pn_nb_mm_rect(PN_CONST float *lv, uint32_t res, uint32_t levels, int32_t x0, int32_t y0, int32_t x1,
-                          int32_t y1, float *v)
+PN_KFN void pn_nb_mm_rect_get(PN_CONST float *lv, const uint32_t *at, uint32_t n, float *v)
 {
-    size_t at[4];
-    uint32_t i, n = pn_nb_mm_rect_at(res, levels, x0, y0, x1, y1, at);
+    uint32_t i;
     float s[PN_NB_MM]; /* a local sum: through v, the compilers store and reload at each box */
     pn_nb_mm_empty(s);
     for (i = 0; i < n; i++) pn_nb_mm_add(s, lv + at[i]);
     v[0] = -s[0]; /* the bounds, as pn_nb_mm_get's */
     v[1] = s[1];
     v[2] = s[2];
+}
+
+/* Bounds over the texel rectangle [x0, x1) x [y0, y1) from pn_nb_mm_rect_at's boxes. */
+PN_KFN void pn_nb_mm_rect(PN_CONST float *lv, uint32_t res, uint32_t levels, int32_t x0, int32_t y0, int32_t x1,
+                          int32_t y1, float *v)
+{
+    uint32_t at[4], n = pn_nb_mm_rect_at(res, levels, x0, y0, x1, y1, at);
+    pn_nb_mm_rect_get(lv, at, n, v);
 }
 
 #endif

@@ -64,10 +64,11 @@ PN_KFN void pn_counters_add(PN_GLOBAL pn_shadow_counters *row, const pn_shadow_c
 
 /* ---- G-buffer (pn_raster.h) ------------------------------------------------------------ */
 
-/* Triangle: the pixel rows it may cover. */
-PN_KFN void pn_e_raster_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+/* Group of PN_RASTER_GROUP triangles: the pixel rows each may cover. */
+PN_KFN void pn_e_raster_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t g)
 {
-    PN_POOL(uint32_t, rows)[t] = pn_raster_rows(&K->view, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), t);
+    pn_raster_rows_item(&K->view, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), K->tri_count, g,
+                        PN_POOL(uint32_t, rows));
 }
 
 /* Chunk of the band walk (pn_raster.h): the rows its triangles may cover, in whichever view
@@ -265,10 +266,12 @@ PN_KFN void pn_e_lview_bounds(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn
                         PN_POOL(float, lview_box));
 }
 
-/* Triangle: the light-view rows it may cover (the G-buffer's set-up on the light view). */
-PN_KFN void pn_e_lmap_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+/* Group of triangles: the light-view rows each may cover (the G-buffer's set-up on the
+ * light view). */
+PN_KFN void pn_e_lmap_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t g)
 {
-    PN_POOL(uint32_t, rows)[t] = pn_raster_rows(&K->lview, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), t);
+    pn_raster_rows_item(&K->lview, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), K->tri_count, g,
+                        PN_POOL(uint32_t, rows));
 }
 #endif
 
@@ -466,11 +469,12 @@ PN_KFN void pn_e_mc_clear(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     pn_mc_clear_row(&K->lview, y, PN_POOL(float, mc_nb));
 }
 
-/* Triangle: the layers' rows pass; a small occluder's fragments go straight into the layers. */
-PN_KFN void pn_e_mc_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+/* Group of triangles: the layers' rows pass; a small occluder's fragments go straight into
+ * the layers. */
+PN_KFN void pn_e_mc_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t g)
 {
-    PN_POOL(uint32_t, rows)[t] = pn_mc_rows(&K->lview, &K->mc, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags),
-                                            t, PN_POOL(float, mc_nb));
+    pn_mc_rows(&K->lview, &K->mc, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), K->tri_count, g,
+               PN_POOL(uint32_t, rows), PN_POOL(float, mc_nb));
 }
 
 /* Band of texel rows: the near and far layers (N-buffer level 0). */
@@ -509,6 +513,14 @@ PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
             uint32_t cls, rays;
             if (px[i].kind != PN_MC_PX_SURFACE) {
                 PN_POOL(float, vis)[pix0 + i] = px[i].kind == PN_MC_PX_NONE ? 1.0f : 0.0f;
+                continue;
+            }
+            if (run_lit && px[i].faces && px[i].front == 4u) {
+                /* pn_mc_pixel's answer for most pixels, without its set-up: lit, and the
+                 * whole light in front of the surface's plane */
+                PN_POOL(float, vis)[pix0 + i] = 1.0f;
+                c.lit++;
+                n[PN_MC_CLASS_LIT - 1u]++;
                 continue;
             }
             PN_POOL(float, vis)[pix0 + i] = pn_mc_pixel(&m, x0 + i, y, px + i, run_lit, &cls, &rays);
@@ -658,7 +670,7 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
 #if PN_LIGHT_VIEW
 #define PN_PASSES_LVIEW(X)                                \
     X(LVIEW_BOUNDS, lview_bounds, 1, 1)                   \
-    X(LMAP_ROWS, lmap_rows, 64, 4096)
+    X(LMAP_ROWS, lmap_rows, 64, 512)
 #else
 #define PN_PASSES_LVIEW(X)
 #endif
@@ -681,7 +693,7 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
 #if PN_ENABLE_MCSM
 #define PN_PASSES_MCSM(X)                                 \
     X(MC_CLEAR, mc_clear, 4, 8)                           \
-    X(MC_ROWS, mc_rows, 64, 4096)                         \
+    X(MC_ROWS, mc_rows, 64, 512)                         \
     X(MC_BAND, mc_band, 1, 1)                             \
     X(MC_NBUF, mc_nbuf, 4, 8)                             \
     X(MC_PIXEL, mc_pixel, 4, 2)                           \
@@ -718,7 +730,7 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
 #endif
 
 #define PN_PASSES(X)                                \
-    X(RASTER_ROWS, raster_rows, 64, 4096)           \
+    X(RASTER_ROWS, raster_rows, 64, 512)           \
     X(RASTER_CHUNKS, raster_chunks, 64, 1024)       \
     X(RASTER_BAND, raster_band, 1, 1)               \
     PN_PASSES_REFERENCE(X)                          \

@@ -15,6 +15,7 @@ typedef char pn_mc_consts_agree[PN_MC_S_LINEAR == PN_MC_SEARCH_LINEAR && PN_MC_S
                                         PN_MC_RAYS_MAX == 8u && PN_MC_BLUR_MAX + 1u <= 12u &&
                                         PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS && PN_MC_WORDS == 6u &&
                                         PN_MC_ROW_WORDS == 16u /* 64 bytes a row in pn_mc_pools (src/pn_arena.c) */
+                                        && PN_MCSM_MAP_MAX <= 2048u /* N-buffer offsets in 32 bits (pn_nb_mm_rect_at) */
                                     ? 1
                                     : -1];
 
@@ -48,8 +49,7 @@ static pn_status pn_mc_begin(pn_frame_state *fs, pn_mc_pools *s, uint32_t res)
  * pn_nb_mm_rect's boxes, read back once a frame instead of looked up per pixel. */
 static pn_status pn_mc_whole(pn_frame_state *fs, const float *nb, pn_kmc *mc)
 {
-    size_t at[4];
-    uint32_t i, n = pn_nb_mm_rect_at(mc->res, mc->levels, 0, 0, (int32_t)mc->res, (int32_t)mc->res, at);
+    uint32_t at[4], i, n = pn_nb_mm_rect_at(mc->res, mc->levels, 0, 0, (int32_t)mc->res, (int32_t)mc->res, at);
     float s[PN_NB_MM];
     pn_status st;
     pn_nb_mm_empty(s);

@@ -382,6 +382,70 @@ static void test_rows_pass(void)
     CHECK(tightened > 100u);
 }
 
+/* The rows pass's eight-at-once form (pn_raster_rows_group) against one triangle at a time
+ * (pn_raster_rows_small): the same rows and the same small-triangle centres, for groups
+ * of 1 to 8 triangles mixing every case: sub-pixel and small ones, ones a few pixels wide,
+ * ones the near plane cuts or that lie wholly behind it, zero-area ones (a repeated vertex,
+ * three collinear points), horizontal and vertical edges, vertices on the view's edge, and
+ * flags it must skip (degenerate, or the caller's skip bits). */
+static void test_rows_group(void)
+{
+    enum { W = 40, H = 30, GROUPS = 6000 };
+    pn_kview v;
+    float tris[9u * PN_RASTER_GROUP];
+    uint8_t flags[PN_RASTER_GROUP];
+    uint32_t g, total = 0u, small = 0u, drawn = 0u, cut = 0u, bad = 0u;
+    test_view(&v, W, H);
+    srand(11);
+    for (g = 0; g < GROUPS; g++) {
+        uint32_t count = 1u + g % PN_RASTER_GROUP, skip = g % 3u == 0u ? PN_TRI_RECEIVER : 0u, i, k;
+        uint32_t rows[PN_RASTER_GROUP];
+        pn_raster_small sm[PN_RASTER_GROUP];
+        for (i = 0; i < count; i++) {
+            uint32_t kind = (uint32_t)rand() % 10u;
+            float cx = ((float)rand() / (float)RAND_MAX - 0.5f) * 2.4f, cy = ((float)rand() / (float)RAND_MAX - 0.5f) * 1.8f;
+            float sz = kind < 4u ? 0.01f + 0.02f * (float)kind : (kind < 7u ? 0.3f : 0.08f);
+            float z = -1.0f - (float)(rand() % 5) * 0.5f;
+            float *t = tris + 9u * i;
+            for (k = 0; k < 3u; k++) {
+                t[3u * k + 0u] = cx + sz * ((float)rand() / (float)RAND_MAX - 0.5f);
+                t[3u * k + 1u] = cy + sz * ((float)rand() / (float)RAND_MAX - 0.5f);
+                t[3u * k + 2u] = z;
+            }
+            if (kind == 7u) t[2] = 0.5f;                      /* one vertex behind the eye */
+            if (kind == 8u) t[2] = t[5] = t[8] = 0.5f;        /* all behind */
+            if (kind == 9u) {
+                switch (rand() % 4) {
+                case 0: t[6] = t[0], t[7] = t[1]; break;       /* a repeated vertex */
+                case 1: t[6] = 2.0f * t[3] - t[0], t[7] = 2.0f * t[4] - t[1]; break; /* collinear */
+                case 2: t[4] = t[1]; break;                    /* a horizontal edge */
+                default: t[3] = t[0]; break;                   /* a vertical edge */
+                }
+            }
+            if (rand() % 16 == 0) t[0] = t[2] * (-0.5f * v.aspect); /* on the view's left edge */
+            flags[i] = (uint8_t)(rand() % 12 == 0 ? PN_TRI_DEGENERATE : (rand() % 8 == 0 ? PN_TRI_RECEIVER : 0u));
+        }
+        pn_raster_rows_group(&v, tris, flags, 0u, count, skip, rows, sm);
+        for (i = 0; i < count; i++) {
+            pn_raster_small one;
+            uint32_t r = (flags[i] & skip) ? PN_RASTER_EMPTY : pn_raster_rows_small(&v, tris, flags, i, &one);
+            if (flags[i] & skip) one.w = 0, one.mask = 0u;
+            total++;
+            cut += tris[9u * i + 2u] > 0.0f;
+            drawn += r != PN_RASTER_EMPTY;
+            small += one.w != 0;
+            bad += rows[i] != r || sm[i].w != one.w || sm[i].mask != one.mask ||
+                   (one.w != 0 && (sm[i].x0 != one.x0 || sm[i].y0 != one.y0));
+        }
+    }
+    fprintf(stderr, "rows in groups: %u triangles, %u drawn, %u small, %u with a vertex behind the eye, %u differ\n",
+            total, drawn, small, cut, bad);
+    CHECK(bad == 0u);
+    CHECK(drawn > 5000u);
+    CHECK(small > 2000u);
+    CHECK(cut > 2000u);
+}
+
 /* A row's covered run (pn_raster_span) against testing each of its centres
  * (pn_edges_inside): the same columns, on polygons made to be hard for it (vertices on
  * pixel centres, so edges through centres and the ownership rule decides; edges within a
@@ -480,6 +544,7 @@ int main(void)
     RUN(test_near_clip);
     RUN(test_band_walk_ties);
     RUN(test_rows_pass);
+    RUN(test_rows_group);
     RUN(test_span);
     return pn_test_summary();
 }

@@ -44,16 +44,46 @@ static void pn_job_work(pn_job *job)
 /* The workers, started once and kept: a pass's launch then costs a broadcast and a wait,
  * not a pthread_create and pthread_join per thread (about 45 us a launch here: MCSM's frame
  * launches 16 passes). One pool for the process; a parallel-for that finds it busy (another
- * host thread's) starts threads of its own as before. Workers block on a condition
- * variable between jobs and end with the process. */
+ * host thread's) starts threads of its own as before. Workers end with the process.
+ *
+ * Between jobs a worker first watches the job counter for up to PN_POOL_SPIN_NS, then
+ * blocks on a condition variable; the launching thread likewise watches for the job's end
+ * before it blocks. A frame's passes follow one another within microseconds, and a
+ * sleeping thread took tens of them to wake: an empty 64-item job on 2 threads cost 63 us
+ * a launch blocking at once, 2 us watching first (MCSM's frame: 17 launches). Game
+ * engines' job systems do the same. The counters are read and written atomically; the
+ * mutex still orders the condition variables. */
+#define PN_POOL_SPIN_NS 200000u
+
+static void pn_cpu_relax(void)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#elif defined(__aarch64__)
+    __asm__ __volatile__("yield");
+#endif
+}
+
+/* Watches *v for up to PN_POOL_SPIN_NS while it is (is_value 1) or is not (0) `value`. */
+static void pn_spin(const uint64_t *v, uint64_t value, int is_value)
+{
+    uint64_t t0 = pn_threads_now_ns(NULL);
+    uint32_t k = 0;
+    while ((__atomic_load_n(v, __ATOMIC_ACQUIRE) == value) == is_value) {
+        pn_cpu_relax();
+        if ((++k & 63u) == 0u && pn_threads_now_ns(NULL) - t0 > PN_POOL_SPIN_NS) return;
+    }
+}
+#define pn_spin_while(v, same) pn_spin((v), (same), 1)
+#define pn_spin_until(v, value) pn_spin((v), (value), 0)
 typedef struct pn_pool {
     pthread_mutex_t mu;
     pthread_cond_t wake, idle;
     pn_job *job;    /* the current job */
-    uint64_t gen;   /* jobs posted so far */
+    uint64_t gen;   /* jobs posted so far (atomic) */
     int workers;    /* threads started */
     int want;       /* workers that take part in the current job (index < want) */
-    int active;     /* of those, still working */
+    uint64_t active; /* of those, still working (atomic) */
     int busy;       /* a parallel-for owns the pool */
     uint64_t start[PN_THREADS_MAX]; /* gen when worker i was started: it serves the jobs after */
 } pn_pool;
@@ -69,14 +99,19 @@ static void *pn_pool_worker(void *arg)
     seen = p->start[index];
     for (;;) {
         pn_job *job;
-        while (p->gen == seen) pthread_cond_wait(&p->wake, &p->mu);
+        if (__atomic_load_n(&p->gen, __ATOMIC_ACQUIRE) == seen) {
+            pthread_mutex_unlock(&p->mu);
+            pn_spin_while(&p->gen, seen);
+            pthread_mutex_lock(&p->mu);
+        }
+        while (__atomic_load_n(&p->gen, __ATOMIC_ACQUIRE) == seen) pthread_cond_wait(&p->wake, &p->mu);
         seen = p->gen;
         if (index >= p->want) continue;
         job = p->job;
         pthread_mutex_unlock(&p->mu);
         pn_job_work(job);
         pthread_mutex_lock(&p->mu);
-        if (--p->active == 0) pthread_cond_signal(&p->idle);
+        if (__atomic_sub_fetch(&p->active, 1u, __ATOMIC_ACQ_REL) == 0u) pthread_cond_signal(&p->idle);
     }
     return NULL;
 }
@@ -101,8 +136,8 @@ static int pn_pool_begin(pn_job *job, int helpers)
     p->busy = 1;
     p->job = job;
     p->want = helpers;
-    p->active = helpers;
-    p->gen++;
+    __atomic_store_n(&p->active, (uint64_t)helpers, __ATOMIC_RELEASE);
+    __atomic_store_n(&p->gen, p->gen + 1u, __ATOMIC_RELEASE);
     pthread_cond_broadcast(&p->wake);
     pthread_mutex_unlock(&p->mu);
     return 1;
@@ -112,8 +147,9 @@ static int pn_pool_begin(pn_job *job, int helpers)
 static void pn_pool_end(void)
 {
     pn_pool *p = &pn_the_pool;
+    pn_spin_until(&p->active, 0u);
     pthread_mutex_lock(&p->mu);
-    while (p->active > 0) pthread_cond_wait(&p->idle, &p->mu);
+    while (__atomic_load_n(&p->active, __ATOMIC_ACQUIRE) > 0u) pthread_cond_wait(&p->idle, &p->mu);
     p->job = NULL;
     p->busy = 0;
     pthread_mutex_unlock(&p->mu);

@@ -511,16 +511,15 @@ PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
                                 pix0, count, px);
         for (i = 0; i < count; i++) {
             uint32_t cls, rays;
-            if (px[i].kind != PN_MC_PX_SURFACE) {
-                PN_POOL(float, vis)[pix0 + i] = px[i].kind == PN_MC_PX_NONE ? 1.0f : 0.0f;
-                continue;
-            }
-            if (run_lit && px[i].faces && px[i].front == 4u) {
-                /* pn_mc_pixel's answer for most pixels, without its set-up: lit, and the
-                 * whole light in front of the surface's plane */
+            if (px[i].kind == PN_MC_PX_LIT) {
+                /* pn_mc_pixel's answer for most pixels, without its set-up */
                 PN_POOL(float, vis)[pix0 + i] = 1.0f;
                 c.lit++;
                 n[PN_MC_CLASS_LIT - 1u]++;
+                continue;
+            }
+            if (px[i].kind != PN_MC_PX_SURFACE) {
+                PN_POOL(float, vis)[pix0 + i] = px[i].kind == PN_MC_PX_NONE ? 1.0f : 0.0f;
                 continue;
             }
             PN_POOL(float, vis)[pix0 + i] = pn_mc_pixel(&m, x0 + i, y, px + i, run_lit, &cls, &rays);

@@ -189,7 +189,7 @@ PN_KFN uint32_t pn_nb_mm_rect_at(uint32_t res, uint32_t levels, int32_t x0, int3
     y0 = pn_kmaxi(y0, 0);
     x1 = pn_kmini(x1, R);
     y1 = pn_kmini(y1, R);
-    n = (x1 > x0) & (y1 > y0) ? 4u : 0u;
+    n = ((x1 > x0) & (y1 > y0)) ? 4u : 0u;
     m = pn_kmaxi(x1 - x0, y1 - y0);
     /* The smallest l with 2 << l >= m: 0 up to m = 2, else floor(log2(m - 1)), the
      * exponent of m - 1 as a float (exact: m <= res < 2^24). */

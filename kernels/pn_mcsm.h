@@ -899,6 +899,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
     pn_v3 nrm = p->nrm, O = p->O, E = p->E;
     pn_v3 c = pn_v3_make(L->c[0], L->c[1], L->c[2]), toc = pn_v3_sub(c, O);
     pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]), V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
+    /* q is set whenever it is read; GCC 12 for arm-none-eabi cannot tell and warns */
     float ze = E.z, bias = 0.0f, zlo = 0.0f, zhi = PN_KINF, q[PN_NB_MM] = {0.0f, 0.0f, 0.0f};
     uint32_t n = L->is_point ? 1u : mc->rays, i, j, k = 0u, open = 0u, ahead = 0u, h0[PN_MD5R_LANES], h1[PN_MD5R_LANES];
     int classify = !(mc->flags & PN_MC_F_NO_CLASSIFY);
@@ -1004,7 +1005,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
         uint32_t li[PN_MD5R_LANES], lj[PN_MD5R_LANES], eat[PN_MD5R_LANES];
         int ah[PN_MD5R_LANES], eout[PN_MD5R_LANES];
 #if PN_MC_LANE_REGIONS
-        uint32_t rn[PN_MD5R_LANES], ra0[PN_MD5R_LANES], ra1[PN_MD5R_LANES], ra2[PN_MD5R_LANES], ra3[PN_MD5R_LANES];
+        uint32_t rn[PN_MD5R_LANES], ra[4][PN_MD5R_LANES]; /* box b of lane l's region at ra[b][l] */
         int rbey[PN_MD5R_LANES];
 #endif
         float xs[PN_MD5R_LANES], ys[PN_MD5R_LANES], te[PN_MD5R_LANES], lt0[PN_MD5R_LANES], lt1[PN_MD5R_LANES];
@@ -1050,12 +1051,9 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
             eat[l] = pn_mc_texel_at(m, epx[l], epy[l], &eout[l]);
 #if PN_MC_LANE_REGIONS
             {
-                uint32_t at4[4];
+                uint32_t at4[4], b;
                 rn[l] = pn_mc_region_at(m, ax[l], ay[l], bx[l], by[l], at4, &rbey[l]);
-                ra0[l] = at4[0];
-                ra1[l] = at4[1];
-                ra2[l] = at4[2];
-                ra3[l] = at4[3];
+                for (b = 0; b < 4u; b++) ra[b][l] = at4[b];
             }
 #endif
         }
@@ -1086,11 +1084,8 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
             if (classify && t0 < t1) {
                 /* The ray's own region (§3.7): nothing before its end, or shortened. */
 #if PN_MC_LANE_REGIONS
-                uint32_t at4[4];
-                at4[0] = ra0[l];
-                at4[1] = ra1[l];
-                at4[2] = ra2[l];
-                at4[3] = ra3[l];
+                uint32_t at4[4], b;
+                for (b = 0; b < 4u; b++) at4[b] = ra[b][l];
                 pn_mc_region_get(m, at4, rn[l], rbey[l], q);
 #else
                 pn_mc_region(m, ax[l], ay[l], bx[l], by[l], q);

@@ -25,7 +25,7 @@
 
 #define PN_RASTER_EMPTY 0xFFFFFFFFu
 /* Pixel centres up to which the rows pass tests a triangle's coverage itself
- * (pn_raster_rows). */
+ * (pn_raster_rows_small). */
 #define PN_RASTER_ROWS_TEST 4u
 
 /* Primary ray direction of pixel (x, y) (CLI conventions) scaled to unit depth along the
@@ -197,54 +197,13 @@ PN_KFN int pn_edges_inside(const pn_edge2 *e, uint32_t n, float px, float py)
     return 1;
 }
 
-/* The pixel centres a small triangle covers, as pn_raster_rows found them: bit
+/* The pixel centres a small triangle covers, as pn_raster_rows_small found them: bit
  * (y - y0) w + (x - x0) of mask for centre (x, y); w = 0 when the triangle was not small
  * (or covers nothing: then mask is 0 too). */
 typedef struct pn_raster_small {
     int32_t x0, y0, w;
     uint32_t mask;
 } pn_raster_small;
-
-/* The rows pass's end for a triangle projected to poly (n >= 3, nonzero area, the interior
- * on the left) whose coordinates' box is [xlo, xhi] x [lo, hi]: the range of pixel rows
- * whose centres it may cover, packed y0 | y1 << 16, or PN_RASTER_EMPTY; *sm: the centres it
- * covers, if it is small (sm->w and sm->mask as the caller emptied them otherwise). */
-PN_KFN uint32_t pn_raster_rows_box(const pn_kview *v, const pn_poly *poly, float lo, float hi, float xlo, float xhi,
-                                   pn_raster_small *sm)
-{
-    int32_t y0, y1, x0, x1;
-    /* Centre y + 0.5 in [lo, hi]; and some column's centre in [xlo, xhi]: the columns
-     * pn_raster_tri_setup draws (a triangle between two column centres, common among
-     * the dense meshes' sub-texel triangles, is set up nowhere). */
-    y0 = pn_kceil_clamp(lo - 0.5f, 0, (int32_t)v->height);
-    y1 = pn_kfloor_clamp(hi - 0.5f, -1, (int32_t)v->height - 1);
-    if (y0 > y1) return PN_RASTER_EMPTY;
-    x0 = pn_kceil_clamp(xlo - 0.5f, 0, (int32_t)v->width);
-    x1 = pn_kfloor_clamp(xhi - 0.5f, -1, (int32_t)v->width - 1);
-    if (x0 > x1) return PN_RASTER_EMPTY;
-    if ((x1 - x0 + 1) * (y1 - y0 + 1) <= (int32_t)PN_RASTER_ROWS_TEST) {
-        /* A few centres to look at (a small triangle): test them with the set-up's own
-         * polygon and edge functions, and keep only the rows of those it covers, or none:
-         * every band then skips it, or sets it up once. */
-        pn_edge2 e[4];
-        int32_t x, y, c0 = y1 + 1, c1 = y0 - 1;
-        pn_edges_make(poly, e);
-        sm->x0 = x0;
-        sm->y0 = y0;
-        sm->w = x1 - x0 + 1;
-        for (y = y0; y <= y1; y++)
-            for (x = x0; x <= x1; x++)
-                if (pn_edges_inside(e, poly->n, (float)x + 0.5f, (float)y + 0.5f)) {
-                    c0 = pn_kmini(c0, y);
-                    c1 = pn_kmaxi(c1, y);
-                    sm->mask |= 1u << (uint32_t)((y - y0) * sm->w + (x - x0));
-                }
-        if (c0 > c1) return PN_RASTER_EMPTY;
-        y0 = c0;
-        y1 = c1;
-    }
-    return (uint32_t)y0 | ((uint32_t)y1 << 16);
-}
 
 /* Triangle set-up: the range of pixel rows whose centres the triangle may cover, packed
  * y0 | y1 << 16, or PN_RASTER_EMPTY; *sm: the centres it covers, if it is small. */
@@ -255,6 +214,7 @@ PN_KFN uint32_t pn_raster_rows_small(const pn_kview *v, PN_CONST float *tris, PN
     pn_poly poly;
     float lo, hi, xlo, xhi;
     uint32_t i;
+    int32_t y0, y1, x0, x1;
     sm->w = 0;
     sm->mask = 0u;
     if (flags[t] & PN_TRI_DEGENERATE) return PN_RASTER_EMPTY;
@@ -271,7 +231,37 @@ PN_KFN uint32_t pn_raster_rows_small(const pn_kview *v, PN_CONST float *tris, PN
         xlo = pn_kminf(xlo, poly.x[i]);
         xhi = pn_kmaxf(xhi, poly.x[i]);
     }
-    return pn_raster_rows_box(v, &poly, lo, hi, xlo, xhi, sm);
+    /* Centre y + 0.5 in [lo, hi]; and some column's centre in [xlo, xhi]: the columns
+     * pn_raster_tri_setup draws (a triangle between two column centres, common among
+     * the dense meshes' sub-texel triangles, is set up nowhere). */
+    y0 = pn_kceil_clamp(lo - 0.5f, 0, (int32_t)v->height);
+    y1 = pn_kfloor_clamp(hi - 0.5f, -1, (int32_t)v->height - 1);
+    if (y0 > y1) return PN_RASTER_EMPTY;
+    x0 = pn_kceil_clamp(xlo - 0.5f, 0, (int32_t)v->width);
+    x1 = pn_kfloor_clamp(xhi - 0.5f, -1, (int32_t)v->width - 1);
+    if (x0 > x1) return PN_RASTER_EMPTY;
+    if ((x1 - x0 + 1) * (y1 - y0 + 1) <= (int32_t)PN_RASTER_ROWS_TEST) {
+        /* A few centres to look at (a small triangle): test them with the set-up's own
+         * polygon and edge functions, and keep only the rows of those it covers, or none:
+         * every band then skips it, or sets it up once. */
+        pn_edge2 e[4];
+        int32_t x, y, c0 = y1 + 1, c1 = y0 - 1;
+        pn_edges_make(&poly, e);
+        sm->x0 = x0;
+        sm->y0 = y0;
+        sm->w = x1 - x0 + 1;
+        for (y = y0; y <= y1; y++)
+            for (x = x0; x <= x1; x++)
+                if (pn_edges_inside(e, poly.n, (float)x + 0.5f, (float)y + 0.5f)) {
+                    c0 = pn_kmini(c0, y);
+                    c1 = pn_kmaxi(c1, y);
+                    sm->mask |= 1u << (uint32_t)((y - y0) * sm->w + (x - x0));
+                }
+        if (c0 > c1) return PN_RASTER_EMPTY;
+        y0 = c0;
+        y1 = c1;
+    }
+    return (uint32_t)y0 | ((uint32_t)y1 << 16);
 }
 
 /* Triangles a rows pass item sets up side by side (pn_raster_rows_group). */
@@ -341,7 +331,7 @@ PN_KFN void pn_raster_rows_group(const pn_kview *v, PN_CONST float *tris, PN_CON
         p0y = neg ? cy : ay;
         p2x = neg ? ax : cx;
         p2y = neg ? ay : cy;
-        /* pn_raster_rows_small's box and ranges (pn_raster_rows_box) */
+        /* pn_raster_rows_small's box and ranges */
         lo = pn_kminf(pn_kminf(p0y, by), p2y);
         hi = pn_kmaxf(pn_kmaxf(p0y, by), p2y);
         xlo = pn_kminf(pn_kminf(p0x, bx), p2x);
@@ -393,12 +383,6 @@ PN_KFN void pn_raster_rows_group(const pn_kview *v, PN_CONST float *tris, PN_CON
     }
 }
 
-PN_KFN uint32_t pn_raster_rows(const pn_kview *v, PN_CONST float *tris, PN_CONST uint8_t *flags, uint32_t t)
-{
-    pn_raster_small sm;
-    return pn_raster_rows_small(v, tris, flags, t, &sm);
-}
-
 /* Rows pass item g of the n triangles (PN_RASTER_GROUPS(n) items): rows[t] for its group. */
 #define PN_RASTER_GROUPS(n) (((n) + PN_RASTER_GROUP - 1u) / PN_RASTER_GROUP)
 PN_KFN void pn_raster_rows_item(const pn_kview *v, PN_CONST float *tris, PN_CONST uint8_t *flags, uint32_t n, uint32_t g,
@@ -412,7 +396,7 @@ PN_KFN void pn_raster_rows_item(const pn_kview *v, PN_CONST float *tris, PN_CONS
 
 /* The band walk. A band of rows looks at the triangles that may cover them, not at every
  * triangle: the walk goes through the BVH's raster order (`rindex`, its n entries: every
- * triangle that is not degenerate, which are the only ones pn_raster_rows draws, once, in
+ * triangle that is not degenerate, which are the only ones the rows pass draws, once, in
  * the leaf order where it first appears, so grouped in space by the build) in chunks of PN_RASTER_CHUNK entries, and skips a chunk whose rows,
  * the union of its triangles' (pn_raster_chunk, one item per chunk after the rows pass),
  * miss the band. Every rasterizer here combines fragments in a way that does not depend
@@ -490,7 +474,7 @@ PN_KFN float pn_raster_plane(const pn_kview *v, pn_v3 A, pn_v3 B, pn_v3 C, pn_v3
     return pn_v3_dot(*n, pn_v3_sub(A, pn_view_eye(v)));
 }
 
-/* 0 when triangle t covers nothing in rows [row0, row1] (rows[t]: pn_raster_rows). */
+/* 0 when triangle t covers nothing in rows [row0, row1] (rows[t]: the rows pass, pn_raster_rows_item). */
 PN_KFN int pn_raster_tri_setup(const pn_kview *v, PN_CONST float *tris, PN_CONST uint32_t *rows, uint32_t t,
                                uint32_t row0, uint32_t row1, pn_raster_tri *rt)
 {

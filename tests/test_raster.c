@@ -288,7 +288,7 @@ static void test_band_walk_ties(void)
     pn_mesh_free(&m);
 }
 
-/* The rows pass (pn_raster_rows) against every pixel centre: the rows it gives a triangle
+/* The rows pass (pn_raster_rows_small) against every pixel centre: the rows it gives a triangle
  * hold every centre the set-up's polygon and edge functions cover, and a triangle with at
  * most PN_RASTER_ROWS_TEST candidate centres (those in its box) gets exactly the rows of
  * those it covers, PN_RASTER_EMPTY for none. Random triangles from sub-pixel to a few pixels wide, some crossing
@@ -322,12 +322,13 @@ static void test_rows_pass(void)
         uint32_t k, rows, x, y, y0 = H, y1 = 0, cx0 = W, cx1 = 0, cy0 = H, cy1 = 0, covered = 0;
         pn_poly poly;
         pn_edge2 e[4];
+        pn_raster_small sm;
         for (k = 0; k < 3u; k++) {
             tri[3u * k + 0u] = cx + sz * ((float)rand() / (float)RAND_MAX - 0.5f);
             tri[3u * k + 1u] = cy + sz * ((float)rand() / (float)RAND_MAX - 0.5f);
             tri[3u * k + 2u] = n % 7u == 6u && k == 0u ? 0.5f : z; /* one vertex behind the eye */
         }
-        rows = pn_raster_rows(&v, tri, &flag, 0u);
+        rows = pn_raster_rows_small(&v, tri, &flag, 0u, &sm);
         pn_poly_make(&v, pn_v3_make(tri[0], tri[1], tri[2]), pn_v3_make(tri[3], tri[4], tri[5]),
                      pn_v3_make(tri[6], tri[7], tri[8]), &poly);
         if (poly.n > 0u) {
@@ -520,13 +521,14 @@ static void test_span(void)
         float tri[9], cx = ((float)rand() / (float)RAND_MAX - 0.5f) * 4.0f, sz = 0.05f + 2.0f * (float)(n % 5u);
         uint8_t flag = 0u;
         uint32_t rr, k;
+        pn_raster_small sm;
         pn_raster_tri rt;
         for (k = 0; k < 3u; k++) {
             tri[3u * k + 0u] = cx + sz * ((float)rand() / (float)RAND_MAX - 0.5f);
             tri[3u * k + 1u] = sz * ((float)rand() / (float)RAND_MAX - 0.5f);
             tri[3u * k + 2u] = n % 7u == 6u && k == 0u ? 0.5f : -1.0f - (float)(n % 3u);
         }
-        rr = pn_raster_rows(&v, tri, &flag, 0u);
+        rr = pn_raster_rows_small(&v, tri, &flag, 0u, &sm);
         if (rr == PN_RASTER_EMPTY || !pn_raster_tri_setup(&v, tri, &rr, 0u, 0u, H - 1u, &rt)) continue;
         set_bad += span_rows(&rt, H, &set_rows);
     }

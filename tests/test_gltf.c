@@ -364,6 +364,9 @@ static const scene_row scene_table[] = {
     {"cad_infineon_easypim2b.glb", 194708, 194908, {-0.0061, -0.0014, -0.0017},
      {0.0187, 0.0049, 0.0206}, 4},
     {"stanford_dragon.glb", 871414, 437645, {-0.108, 0.053, -0.050}, {0.097, 0.197, 0.041}, 3},
+    /* Interiors, architecture and foliage. */
+    {"grey_white_room.glb", 139899, 116635, {-0.513, -0.003, -3.635}, {5.123, 2.879, 0.593}, 3},
+    {"copper_beech.glb", 187308, 208784, {-3.991, 0.000, -3.530}, {3.522, 8.000, 3.771}, 3},
 };
 #define SCENE_COUNT (sizeof scene_table / sizeof scene_table[0])
 

@@ -17,8 +17,23 @@ check test $r -eq 0
 [ $r -eq 0 ] || cat "$work.stderr" >&2
 md=$work/RESULTS.md
 check test -s "$md"
-for s in square elongated-cube; do
+for s in square elongated-cube room canopy colonnade; do
   check grep -q "^| $s | " "$md"
+done
+# The interior and the tree, each with its view from views.json: the room's view has no ground
+# plane (139,899 triangles as in the file), the tree's has one (+2).
+if [ -f "$scenes/grey_white_room.glb" ]; then
+  check grep -q '^| grey_white_room | 139899 | ' "$md"
+  check grep -q '^| copper_beech | 187310 | ' "$md"
+fi
+# The summary, and the baselines beside every algorithm: a summary row each, and accuracy rows
+# with the gross columns (RMSE, p99, max, gross brighter, gross darker, wrong pixels).
+check grep -q '^## Summary: every algorithm on every scene' "$md"
+for a in reference GEARS MCSM 'reference k=4' 'reference k=8' PCSS; do
+  check grep -q "^| $a | [0-9]* | [0-9.]* (" "$md"
+done
+for a in 'reference k=4' 'reference k=8' PCSS MCSM; do
+  check grep -Eq "^\| square \| $a \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+% \| [0-9.]+% \| [0-9.]+% \| " "$md"
 done
 if [ -f "$scenes/spot.glb" ]; then
   check grep -q '^| spot | ' "$md"
@@ -57,6 +72,7 @@ if command -v gnuplot >/dev/null 2>&1; then
     check test -s "$work/$p.png"
   done
   [ -f "$scenes/spot.glb" ] && check test -s "$work/gallery/spot.png"
+  check test -s "$work/gallery/canopy.png"
 fi
 check test ! -d "$work/work"
 echo "bench_quick: $pass passed, $fail failed"

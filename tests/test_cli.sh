@@ -59,6 +59,39 @@ check grep -q '"view_source": "auto"' spot.json
 "$bin" render "$scenes/spot.glb" --size 48x48 --k 4 --ground off --out spot2.png --stats spot2.json 2>err.txt
 check grep -q '"triangles": 5856' spot2.json
 
+# Named views (views.json beside the scene): the view's camera, light, size and ground; an
+# explicit flag overrides its field; a missing key or file is a usage error naming both.
+"$bin" render "$scenes/grey_white_room.glb" --view grey_white_room --size 24x24 --k 4 --threads 1 \
+    --out room.png --stats room.json 2>err.txt
+check test $? -eq 0
+check grep -q '"view_source": "view"' room.json
+check grep -q '"ground": false' room.json
+check grep -q '"light_center": \[2.55999994, 2.79999995, -1.79999995\]' room.json
+check grep -q '"width": 24' room.json
+"$bin" render "$scenes/grey_white_room.glb" --view grey_white_room --size 24x24 --k 4 --fov 30 --ground on \
+    --out room2.png --stats room2.json 2>err.txt
+check grep -q '"fov_deg": 30' room2.json
+check grep -q '"ground": true' room2.json
+check grep -q '"view_source": "user"' room2.json
+"$bin" render "$scenes/grey_white_room.glb" --view no_such_view --out x.png 2>err.txt; r=$?
+check test $r -eq 2
+check grep -q "views.json: no view 'no_such_view' (views: " err.txt
+"$bin" render --builtin square --view x --views missing_views.json --out x.png 2>err.txt; r=$?
+check test $r -eq 2
+check grep -q 'missing_views.json' err.txt
+printf '{"v": {"eye": [0, 1], "target": [0, 0, 0]}}' > bad_views.json
+"$bin" render --builtin square --view v --views bad_views.json --out x.png 2>err.txt; r=$?
+check test $r -eq 2
+check grep -q "bad_views.json: view 'v': 'eye' must be" err.txt
+printf '{"v": {"eye": [0, 1, 2], "target": [0, 0, 0], "fov": 40, "light_center": [0, 5, 0], "light_u": [1, 0, 0]}}' > bad_views2.json
+"$bin" render --builtin square --view v --views bad_views2.json --out x.png 2>err.txt; r=$?
+check test $r -eq 2
+check grep -q "view 'v' has no 'light_v'" err.txt
+printf '{"v": [1, 2' > bad_views3.json
+"$bin" render --builtin square --view w --views bad_views3.json --out x.png 2>err.txt; r=$?
+check test $r -eq 2
+check grep -q 'bad_views3.json: unexpected end of file at byte' err.txt
+
 # Bad input: non-zero exit and a message, no crash.
 "$bin" render "$work/missing.glb" --out x.png 2>err.txt; r=$?
 check test $r -eq 1

@@ -260,16 +260,25 @@ typedef struct pn_xscene {
 
 #define PN_X_MAX_SCENES 32
 
-/* Built-ins (sizes and k chosen per scene: spheres, thin and room are dense in shadow rays),
- * then every .glb of the shared set in name order. */
+/* Every built-in of pn_builtin_scene_names() (sizes and k chosen per scene where it is dense
+ * in shadow rays or has thin features; 48x40, k = 8 otherwise), then every .glb of the shared
+ * set in name order, with its view where views.json has one. */
 static int list_scenes(pn_xscene *out)
 {
-    static const pn_xscene builtins[] = {{"square", 1, 96, 72, 32},        {"spheres", 1, 48, 40, 8},
-                                         {"elongated-cube", 1, 80, 64, 16}, {"thin", 1, 64, 48, 4},
-                                         {"room", 1, 48, 40, 8}};
+    static const pn_xscene sized[] = {{"square", 1, 96, 72, 32}, {"elongated-cube", 1, 80, 64, 16}, {"thin", 1, 64, 48, 4}};
+    const char *const *bn = pn_builtin_scene_names();
     struct dirent **names;
     int n = 0, i, m;
-    for (i = 0; i < (int)(sizeof(builtins) / sizeof(builtins[0])); i++) out[n++] = builtins[i];
+    for (; *bn && n < PN_X_MAX_SCENES; bn++) {
+        pn_xscene *s = out + n++;
+        snprintf(s->src, sizeof(s->src), "%s", *bn);
+        s->builtin = 1;
+        s->w = 48;
+        s->h = 40;
+        s->k = 8;
+        for (i = 0; i < (int)(sizeof(sized) / sizeof(sized[0])); i++)
+            if (strcmp(sized[i].src, *bn) == 0) *s = sized[i];
+    }
     m = scandir(PN_SCENES_DIR, &names, NULL, alphasort);
     for (i = 0; i < m; i++) {
         size_t len = strlen(names[i]->d_name);
@@ -674,7 +683,8 @@ int main(void)
     lim.max_height = 72;
     for (i = 0; i < g_nscenes; i++) {
         char err[256];
-        g_loaded[i] = pn_setup_load(&g_setups[i], g_scenes[i].src, g_scenes[i].builtin, -1, err, sizeof(err)) == 0;
+        g_loaded[i] = pn_setup_load_viewed(&g_setups[i], g_scenes[i].src, g_scenes[i].builtin, PN_SCENES_DIR, err,
+                                           sizeof(err)) == 0;
         CHECK_MSG(g_loaded[i], "%s: %s", g_scenes[i].src, err);
         if (g_loaded[i] && g_setups[i].mesh.triangle_count > lim.max_triangles)
             lim.max_triangles = g_setups[i].mesh.triangle_count;

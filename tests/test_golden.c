@@ -1,5 +1,6 @@
 /* test_golden.c - golden hashes of whole frames (LVGL-style reference results, stored as
- * hashes): every built-in scene and every .glb of PN_SCENES_DIR, with its area light and
+ * hashes): every built-in scene and every .glb of PN_SCENES_DIR (with its view from
+ * PN_SCENES_DIR/views.json where it has one, else the automatic framing), with its area light and
  * with a point light at the light's centre, through every algorithm compiled in (the
  * exact ones and, with their default options, the approximate ones), on the scalar port
  * with two threads. Each frame's visibility buffer and RGBA image are hashed (FNV-1a 64
@@ -104,7 +105,7 @@ static void one_scene(const char *source, int builtin)
     int li;
     size_t a;
     uint32_t built = pn_build_info();
-    if (pn_setup_load(&s, source, builtin, -1, err, sizeof(err)) != 0) {
+    if (pn_setup_load_viewed(&s, source, builtin, PN_SCENES_DIR, err, sizeof(err)) != 0) {
         CHECK_MSG(0, "loading %s: %s", source, err);
         return;
     }

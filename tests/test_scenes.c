@@ -140,14 +140,16 @@ static int cmp_u64(const void *a, const void *b)
 
 /* Triangles [t0, t1) form a closed, consistently wound 2-manifold: every directed edge
  * occurs exactly once and its reverse exactly once. Returns 1 if so. */
-static int closed_manifold(const pn_mesh *m, uint32_t t0, uint32_t t1)
+/* The directed edges (from << 32 | to) of triangles [t0, t1), sorted; *n of them. NULL when
+ * out of memory. */
+static uint64_t *sorted_edges(const pn_mesh *m, uint32_t t0, uint32_t t1, size_t *n)
 {
-    size_t n = (size_t)(t1 - t0) * 3u, i;
-    uint64_t *e = (uint64_t *)malloc(n * sizeof(uint64_t));
-    int ok = 1;
+    uint64_t *e;
     uint32_t t;
+    *n = (size_t)(t1 - t0) * 3u;
+    e = (uint64_t *)malloc(*n * sizeof(uint64_t) + 1u);
     if (e == NULL) {
-        return 0;
+        return NULL;
     }
     for (t = t0; t < t1; t++) {
         const uint32_t *ix = m->indices + (size_t)t * 3u;
@@ -157,7 +159,18 @@ static int closed_manifold(const pn_mesh *m, uint32_t t0, uint32_t t1)
                 ((uint64_t)ix[c] << 32) | (uint64_t)ix[(c + 1) % 3];
         }
     }
-    qsort(e, n, sizeof(uint64_t), cmp_u64);
+    qsort(e, *n, sizeof(uint64_t), cmp_u64);
+    return e;
+}
+
+static int closed_manifold(const pn_mesh *m, uint32_t t0, uint32_t t1)
+{
+    size_t n, i;
+    uint64_t *e = sorted_edges(m, t0, t1, &n);
+    int ok = 1;
+    if (e == NULL) {
+        return 0;
+    }
     for (i = 0; i < n && ok; i++) {
         uint64_t rev = (e[i] << 32) | (e[i] >> 32);
         if (i + 1 < n && e[i + 1] == e[i]) {
@@ -211,11 +224,46 @@ static uint32_t distinct_vertices(const pn_mesh *m, uint32_t t0, uint32_t t1)
 
 /* ---- per-scene generic checks ---- */
 
-/* room (the interior, pn_scenes.h): 142 boxes and 3 spheres of furniture, then the shell
- * (ceiling and four walls on 8 shared corners), then the floor. */
-#define ROOM_BOXES 142u
+/* room (the interior, pn_scenes.h): 118 boxes (table 5, chair legs 24, bookcase 7, books
+ * 56, stair 26), the six chair shells (an open 10 x 8 grid of quads each), 3 spheres, then
+ * the shell (ceiling and four walls on 8 shared corners), then the floor. */
+#define ROOM_BOXES 118u
+#define ROOM_CHAIRS 6u
+#define CHAIR_ALONG 10u
+#define CHAIR_ACROSS 8u
+#define CHAIR_TRIS (2u * CHAIR_ALONG * CHAIR_ACROSS)
+#define CHAIR_VERTS ((CHAIR_ALONG + 1u) * (CHAIR_ACROSS + 1u))
+#define CHAIR_LEG_TOP 0.45
 #define ROOM_SHELL_TRIS 10u
 #define ROOM_SHELL_VERTS 8u
+
+/* canopy (pn_scenes.h): 3000 leaves of 4 triangles on 4 vertices, the trunk (an
+ * octagonal frustum: 28 triangles, 16 vertices), 6 hexagonal branches (20, 12), ground.
+ * The crown ellipsoid: centre (0, 4.2, 0), semi-axes 2.6, 1.3, 2.6. */
+#define CAN_LEAVES 3000u
+#define CAN_TRUNK_TRIS 28u
+#define CAN_TRUNK_VERTS 16u
+#define CAN_BRANCHES 6u
+#define CAN_BRANCH_TRIS 20u
+#define CAN_BRANCH_VERTS 12u
+#define CAN_CROWN_Y 4.2
+#define CAN_CROWN_RX 2.6
+#define CAN_CROWN_RY 1.3
+
+/* colonnade (pn_scenes.h): 16 columns (plinth 12/8, 12-sided shaft 44/24, capital 12/8
+ * triangles/vertices), 14 arches of 11 voussoirs (12/8 each), 2 beams (12/8), floor. Rows
+ * at z = -1.6, +1.6; columns 1.5 apart from x = -5.25; arches spring at y = 2.8, inner
+ * radius 0.5, outer 0.8, 0.4 deep; capitals 0.5 square. */
+#define COL_COLUMNS 16u
+#define COL_PER_ROW 8u
+#define COL_COLUMN_TRIS 68u
+#define COL_COLUMN_VERTS 40u
+#define COL_ARCHES 14u
+#define COL_VOUSSOIRS 11u
+#define COL_SPRING 2.8
+#define COL_R_IN 0.5
+#define COL_R_OUT 0.8
+#define COL_DEPTH 0.4
 
 /* closed-box (pn_scenes.h): the cube (12 triangles, 8 vertices), the box's surface
  * without the cavity floor (42 triangles; 24 vertices with the floor's), the cavity
@@ -240,7 +288,12 @@ static uint32_t expected_triangles(const char *name)
     if (strcmp(name, "spheres") == 0) return 81u * 762u + 2u;
     if (strcmp(name, "elongated-cube") == 0) return 12u + 2u;
     if (strcmp(name, "thin") == 0) return 2000u + 2u;
-    if (strcmp(name, "room") == 0) return ROOM_BOXES * 12u + 3u * 762u + ROOM_SHELL_TRIS + 2u;
+    if (strcmp(name, "room") == 0)
+        return ROOM_BOXES * 12u + ROOM_CHAIRS * CHAIR_TRIS + 3u * 762u + ROOM_SHELL_TRIS + 2u;
+    if (strcmp(name, "canopy") == 0)
+        return CAN_LEAVES * 4u + CAN_TRUNK_TRIS + CAN_BRANCHES * CAN_BRANCH_TRIS + 2u;
+    if (strcmp(name, "colonnade") == 0)
+        return COL_COLUMNS * COL_COLUMN_TRIS + COL_ARCHES * COL_VOUSSOIRS * 12u + 24u + 2u;
     if (strcmp(name, "closed-box") == 0) return CB_CUBE_TRIS + CB_SHELL_TRIS + 2u;
     return 0u;
 }
@@ -448,13 +501,15 @@ static void test_all_scenes(void)
         check_scene(*names);
         count++;
     }
-    CHECK(count == 6);
+    CHECK(count == 8);
     /* The shared list (what the demo, the golden hashes and the frame tests iterate) is
-     * the first five, without closed-box. */
+     * the first seven, without closed-box; the new scenes come after room. */
     names = pn_builtin_scene_names_all();
     for (i = 0; shared[i] != NULL; i++) CHECK(names[i] != NULL && strcmp(shared[i], names[i]) == 0);
-    CHECK(i == 5);
-    CHECK(strcmp(names[5], "closed-box") == 0);
+    CHECK(i == 7);
+    CHECK(strcmp(names[4], "room") == 0 && strcmp(names[5], "canopy") == 0 &&
+          strcmp(names[6], "colonnade") == 0);
+    CHECK(strcmp(names[7], "closed-box") == 0);
 }
 
 static void test_unknown_name(void)
@@ -470,6 +525,7 @@ static void test_unknown_name(void)
     CHECK(err[0] != '\0');
     CHECK(strstr(err, "no-such-scene") != NULL);
     CHECK(strstr(err, "closed-box") != NULL);
+    CHECK(strstr(err, "canopy") != NULL && strstr(err, "colonnade") != NULL);
     CHECK(m.positions == NULL && m.indices == NULL && m.triangle_count == 0u &&
           m.vertex_count == 0u && m.receiver_count == 0u);
     CHECK(((unsigned char *)&v)[0] == 0x5a); /* view not written on failure */
@@ -677,6 +733,122 @@ static void test_thin_slivers(void)
     pn_mesh_free(&m);
 }
 
+/* Triangles [t0, t1) form a consistently wound 2-manifold that may have a boundary: no
+ * directed edge twice, none degenerate. *boundary: the edges with one triangle only. */
+static int open_manifold(const pn_mesh *m, uint32_t t0, uint32_t t1, uint32_t *boundary)
+{
+    size_t n, i;
+    uint64_t *e = sorted_edges(m, t0, t1, &n);
+    int ok = 1;
+    *boundary = 0;
+    if (e == NULL) {
+        return 0;
+    }
+    for (i = 0; i < n; i++) {
+        uint64_t rev = (e[i] << 32) | (e[i] >> 32);
+        if (i + 1 < n && e[i + 1] == e[i]) ok = 0;
+        if ((uint32_t)e[i] == (uint32_t)(e[i] >> 32)) ok = 0;
+        if (bsearch(&rev, e, n, sizeof(uint64_t), cmp_u64) == NULL) (*boundary)++;
+    }
+    free(e);
+    return ok;
+}
+
+/* room's chairs: each shell (after the boxes) one open single-layer sheet: 99 vertices of
+ * its own, consistently wound, a disc (V - E + F = 1) whose boundary is the grid's rim
+ * (2 (10 + 8) edges, each in one triangle only), no two triangles on the same three
+ * vertices (no second layer); the seat's triangles face up, the back's face the sitter
+ * (away from the back, found as the high part's offset from the low part); each of the
+ * chair's four legs (boxes 5 + 4c ..) reaches to within 1 cm under the sheet without
+ * piercing it, and the sheet lies over the leg tops. */
+static void check_chair_shells(const pn_mesh *m)
+{
+    uint32_t c, t;
+    int seat_up = 1, back_front = 1, legs = 1;
+    for (c = 0; c < ROOM_CHAIRS; c++) {
+        uint32_t t0 = ROOM_BOXES * 12u + c * CHAIR_TRIS, t1 = t0 + CHAIR_TRIS, bnd = 0, edges;
+        double lowc[3] = {0, 0, 0}, highc[3] = {0, 0, 0}, back[3], miny = HUGE_VAL;
+        int nl = 0, nh = 0, k, l, seat_n = 0, back_n = 0;
+        CHECK(open_manifold(m, t0, t1, &bnd));
+        CHECK_MSG(bnd == 2u * (CHAIR_ALONG + CHAIR_ACROSS), "chair %u: %u boundary edges",
+                  (unsigned)c, (unsigned)bnd);
+        CHECK(distinct_vertices(m, t0, t1) == CHAIR_VERTS);
+        edges = (3u * CHAIR_TRIS + bnd) / 2u;
+        CHECK((int)CHAIR_VERTS - (int)edges + (int)CHAIR_TRIS == 1);
+        /* single layer: no triangle's vertex set repeats (sorted triples differ) */
+        for (t = t0; t < t1; t++) {
+            uint32_t u;
+            const uint32_t *a = m->indices + (size_t)t * 3u;
+            for (u = t + 1u; u < t1; u++) {
+                const uint32_t *q = m->indices + (size_t)u * 3u;
+                int same = 0;
+                for (k = 0; k < 3; k++)
+                    for (l = 0; l < 3; l++) same += a[k] == q[l];
+                CHECK(same < 3);
+            }
+        }
+        for (t = t0; t < t1; t++) {
+            double nn[3], cen[3];
+            tri_normal(nn, cen, m, t);
+            if (cen[1] < 0.5) {
+                for (k = 0; k < 3; k++) lowc[k] += cen[k];
+                nl++;
+            } else if (cen[1] > 0.7) {
+                for (k = 0; k < 3; k++) highc[k] += cen[k];
+                nh++;
+            }
+            for (k = 0; k < 3; k++) {
+                double y = m->positions[(size_t)m->indices[t * 3u + (uint32_t)k] * 3u + 1u];
+                if (y < miny) miny = y;
+            }
+        }
+        REQUIRE(nl > 0 && nh > 0);
+        for (k = 0; k < 3; k++) back[k] = highc[k] / nh - lowc[k] / nl;
+        back[1] = 0.0;
+        normalize3(back);
+        for (t = t0; t < t1; t++) {
+            double nn[3], cen[3], l2;
+            tri_normal(nn, cen, m, t);
+            l2 = sqrt(dot3(nn, nn));
+            if (cen[1] < 0.465) { /* the flat seat, up to the start of the bend */
+                seat_n++;
+                if (!(nn[1] > 0.9 * l2)) seat_up = 0;
+            } else if (cen[1] > 0.7) {
+                back_n++;
+                if (!(-dot3(nn, back) > 0.9 * l2)) back_front = 0;
+            }
+        }
+        CHECK(seat_n >= 64 && back_n >= 32);
+        CHECK(miny > 0.4 && miny < CHAIR_LEG_TOP + 0.01);
+        /* legs: boxes 5 + 4c .. 5 + 4c + 3 */
+        for (l = 0; l < 4; l++) {
+            uint32_t b0 = (5u + 4u * c + (uint32_t)l) * 12u, v;
+            double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+            double p0[3], p1[3], p2[3];
+            for (v = b0 * 3u; v < (b0 + 12u) * 3u; v++) {
+                for (k = 0; k < 3; k++) {
+                    double x = m->positions[(size_t)m->indices[v] * 3u + (size_t)k];
+                    if (x < lo[k]) lo[k] = x;
+                    if (x > hi[k]) hi[k] = x;
+                }
+            }
+            if (!(lo[1] == 0.0 && fabs(hi[1] - CHAIR_LEG_TOP) < 1e-6 && hi[0] - lo[0] < 0.05 &&
+                  hi[2] - lo[2] < 0.05))
+                legs = 0;
+            /* from the leg's top centre: up 1 cm hits the sheet, the leg itself does not */
+            p0[0] = p1[0] = p2[0] = 0.5 * (lo[0] + hi[0]);
+            p0[2] = p1[2] = p2[2] = 0.5 * (lo[2] + hi[2]);
+            p0[1] = 0.2;
+            p1[1] = hi[1];
+            p2[1] = hi[1] + 0.01;
+            if (!seg_blocked(m, p1, p2, t0, t1) || seg_blocked(m, p0, p1, t0, t1)) legs = 0;
+        }
+    }
+    CHECK_MSG(seat_up, "a chair seat triangle does not face up");
+    CHECK_MSG(back_front, "a chair back triangle does not face the sitter");
+    CHECK_MSG(legs, "a chair leg does not stand under its seat");
+}
+
 /* The interior: the shell and the floor close the room (welded by position they form a
  * closed manifold wound inward); the eye, the light and every furniture vertex are inside
  * it, the furniture at least 1 cm off the walls and below the light; the boxes are closed
@@ -692,7 +864,7 @@ static void test_room(void)
     nt = m.triangle_count;
     nv = m.vertex_count;
     REQUIRE(nt == expected_triangles("room"));
-    CHECK(nv == ROOM_BOXES * 8u + 3u * 383u + ROOM_SHELL_VERTS + 4u);
+    CHECK(nv == ROOM_BOXES * 8u + ROOM_CHAIRS * CHAIR_VERTS + 3u * 383u + ROOM_SHELL_VERTS + 4u);
     shell_t0 = nt - 2u - ROOM_SHELL_TRIS;
     shell_v0 = nv - 4u - ROOM_SHELL_VERTS;
     for (k = 0; k < 3; k++) {
@@ -750,9 +922,10 @@ static void test_room(void)
     }
     CHECK(boxes);
     for (t = 0; t < 3u; t++) {
-        uint32_t t0 = ROOM_BOXES * 12u + t * 762u;
+        uint32_t t0 = ROOM_BOXES * 12u + ROOM_CHAIRS * CHAIR_TRIS + t * 762u;
         CHECK(closed_manifold(&m, t0, t0 + 762u));
     }
+    check_chair_shells(&m);
     /* Light: a panel inside the ceiling, below it and above all furniture. */
     CHECK(v.light_center[1] > top && v.light_center[1] < hi[1]);
     for (k = 0; k < 3; k += 2) {
@@ -931,6 +1104,256 @@ static void test_closed_box(void)
     CHECK(corner == 0);
     fprintf(stderr, "  closed-box: %d/%d probes inside lit (%d samples), none on the walls\n",
             lit_probes, probes, lit_samples);
+    pn_mesh_free(&m);
+}
+
+/* canopy: every leaf two coincident quads of opposite winding on its own 4 vertices (the
+ * back quad's triangles are the front's reversed), a small convex quad (its longer diagonal
+ * about 1/50 of the crown's width) centred inside the crown ellipsoid; the orientations
+ * spread over the sphere; the trunk and branches closed and outward, the trunk standing on
+ * the ground; and the ground under the crown dappled: brute-force visibility over a grid
+ * under the crown ranges from deep shade to nearly full light. */
+static void test_canopy(void)
+{
+    pn_mesh m;
+    pn_scene_view v;
+    uint32_t l, t, leaf_t1 = CAN_LEAVES * 4u, ground_t0;
+    int pairs = 1, own = 1, size = 1, inside = 1, solids = 1, steep = 0, k;
+    double sum_n[3] = {0, 0, 0}, xmin = HUGE_VAL, xmax = -HUGE_VAL;
+    REQUIRE(pn_builtin_scene("canopy", &m, &v, NULL, 0) == 0);
+    REQUIRE(m.triangle_count == expected_triangles("canopy"));
+    CHECK(m.vertex_count == CAN_LEAVES * 4u + CAN_TRUNK_VERTS + CAN_BRANCHES * CAN_BRANCH_VERTS + 4u);
+    ground_t0 = m.triangle_count - 2u;
+    for (t = 0; t < CAN_LEAVES * 4u; t++) {
+        const float *p = m.positions + (size_t)t * 3u;
+        if (p[0] < xmin) xmin = p[0];
+        if (p[0] > xmax) xmax = p[0];
+    }
+    for (l = 0; l < CAN_LEAVES; l++) {
+        const uint32_t *ix = m.indices + (size_t)l * 12u;
+        double n0[3], n1[3], n2[3], n3[3], cen[3], c[3] = {0, 0, 0}, p[4][3], d0[3], d1[3], l0, l1;
+        uint32_t i;
+        for (i = 0; i < 12u; i++)
+            if (ix[i] < 4u * l || ix[i] >= 4u * l + 4u) own = 0;
+        /* back quad = the front quad's triangles reversed: (a,b,c),(a,c,d) then
+         * (a,d,c),(a,c,b) */
+        if (!(ix[6] == ix[0] && ix[7] == ix[5] && ix[8] == ix[4] && ix[9] == ix[0] &&
+              ix[10] == ix[2] && ix[11] == ix[1] && ix[3] == ix[0] && ix[4] == ix[2]))
+            pairs = 0;
+        tri_normal(n0, cen, &m, 4u * l);
+        tri_normal(n1, cen, &m, 4u * l + 1u);
+        tri_normal(n2, cen, &m, 4u * l + 2u);
+        tri_normal(n3, cen, &m, 4u * l + 3u);
+        /* front halves agree, backs exactly opposite, and all non-degenerate */
+        if (!(dot3(n0, n1) > 0.0 && dot3(n0, n2) < 0.0 && dot3(n1, n3) < 0.0 &&
+              dot3(n0, n0) > 1e-10))
+            pairs = 0;
+        for (i = 0; i < 4u; i++) {
+            vert(p[i], &m, 4u * l + i);
+            for (k = 0; k < 3; k++) c[k] += 0.25 * p[i][k];
+        }
+        sub3(d0, p[2], p[0]);
+        sub3(d1, p[3], p[1]);
+        l0 = sqrt(dot3(d0, d0));
+        l1 = sqrt(dot3(d1, d1));
+        if (!(l0 > (xmax - xmin) / 70.0 && l0 < (xmax - xmin) / 35.0 && l1 > 0.3 * l0 && l1 < l0))
+            size = 0;
+        {
+            double x = c[0] / CAN_CROWN_RX, y = (c[1] - CAN_CROWN_Y) / CAN_CROWN_RY,
+                   z = c[2] / CAN_CROWN_RX;
+            if (!(x * x + y * y + z * z < 1.0)) inside = 0;
+        }
+        normalize3(n0);
+        for (k = 0; k < 3; k++) sum_n[k] += n0[k];
+        if (fabs(n0[1]) < 0.5) steep++;
+    }
+    CHECK_MSG(own, "a leaf uses another leaf's vertices");
+    CHECK_MSG(pairs, "a leaf's two quads are not coincident with opposite winding");
+    CHECK_MSG(size, "a leaf is not about 1/50 of the crown's width");
+    CHECK_MSG(inside, "a leaf's centre is outside the crown");
+    CHECK(xmax - xmin > 2.0 * CAN_CROWN_RX * 0.7 && xmax - xmin < 2.0 * CAN_CROWN_RX);
+    /* uniform on the sphere: |n_y| < 1/2 for half of them, the mean normal near zero */
+    CHECK_MSG(steep > (int)CAN_LEAVES * 4 / 10 && steep < (int)CAN_LEAVES * 6 / 10, "%d steep", steep);
+    CHECK(sqrt(dot3(sum_n, sum_n)) < 0.1 * CAN_LEAVES);
+    /* trunk and branches: closed, outward, each on its own vertices */
+    for (t = leaf_t1; t < ground_t0;) {
+        uint32_t n = t == leaf_t1 ? CAN_TRUNK_TRIS : CAN_BRANCH_TRIS;
+        uint32_t nv = t == leaf_t1 ? CAN_TRUNK_VERTS : CAN_BRANCH_VERTS;
+        if (!closed_manifold(&m, t, t + n) || !(signed_volume(&m, t, t + n) > 0.0) ||
+            distinct_vertices(&m, t, t + n) != nv || (int)nv - (int)(3u * n / 2u) + (int)n != 2)
+            solids = 0;
+        t += n;
+    }
+    CHECK(solids);
+    {
+        double lo = HUGE_VAL, hi = -HUGE_VAL;
+        uint32_t i;
+        for (i = leaf_t1 * 3u; i < (leaf_t1 + CAN_TRUNK_TRIS) * 3u; i++) {
+            double y = m.positions[(size_t)m.indices[i] * 3u + 1u];
+            if (y < lo) lo = y;
+            if (y > hi) hi = y;
+        }
+        CHECK(lo == m.bbox_min[1] && hi > CAN_CROWN_Y - CAN_CROWN_RY);
+    }
+    /* dappled ground: 13 x 13 points under the crown (|x|, |z| <= 1.8), 6 x 6 samples each */
+    {
+        const int kk = 6;
+        int i, shade = 0, light = 0, mid = 0;
+        double vmin = 1.0, vmax = 0.0;
+        for (i = 0; i < 169; i++) {
+            double P[3];
+            int si, sj, lit = 0;
+            P[0] = -1.8 + 3.6 * (double)(i % 13) / 12.0;
+            P[1] = m.bbox_min[1] + 1e-6;
+            P[2] = -1.8 + 3.6 * (double)(i / 13) / 12.0;
+            if (fabs(P[0]) < 0.4 && fabs(P[2]) < 0.4) continue; /* the trunk */
+            for (sj = 0; sj < kk; sj++) {
+                for (si = 0; si < kk; si++) {
+                    double S[3];
+                    light_sample(S, &v, si, sj, kk);
+                    lit += !seg_blocked(&m, P, S, 0, ground_t0);
+                }
+            }
+            {
+                double vis = (double)lit / (kk * kk);
+                if (vis < vmin) vmin = vis;
+                if (vis > vmax) vmax = vis;
+                if (vis < 0.4) shade++;
+                else if (vis > 0.75) light++;
+                else mid++;
+            }
+        }
+        fprintf(stderr, "  canopy: ground under the crown: visibility %.2f..%.2f, %d shaded, %d mid, %d lit\n",
+                vmin, vmax, shade, mid, light);
+        CHECK(vmin < 0.3 && vmax > 0.8);
+        CHECK(shade >= 10 && light >= 10);
+    }
+    pn_mesh_free(&m);
+}
+
+/* colonnade: columns (plinth, shaft, capital) closed and outward, the shaft a 12-sided
+ * prism of its own 24 vertices; every voussoir a closed outward hexahedron, those of an
+ * arch face to face (voussoir j's upper-angle face is j + 1's lower one) between the two
+ * capitals' tops, their inner corners on the intrados circle and outer on the extrados,
+ * the arch's volume that of the polygonal half-annulus; the beam on the keystone; and the
+ * opening lets the light through where the ring stops it: from the light centre, through
+ * points of each +z-row arch's plane, the floor behind the opening's middle is lit and
+ * the floor behind the ring is not. */
+static void test_colonnade(void)
+{
+    pn_mesh m;
+    pn_scene_view v;
+    const uint32_t a0 = COL_COLUMNS * COL_COLUMN_TRIS;
+    const double step = 3.14159265358979323846 / COL_VOUSSOIRS;
+    uint32_t c, a, j, t;
+    int columns = 1, vous = 1, radii = 1, faces = 1, springs = 1, volume = 1, through = 1, k;
+    double key_top = -HUGE_VAL, beam_lo = HUGE_VAL;
+    REQUIRE(pn_builtin_scene("colonnade", &m, &v, NULL, 0) == 0);
+    REQUIRE(m.triangle_count == expected_triangles("colonnade"));
+    CHECK(m.vertex_count == COL_COLUMNS * COL_COLUMN_VERTS + COL_ARCHES * COL_VOUSSOIRS * 8u + 16u + 4u);
+    for (c = 0; c < COL_COLUMNS; c++) {
+        uint32_t t0 = c * COL_COLUMN_TRIS;
+        const uint32_t part[4] = {t0, t0 + 12u, t0 + 56u, t0 + 68u};
+        for (k = 0; k < 3; k++) {
+            if (!closed_manifold(&m, part[k], part[k + 1]) ||
+                !(signed_volume(&m, part[k], part[k + 1]) > 0.0))
+                columns = 0;
+        }
+        if (distinct_vertices(&m, part[1], part[2]) != 24u) columns = 0;
+    }
+    CHECK_MSG(columns, "a column part is not a closed outward solid");
+    for (a = 0; a < COL_ARCHES; a++) {
+        uint32_t t0 = a0 + a * COL_VOUSSOIRS * 12u, v0 = COL_COLUMNS * COL_COLUMN_VERTS + a * COL_VOUSSOIRS * 8u;
+        double row_z = a < COL_ARCHES / 2u ? -1.6 : 1.6;
+        double cx = -5.25 + 1.5 * ((double)(a % (COL_ARCHES / 2u)) + 0.5), vol = 0.0;
+        for (j = 0; j < COL_VOUSSOIRS; j++) {
+            uint32_t s0 = t0 + j * 12u, vv;
+            if (!closed_manifold(&m, s0, s0 + 12u) || !(signed_volume(&m, s0, s0 + 12u) > 0.0))
+                vous = 0;
+            vol += signed_volume(&m, s0, s0 + 12u);
+            for (vv = v0 + j * 8u; vv < v0 + j * 8u + 8u; vv++) {
+                double p[3], r;
+                vert(p, &m, vv);
+                r = sqrt((p[0] - cx) * (p[0] - cx) + (p[1] - COL_SPRING) * (p[1] - COL_SPRING));
+                if (!(fabs(r - COL_R_IN) < 1e-5 || fabs(r - COL_R_OUT) < 1e-5)) radii = 0;
+                if (!(p[1] >= COL_SPRING - 1e-6) || !(fabs(fabs(p[2] - row_z) - 0.5 * COL_DEPTH) < 1e-6))
+                    radii = 0;
+                if (j == COL_VOUSSOIRS / 2u && p[1] > key_top) key_top = p[1];
+            }
+            /* face to face with the next: voussoir j's corners 0, 1, 4, 5 (its smaller
+             * angle; j runs from the -x springing down in angle) are j + 1's 2, 3, 6, 7 */
+            if (j + 1u < COL_VOUSSOIRS) {
+                static const int hi_c[4] = {2, 3, 6, 7}, lo_c[4] = {0, 1, 4, 5};
+                for (k = 0; k < 4; k++) {
+                    const float *p = m.positions + (size_t)(v0 + j * 8u + (uint32_t)lo_c[k]) * 3u;
+                    const float *q = m.positions + (size_t)(v0 + (j + 1u) * 8u + (uint32_t)hi_c[k]) * 3u;
+                    if (fabs(p[0] - q[0]) > 1e-6 || fabs(p[1] - q[1]) > 1e-6 || p[2] != q[2]) faces = 0;
+                }
+            }
+        }
+        /* springing: the end voussoirs' bottom corners (voussoir 0's larger angle, the
+         * last one's smaller) at the capitals' top, over them */
+        for (k = 0; k < 8; k++) {
+            const float *p0 = m.positions + (size_t)(v0 + (uint32_t)k) * 3u;
+            const float *p1 = m.positions + (size_t)(v0 + (COL_VOUSSOIRS - 1u) * 8u + (uint32_t)k) * 3u;
+            if (k & 2) {
+                if (fabs(p0[1] - COL_SPRING) > 1e-6 || !(p0[0] <= cx - COL_R_IN + 1e-6) ||
+                    !(p0[0] >= cx - 1.0)) springs = 0;
+            } else if (fabs(p1[1] - COL_SPRING) > 1e-6 || !(p1[0] >= cx + COL_R_IN - 1e-6) ||
+                       !(p1[0] <= cx + 1.0)) {
+                springs = 0;
+            }
+        }
+        {
+            double expect = COL_VOUSSOIRS * 0.5 * sin(step) * (COL_R_OUT * COL_R_OUT - COL_R_IN * COL_R_IN) * COL_DEPTH;
+            if (fabs(vol - expect) > 1e-5) volume = 0;
+        }
+        /* through the opening: from the light centre through a point of the +z-row arch's
+         * plane in the middle of the opening (0.3 under the springing: the ray crosses the
+         * row's 0.4 depth at a slant, so it must stay clear of the intrados over 1 unit
+         * of height) the floor is lit; through the ring 0.1 over the springing, 0.65
+         * either side of the middle, not. */
+        if (row_z > 0.0) {
+            static const double dxs[3] = {0.0, -0.65, 0.65}, dys[3] = {-0.3, 0.1, 0.1};
+            double L[3];
+            f2d(L, v.light_center);
+            for (k = 0; k < 3; k++) {
+                double T[3], P[3], s;
+                int i2, blocked;
+                T[0] = cx + dxs[k];
+                T[1] = COL_SPRING + dys[k];
+                T[2] = row_z;
+                s = L[1] / (L[1] - T[1]);
+                for (i2 = 0; i2 < 3; i2++) P[i2] = L[i2] + s * (T[i2] - L[i2]);
+                P[1] = 1e-6;
+                blocked = seg_blocked(&m, P, L, 0, m.triangle_count - 2u);
+                if (blocked != (k != 0)) {
+                    through = 0;
+                    fprintf(stderr, "  arch %u, offset %.2f: blocked %d\n", (unsigned)a, dxs[k], blocked);
+                }
+            }
+        }
+    }
+    CHECK_MSG(vous, "a voussoir is not a closed outward solid");
+    CHECK_MSG(radii, "a voussoir corner is off the intrados/extrados");
+    CHECK_MSG(faces, "neighbouring voussoirs do not meet face to face");
+    CHECK_MSG(springs, "an arch does not spring from its capitals");
+    CHECK_MSG(volume, "an arch's volume is not the half-annulus's");
+    CHECK_MSG(through, "light through the arch openings is wrong");
+    /* beams: closed, resting on the keystones */
+    for (t = a0 + COL_ARCHES * COL_VOUSSOIRS * 12u; t < m.triangle_count - 2u; t += 12u) {
+        uint32_t i;
+        CHECK(closed_manifold(&m, t, t + 12u) && signed_volume(&m, t, t + 12u) > 0.0);
+        for (i = t * 3u; i < (t + 12u) * 3u; i++) {
+            double y = m.positions[(size_t)m.indices[i] * 3u + 1u];
+            if (y < beam_lo) beam_lo = y;
+        }
+    }
+    CHECK(fabs(beam_lo - key_top) < 1e-6);
+    /* the light is high above everything and off the middle along both axes */
+    CHECK(v.light_center[1] > 3.0f * m.bbox_max[1]);
+    CHECK(v.light_center[0] != 0.0f && v.light_center[2] != 0.0f);
+    fprintf(stderr, "  colonnade: keystones' top %.4f, beams from %.4f\n", key_top, beam_lo);
     pn_mesh_free(&m);
 }
 
@@ -1147,6 +1570,8 @@ int main(void)
     RUN(test_box_closed);
     RUN(test_thin_slivers);
     RUN(test_room);
+    RUN(test_canopy);
+    RUN(test_colonnade);
     RUN(test_closed_box);
     RUN(test_receiver_ranges);
     RUN(test_square_mesh_matches_params);

@@ -218,7 +218,23 @@ static int port_threads(const bench_opts *o, const bench_port *p)
 
 /* ---- Jobs: one timed thing inside a repetition ------------------------------------------ */
 
-enum { JOB_LIB, JOB_EMBREE, JOB_SCENE_SET, JOB_EMBREE_BUILD };
+enum { JOB_LIB, JOB_EMBREE, JOB_SCENE_SET, JOB_EMBREE_BUILD, JOB_PCSS };
+
+/* The baselines a user would pick instead of an approximate algorithm, measured beside
+ * every algorithm at the main point: the exact reference with fewer light samples (the
+ * cheap exact answer) and percentage-closer soft shadows (what engines ship;
+ * tools/pn_bench_pcss.c). Their errors are against the main point's reference (k as in the
+ * headline). */
+enum { BL_REF4, BL_REF8, BL_PCSS, NBASE };
+static const struct {
+    const char *name;
+    uint32_t k; /* reference samples per side; 0: PCSS */
+    int pt;     /* the chart's point type */
+} baselines[NBASE] = {{"reference k=4", 4, 9}, {"reference k=8", 8, 9}, {"PCSS", 0, 11}};
+
+/* The summary's rows: every algorithm, then the baselines, then Embree. */
+#define NSUM (NALGO + NBASE + 1)
+#define XPT_MAX 40
 
 typedef struct job {
     int kind;
@@ -234,6 +250,16 @@ typedef struct job {
     float *vis;
     uint8_t *rgba;
 } job;
+
+/* A visibility buffer against the reference's. Gross: off by more than 0.25 (a missing or
+ * invented shadow, not a penumbra's slope), brighter or darker than the reference; p99: the
+ * 99th percentile of |error| (from a histogram of 2^16 bins over [0, 1]: within 2^-16). */
+typedef struct accuracy {
+    double rmse, max_err, mae, wrong_frac; /* mae: mean absolute error */
+    double p99, gross_brighter, gross_darker; /* fractions of all pixels */
+    int identical;
+    int ok;
+} accuracy;
 
 typedef struct scene_state {
     pn_setup s;
@@ -252,6 +278,10 @@ typedef struct scene_state {
     /* from the main point (area light, first port), for the SRT section: every
      * algorithm's shadow pass median and RMSE, Embree's best, the reference's visibility */
     double pt_ms[NALGO], pt_rmse[NALGO], emb_ms, emb_rmse;
+    /* ...and every algorithm's, the baselines' and Embree's errors in full, and the
+     * baselines' times, for the accuracy table and the summary */
+    accuracy pt_acc[NALGO], bl_acc[NBASE], emb_acc;
+    double bl_ms[NBASE];
     const char *emb_api;
     float *ref_vis;
     float cull_tol;
@@ -264,7 +294,7 @@ typedef struct scene_state {
         char label[96];
         double ms, rmse;
         int pt;
-    } xpt[24];
+    } xpt[XPT_MAX];
     int nxpt;
     /* the reference at k = 32 (main point's size, area light), rendered once on demand; its
      * shaded image is the penumbra wedges' heat map's background */
@@ -361,15 +391,17 @@ static void job_run(scene_state *ss, job *j, const pn_light *light, int rep)
         return;
     }
     npx = (size_t)j->opt.width * j->opt.height;
-    if (j->kind == JOB_EMBREE) {
+    if (j->kind == JOB_EMBREE || j->kind == JOB_PCSS) {
+        /* The outside baselines trace from the point's G-buffer. */
         double ms;
         float *vis;
-        if (!ss->emb || !ss->g.pos) {
-            snprintf(j->err, sizeof(j->err), "%s", ss->emb ? "no G-buffer" : ss->emb_err);
+        int rc;
+        if ((j->kind == JOB_EMBREE && !ss->emb) || !ss->g.pos) {
+            snprintf(j->err, sizeof(j->err), "%s", j->kind == JOB_EMBREE && !ss->emb ? ss->emb_err : "no G-buffer");
             j->ok = 0;
             return;
         }
-        if (!ss->emb_built) {
+        if (j->kind == JOB_EMBREE && !ss->emb_built) {
             if (pn_embree_build(ss->emb, &ss->s.mesh, 0, &ms, err, sizeof(err)) != 0) {
                 snprintf(j->err, sizeof(j->err), "%s", err);
                 j->ok = 0;
@@ -378,8 +410,13 @@ static void job_run(scene_state *ss, job *j, const pn_light *light, int rep)
             ss->emb_built = 1;
         }
         vis = (float *)malloc(npx * sizeof(float));
-        if (!vis || pn_embree_shadow(ss->emb, j->api, &ss->g, light, j->opt.k, j->opt.eps, &ss->h.threads, vis,
-                                     NULL, &ms, err, sizeof(err)) != 0) {
+        rc = !vis ? 1
+             : j->kind == JOB_EMBREE
+                 ? pn_embree_shadow(ss->emb, j->api, &ss->g, light, j->opt.k, j->opt.eps, &ss->h.threads, vis, NULL,
+                                    &ms, err, sizeof(err))
+                 : pn_pcss_shadow(&ss->s.mesh, &ss->g, light, j->opt.k, j->opt.eps, &ss->h.threads, vis, &ms, err,
+                                  sizeof(err));
+        if (rc != 0) {
             snprintf(j->err, sizeof(j->err), "%s", vis ? err : "out of memory");
             j->ok = 0;
             free(vis);
@@ -440,30 +477,42 @@ static int run_jobs(const bench_opts *o, scene_state *ss, job *jobs, int njobs, 
 
 /* ---- Accuracy ----------------------------------------------------------------------------- */
 
-typedef struct accuracy {
-    double rmse, max_err, mae, wrong_frac; /* mae: mean absolute error */
-    int identical;
-    int ok;
-} accuracy;
 
+#define ACC_BINS 65536u
 static accuracy compare_vis(const float *a, const float *ref, size_t n)
 {
     accuracy r;
     double se = 0.0, sa = 0.0;
-    size_t i, wrong = 0;
+    size_t i, wrong = 0, hi = 0, lo = 0, below = 0;
+    static uint32_t hist[ACC_BINS];
+    uint32_t b;
     memset(&r, 0, sizeof(r));
-    if (!a || !ref) return r;
+    if (!a || !ref || n == 0) return r;
     r.ok = 1;
+    memset(hist, 0, sizeof(hist));
     for (i = 0; i < n; i++) {
-        double e = fabs((double)a[i] - (double)ref[i]);
+        double d = (double)a[i] - (double)ref[i], e = fabs(d);
         se += e * e;
         sa += e;
         if (e > r.max_err) r.max_err = e;
         if (a[i] != ref[i]) wrong++;
+        hi += d > 0.25;
+        lo += d < -0.25;
+        hist[e >= 1.0 ? ACC_BINS - 1u : (uint32_t)(e * ACC_BINS)]++;
+    }
+    /* 0 when at least 99% of the pixels are exact; else the upper edge of the bin in which
+     * the cumulative count reaches 99% (at most the largest error). */
+    if ((double)(n - wrong) >= 0.99 * (double)n) {
+        r.p99 = 0.0;
+    } else {
+        for (b = 0; b + 1u < ACC_BINS && (double)(below + hist[b]) < 0.99 * (double)n; b++) below += hist[b];
+        r.p99 = fmin((double)(b + 1u) / ACC_BINS, r.max_err);
     }
     r.rmse = sqrt(se / (double)n);
     r.mae = sa / (double)n;
     r.wrong_frac = (double)wrong / (double)n;
+    r.gross_brighter = (double)hi / (double)n;
+    r.gross_darker = (double)lo / (double)n;
     r.identical = memcmp(a, ref, n * sizeof(float)) == 0;
     return r;
 }
@@ -517,6 +566,14 @@ typedef struct report {
     char mc_conv_names[MAX_SCENES][128];
     double mc_conv_top;                  /* largest RMSE of the convergence plot */
     int mc_goal_n, mc_goal[3];           /* shared scenes; of which meet each part of the goal */
+    /* The summary (summary_scene): per algorithm, baseline and Embree (NSUM rows) over the
+     * scenes of the run, the worst RMSE and gross fraction, the slowest ratio to the fastest
+     * exact algorithm, and the scenes where it is on the time-vs-error front */
+    struct {
+        int n, front;
+        double rmse, gross, gross_b, gross_d, speed;
+        char rmse_at[128], gross_at[128], speed_at[128], off_front[600];
+    } sum[NSUM];
     int wg_goal_rows;                    /* rows of the wedges' `square` check */
     int wg_sweep_ran, wg_sweep;          /* the wedges' sweep ran; it has a wedges time */
     int wg_sweep_exact;                  /* ...and an exact algorithm's */
@@ -579,7 +636,7 @@ static int scene_open(const bench_opts *o, scene_state *ss, const char *source, 
 {
     char err[512];
     memset(ss, 0, sizeof(*ss));
-    if (pn_setup_load(&ss->s, source, builtin, -1, err, sizeof(err)) != 0) {
+    if (pn_setup_load_viewed(&ss->s, source, builtin, o->scenes_dir, err, sizeof(err)) != 0) {
         progress("%s: %s", source, err);
         return 1;
     }
@@ -621,15 +678,16 @@ static void base_options(const bench_opts *o, const scene_state *ss, pn_frame_op
 
 /* Gallery panels of one scene: written as PNGs under OUT/work/gallery, composed with
  * titles by gnuplot (plots.gp). */
+#define GALLERY_MAX 18
 static void gallery(const bench_opts *o, report *r, scene_state *ss, job *lib, int nlib, const job *emb,
-                    uint32_t w, uint32_t h)
+                    const job *pcss, uint32_t w, uint32_t h)
 {
     char dir[1200], path[1400], err[256], title[160];
     size_t n = (size_t)w * h;
     uint8_t *tmp = (uint8_t *)malloc(n * 4);
     const float *ref = lib[A_REF].vis;
     int a, panels = 0;
-    char list[16][2][1400];
+    char list[GALLERY_MAX][2][1400];
     if (!tmp || !ref) {
         free(tmp);
         return;
@@ -639,7 +697,7 @@ static void gallery(const bench_opts *o, report *r, scene_state *ss, job *lib, i
 #define PANEL(file, img, ...)                                                               \
     do {                                                                                    \
         snprintf(path, sizeof(path), "%s/%s.png", dir, file);                               \
-        if (pn_write_png(path, img, w, h, err, sizeof(err)) == 0 && panels < 16) {          \
+        if (pn_write_png(path, img, w, h, err, sizeof(err)) == 0 && panels < GALLERY_MAX) { \
             snprintf(list[panels][0], sizeof(list[0][0]), "work/gallery/%s/%s.png", ss->s.name, file); \
             snprintf(list[panels][1], sizeof(list[0][1]), __VA_ARGS__);                      \
             panels++;                                                                       \
@@ -668,6 +726,14 @@ static void gallery(const bench_opts *o, report *r, scene_state *ss, job *lib, i
         PANEL("embree_vis", tmp, "Embree visibility, %s ms", ms);
         pn_err_to_rgba(emb->vis, ref, n, tmp);
         PANEL("embree_error", tmp, "Embree |error| x4 (%.4f%% px)", 100.0 * acc.wrong_frac);
+    }
+    if (pcss && pcss->vis) {
+        char ms[32];
+        fmt_ms(ms, sizeof(ms), job_pass(pcss));
+        pn_vis_to_rgba(pcss->vis, n, tmp);
+        PANEL("pcss_vis", tmp, "PCSS visibility, %s ms", ms);
+        pn_err_to_rgba(pcss->vis, ref, n, tmp);
+        PANEL("pcss_error", tmp, "PCSS |error| x4");
     }
 #undef PANEL
     free(tmp);
@@ -728,17 +794,23 @@ static void mask_agreement(report *r, scene_state *ss, const pn_frame_options *o
 /* The main point: 512x512, k = 16, grid 128 on one port: every algorithm, both Embree APIs,
  * both BVH builds, interleaved. On the first port it also produces the accuracy, mask
  * agreement, grid-efficiency (exact stats), memory and gallery rows. */
-static void main_point(const bench_opts *o, report *r, scene_state *ss, int first_port, int glb)
+static void acc_row(report *r, const char *scene, const char *name, const accuracy *acc, const char *note)
+{
+    sec(r, SEC_ACCURACY, "| %s | %s | %.6f | %.4f | %.6f | %.3f%% | %.3f%% | %.4f%% | %s |\n", scene, name, acc->rmse,
+        acc->p99, acc->max_err, 100.0 * acc->gross_brighter, 100.0 * acc->gross_darker, 100.0 * acc->wrong_frac, note);
+}
+
+static void main_point(const bench_opts *o, report *r, scene_state *ss, int first_port)
 {
     pn_frame_options opt;
-    job lib[NALGO], emb[PN_EMBREE_API_COUNT], bset, ebuild;
-    int a, reps, i;
+    job lib[NALGO], emb[PN_EMBREE_API_COUNT], bset, ebuild, base[NBASE];
+    int a, reps, i, b;
     size_t n;
     pn_stats ref_only;
     char c[12][64];
     double emb_best;
     const char *emb_api;
-    job all[NALGO + PN_EMBREE_API_COUNT + 2];
+    job all[NALGO + NBASE + PN_EMBREE_API_COUNT + 2];
     int nall = 0;
 
     base_options(o, ss, &opt);
@@ -768,6 +840,19 @@ static void main_point(const bench_opts *o, report *r, scene_state *ss, int firs
             lib[a].ok = 0;
             snprintf(lib[a].err, sizeof(lib[a].err), "not selected (--algos)");
         }
+    /* The baselines: on the first port, beside the algorithms (--algos: "baselines"). */
+    for (b = 0; b < NBASE; b++) {
+        job_lib(&base[b], A_REF, &opt, 1);
+        if (baselines[b].k) base[b].opt.k = baselines[b].k;
+        else base[b].kind = JOB_PCSS;
+        if (!first_port || o->lean || !in_list(o->algos, "baselines")) {
+            base[b].ok = 0;
+            snprintf(base[b].err, sizeof(base[b].err), "not run");
+        } else if (baselines[b].k && !(pn_build_info() & algos[A_REF].build_flag)) {
+            base[b].ok = 0;
+            snprintf(base[b].err, sizeof(base[b].err), "not compiled in");
+        }
+    }
     if (!in_list(o->algos, "embree")) {
         ebuild.ok = 0;
         for (i = 0; i < PN_EMBREE_API_COUNT; i++) {
@@ -780,6 +865,7 @@ static void main_point(const bench_opts *o, report *r, scene_state *ss, int firs
     all[nall++] = bset;
     all[nall++] = ebuild;
     for (a = 0; a < NALGO; a++) all[nall++] = lib[a];
+    for (b = 0; b < NBASE; b++) all[nall++] = base[b];
     for (i = 0; i < PN_EMBREE_API_COUNT; i++) all[nall++] = emb[i];
     progress("  %s/%s x%u: main point %ux%u k=%u", ss->s.name, ss->port->name, ss->threads, opt.width, opt.height,
              opt.k);
@@ -787,11 +873,14 @@ static void main_point(const bench_opts *o, report *r, scene_state *ss, int firs
     bset = all[0];
     ebuild = all[1];
     for (a = 0; a < NALGO; a++) lib[a] = all[2 + a];
-    for (i = 0; i < PN_EMBREE_API_COUNT; i++) emb[i] = all[2 + NALGO + i];
+    for (b = 0; b < NBASE; b++) base[b] = all[2 + NALGO + b];
+    for (i = 0; i < PN_EMBREE_API_COUNT; i++) emb[i] = all[2 + NALGO + NBASE + i];
     for (a = 0; a < NALGO; a++)
         if (!lib[a].ok && (first_port || algos[a].all_ports)) progress("    %s: %s", algos[a].name, lib[a].err);
     for (i = 0; i < PN_EMBREE_API_COUNT; i++)
         if (!emb[i].ok && ss->emb) progress("    Embree %s: %s", pn_embree_api_name((pn_embree_api)i), emb[i].err);
+    for (b = 0; b < NBASE; b++)
+        if (!base[b].ok && strcmp(base[b].err, "not run") != 0) progress("    %s: %s", baselines[b].name, base[b].err);
 
     emb_cell(c[9], sizeof(c[9]), &emb[0], &emb[1], &emb_best, &emb_api);
     ss->best_api = strcmp(emb_api, "1") == 0 ? PN_EMBREE_OCCLUDED1 : PN_EMBREE_OCCLUDED16;
@@ -893,26 +982,33 @@ static void main_point(const bench_opts *o, report *r, scene_state *ss, int firs
                 gst.gears_pairs_high_water, gst.gears_tiles);
         }
 
-        /* Accuracy of every algorithm against the reference, and of Embree. */
+        /* Accuracy of every algorithm against the reference, of the baselines and of Embree. */
         for (a = 1; a < NALGO; a++) {
             accuracy acc = compare_vis(lib[a].vis, lib[A_REF].vis, n);
             if (!acc.ok) {
-                sec(r, SEC_ACCURACY, "| %s | %s | n/a | n/a | n/a | %s |\n", ss->s.name, algos[a].name, lib[a].err);
+                sec(r, SEC_ACCURACY, "| %s | %s | n/a | n/a | n/a | n/a | n/a | n/a | %s |\n", ss->s.name, algos[a].name,
+                    lib[a].err);
                 continue;
             }
-            sec(r, SEC_ACCURACY, "| %s | %s | %.6f | %.6f | %.4f%% | %s |\n", ss->s.name, algos[a].name, acc.rmse,
-                acc.max_err, 100.0 * acc.wrong_frac,
-                algos[a].exact ? (acc.identical ? "exact: byte-identical" : "exact: **DIFFERS**") : "approximate");
+            acc_row(r, ss->s.name, algos[a].name, &acc,
+                    algos[a].exact ? (acc.identical ? "exact: byte-identical" : "exact: **DIFFERS**") : "approximate");
+        }
+        for (b = 0; b < NBASE; b++) {
+            accuracy acc = compare_vis(base[b].vis, lib[A_REF].vis, n);
+            if (acc.ok) acc_row(r, ss->s.name, baselines[b].name, &acc, baselines[b].k ? "cheap exact baseline" : "engine baseline");
+            else sec(r, SEC_ACCURACY, "| %s | %s | n/a | n/a | n/a | n/a | n/a | n/a | %s |\n", ss->s.name,
+                     baselines[b].name, base[b].err);
         }
         if (emb[0].vis) {
             accuracy acc = compare_vis(emb[0].vis, lib[A_REF].vis, n);
             accuracy same = compare_vis(emb[1].vis, emb[0].vis, n);
-            sec(r, SEC_ACCURACY, "| %s | Embree | %.6f | %.6f | %.4f%% | outside baseline%s |\n", ss->s.name, acc.rmse,
-                acc.max_err, 100.0 * acc.wrong_frac,
-                !same.ok ? "" : same.identical ? "; rtcOccluded16 = rtcOccluded1" : "; rtcOccluded16 differs from rtcOccluded1");
+            acc_row(r, ss->s.name, "Embree", &acc,
+                    !same.ok ? "outside baseline"
+                    : same.identical ? "outside baseline; rtcOccluded16 = rtcOccluded1"
+                                     : "outside baseline; rtcOccluded16 differs from rtcOccluded1");
             mask_agreement(r, ss, &opt, lib[A_REF].vis);
         } else {
-            sec(r, SEC_ACCURACY, "| %s | Embree | n/a | n/a | n/a | %s |\n", ss->s.name,
+            sec(r, SEC_ACCURACY, "| %s | Embree | n/a | n/a | n/a | n/a | n/a | n/a | %s |\n", ss->s.name,
                 ss->emb ? emb[0].err : ss->emb_err);
         }
         /* For the SRT section and the time-vs-error chart. */
@@ -920,17 +1016,31 @@ static void main_point(const bench_opts *o, report *r, scene_state *ss, int firs
             accuracy acc = compare_vis(lib[a].vis, lib[A_REF].vis, n);
             ss->pt_ms[a] = job_pass(&lib[a]);
             ss->pt_rmse[a] = acc.ok ? acc.rmse : NAN;
+            ss->pt_acc[a] = acc;
+        }
+        for (b = 0; b < NBASE; b++) {
+            ss->bl_ms[b] = job_pass(&base[b]);
+            ss->bl_acc[b] = compare_vis(base[b].vis, lib[A_REF].vis, n);
+            if (ss->bl_acc[b].ok && ss->nxpt < XPT_MAX) {
+                snprintf(ss->xpt[ss->nxpt].label, sizeof(ss->xpt[0].label), "%s", baselines[b].name);
+                ss->xpt[ss->nxpt].ms = ss->bl_ms[b];
+                ss->xpt[ss->nxpt].rmse = ss->bl_acc[b].rmse;
+                ss->xpt[ss->nxpt].pt = baselines[b].pt;
+                ss->nxpt++;
+            }
         }
         ss->emb_ms = emb_best;
         ss->emb_api = emb_api;
-        ss->emb_rmse = emb[ss->best_api].vis ? compare_vis(emb[ss->best_api].vis, lib[A_REF].vis, n).rmse : NAN;
+        ss->emb_acc = compare_vis(emb[ss->best_api].vis, lib[A_REF].vis, n);
+        ss->emb_rmse = emb[ss->best_api].vis ? ss->emb_acc.rmse : NAN;
         ss->cull_tol = lib[A_REF].st.cull_tol;
         if (lib[A_REF].vis && (ss->ref_vis = (float *)malloc(n * sizeof(float))) != NULL)
             memcpy(ss->ref_vis, lib[A_REF].vis, n * sizeof(float));
-        if (glb) gallery(o, r, ss, lib, NALGO, &emb[0], opt.width, opt.height);
+        gallery(o, r, ss, lib, NALGO, &emb[0], &base[BL_PCSS], opt.width, opt.height);
         job_free(&exact);
     }
     for (a = 0; a < NALGO; a++) job_free(&lib[a]);
+    for (b = 0; b < NBASE; b++) job_free(&base[b]);
     for (i = 0; i < PN_EMBREE_API_COUNT; i++) job_free(&emb[i]);
 }
 
@@ -1372,8 +1482,8 @@ static void srt_section(const bench_opts *o, report *r, scene_state *ss)
 
 static void tradeoff_chart(const bench_opts *o, report *r, scene_state *ss)
 {
-    char *text = NULL, label[NALGO + 1 + 24][96];
-    int pt[NALGO + 1 + 24], np = 0, a, i;
+    char *text = NULL, label[NALGO + 1 + XPT_MAX][96];
+    int pt[NALGO + 1 + XPT_MAX], np = 0, a, i;
     size_t tl = 0;
     FILE *t;
     if (!ss->ref_vis) return;
@@ -1417,6 +1527,86 @@ static void tradeoff_chart(const bench_opts *o, report *r, scene_state *ss)
     /* Nothing of the chart's settings may reach the plots after it (the next scene's gallery). */
     fprintf(r->plots, "\nunset logscale x\nset yrange [*:*]\nset offsets 0,0,0,0\nreset\n");
     sec(r, SEC_SRT_CHART, "![%s: time against error](tradeoff_%s.png)\n", ss->s.name, ss->s.name);
+}
+
+/* ---- The summary: every algorithm's worst scene ---------------------------------------------- */
+
+static void summary_scene(report *r, const scene_state *ss)
+{
+    int e, fe = fastest_exact(ss->pt_ms);
+    double fast = fe >= 0 ? ss->pt_ms[fe] : NAN;
+    for (e = 0; e < NSUM; e++) {
+        double ms, rmse, gross, speed;
+        const accuracy *acc;
+        const char *own;
+        int self = -1;
+        char fb[512];
+        if (e < NALGO) {
+            ms = ss->pt_ms[e];
+            acc = &ss->pt_acc[e];
+            own = algos[e].name;
+            self = e;
+        } else if (e < NALGO + NBASE) {
+            ms = ss->bl_ms[e - NALGO];
+            acc = &ss->bl_acc[e - NALGO];
+            own = baselines[e - NALGO].name;
+        } else {
+            ms = ss->emb_ms;
+            acc = &ss->emb_acc;
+            own = "Embree";
+        }
+        if (!(ms == ms) || !acc->ok) continue;
+        rmse = e == A_REF ? 0.0 : acc->rmse;
+        gross = acc->gross_brighter + acc->gross_darker;
+        speed = fast / ms;
+        if (r->sum[e].n == 0 || rmse > r->sum[e].rmse) {
+            r->sum[e].rmse = rmse;
+            snprintf(r->sum[e].rmse_at, sizeof(r->sum[e].rmse_at), "%s", ss->s.name);
+        }
+        if (r->sum[e].n == 0 || gross > r->sum[e].gross) {
+            r->sum[e].gross = gross;
+            r->sum[e].gross_b = acc->gross_brighter;
+            r->sum[e].gross_d = acc->gross_darker;
+            snprintf(r->sum[e].gross_at, sizeof(r->sum[e].gross_at), "%s", ss->s.name);
+        }
+        if (speed == speed && (r->sum[e].n == 0 || !(r->sum[e].speed <= speed))) {
+            r->sum[e].speed = speed;
+            snprintf(r->sum[e].speed_at, sizeof(r->sum[e].speed_at), "%s", ss->s.name);
+        }
+        r->sum[e].n++;
+        if (chart_front(ss, self, own, ms, rmse, fb, sizeof(fb))) {
+            r->sum[e].front++;
+        } else {
+            size_t l = strlen(r->sum[e].off_front);
+            snprintf(r->sum[e].off_front + l, sizeof(r->sum[e].off_front) - l, "%s%s", l ? ", " : "", ss->s.name);
+        }
+    }
+}
+
+static void summary_print(const report *r, FILE *out, const bench_opts *o)
+{
+    int e;
+    fprintf(out, "## Summary: every algorithm on every scene of this run\n\n"
+                 "| algorithm | scenes | worst RMSE | worst gross (brighter / darker) | slowest vs fastest exact | "
+                 "on the time-vs-error front | off the front on |\n"
+                 "| --- | ---: | ---: | ---: | ---: | ---: | --- |\n");
+    for (e = 0; e < NSUM; e++) {
+        const char *name = e < NALGO ? algos[e].name : e < NALGO + NBASE ? baselines[e - NALGO].name : "Embree";
+        if (r->sum[e].n == 0) continue;
+        fprintf(out, "| %s | %d | %.4f (%s) | %.2f%% (%.2f / %.2f; %s) | %.2fx (%s) | %d of %d | %s |\n", name,
+                r->sum[e].n, r->sum[e].rmse, r->sum[e].rmse_at, 100.0 * r->sum[e].gross, 100.0 * r->sum[e].gross_b,
+                100.0 * r->sum[e].gross_d, r->sum[e].gross_at, r->sum[e].speed, r->sum[e].speed_at, r->sum[e].front,
+                r->sum[e].n, r->sum[e].off_front[0] ? r->sum[e].off_front : "-");
+    }
+    fprintf(out, "\nEach algorithm with its default options (the baselines and Embree as in the accuracy table), at "
+                 "%ux%u, k = %u, area light, on every scene of the run. Worst RMSE and worst gross fraction (pixels "
+                 "off by more than 0.25, brighter and darker than the reference, %% of all pixels): the largest over "
+                 "the scenes, and where. Slowest vs fastest exact: the smallest ratio of the fastest exact "
+                 "algorithm's shadow pass (of reference, GEARS and raytrace at k = %u, this run) to this one's (above "
+                 "1: faster). On the front: scenes where no other point of that scene's time-vs-error chart (every "
+                 "algorithm, every configuration the sections measured, the baselines, Embree) is both faster and "
+                 "more accurate.\n\n",
+            o->size, o->size, o->k, o->k);
 }
 
 /* ---- Occlusion textures (issue 17) ---------------------------------------------------------- */
@@ -2322,8 +2512,9 @@ static void report_open(report *r, const bench_opts *o)
         "| scene | triangles | arena MiB, 512x512 (default pools) | arena MiB, 512x512, 2^18 pairs, grid <= 128 | "
         "arena MiB, 1280x1280 | persistent MiB (scene copy, BVH) | high-water MiB | GEARS pairs high water | GEARS tiles |\n"
         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
-    sec(r, SEC_ACCURACY, "| scene | algorithm | RMSE | max error | wrong pixels | note |\n"
-                         "| --- | --- | ---: | ---: | ---: | --- |\n");
+    sec(r, SEC_ACCURACY, "| scene | algorithm | RMSE | p99 error | max error | gross brighter | gross darker | "
+                         "wrong pixels | note |\n"
+                         "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n");
     sec(r, SEC_MASKS,
         "| scene | k | mask bits compared | bits that differ | fraction | blocked by Embree only | blocked by us only | "
         "pixels with a difference | our masks reproduce the reference |\n"
@@ -2503,7 +2694,13 @@ static const struct {
      "configuration. Persistent and high-water: `pn_stats` after the main-point frames (the context was sized for "
      "the largest image of the run). GEARS tiles: passes the pair pool needed."},
     {SEC_ACCURACY, NULL,
-     "Wrong pixels: visibility not bit-identical to the reference's. Exact algorithms must show zero."},
+     "Every algorithm's default, the baselines and Embree against the reference of the same run. p99: the 99th "
+     "percentile of the absolute error (within 2^-16). Gross: pixels off by more than 0.25 (a missing or invented "
+     "shadow, not a penumbra's slope), counted apart when brighter (light where the reference has shadow: a leak) and "
+     "darker than the reference, in % of all pixels. Wrong pixels: visibility not bit-identical to the reference's. "
+     "Exact algorithms must show zero. The baselines: the reference itself at k = 4 and k = 8 (the cheap exact "
+     "answer: its error is the sampling's alone) and percentage-closer soft shadows (Fernando 2005, what engines "
+     "ship: tools/pn_bench_pcss.c)."},
     {SEC_MASKS, "### Embree against our predicate, bit by bit",
      "Our masks are recomputed in the tool by the library's kernels (`pn_tri_mask` over a host BVH with the "
      "reference's frustum cull); the last column checks that their visibility is byte-identical to the reference's "
@@ -2666,9 +2863,11 @@ static void print_report(report *r, const bench_opts *o, FILE *out, const char *
                  "the same origins O (kernels/pn_predicate.h `pn_shadow_origin`) and the same k x k samples, traces "
                  "k^2 occlusion rays per pixel (tnear 0, tfar 1 - 1e-6, direction S - O); the pixel's own triangle is "
                  "not excluded (it blocks the samples behind its plane, as our horizon does).\n");
-    fprintf(out, "- Defaults: %ux%u, k = %u, GEARS grid %u, eps = 1e-4 x scene diagonal, the CLI's automatic view and "
-                 "light for glTF scenes (with the ground plane) and each built-in scene's own.\n\n",
+    fprintf(out, "- Defaults: %ux%u, k = %u, GEARS grid %u, eps = 1e-4 x scene diagonal; for a glTF scene its view "
+                 "in the scenes directory's views.json (camera, light, ground) where it has one, else the CLI's "
+                 "automatic view and light with the ground plane; each built-in scene's own view.\n\n",
             o->size, o->size, o->k, o->grid);
+    if (!o->lean) summary_print(r, out, o);
     fprintf(out, "## Headline: per scene, %ux%u, k = %u, %d threads\n\n%s\n", o->size, o->size, o->k, threads,
             r->buf[SEC_HEADLINE]);
     if (A_RT < 0)
@@ -2731,10 +2930,10 @@ static void print_report(report *r, const bench_opts *o, FILE *out, const char *
                  "Embree traces the same samples and differs only in its arithmetic. Every algorithm and its main "
                  "configurations is a point: the picture to choose an algorithm from.\n\n%s\n",
             o->size, o->size, o->k, r->len[SEC_SRT_CHART] ? r->buf[SEC_SRT_CHART] : "(no SRT section in this run)\n");
-    fprintf(out, "## Gallery\n\nPer shared scene: the shaded reference, its visibility, each algorithm's image and its "
-                 "error heat map against the reference (|error| x 4, black = identical), and Embree's visibility and "
-                 "error.\n\n%s",
-            r->len[SEC_GALLERY] ? r->buf[SEC_GALLERY] : "(no glTF scenes in this run)\n");
+    fprintf(out, "## Gallery\n\nPer scene: the shaded reference, its visibility, each algorithm's image and its "
+                 "error heat map against the reference (|error| x 4, black = identical), Embree's visibility and "
+                 "error, and PCSS's.\n\n%s",
+            r->len[SEC_GALLERY] ? r->buf[SEC_GALLERY] : "(no scenes in this run)\n");
 }
 
 static void report_close(report *r)
@@ -2853,7 +3052,7 @@ int main(int argc, char **argv)
     if (o.quick) {
         /* A small subset that still runs every code path: CI-friendly (well under two
          * minutes on two cores). */
-        if (!o.only) o.only = "square,elongated-cube,spot,closed-box";
+        if (!o.only) o.only = "square,elongated-cube,room,canopy,colonnade,spot,grey_white_room,copper_beech,closed-box";
         o.sweep_scenes = "spot";
         o.size = 128;
         o.srt_big = 256;
@@ -2980,7 +3179,7 @@ int main(int argc, char **argv)
                     scene_close(&ss);
                     continue;
                 }
-                main_point(&o, &r, &ss, p == 0, !builtin[i]);
+                main_point(&o, &r, &ss, p == 0);
                 if (p == 0 && hd) headline_data(hd, &r, &ss);
                 if (p == 0 && !o.lean) {
                     srt_section(&o, &r, &ss);
@@ -2990,6 +3189,7 @@ int main(int argc, char **argv)
                     mcsm_section(&o, &r, &ss);
                     wg_section(&o, &r, &ss);
                     tradeoff_chart(&o, &r, &ss);
+                    summary_scene(&r, &ss);
                 }
                 if (p == 0 && sweepable) {
                     int kind;

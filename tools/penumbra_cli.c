@@ -50,6 +50,7 @@ static void usage(FILE *f)
             "usage:\n"
             "  penumbra render [SCENE.glb | --builtin NAME] [--algo A] [--port P] [--cl-device SPEC]\n"
             "                  [--size WxH] [--k K]\n"
+            "                  [--view NAME [--views FILE]]\n"
             "                  [--eye x,y,z --target x,y,z --up x,y,z --fov DEG]\n"
             "                  [--light-center x,y,z --light-u x,y,z --light-v x,y,z]\n"
             "                  [--ground on|off] [--eps E] [--grid N] [--exact-stats] [--threads N]\n"
@@ -233,7 +234,9 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
 static int cmd_render(int argc, char **argv)
 {
     const char *scene = NULL, *builtin = NULL, *out = NULL, *vis = NULL, *ids = NULL, *stats = NULL;
-    const char *port = "scalar", *device = NULL;
+    const char *port = "scalar", *device = NULL, *view_name = NULL, *views_file = NULL;
+    char views_path[1200];
+    pn_view view;
     cli_port cp;
     pn_frame_options opt;
     pn_setup s;
@@ -242,7 +245,7 @@ static int cmd_render(int argc, char **argv)
     pn_stats st;
     pn_status rs;
     char err[512];
-    int ground = -1, threads = 0, i, user_view = 0, user_light = 0;
+    int ground = -1, threads = 0, i, user_view = 0, user_light = 0, have_size = 0;
     float eps_rel = -1.0f;
     pn_camera cam;
     pn_light light;
@@ -286,7 +289,9 @@ static int cmd_render(int argc, char **argv)
         } else if (strcmp(a, "--cl-device") == 0) {
             NEED_ARG;
             device = v;
-        } else if (strcmp(a, "--size") == 0) { NEED_ARG; if (pn_parse_size(v, &opt.width, &opt.height)) BAD("--size"); }
+        } else if (strcmp(a, "--size") == 0) { NEED_ARG; if (pn_parse_size(v, &opt.width, &opt.height)) BAD("--size"); have_size = 1; }
+        else if (strcmp(a, "--view") == 0) { NEED_ARG; view_name = v; }
+        else if (strcmp(a, "--views") == 0) { NEED_ARG; views_file = v; }
         else if (strcmp(a, "--k") == 0) { NEED_ARG; opt.k = (uint32_t)strtoul(v, NULL, 10); }
         else if (strcmp(a, "--eye") == 0) { NEED_ARG; if (pn_parse_vec3(v, cam.eye)) BAD(a); have[0] = 1; }
         else if (strcmp(a, "--target") == 0) { NEED_ARG; if (pn_parse_vec3(v, cam.target)) BAD(a); have[1] = 1; }
@@ -363,11 +368,35 @@ static int cmd_render(int argc, char **argv)
         return 2;
     }
     if (!out) { fprintf(stderr, "penumbra: --out image.png is required\n"); return 2; }
+    if (views_file && !view_name) { fprintf(stderr, "penumbra: --views FILE needs --view NAME\n"); return 2; }
+    /* A named view: the camera, light, size and ground of views.json; explicit flags still
+     * override its fields one by one below. */
+    if (view_name) {
+        int vr;
+        if (views_file) {
+            snprintf(views_path, sizeof(views_path), "%s", views_file);
+        } else if (pn_views_file_for(scene, views_path, sizeof(views_path)) != 0) {
+            fprintf(stderr, "penumbra: --view %s: no views file (looked for views.json beside the scene and for "
+                            "%s; give --views FILE)\n", view_name, PN_VIEWS_FALLBACK);
+            return 2;
+        }
+        vr = pn_view_load(views_path, view_name, &view, err, sizeof(err));
+        if (vr != 0) {
+            fprintf(stderr, "penumbra: --view %s: %s\n", view_name, err);
+            return 2;
+        }
+        if (ground < 0) ground = view.ground;
+        if (!have_size && view.width > 0) {
+            opt.width = view.width;
+            opt.height = view.height;
+        }
+    }
 
     if (pn_setup_load(&s, builtin ? builtin : scene, builtin != NULL, ground, err, sizeof(err)) != 0) {
         fprintf(stderr, "penumbra: %s\n", err);
         return 1;
     }
+    if (view_name) pn_setup_use_view(&s, &view);
     /* Flags override the defaults one by one; the stats file records the result. */
     for (i = 0; i < 4; i++) user_view |= have[i];
     for (i = 4; i < 7; i++) user_light |= have[i];

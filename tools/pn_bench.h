@@ -120,6 +120,22 @@ int pn_embree_shadow(pn_embree *e, pn_embree_api api, const pn_gbuf *g, const pn
                      uint32_t k, float eps, pn_threads *threads, float *vis, pn_masks *masks,
                      double *ms, char *err, size_t err_size);
 
+/* ---- PCSS baseline (tools/pn_bench_pcss.c) --------------------------------------------- */
+
+/* Percentage-closer soft shadows (Fernando 2005) as an engine ships them: one 2048^2
+ * perspective depth map from the light centre along N, fitted to the G-buffer points in
+ * front of the light (half-angle capped at tan 4), near plane at the nearest clipped
+ * triangle; per pixel, from the same origin O = P + eps*n, a 16-tap blocker search over the
+ * light's rectangle on the near plane, the penumbra estimate, and 32 bilinear PCF taps
+ * (receiver-plane, constant and slope-scaled depth bias), times the horizon of the own
+ * triangle over the k x k samples (so an unoccluded pixel equals the reference). Receivers
+ * outside the map are unshadowed by it. Background pixels get 1, pixels behind the light 0.
+ * The map build is part of the pass: *ms is the wall time of both. Deterministic for any
+ * thread count. Returns 0, or non-zero with a message (allocation failure, degenerate
+ * light, k outside 1..PN_MASK_K_MAX). */
+int pn_pcss_shadow(const pn_mesh *mesh, const pn_gbuf *g, const pn_light *light, uint32_t k, float eps,
+                   pn_threads *threads, float *vis, double *ms, char *err, size_t err_size);
+
 #ifdef __cplusplus
 }
 #endif

@@ -21,9 +21,20 @@
  *   thin            2000 slivers (length 2, width 0.002) over a plane: where shadow maps
  *                   lose.
  *   room            an interior: a closed room under a ceiling light, with a table, six
- *                   chairs, a bookcase of books, an open stair with thin balusters and
- *                   three spheres (4002 triangles): many occluders behind one another, and
- *                   no background (the camera is inside).
+ *                   chairs (four thin legs, the seat and back one open single-layer
+ *                   shell), a bookcase of books, an open stair with thin balusters and
+ *                   three spheres (4674 triangles): many occluders behind one another,
+ *                   open sheets, and no background (the camera is inside).
+ *   canopy          a tree: 3000 small leaves (double-sided: two coincident quads of
+ *                   opposite winding each) at hashed orientations in clumps inside an
+ *                   ellipsoidal crown, a trunk and six branches, over a ground under a
+ *                   1.2 x 1.2 light (12150 triangles): dappled light, thousands of tiny
+ *                   overlapping occluders, coincident back-to-back faces.
+ *   colonnade       two facing rows of eight 12-sided columns (plinth, shaft, capital)
+ *                   carrying semicircular arches of 11 voussoirs each under an
+ *                   entablature beam, on a floor, under a 1 x 1 light high above and
+ *                   offset (2962 triangles): curved shadows, column shadows across each
+ *                   other's.
  *   closed-box      light leaks (58 triangles): a hollow box with walls 0.25 thick (outer
  *                   4 x 3 x 4, floating 0.5 over the ground) and one 0.5 x 0.5 square hole
  *                   through its top straight under a 1 x 1 light; a 0.5 cube stands on the
@@ -35,13 +46,16 @@
  * Receivers (pn_mesh.receiver_first/count): every scene's range ends at its last
  * triangle and holds its pure receivers, floors with nothing beneath them (closed-box's
  * cavity floor: only the box's own bottom slab):
- *   square, spheres, elongated-cube, thin   the ground: the last 2 triangles;
+ *   square, spheres, elongated-cube, thin,  the ground: the last 2 triangles;
+ *   canopy, colonnade
  *   room                                    the floor only (the last 2): the ceiling and
  *                                           the walls (the 10 before it) are left out;
  *   closed-box                              the cavity floor and the ground: the last 4.
  *
- * Meshes: indexed, shared vertices wherever a surface is closed (spheres, box), CCW
- * winding with outward normals (open sheets face +y; room's shell faces into the room;
+ * Meshes: indexed, shared vertices wherever a surface is closed (spheres, boxes, prisms,
+ * voussoirs), CCW winding with outward normals (open sheets face +y, room's chair shells
+ * their sitter: the seat up, the back forward; canopy's leaves are two-sided, a quad
+ * each way on the same vertices; room's shell faces into the room;
  * closed-box's surface faces out of its material, so into the cavity inside it),
  * bbox filled over all vertices (ground included). Deterministic: the same name gives the
  * same mesh on every run. */
@@ -77,7 +91,7 @@ int pn_builtin_scene(const char *name, pn_mesh *out, pn_scene_view *view, char *
                      size_t err_size);
 
 /* NULL-terminated list of the shared scene names: square, spheres, elongated-cube, thin,
- * room; the set the demo, the golden hashes (tests/test_golden.c), the benchmark and the
+ * room, canopy, colonnade; the set the demo, the golden hashes (tests/test_golden.c), the benchmark and the
  * per-algorithm frame tests iterate. Static storage. */
 const char *const *pn_builtin_scene_names(void);
 

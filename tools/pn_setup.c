@@ -92,6 +92,65 @@ int pn_setup_load(pn_setup *s, const char *source, int builtin, int ground, char
     return 0;
 }
 
+int pn_views_file_for(const char *scene_path, char *out, size_t out_size)
+{
+    FILE *f;
+    if (scene_path) {
+        const char *slash = strrchr(scene_path, '/');
+        int n = slash ? (int)(slash - scene_path) : 0;
+        snprintf(out, out_size, "%.*s%sviews.json", n, scene_path, slash ? "/" : "");
+        if ((f = fopen(out, "rb")) != NULL) {
+            fclose(f);
+            return 0;
+        }
+    }
+    snprintf(out, out_size, "%s", PN_VIEWS_FALLBACK);
+    if ((f = fopen(out, "rb")) != NULL) {
+        fclose(f);
+        return 0;
+    }
+    return 1;
+}
+
+int pn_view_for_scene(const char *dir, const char *name, pn_view *v, char *err, size_t err_size)
+{
+    char path[1200];
+    FILE *f;
+    int rc;
+    snprintf(path, sizeof(path), "%s/views.json", dir);
+    if ((f = fopen(path, "rb")) == NULL) return 1;
+    fclose(f);
+    rc = pn_view_load(path, name, v, err, err_size);
+    return rc;
+}
+
+void pn_setup_use_view(pn_setup *s, const pn_view *v)
+{
+    s->camera = v->camera;
+    s->light = v->light;
+    snprintf(s->view_source, sizeof(s->view_source), "view");
+    snprintf(s->light_source, sizeof(s->light_source), "view");
+}
+
+int pn_setup_load_viewed(pn_setup *s, const char *source, int builtin, const char *views_dir, char *err,
+                         size_t err_size)
+{
+    pn_view v;
+    int hv = 1;
+    if (!builtin && views_dir) {
+        char stem[128];
+        pn_basename(source, stem, sizeof(stem));
+        hv = pn_view_for_scene(views_dir, stem, &v, err, err_size);
+        if (hv == 2) {
+            memset(s, 0, sizeof(*s));
+            return 1;
+        }
+    }
+    if (pn_setup_load(s, source, builtin, hv == 0 ? v.ground : -1, err, err_size) != 0) return 1;
+    if (hv == 0) pn_setup_use_view(s, &v);
+    return 0;
+}
+
 void pn_setup_free(pn_setup *s)
 {
     pn_mesh_free(&s->mesh);

@@ -42,6 +42,49 @@ void pn_setup_auto_view(const float bmin[3], const float bmax[3], pn_camera *cam
 
 void pn_setup_free(pn_setup *s);
 
+/* ---- Views files (tools/pn_views.c) ---------------------------------------------------- *
+ * A views file (../shared/scenes/views.json) is a JSON object keyed by scene name (a .glb's
+ * file name without the extension); each view gives "size" [W, H] (optional), "eye",
+ * "target", "up" (optional, default [0, 1, 0]), "fov" (vertical, degrees), "light_center",
+ * "light_u", "light_v" (half-edges; the light emits toward normalize(u x v)) and "ground"
+ * (optional, true/false). Other keys are ignored. */
+typedef struct pn_view {
+    char name[64];
+    uint32_t width, height; /* 0 when the view gives no size */
+    pn_camera camera;
+    pn_light light;
+    int ground;             /* 1 on, 0 off, -1 not given */
+} pn_view;
+
+/* Reads view `name` from the views file at `path`. Returns 0 and fills *v; 1 when the file
+ * is valid but has no such view (err names the file, the key and the views it has); 2 for
+ * any other error (unreadable file, bad JSON, a field missing or of the wrong type: err
+ * names the file and the view or the byte). */
+int pn_view_load(const char *path, const char *name, pn_view *v, char *err, size_t err_size);
+
+/* The views file that goes with a scene: "views.json" beside scene_path (a glTF file) when
+ * it exists, else PN_VIEWS_FALLBACK ("../shared/scenes/views.json", relative to the working
+ * directory) when it exists. Writes the path into out and returns 0, or returns 1 (none). */
+#define PN_VIEWS_FALLBACK "../shared/scenes/views.json"
+int pn_views_file_for(const char *scene_path, char *out, size_t out_size);
+
+/* The view of a scene loaded from a scene directory: views.json in `dir` holding a view
+ * named s->name. Returns 0 and fills *v when there is one, 1 when there is none (no file,
+ * or no such key), 2 when the file is there but broken (err says why). */
+int pn_view_for_scene(const char *dir, const char *name, pn_view *v, char *err, size_t err_size);
+
+/* Puts the view's camera and light on s (view_source and light_source "view"). The ground
+ * is decided at load time: pass v->ground to pn_setup_load. */
+void pn_setup_use_view(pn_setup *s, const pn_view *v);
+
+/* pn_setup_load with the scene's own view: a glTF scene named in views_dir/views.json gets
+ * that view's camera, light and ground; any other scene (a built-in, a glTF file without a
+ * view, views_dir NULL) the defaults of pn_setup_load with ground -1. How the benchmark and
+ * the tests render every scene. Returns 0, or non-zero with a message (a views file that is
+ * there but broken is an error). */
+int pn_setup_load_viewed(pn_setup *s, const char *source, int builtin, const char *views_dir, char *err,
+                         size_t err_size);
+
 /* Hands the setup's scene to the library: pn_scene_set with the mesh, then
  * pn_scene_set_receivers with the mesh's receiver range (count 0 marks none). Returns
  * PN_OK or the first failing status (pn_last_error(ctx) has its message; PN_E_INVALID_ARG

@@ -62,6 +62,7 @@ PN_KFN void pn_gears_origins_row(const pn_klight *L, uint32_t width, uint32_t y,
     cnt[y].c.blocking = 0u;
     cnt[y].c.lit = lit;
     cnt[y].c.overflow = 0u;
+    cnt[y].c.capped = 0u;
 }
 
 /* Row y: the 2-D box of its origins projected by the area light's grid camera. */

@@ -60,6 +60,7 @@ PN_KFN void pn_counters_add(PN_GLOBAL pn_shadow_counters *row, const pn_shadow_c
     if (c->lit) pn_katomic_add(&row->lit, c->lit);
     if (c->overflow) pn_katomic_add(&row->overflow, c->overflow);
     if (c->nodes) pn_katomic_add(&row->nodes, c->nodes);
+    if (c->capped) pn_katomic_add(&row->capped, c->capped);
 }
 
 /* ---- G-buffer (pn_raster.h) ------------------------------------------------------------ */
@@ -117,7 +118,7 @@ PN_KFN void pn_e_raster_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
  * rays (pn_raytrace.h); its counters into its row's. */
 PN_KFN void pn_pixel_shadow(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix, int rays)
 {
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
     uint32_t id = PN_POOL(const uint32_t, tri_id)[pix];
     pn_v3 pos, nrm;
     float v;
@@ -241,7 +242,7 @@ PN_KFN void pn_e_gears_chunks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn
 /* Pixel whose cell is in the tile: the mask of the cell's triangles. */
 PN_KFN void pn_e_gears_masks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
     float v;
     if (!pn_gears_pixel_mask(&K->light, K->exact_stats, &K->tile, PN_POOL(const pn_kfaces, faces)->res,
                              PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos), PN_POOL(const float, nrm),
@@ -331,7 +332,7 @@ PN_KFN void pn_e_srt_tile_cols(PN_GLOBAL uint8_t *A, const pn_kpools *P, const p
 PN_KFN void pn_e_srt_classify(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
     pn_srt_args a;
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
     float v;
     uint32_t lit;
     a.delta = K->srt_delta;
@@ -363,7 +364,7 @@ PN_KFN void pn_e_srt_pip_list(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn
 PN_KFN void pn_e_srt_exact(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
 {
     uint32_t pix = PN_POOL(const uint32_t, pip_list)[i];
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
     PN_POOL(float, vis)[pix] = pn_reference_pixel(
         pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u), pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u),
         PN_POOL(const uint32_t, tri_id)[pix], PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
@@ -415,7 +416,7 @@ PN_KFN void pn_e_occ_sat_cols(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn
 /* Pixel: visibility 1 (lit or background) or 0 (facing away, behind the light), counted. */
 PN_KFN void pn_e_occ_init(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
     pn_v3 O;
     uint32_t id = PN_POOL(const uint32_t, tri_id)[pix];
     int lit = id != PN_NO_PIXEL_TRIANGLE &&
@@ -444,7 +445,7 @@ PN_KFN void pn_e_occ_lookup(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
 PN_KFN void pn_e_occ_finish(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
     uint32_t m[PN_MASK_WORDS_MAX], id = PN_POOL(const uint32_t, tri_id)[pix];
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
     pn_v3 pos, nrm, O;
     pn_horizon H;
     if (id == PN_NO_PIXEL_TRIANGLE) return;
@@ -498,7 +499,7 @@ PN_KFN void pn_e_mc_nbuf(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
  * (pn_mc_run: their origins once, and one lookup that may find the whole run lit). */
 PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
 {
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
     uint32_t W = K->view.width, x0, i, k, n[PN_MC_WORDS] = {0u, 0u, 0u, 0u, 0u, 0u};
     PN_GLOBAL uint32_t *words = PN_POOL(uint32_t, mc_words) + (size_t)y * PN_MC_ROW_WORDS;
     pn_mc_ctx m;
@@ -589,7 +590,7 @@ PN_KFN void pn_e_wg_scatter(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
  * horizon's fraction. */
 PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
     uint32_t id = PN_POOL(const uint32_t, tri_id)[pix], W = K->view.width, tile;
     PN_CONST uint32_t *toff = PN_POOL(const uint32_t, wg_toff);
     pn_v3 pos, nrm, O;

@@ -699,8 +699,10 @@ PN_KFN int pn_wg_listed(PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t
 
 /* Visibility of one lit pixel (shadow origin O, own triangle own, tile edges list[lo, hi)).
  * Counters: candidates = edges evaluated, blocking = edges covering some of the light,
- * nodes = blockers of the centre ray, overflow = more than PN_WG_HARD_MAX objects listed
- * in the tile block the centre (taken as umbra). */
+ * nodes = blockers of the centre ray, capped = more than PN_WG_HARD_MAX objects listed in
+ * the tile block the centre (taken as umbra; reported as wg_hard_overflow, not an error),
+ * overflow = the centre ray's walk lost a stack entry (a broken invariant: pn_bvh_widen
+ * bounds the stack). */
 PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mode, PN_CONST float *tris,
                          PN_CONST pn_kbvh_node *nodes, PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index,
                          PN_CONST uint32_t *tcomp,
@@ -728,9 +730,10 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
     pn_ray_make(&X, &Lc, 0, 0, &R);
     pn_ray_walk_begin(&W, &X, &R, wnodes);
     for (;;) {
-        pn_shadow_counters rc = {0u, 0u, 0u, 0u, 0u};
+        pn_shadow_counters rc = {0u, 0u, 0u, 0u, 0u, 0u};
         uint32_t s, j;
         t = pn_ray_walk_next(&W, &R, own, tris, nodes, wnodes, tri_index, &Lc, &rc);
+        cnt->overflow += rc.overflow;
         if (t == PN_RAY_NONE) break;
         cnt->nodes++;
         s = tcomp[t] & ~PN_WG_CLOSED;
@@ -740,7 +743,7 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
         }
         if (j < nhard) continue;
         if (nhard == PN_WG_HARD_MAX) {
-            cnt->overflow++;
+            cnt->capped++;
             return 0.0f;
         }
         hard[nhard++] = s;

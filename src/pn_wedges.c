@@ -133,7 +133,7 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
         ctx->wg.evaluated += c->candidates;
         ctx->wg.touched += c->blocking;
         ctx->wg.hard_blockers += c->nodes;
-        ctx->wg.hard_overflow += c->overflow;
+        ctx->wg.hard_overflow += c->capped;
     }
     return PN_OK;
 }

@@ -282,6 +282,8 @@ typedef struct scene_state {
      * baselines' times, for the accuracy table and the summary */
     accuracy pt_acc[NALGO], bl_acc[NBASE], emb_acc;
     double bl_ms[NBASE];
+    /* the status of an algorithm that was selected and compiled in but failed ("" if none) */
+    char pt_fail[NALGO][48];
     const char *emb_api;
     float *ref_vis;
     float cull_tol;
@@ -560,6 +562,7 @@ typedef struct report {
     char *plots_buf;
     size_t plots_len;
     double hmin, hmax; /* range of the headline ratios */
+    int hcol[3];       /* the headline's columns with a point (vs reference, Embree, raytrace) */
     int sweep_scenes;
     char sweep_names[MAX_SCENES][128];
     int mc_conv_scenes;                  /* scenes with an MCSM convergence data file */
@@ -572,7 +575,7 @@ typedef struct report {
     struct {
         int n, front;
         double rmse, gross, gross_b, gross_d, speed;
-        char rmse_at[128], gross_at[128], speed_at[128], off_front[600];
+        char rmse_at[128], gross_at[128], speed_at[128], off_front[600], failed[400];
     } sum[NSUM];
     int wg_goal_rows;                    /* rows of the wedges' `square` check */
     int wg_sweep_ran, wg_sweep;          /* the wedges' sweep ran; it has a wedges time */
@@ -1015,6 +1018,8 @@ static void main_point(const bench_opts *o, report *r, scene_state *ss, int firs
         for (a = 0; a < NALGO; a++) {
             accuracy acc = compare_vis(lib[a].vis, lib[A_REF].vis, n);
             ss->pt_ms[a] = job_pass(&lib[a]);
+            if (!lib[a].ok && lib[a].kind == JOB_LIB && strncmp(lib[a].err, "PN_", 3) == 0)
+                snprintf(ss->pt_fail[a], sizeof(ss->pt_fail[a]), "%.*s", (int)strcspn(lib[a].err, ":"), lib[a].err);
             ss->pt_rmse[a] = acc.ok ? acc.rmse : NAN;
             ss->pt_acc[a] = acc;
         }
@@ -1555,6 +1560,11 @@ static void summary_scene(report *r, const scene_state *ss)
             acc = &ss->emb_acc;
             own = "Embree";
         }
+        if (e < NALGO && ss->pt_fail[e][0]) {
+            size_t l = strlen(r->sum[e].failed);
+            snprintf(r->sum[e].failed + l, sizeof(r->sum[e].failed) - l, "%s%s (%s)", l ? ", " : "", ss->s.name,
+                     ss->pt_fail[e]);
+        }
         if (!(ms == ms) || !acc->ok) continue;
         rmse = e == A_REF ? 0.0 : acc->rmse;
         gross = acc->gross_brighter + acc->gross_darker;
@@ -1588,15 +1598,17 @@ static void summary_print(const report *r, FILE *out, const bench_opts *o)
     int e;
     fprintf(out, "## Summary: every algorithm on every scene of this run\n\n"
                  "| algorithm | scenes | worst RMSE | worst gross (brighter / darker) | slowest vs fastest exact | "
-                 "on the time-vs-error front | off the front on |\n"
-                 "| --- | ---: | ---: | ---: | ---: | ---: | --- |\n");
+                 "on the time-vs-error front | off the front on | failed on |\n"
+                 "| --- | ---: | ---: | ---: | ---: | ---: | --- | --- |\n");
     for (e = 0; e < NSUM; e++) {
         const char *name = e < NALGO ? algos[e].name : e < NALGO + NBASE ? baselines[e - NALGO].name : "Embree";
-        if (r->sum[e].n == 0) continue;
-        fprintf(out, "| %s | %d | %.4f (%s) | %.2f%% (%.2f / %.2f; %s) | %.2fx (%s) | %d of %d | %s |\n", name,
-                r->sum[e].n, r->sum[e].rmse, r->sum[e].rmse_at, 100.0 * r->sum[e].gross, 100.0 * r->sum[e].gross_b,
-                100.0 * r->sum[e].gross_d, r->sum[e].gross_at, r->sum[e].speed, r->sum[e].speed_at, r->sum[e].front,
-                r->sum[e].n, r->sum[e].off_front[0] ? r->sum[e].off_front : "-");
+        if (r->sum[e].n == 0 && !r->sum[e].failed[0]) continue;
+        fprintf(out, "| %s | %d | %.4f (%s) | %.2f%% (%.2f / %.2f; %s) | %.2fx (%s) | %d of %d | %s | %s |\n", name,
+                r->sum[e].n, r->sum[e].rmse, r->sum[e].rmse > 0.0 ? r->sum[e].rmse_at : "all",
+                100.0 * r->sum[e].gross, 100.0 * r->sum[e].gross_b, 100.0 * r->sum[e].gross_d,
+                r->sum[e].gross > 0.0 ? r->sum[e].gross_at : "all", r->sum[e].speed, r->sum[e].speed_at,
+                r->sum[e].front, r->sum[e].n, r->sum[e].off_front[0] ? r->sum[e].off_front : "-",
+                r->sum[e].failed[0] ? r->sum[e].failed : "-");
     }
     fprintf(out, "\nEach algorithm with its default options (the baselines and Embree as in the accuracy table), at "
                  "%ux%u, k = %u, area light, on every scene of the run. Worst RMSE and worst gross fraction (pixels "
@@ -1605,7 +1617,8 @@ static void summary_print(const report *r, FILE *out, const bench_opts *o)
                  "algorithm's shadow pass (of reference, GEARS and raytrace at k = %u, this run) to this one's (above "
                  "1: faster). On the front: scenes where no other point of that scene's time-vs-error chart (every "
                  "algorithm, every configuration the sections measured, the baselines, Embree) is both faster and "
-                 "more accurate.\n\n",
+                 "more accurate. Failed on: scenes where the frame returned an error status (not counted in the "
+                 "other columns).\n\n",
             o->size, o->size, o->k, o->k);
 }
 
@@ -2661,11 +2674,12 @@ static void plot_headline(report *r, const bench_opts *o)
             "set key inside top right\nset yrange [%g:%g]\nset arrow 1 from graph 0, first 1 to graph 1, first 1 nohead dt 2\n"
             "set arrow 2 from graph 0, first 10 to graph 1, first 10 nohead dt 3 lc rgb 'red'\n"
             "set label 1 'goal 10x' at graph 0.01, first 10 offset 0,0.6 tc rgb 'red'\n"
-            "plot 'data/headline.dat' using 2:xtic(1) title 'vs reference', '' using 3 title 'vs Embree'%s\n"
+            "plot 'data/headline.dat' using 2:xtic(1) title 'vs reference'%s%s\n"
             "unset arrow 1\nunset arrow 2\nunset label 1\nunset logscale y\nset xtics norotate\nset yrange [*:*]\n",
             o->size, o->size, o->k, r->hmin / 1.5, r->hmax * 1.5,
-            /* A column with no point (raytrace compiled out or not selected) stops gnuplot. */
-            A_RT >= 0 && in_list(o->algos, algos[A_RT].name) ? ", '' using 4 title 'vs raytrace'" : "");
+            /* A column with no point (Embree absent, raytrace compiled out or not selected)
+             * stops gnuplot. */
+            r->hcol[1] ? ", '' using 3 title 'vs Embree'" : "", r->hcol[2] ? ", '' using 4 title 'vs raytrace'" : "");
 }
 
 /* The sections after the headline, in order: heading and the note that explains the
@@ -2958,6 +2972,7 @@ static void headline_data(FILE *f, report *r, const scene_state *ss)
         if (v[i] > 0.0) {
             if (v[i] < r->hmin) r->hmin = v[i];
             if (v[i] > r->hmax) r->hmax = v[i];
+            r->hcol[i] = 1;
         }
     /* gnuplot reads NaN as a missing point. */
     fprintf(f, "%s %.4g %.4g %.4g\n", ss->s.name, ss->gears_vs_ref, ss->gears_vs_emb, ss->gears_vs_rt);

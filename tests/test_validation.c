@@ -528,6 +528,28 @@ static void test_status_strings(void)
     CHECK(pn_set_parallel_for(NULL, NULL, NULL) == PN_E_INVALID_ARG);
 }
 
+/* pn_last_error (penumbra.h): "" on a fresh context, the failing call's message after a
+ * failure, untouched by a call that succeeds, replaced by the next failure. */
+static void test_error_contract(void)
+{
+    static const float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, nan_pos[9] = {0, 0, 0, 1, NAN, 0, 0, 1, 0};
+    static const uint32_t idx[3] = {0, 1, 2}, bad_idx[3] = {0, 1, 7};
+    pn_host h;
+    char err[256], first[256];
+    REQUIRE(pn_host_open(&h, 16, 8, 8, 1, err, sizeof(err)) == 0);
+    CHECK(strcmp(pn_last_error(h.ctx), "") == 0);
+    CHECK(pn_scene_set(h.ctx, nan_pos, 3, idx, 1) == PN_E_NONFINITE);
+    snprintf(first, sizeof(first), "%s", pn_last_error(h.ctx));
+    CHECK_MSG(strstr(first, "vertex 1") != NULL || strstr(first, "finite") != NULL, "message: '%s'", first);
+    CHECK(pn_scene_set(h.ctx, pos, 3, idx, 1) == PN_OK);
+    CHECK_MSG(strcmp(pn_last_error(h.ctx), first) == 0, "a successful call changed the message to '%s'",
+              pn_last_error(h.ctx));
+    CHECK(pn_scene_set(h.ctx, pos, 3, bad_idx, 1) == PN_E_INDEX_RANGE);
+    CHECK_MSG(strcmp(pn_last_error(h.ctx), first) != 0 && strstr(pn_last_error(h.ctx), "7") != NULL,
+              "the second failure's message is '%s'", pn_last_error(h.ctx));
+    pn_host_close(&h);
+}
+
 int main(void)
 {
     char err[256];
@@ -550,6 +572,7 @@ int main(void)
     RUN(test_no_scene);
     RUN(test_receivers);
     RUN(test_status_strings);
+    RUN(test_error_contract);
     pn_host_close(&H);
     pn_setup_free(&S);
     return pn_test_summary();

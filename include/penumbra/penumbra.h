@@ -221,8 +221,10 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
  * PN_E_LIMIT, PN_E_ARENA_TOO_SMALL. There is no global state: contexts are independent. */
 pn_status pn_init(pn_context **out_ctx, void *memory, size_t bytes, const pn_limits *limits);
 
-/* The message of the first error since the last successful call that cleared it ("" if
- * none). Messages say what was wrong and the value or size involved. Never NULL. */
+/* The message of the most recent call on this context that failed ("" before any call has
+ * failed). A call that succeeds leaves it as it was, so read it right after a call returned
+ * a status other than PN_OK, as errno. Messages say what was wrong and the value or size
+ * involved. Never NULL; "pn_last_error: NULL context" for a NULL ctx. */
 const char *pn_last_error(const pn_context *ctx);
 
 /* Work distribution. The library calls `parallel_for(user, count, fn, task)` and expects

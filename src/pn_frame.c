@@ -295,13 +295,6 @@ static pn_status pn_scene_to_device(pn_frame_state *fs)
     return PN_OK;
 }
 
-pn_status pn_raster_setup(pn_frame_state *fs, uint32_t rows_pass)
-{
-    pn_status st = pn_dev_run(fs, rows_pass, PN_RASTER_GROUPS(fs->ctx->tri_count));
-    if (st != PN_OK) return st;
-    return pn_dev_run(fs, PN_K_RASTER_CHUNKS, PN_RASTER_CHUNKS(fs->K.raster_tris));
-}
-
 /* Primary visibility: per-triangle row ranges, then bands (clear, raster, resolve). */
 static pn_status pn_gbuffer(pn_frame_state *fs)
 {

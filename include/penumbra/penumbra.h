@@ -479,6 +479,13 @@ typedef struct pn_stats {
     uint64_t wg_ns_silhouettes, wg_ns_binning, wg_ns_pixels;
 } pn_stats;
 
+/* Copies the context's statistics into *out: the arena's sizes and high-water mark, the
+ * last pn_scene_set's counts and times, the last frame's per-pass times and shadow
+ * counters, and each algorithm's own fields (gears_*, srt_*, occ_*, mc_*, wg_*) as the last
+ * frame that ran that algorithm left them. Every time is 0 without a clock (pn_set_clock).
+ * Cheap: no pass runs. ctx and out must not be NULL
+ * (PN_E_INVALID_ARG, *out untouched, no message: there may be no context to hold one);
+ * otherwise PN_OK. */
 pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);
 
 /* Which algorithms and ports this build holds, as flags. */

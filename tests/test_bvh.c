@@ -579,6 +579,72 @@ static void test_frames_slivers(void)
     pn_setup_free(&th);
 }
 
+/* A tree built to be deep (issue 50): 48 small squares at x = 4 * 0.5^i along a line toward
+ * the light's axis, each a tenth of its distance across, over a floor, under square's light:
+ * the binned SAH can only peel the farthest few off at each level (every other centroid
+ * falls into the first bins), so the tree is a chain (depth 23 here, where a balanced tree
+ * of its 98 triangles would be 5 deep). The builder's bound (PN_BVH_SAH_DEPTH + 27 levels at most,
+ * within PN_BVH_STACK) must hold, and every algorithm must walk the tree to the bottom
+ * without losing a stack entry: PN_OK everywhere, the exact ones with the reference's bytes. */
+static void test_deep_tree(void)
+{
+    enum { NEST = 48 };
+    pn_setup sq;
+    scene s;
+    pn_host h;
+    pn_context *ctx;
+    pn_stats st;
+    char err[256];
+    uint32_t a, i, built = pn_build_info();
+    size_t npix = (size_t)FRAME_W * FRAME_H;
+    float *ref = (float *)malloc(npix * sizeof(float));
+    REQUIRE(ref);
+    REQUIRE(pn_setup_load(&sq, "square", 1, -1, err, sizeof(err)) == 0);
+    s.pos = (float *)malloc((size_t)(NEST + 1u) * 18u * sizeof(float));
+    s.idx = (uint32_t *)malloc((size_t)(NEST + 1u) * 6u * sizeof(uint32_t));
+    REQUIRE(s.pos && s.idx);
+    s.tris = s.verts = 0;
+    for (i = 0; i <= NEST; i++) {
+        double x = i < NEST ? 4.0 * pow(0.5, (double)i) : 0.0, r = i < NEST ? 0.05 * x : 6.0;
+        double y = i < NEST ? 1.0 : 0.0;
+        double t0[9] = {x - r, y, -r, x - r, y, r, x + r, y, r}, t1[9] = {x - r, y, -r, x + r, y, r, x + r, y, -r};
+        add_tri(&s, t0);
+        add_tri(&s, t1);
+    }
+    ctx = open_ctx(&h, s.tris, 0);
+    REQUIRE(ctx);
+    CHECK(pn_scene_set(ctx, s.pos, s.verts, s.idx, s.tris) == PN_OK);
+    CHECK(pn_get_stats(ctx, &st) == PN_OK);
+    fprintf(stderr, "deep tree: %u triangles, depth %u (bound %u, stack %u)\n", s.tris, st.bvh_depth,
+            (unsigned)PN_BVH_SAH_DEPTH + 27u, (unsigned)PN_BVH_STACK);
+    CHECK_MSG(st.bvh_depth >= 20u, "depth %u: the scene does not build a deep tree", st.bvh_depth);
+    CHECK(st.bvh_depth <= PN_BVH_SAH_DEPTH + 27u && st.bvh_depth + 1u <= PN_BVH_STACK);
+    for (a = 0; a < sizeof(algos) / sizeof(algos[0]); a++) {
+        pn_frame_options opt;
+        pn_frame fr;
+        pn_status rs;
+        if (!(built & algos[a].build_flag)) continue;
+        pn_frame_options_default(&opt);
+        opt.width = FRAME_W;
+        opt.height = FRAME_H;
+        opt.k = 8;
+        opt.eps = sq.eps;
+        opt.algo = algos[a].algo;
+        opt.gears_grid = 16;
+        rs = pn_render(ctx, &sq.camera, &sq.light, &opt, &fr);
+        CHECK_MSG(rs == PN_OK, "deep tree %s: %s", algos[a].name, pn_last_error(ctx));
+        if (rs != PN_OK) continue;
+        if (algos[a].algo == PN_ALGO_REFERENCE) memcpy(ref, fr.visibility, npix * sizeof(float));
+        else if (algos[a].algo == PN_ALGO_GEARS || algos[a].algo == PN_ALGO_RAYTRACE)
+            CHECK_MSG(memcmp(ref, fr.visibility, npix * sizeof(float)) == 0, "deep tree %s: not the reference's bytes",
+                      algos[a].name);
+    }
+    pn_host_close(&h);
+    free_scene(&s);
+    pn_setup_free(&sq);
+    free(ref);
+}
+
 static void test_limits(void)
 {
     pn_limits lim;
@@ -637,6 +703,7 @@ int main(void)
     RUN(test_frames_thin);
     RUN(test_frames_slivers);
     RUN(test_frames_two_wide);
+    RUN(test_deep_tree);
     RUN(test_limits);
     return pn_test_summary();
 }

@@ -1,0 +1,112 @@
+/* pn_passes_mcsm.h - the Monte Carlo shadow maps' passes:
+ * their per-work-item entries and their part of
+ * the pass list (PN_PASSES_*), composed by pn_passes.h, which includes this file after
+ * the kernels it calls; see there for the entry signature and the list's columns. */
+#ifndef PN_PASSES_MCSM_H
+#define PN_PASSES_MCSM_H
+
+/* ---- Monte Carlo shadow maps (pn_mcsm.h; the frame is src/pn_mcsm.c) ------------------------ */
+
+#if PN_ENABLE_MCSM
+/* Texel row of the layers (N-buffer level 0): emptied. */
+PN_KFN void pn_e_mc_clear(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
+{
+    pn_mc_clear_row(&K->lview, y, PN_POOL(float, mc_nb));
+}
+
+/* Group of triangles: the layers' rows pass; a small occluder's fragments go straight into
+ * the layers. */
+PN_KFN void pn_e_mc_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t g)
+{
+    pn_mc_rows(&K->lview, &K->mc, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), K->tri_count, g,
+               PN_POOL(uint32_t, rows), PN_POOL(float, mc_nb));
+}
+
+/* Band of texel rows: the near and far layers (N-buffer level 0). */
+PN_KFN void pn_e_mc_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
+{
+    pn_mc_band(&K->lview, &K->mc, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags),
+               PN_POOL(const uint32_t, rows), PN_POOL(const uint32_t, chunks), PN_POOL(const uint32_t, rindex),
+               K->raster_tris, band, PN_POOL(float, mc_nb));
+}
+
+/* Row of N-buffer level K->mc.level. */
+PN_KFN void pn_e_mc_nbuf(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
+{
+    pn_nb_mm_row(K->mc.res, K->mc.level, y, PN_POOL(float, mc_nb));
+}
+
+/* Pixel row y: each pixel's rays through the layers, its visibility and class; the row's
+ * counters added once. Rows, not pixels, as for the blur: a pixel item made two to four
+ * atomic adds and divided its index by the width, where most pixels (lit ones) do little
+ * else than one or two region lookups. The row goes in runs of PN_MC_RUN pixels
+ * (pn_mc_run: their origins once, and one lookup that may find the whole run lit). */
+PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
+{
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
+    uint32_t W = K->view.width, x0, i, k, n[PN_MC_WORDS] = {0u, 0u, 0u, 0u, 0u, 0u};
+    PN_GLOBAL uint32_t *words = PN_POOL(uint32_t, mc_words) + (size_t)y * PN_MC_ROW_WORDS;
+    pn_mc_ctx m;
+    pn_mc_px px[PN_MC_RUN];
+    pn_mc_ctx_init(&m, &K->view, &K->lview, &K->light, &K->mc, PN_POOL(const float, mc_nb), PN_POOL(const float, depth));
+    for (x0 = 0; x0 < W; x0 += PN_MC_RUN) {
+        uint32_t count = pn_kminu(PN_MC_RUN, W - x0);
+        size_t pix0 = (size_t)y * W + x0;
+        int run_lit = pn_mc_run(&m, PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos), PN_POOL(const float, nrm),
+                                pix0, count, px);
+        for (i = 0; i < count; i++) {
+            uint32_t cls, rays;
+            if (px[i].kind == PN_MC_PX_LIT) {
+                /* pn_mc_pixel's answer for most pixels, without its set-up */
+                PN_POOL(float, vis)[pix0 + i] = 1.0f;
+                c.lit++;
+                n[PN_MC_CLASS_LIT - 1u]++;
+                continue;
+            }
+            if (px[i].kind != PN_MC_PX_SURFACE) {
+                PN_POOL(float, vis)[pix0 + i] = px[i].kind == PN_MC_PX_NONE ? 1.0f : 0.0f;
+                continue;
+            }
+            PN_POOL(float, vis)[pix0 + i] = pn_mc_pixel(&m, x0 + i, y, px + i, run_lit, &cls, &rays);
+            c.lit++;
+            c.candidates += rays;
+            if (cls != PN_MC_CLASS_NONE) n[cls - 1u]++;
+        }
+    }
+    c.nodes = m.steps;
+    n[PN_MC_WORD_CAPPED] = m.capped;
+    pn_counters_add(&PN_POOL(pn_row_counters, counters)[y].c, &c);
+    for (k = 0; k < PN_MC_WORDS; k++)
+        if (n[k]) pn_katomic_add(words + k, n[k]);
+}
+
+/* Row: the blur across (visibility into the other buffer), then down (back). Rows, not
+ * pixels: a pixel item's division of its index by the width cost about as much as its blur
+ * (spot, 512x512, 2 threads: 3.3 -> 2.1 ms for both directions). */
+PN_KFN void pn_e_mc_blur_h(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
+{
+    pn_mc_blur_row(&K->mc, K->view.width, K->view.height, y, 0u, PN_POOL(const uint32_t, tri_id),
+                   PN_POOL(const float, depth), PN_POOL(const float, nrm), PN_POOL(const float, vis), PN_POOL(float, mc_tmp));
+}
+PN_KFN void pn_e_mc_blur_v(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
+{
+    pn_mc_blur_row(&K->mc, K->view.width, K->view.height, y, 1u, PN_POOL(const uint32_t, tri_id),
+                   PN_POOL(const float, depth), PN_POOL(const float, nrm), PN_POOL(const float, mc_tmp), PN_POOL(float, vis));
+}
+#endif
+
+/* Their part of the list. */
+#if PN_ENABLE_MCSM
+#define PN_PASSES_MCSM(X)                                 \
+    X(MC_CLEAR, mc_clear, 4, 8)                           \
+    X(MC_ROWS, mc_rows, 64, 512)                         \
+    X(MC_BAND, mc_band, 1, 1)                             \
+    X(MC_NBUF, mc_nbuf, 4, 8)                             \
+    X(MC_PIXEL, mc_pixel, 4, 2)                           \
+    X(MC_BLUR_H, mc_blur_h, 4, 8)                         \
+    X(MC_BLUR_V, mc_blur_v, 4, 8)
+#else
+#define PN_PASSES_MCSM(X)
+#endif
+
+#endif

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "pn_device.h"
+#include "pn_algorithms.h"
 #include "pn_internal.h"
 
 const char *pn_status_str(pn_status status)
@@ -197,27 +198,15 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out)
 
 uint32_t pn_build_info(void)
 {
-    uint32_t f = PN_BUILD_PORT_SCALAR;
-#if PN_ENABLE_REFERENCE
-    f |= PN_BUILD_REFERENCE;
-#endif
-#if PN_ENABLE_GEARS
-    f |= PN_BUILD_GEARS;
-#endif
-#if PN_ENABLE_RAYTRACE
-    f |= PN_BUILD_RAYTRACE;
-#endif
-#if PN_ENABLE_SRT
-    f |= PN_BUILD_SRT;
-#endif
-#if PN_ENABLE_OCCTEX
-    f |= PN_BUILD_OCCTEX;
-#endif
-#if PN_ENABLE_MCSM
-    f |= PN_BUILD_MCSM;
-#endif
-#if PN_ENABLE_WEDGES
-    f |= PN_BUILD_WEDGES;
-#endif
-    return f;
+#define PN_ALGO_BIT(ID, name) | (PN_ENABLE_##ID ? PN_BUILD_##ID : 0u)
+    return PN_BUILD_PORT_SCALAR PN_ALGORITHMS(PN_ALGO_BIT);
+#undef PN_ALGO_BIT
+}
+
+const char *pn_algo_name(pn_algo algo)
+{
+#define PN_ALGO_NAME(ID, name) #name,
+    static const char *const names[PN_ALGO_COUNT] = {PN_ALGORITHMS(PN_ALGO_NAME)};
+#undef PN_ALGO_NAME
+    return (uint32_t)algo < PN_ALGO_COUNT ? names[algo] : NULL;
 }

@@ -3,12 +3,8 @@
  * commands (pn_device.h) written once for every port. */
 #include <string.h>
 
+#include "pn_algorithms.h"
 #include "pn_device.h"
-#include "pn_gears_frame.h"
-#include "pn_srt_frame.h"
-#include "pn_mcsm_frame.h"
-#include "pn_occtex_frame.h"
-#include "pn_wedges_frame.h"
 #include "pn_kmath.h"
 #include "pn_passes.h"
 
@@ -184,88 +180,20 @@ static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
     if (!(o->albedo >= 0.0f && o->albedo <= 1.0f && o->ambient >= 0.0f && o->ambient <= 1.0f))
         return pn_fail(ctx, PN_E_INVALID_ARG, "albedo and ambient must be in [0, 1]");
     if (o->exact_stats > 1u) return pn_fail(ctx, PN_E_INVALID_ARG, "exact_stats must be 0 or 1");
+    return PN_OK;
+}
+
+/* The chosen algorithm's own options and parameters (its module's prepare). */
+static pn_status pn_prepare_algo(pn_frame_state *fs, const pn_frame_options *o)
+{
     switch (o->algo) {
-    case PN_ALGO_REFERENCE:
-#if PN_ENABLE_REFERENCE
-        return PN_OK;
-#else
-        return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_REFERENCE is not compiled in (PN_ENABLE_REFERENCE 0)");
-#endif
-    case PN_ALGO_GEARS:
-#if PN_ENABLE_GEARS
-        if (o->gears_grid < 1u || o->gears_grid > pn_gears_grid_max(&ctx->limits))
-            return pn_fail(ctx, PN_E_INVALID_ARG, "gears_grid = %u; it must be in 1 .. %u (pn_limits.gears_grid_max)",
-                           o->gears_grid, pn_gears_grid_max(&ctx->limits));
-        return PN_OK;
-#else
-        return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_GEARS is not compiled in (PN_ENABLE_GEARS 0)");
-#endif
-    case PN_ALGO_RAYTRACE:
-#if PN_ENABLE_RAYTRACE
-        return PN_OK;
-#else
-        return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_RAYTRACE is not compiled in (PN_ENABLE_RAYTRACE 0)");
-#endif
-    case PN_ALGO_SRT:
-#if PN_ENABLE_SRT
-        if (o->srt_map != 0u && (o->srt_map < 8u || o->srt_map > pn_srt_map_max(&ctx->limits)))
-            return pn_fail(ctx, PN_E_INVALID_ARG, "srt_map = %u; it must be 0 or in 8 .. %u (pn_limits.srt_map_max)",
-                           o->srt_map, pn_srt_map_max(&ctx->limits));
-        if (o->srt_flags & ~(PN_SRT_NO_CONSERVATIVE | PN_SRT_FORCE_PIP))
-            return pn_fail(ctx, PN_E_INVALID_ARG, "srt_flags = %u has unknown bits", o->srt_flags);
-        if (!pn_finite(o->srt_delta) || !(o->srt_delta >= 0.0f) || o->srt_delta > 1.0f)
-            return pn_fail(ctx, PN_E_INVALID_ARG, "srt_delta must be in [0, 1] (0: the default 1e-3)");
-        return PN_OK;
-#else
-        return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_SRT is not compiled in (PN_ENABLE_SRT 0)");
-#endif
-    case PN_ALGO_OCCTEX:
-#if PN_ENABLE_OCCTEX
-        if (o->occ_slices != 0u && (o->occ_slices < 2u || o->occ_slices > 16u))
-            return pn_fail(ctx, PN_E_INVALID_ARG, "occ_slices = %u; it must be 0 or in 2 .. 16", o->occ_slices);
-        if (o->occ_map != 0u && (o->occ_map < 8u || o->occ_map > pn_occ_map_max(&ctx->limits)))
-            return pn_fail(ctx, PN_E_INVALID_ARG, "occ_map = %u; it must be 0 or in 8 .. %u (pn_limits.occ_map_max)",
-                           o->occ_map, pn_occ_map_max(&ctx->limits));
-        if (o->occ_filter > PN_OCC_FILTER_MIPMAP)
-            return pn_fail(ctx, PN_E_INVALID_ARG, "occ_filter = %u; it must be 0 or a PN_OCC_FILTER_*", o->occ_filter);
-        if (o->occ_combine > PN_OCC_COMBINE_SUM)
-            return pn_fail(ctx, PN_E_INVALID_ARG, "occ_combine = %u; it must be 0 or a PN_OCC_COMBINE_*",
-                           o->occ_combine);
-        if (o->occ_flags & ~PN_OCC_LEAK_FIX)
-            return pn_fail(ctx, PN_E_INVALID_ARG, "occ_flags = %u has unknown bits", o->occ_flags);
-        return PN_OK;
-#else
-        return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_OCCTEX is not compiled in (PN_ENABLE_OCCTEX 0)");
-#endif
-    case PN_ALGO_MCSM:
-#if PN_ENABLE_MCSM
-        if (o->mc_layers > 3u)
-            return pn_fail(ctx, PN_E_INVALID_ARG, "mc_layers = %u; it must be 0 or in 1 .. 3", o->mc_layers);
-        if (o->mc_search > PN_MC_SEARCH_HIER)
-            return pn_fail(ctx, PN_E_INVALID_ARG, "mc_search = %u; it must be 0 or a PN_MC_SEARCH_*", o->mc_search);
-        if (o->mc_rays > 8u)
-            return pn_fail(ctx, PN_E_INVALID_ARG, "mc_rays = %u; it must be 0 or in 1 .. 8 (n x n rays)", o->mc_rays);
-        if (o->mc_blur > 8u && o->mc_blur != PN_MC_BLUR_OFF)
-            return pn_fail(ctx, PN_E_INVALID_ARG, "mc_blur = %u; it must be 0, 1 .. 8 or PN_MC_BLUR_OFF", o->mc_blur);
-        if (o->mc_map != 0u && (o->mc_map < 8u || o->mc_map > pn_mc_map_max(&ctx->limits)))
-            return pn_fail(ctx, PN_E_INVALID_ARG, "mc_map = %u; it must be 0 or in 8 .. %u (pn_limits.mc_map_max)",
-                           o->mc_map, pn_mc_map_max(&ctx->limits));
-        if (o->mc_flags & ~(PN_MC_NO_BIAS | PN_MC_NO_CLASSIFY))
-            return pn_fail(ctx, PN_E_INVALID_ARG, "mc_flags = %u has unknown bits", o->mc_flags);
-        return PN_OK;
-#else
-        return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_MCSM is not compiled in (PN_ENABLE_MCSM 0)");
-#endif
-    case PN_ALGO_WEDGES:
-#if PN_ENABLE_WEDGES
-        if (o->wg_mode > PN_WG_MODE_ADDITIVE)
-            return pn_fail(ctx, PN_E_INVALID_ARG, "wg_mode = %u; it must be 0 or a PN_WG_MODE_*", o->wg_mode);
-        return PN_OK;
-#else
-        return pn_fail(ctx, PN_E_UNSUPPORTED, "PN_ALGO_WEDGES is not compiled in (PN_ENABLE_WEDGES 0)");
-#endif
+#define PN_ALGO_PREPARE(ID, name)                                                              \
+    case PN_ALGO_##ID:                                                                         \
+        return pn_##name##_prepare(fs, o);
+        PN_ALGORITHMS(PN_ALGO_PREPARE)
+#undef PN_ALGO_PREPARE
     }
-    return pn_fail(ctx, PN_E_INVALID_ARG, "unknown algorithm %u", (uint32_t)o->algo);
+    return pn_fail(fs->ctx, PN_E_INVALID_ARG, "unknown algorithm %u", (uint32_t)o->algo);
 }
 
 /* The scene's pools on the port (only when pn_scene_set changed them since). */
@@ -324,27 +252,12 @@ static pn_status pn_shadow(pn_frame_state *fs)
     if ((st = pn_dev_fill(fs, fs->counters, fs->height * (uint32_t)(sizeof(pn_row_counters) / 4u), 0u)) != PN_OK)
         return st;
     switch (fs->algo) {
-#if PN_ENABLE_REFERENCE
-    case PN_ALGO_REFERENCE: st = pn_dev_run(fs, PN_K_REFERENCE, npix); break;
-#endif
-#if PN_ENABLE_RAYTRACE
-    case PN_ALGO_RAYTRACE: st = pn_dev_run(fs, PN_K_RAYTRACE, npix); break;
-#endif
-#if PN_ENABLE_GEARS
-    case PN_ALGO_GEARS: st = pn_gears_frame(fs); break;
-#endif
-#if PN_ENABLE_SRT
-    case PN_ALGO_SRT: st = pn_srt_frame(fs); break;
-#endif
-#if PN_ENABLE_OCCTEX
-    case PN_ALGO_OCCTEX: st = pn_occtex_frame(fs); break;
-#endif
-#if PN_ENABLE_MCSM
-    case PN_ALGO_MCSM: st = pn_mcsm_frame(fs); break;
-#endif
-#if PN_ENABLE_WEDGES
-    case PN_ALGO_WEDGES: st = pn_wedges_frame(fs); break;
-#endif
+#define PN_ALGO_FRAME(ID, name)                                                                \
+    case PN_ALGO_##ID:                                                                         \
+        st = pn_##name##_frame(fs);                                                            \
+        break;
+        PN_ALGORITHMS(PN_ALGO_FRAME)
+#undef PN_ALGO_FRAME
     default: return pn_fail(fs->ctx, PN_E_UNSUPPORTED, "algorithm %u not available", fs->algo);
     }
     if (st != PN_OK || (st = pn_dev_to_host(fs, fs->vis, (size_t)npix * sizeof(float))) != PN_OK) return st;
@@ -401,6 +314,7 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     memset(&fs, 0, sizeof(fs));
     fs.ctx = ctx;
     fs.port = port;
+    if ((st = pn_prepare_algo(&fs, opt)) != PN_OK) return st;
     if ((st = pn_setup_view(ctx, camera, opt->width, opt->height, &fs.K.view)) != PN_OK) return st;
     if ((st = pn_setup_light(ctx, light, opt->k, opt->eps, &fs.K.light)) != PN_OK) return st;
     fs.K.shade.albedo = opt->albedo;
@@ -413,39 +327,6 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     fs.algo = (uint32_t)opt->algo;
     fs.width = opt->width;
     fs.height = opt->height;
-    fs.gears_grid = opt->gears_grid;
-#if PN_ENABLE_SRT
-    /* Default map: the paper's 2048^2, at most the limit (a coarser map marks far more
-     * pixels: test_srt at 256^2 marks 61-100% of the lit pixels, at 2048^2 7-72%). */
-    fs.srt_map = opt->srt_map ? opt->srt_map : pn_srt_map_max(&ctx->limits);
-    if (!opt->srt_map && fs.srt_map > 2048u) fs.srt_map = 2048u;
-    fs.K.srt_flags = opt->srt_flags;
-    fs.K.srt_delta = (opt->srt_delta > 0.0f ? opt->srt_delta : 1e-3f) * ctx->scene_diag;
-#endif
-#if PN_ENABLE_OCCTEX
-    /* Defaults: the configuration docs/bench/RESULTS.md recommends ("Occlusion textures"). */
-    fs.occ_map = opt->occ_map ? opt->occ_map : pn_occ_map_max(&ctx->limits);
-    if (!opt->occ_map && fs.occ_map > 512u) fs.occ_map = 512u;
-    fs.K.occ.slices = opt->occ_slices ? opt->occ_slices : 16u;
-    fs.K.occ.filter = opt->occ_filter ? opt->occ_filter : PN_OCC_FILTER_SAT;
-    fs.K.occ.combine = opt->occ_combine ? opt->occ_combine : PN_OCC_COMBINE_PRODUCT;
-    fs.K.occ.flags = opt->occ_flags;
-#endif
-#if PN_ENABLE_MCSM
-    /* Defaults: the configuration docs/bench/RESULTS.md recommends ("Monte Carlo shadow
-     * maps"): two layers, hierarchical search, 3 x 3 rays, blur radius 2, 512^2 layers. */
-    fs.mc_map = opt->mc_map ? opt->mc_map : pn_mc_map_max(&ctx->limits);
-    if (!opt->mc_map && fs.mc_map > 512u) fs.mc_map = 512u;
-    fs.K.mc.layers = opt->mc_layers ? opt->mc_layers : 2u;
-    fs.K.mc.search = opt->mc_search ? opt->mc_search : PN_MC_SEARCH_HIER;
-    fs.K.mc.rays = opt->mc_rays ? opt->mc_rays : 3u;
-    fs.K.mc.blur = opt->mc_blur == PN_MC_BLUR_OFF ? 0u : opt->mc_blur ? opt->mc_blur : 1u;
-    fs.K.mc.flags = opt->mc_flags;
-    fs.K.mc.seed = opt->mc_seed;
-#endif
-#if PN_ENABLE_WEDGES
-    fs.K.wg.mode = opt->wg_mode ? opt->wg_mode : PN_WG_MODE_BLEND;
-#endif
 
     px = (size_t)opt->width * opt->height;
     pn_frame_reset(ctx);

@@ -4,11 +4,23 @@
  * frame's port. Written once: both ports run this sequence. */
 #include <string.h>
 
+#include "pn_algorithms.h"
 #include "pn_device.h"
 #include "pn_gears_frame.h"
 #include "pn_passes.h"
 
 #if PN_ENABLE_GEARS
+
+/* PN_ALGO_GEARS's options (pn_algorithms.h): the grid. */
+pn_status pn_gears_prepare(pn_frame_state *fs, const pn_frame_options *opt)
+{
+    pn_context *ctx = fs->ctx;
+    if (opt->gears_grid < 1u || opt->gears_grid > pn_gears_grid_max(&ctx->limits))
+        return pn_fail(ctx, PN_E_INVALID_ARG, "gears_grid = %u; it must be in 1 .. %u (pn_limits.gears_grid_max)",
+                       opt->gears_grid, pn_gears_grid_max(&ctx->limits));
+    fs->gears_grid = opt->gears_grid;
+    return PN_OK;
+}
 
 /* One frame's pools (addresses in the arena, carved in the order of pn_frame_pools() in
  * pn_arena.c), grid, tile plan and statistics. */
@@ -414,4 +426,6 @@ pn_status pn_gears_frame(pn_frame_state *fs)
     return PN_OK;
 }
 
+#else
+PN_ALGO_STUBS(GEARS, gears)
 #endif

@@ -3,11 +3,39 @@
  * on the frame's port. Written once: both ports run this sequence. */
 #include <string.h>
 
+#include "pn_algorithms.h"
 #include "pn_device.h"
 #include "pn_occtex_frame.h"
 #include "pn_passes.h"
 
 #if PN_ENABLE_OCCTEX
+
+/* PN_ALGO_OCCTEX's options (pn_algorithms.h): checked, then the frame's parameters, 0 meaning
+ * the default. */
+pn_status pn_occtex_prepare(pn_frame_state *fs, const pn_frame_options *opt)
+{
+    pn_context *ctx = fs->ctx;
+    if (opt->occ_slices != 0u && (opt->occ_slices < 2u || opt->occ_slices > 16u))
+        return pn_fail(ctx, PN_E_INVALID_ARG, "occ_slices = %u; it must be 0 or in 2 .. 16", opt->occ_slices);
+    if (opt->occ_map != 0u && (opt->occ_map < 8u || opt->occ_map > pn_occ_map_max(&ctx->limits)))
+        return pn_fail(ctx, PN_E_INVALID_ARG, "occ_map = %u; it must be 0 or in 8 .. %u (pn_limits.occ_map_max)",
+                       opt->occ_map, pn_occ_map_max(&ctx->limits));
+    if (opt->occ_filter > PN_OCC_FILTER_MIPMAP)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "occ_filter = %u; it must be 0 or a PN_OCC_FILTER_*", opt->occ_filter);
+    if (opt->occ_combine > PN_OCC_COMBINE_SUM)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "occ_combine = %u; it must be 0 or a PN_OCC_COMBINE_*",
+                       opt->occ_combine);
+    if (opt->occ_flags & ~PN_OCC_LEAK_FIX)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "occ_flags = %u has unknown bits", opt->occ_flags);
+    /* Defaults: the configuration docs/bench/RESULTS.md recommends ("Occlusion textures"). */
+    fs->occ_map = opt->occ_map ? opt->occ_map : pn_occ_map_max(&ctx->limits);
+    if (!opt->occ_map && fs->occ_map > 512u) fs->occ_map = 512u;
+    fs->K.occ.slices = opt->occ_slices ? opt->occ_slices : 16u;
+    fs->K.occ.filter = opt->occ_filter ? opt->occ_filter : PN_OCC_FILTER_SAT;
+    fs->K.occ.combine = opt->occ_combine ? opt->occ_combine : PN_OCC_COMBINE_PRODUCT;
+    fs->K.occ.flags = opt->occ_flags;
+    return PN_OK;
+}
 
 /* The kernels' copies of the public constants (kernels/ does not include penumbra.h). */
 typedef char pn_occ_consts_agree[PN_OCC_F_NBUFFER == PN_OCC_FILTER_NBUFFER && PN_OCC_F_SAT == PN_OCC_FILTER_SAT &&
@@ -186,4 +214,6 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
     return PN_OK;
 }
 
+#else
+PN_ALGO_STUBS(OCCTEX, occtex)
 #endif

@@ -2,11 +2,23 @@
  * the frame's port. Written once: both ports run this sequence. */
 #include <string.h>
 
+#include "pn_algorithms.h"
 #include "pn_device.h"
 #include "pn_passes.h"
 #include "pn_wedges_frame.h"
 
 #if PN_ENABLE_WEDGES
+
+/* PN_ALGO_WEDGES's options (pn_algorithms.h): checked, then the frame's parameters, 0 meaning
+ * the default. */
+pn_status pn_wedges_prepare(pn_frame_state *fs, const pn_frame_options *opt)
+{
+    pn_context *ctx = fs->ctx;
+    if (opt->wg_mode > PN_WG_MODE_ADDITIVE)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "wg_mode = %u; it must be 0 or a PN_WG_MODE_*", opt->wg_mode);
+    fs->K.wg.mode = opt->wg_mode ? opt->wg_mode : PN_WG_MODE_BLEND;
+    return PN_OK;
+}
 
 typedef char pn_wg_consts_agree[PN_WG_M_BLEND == PN_WG_MODE_BLEND && PN_WG_M_ADD == PN_WG_MODE_ADDITIVE ? 1 : -1];
 
@@ -138,4 +150,6 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
     return PN_OK;
 }
 
+#else
+PN_ALGO_STUBS(WEDGES, wedges)
 #endif

@@ -524,6 +524,18 @@ static void test_status_strings(void)
     }
     CHECK(pn_status_str((pn_status)1000) != NULL);
     CHECK(pn_last_error(NULL) != NULL);
+    /* The registry's names (src/pn_algorithms.h): one per pn_algo, distinct, NULL outside. */
+    for (s = 0; s < PN_ALGO_COUNT; s++) {
+        int t;
+        CHECK(pn_algo_name((pn_algo)s) != NULL);
+        for (t = 0; t < s; t++)
+            CHECK(pn_algo_name((pn_algo)t) && pn_algo_name((pn_algo)s) &&
+                  strcmp(pn_algo_name((pn_algo)t), pn_algo_name((pn_algo)s)) != 0);
+    }
+    CHECK(pn_algo_name((pn_algo)PN_ALGO_COUNT) == NULL && pn_algo_name((pn_algo)-1) == NULL);
+    CHECK(strcmp(pn_algo_name(PN_ALGO_REFERENCE), "reference") == 0 && strcmp(pn_algo_name(PN_ALGO_MCSM), "mcsm") == 0 &&
+          strcmp(pn_algo_name(PN_ALGO_WEDGES), "wedges") == 0);
+    CHECK((pn_build_info() & PN_BUILD_PORT_SCALAR) != 0u);
     CHECK(pn_get_stats(NULL, NULL) == PN_E_INVALID_ARG);
     CHECK(pn_set_parallel_for(NULL, NULL, NULL) == PN_E_INVALID_ARG);
 }

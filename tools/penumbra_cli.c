@@ -22,13 +22,13 @@
 #define PN_CLI_PORTS "scalar"
 #endif
 
-typedef struct pn_algo_name {
+typedef struct cli_algo {
     const char *name;
     pn_algo algo;
     uint32_t build_flag;
-} pn_algo_name;
+} cli_algo;
 
-static const pn_algo_name pn_algos[] = {
+static const cli_algo pn_algos[] = {
     {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE},
     {"gears", PN_ALGO_GEARS, PN_BUILD_GEARS},
     {"srt", PN_ALGO_SRT, PN_BUILD_SRT},
@@ -37,7 +37,7 @@ static const pn_algo_name pn_algos[] = {
     {"wedges", PN_ALGO_WEDGES, PN_BUILD_WEDGES},
     {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},
 };
-#define PN_ALGO_COUNT (sizeof(pn_algos) / sizeof(pn_algos[0]))
+#define CLI_ALGO_COUNT (sizeof(pn_algos) / sizeof(pn_algos[0]))
 /* The demo renders the first entries only: raytrace is a baseline with the reference's bits
  * by construction and the slowest of all (k^2 rays per pixel); the benchmark measures it. */
 #define PN_DEMO_ALGO_COUNT 6u
@@ -64,7 +64,7 @@ static void usage(FILE *f)
             "  penumbra demo [--out DIR] [--size WxH] [--k K] [--threads N]\n"
             "  penumbra info\n"
             "algorithms:");
-    for (i = 0; i < PN_ALGO_COUNT; i++)
+    for (i = 0; i < CLI_ALGO_COUNT; i++)
         if (pn_build_info() & pn_algos[i].build_flag) fprintf(f, " %s", pn_algos[i].name);
     fprintf(f, "\nports: " PN_CLI_PORTS "\nbuilt-in scenes:");
     for (; *names; names++) fprintf(f, " %s", *names);
@@ -74,7 +74,7 @@ static void usage(FILE *f)
 static int find_algo(const char *name, pn_algo *out)
 {
     size_t i;
-    for (i = 0; i < PN_ALGO_COUNT; i++)
+    for (i = 0; i < CLI_ALGO_COUNT; i++)
         if (strcmp(name, pn_algos[i].name) == 0) {
             if (!(pn_build_info() & pn_algos[i].build_flag)) return 2;
             *out = pn_algos[i].algo;
@@ -86,7 +86,7 @@ static int find_algo(const char *name, pn_algo *out)
 static const char *algo_name(pn_algo a)
 {
     size_t i;
-    for (i = 0; i < PN_ALGO_COUNT; i++)
+    for (i = 0; i < CLI_ALGO_COUNT; i++)
         if (pn_algos[i].algo == a) return pn_algos[i].name;
     return "?";
 }

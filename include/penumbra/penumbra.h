@@ -37,7 +37,7 @@
  *   one call at a time per context.
  *
  * USAGE
- *   pn_limits lim = { 100000, 512, 512, 0, 0, 0, 0, 0, 0 };  // max triangles, width, height; the rest default
+ *   pn_limits lim = { 100000, 512, 512, 0, 0, 0, 0, 0, 0, 0 };  // max triangles, width, height; 0: default
  *   size_t bytes; pn_arena_size(&lim, &bytes);
  *   void *mem = my_alloc(bytes);             // or static uint8_t mem[PN_ARENA_BYTES_MAX(...)]
  *   pn_context *ctx; pn_init(&ctx, mem, bytes, &lim);
@@ -290,6 +290,7 @@ typedef enum pn_algo {
     PN_ALGO_WEDGES = 6    /* penumbra wedges: soft shadow volumes from the silhouettes seen
                              by the light centre, overlaps blended (approximate) */
 } pn_algo;
+#define PN_ALGO_COUNT 7 /* pn_algo values are 0 .. PN_ALGO_COUNT - 1 */
 
 typedef struct pn_frame_options {
     uint32_t width, height; /* >= 1, <= the context's limits */
@@ -488,7 +489,8 @@ typedef struct pn_stats {
  * otherwise PN_OK. */
 pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);
 
-/* Which algorithms and ports this build holds, as flags. */
+/* Which algorithms and ports this build holds, as flags: PN_BUILD_<ALGO> is
+ * 1u << PN_ALGO_<ALGO>, so `pn_build_info() & (1u << a)` tests pn_algo a. */
 #define PN_BUILD_REFERENCE 0x1u
 #define PN_BUILD_GEARS 0x2u
 #define PN_BUILD_RAYTRACE 0x4u
@@ -498,6 +500,11 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);
 #define PN_BUILD_WEDGES 0x40u
 #define PN_BUILD_PORT_SCALAR 0x100u
 uint32_t pn_build_info(void);
+
+/* An algorithm's name: "reference", "gears", "raytrace", "srt", "occtex", "mcsm",
+ * "wedges" (what the CLI's --algo takes and the golden frames are keyed by), whether or not
+ * it is compiled in; NULL for a value outside 0 .. PN_ALGO_COUNT - 1. Static storage. */
+const char *pn_algo_name(pn_algo algo);
 
 #ifdef __cplusplus
 }

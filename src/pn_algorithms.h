@@ -1,0 +1,62 @@
+/* pn_algorithms.h - the registry: every algorithm once, in pn_algo order. From this list
+ * come the frame's dispatch and option checks (src/pn_frame.c), pn_build_info() and
+ * pn_algo_name() (src/pn_context.c). Adding an algorithm is its module and one line here
+ * (docs/architecture.md, "Adding an algorithm").
+ *
+ *   X(ID, name)   ID: as in PN_ALGO_<ID>, PN_ENABLE_<ID> and PN_BUILD_<ID>;
+ *                 name: its module src/pn_<name>.c, and what pn_algo_name() returns
+ *
+ * A module provides, whatever the configuration (PN_ALGO_STUBS when PN_ENABLE_<ID> is 0):
+ *   pn_<name>_prepare(fs, opt)  checks the algorithm's own options (pn_fail naming the
+ *                               option) and derives the frame's parameters from them (fs
+ *                               and fs->K; 0 means the default), before any pool is carved;
+ *   pn_<name>_frame(fs)         its shadow pass: the visibility buffer and one
+ *                               pn_row_counters per row, through the port commands of
+ *                               src/pn_device.h. Not internal to this header. */
+#ifndef PN_ALGORITHMS_H
+#define PN_ALGORITHMS_H
+
+#include "pn_internal.h"
+
+#define PN_ALGORITHMS(X)                                                                       \
+    X(REFERENCE, reference)                                                                    \
+    X(GEARS, gears)                                                                            \
+    X(RAYTRACE, raytrace)                                                                      \
+    X(SRT, srt)                                                                                \
+    X(OCCTEX, occtex)                                                                          \
+    X(MCSM, mcsm)                                                                              \
+    X(WEDGES, wedges)
+
+#define PN_ALGO_DECLARE(ID, name)                                                              \
+    pn_status pn_##name##_prepare(pn_frame_state *fs, const pn_frame_options *opt);             \
+    pn_status pn_##name##_frame(pn_frame_state *fs);
+PN_ALGORITHMS(PN_ALGO_DECLARE)
+#undef PN_ALGO_DECLARE
+
+/* The module of an algorithm that is not compiled in: its prepare refuses every frame. */
+#define PN_ALGO_STUBS(ID, name)                                                                \
+    pn_status pn_##name##_prepare(pn_frame_state *fs, const pn_frame_options *opt)             \
+    {                                                                                          \
+        (void)opt;                                                                             \
+        return pn_fail(fs->ctx, PN_E_UNSUPPORTED,                                              \
+                       "PN_ALGO_" #ID " is not compiled in (PN_ENABLE_" #ID " 0)");             \
+    }                                                                                          \
+    pn_status pn_##name##_frame(pn_frame_state *fs)                                            \
+    {                                                                                          \
+        (void)fs;                                                                              \
+        return PN_E_UNSUPPORTED;                                                               \
+    }
+
+/* Each ID's position in the list is its pn_algo value, and its build flag that value's bit
+ * (checked at compile time). */
+#define PN_ALGO_INDEX(ID, name) PN_ALGO_INDEX_##ID,
+enum { PN_ALGORITHMS(PN_ALGO_INDEX) PN_ALGO_LISTED };
+#undef PN_ALGO_INDEX
+#define PN_ALGO_CHECK(ID, name)                                                                \
+    typedef char pn_algo_check_##name[PN_ALGO_INDEX_##ID == (int)PN_ALGO_##ID &&                \
+                                      PN_BUILD_##ID == 1u << PN_ALGO_##ID ? 1 : -1];
+PN_ALGORITHMS(PN_ALGO_CHECK)
+#undef PN_ALGO_CHECK
+typedef char pn_algo_check_count[PN_ALGO_LISTED == PN_ALGO_COUNT ? 1 : -1];
+
+#endif

@@ -1,4 +1,4 @@
-/* Cross-port harness (issue 4): every algorithm in pn_x_algos on the scalar port and on
+/* Cross-port harness (issue 4): every algorithm (pn_algo_name) on the scalar port and on
  * the OpenCL port, compared with memcmp: visibility, RGBA image and the whole G-buffer
  * (depth, triangle ids, positions, normals), plus the statuses, the messages and the
  * counters of pn_stats (the same work in the same order gives the same counts).
@@ -10,7 +10,7 @@
  * runs of cells) and PN_E_POOL_EXHAUSTED, errors and the API's promises (device choice,
  * one scene upload per scene, results in the caller's arena, buffer creation failure).
  *
- * A later algorithm plugs in by adding a row to pn_x_algos (and its kernel to the port). */
+ * A later algorithm is in by its registry line (src/pn_algorithms.h) and its kernels. */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <stdlib.h>
@@ -27,20 +27,8 @@
 #include "pn_setup.h"
 #include "pn_test.h"
 
-static const struct {
-    const char *name;
-    pn_algo algo;
-    uint32_t build_flag;
-} pn_x_algos[] = {
-    {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE},
-    {"gears", PN_ALGO_GEARS, PN_BUILD_GEARS},
-    {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},
-    {"srt", PN_ALGO_SRT, PN_BUILD_SRT},
-    {"occtex", PN_ALGO_OCCTEX, PN_BUILD_OCCTEX},
-    {"mcsm", PN_ALGO_MCSM, PN_BUILD_MCSM},
-    {"wedges", PN_ALGO_WEDGES, PN_BUILD_WEDGES},
-};
-#define PN_X_ALGOS (sizeof(pn_x_algos) / sizeof(pn_x_algos[0]))
+/* Every algorithm: pn_algo 0 .. PN_ALGO_COUNT - 1, named by pn_algo_name, compiled in when
+ * pn_build_info() has bit 1u << algo (the registry, src/pn_algorithms.h). */
 
 /* ---- one frame, kept ----------------------------------------------------------------- */
 
@@ -315,13 +303,13 @@ static void test_scenes(void)
                   "%s: %s", s->name, pn_last_error(g_rig.h.ctx));
         for (q = 0; q < 2; q++) {
             pn_light light = q ? point_light(&s->light) : s->light;
-            for (a = 0; a < PN_X_ALGOS; a++) {
+            for (a = 0; a < PN_ALGO_COUNT; a++) {
                 pn_frame_options o;
                 char what[256];
-                if (!(pn_build_info() & pn_x_algos[a].build_flag)) continue;
-                opts(&o, s, g_scenes[i].w, g_scenes[i].h, g_scenes[i].k, pn_x_algos[a].algo);
+                if (!(pn_build_info() & (1u << a))) continue;
+                opts(&o, s, g_scenes[i].w, g_scenes[i].h, g_scenes[i].k, (pn_algo)a);
                 snprintf(what, sizeof(what), "%s %ux%u k=%u %s light, %s", s->name, o.width, o.height, o.k,
-                         q ? "point" : "area", pn_x_algos[a].name);
+                         q ? "point" : "area", pn_algo_name((pn_algo)a));
                 if (cross(&g_rig, &s->camera, &light, &o, what) == PN_OK)
                     fprintf(stderr, "same: %s (%u lit pixels, %llu candidates)\n", what, g_rig.a.st.lit_pixels,
                             (unsigned long long)g_rig.a.st.shadow_candidates);
@@ -345,18 +333,18 @@ static void test_options(void)
     REQUIRE(pn_scene_set(g_rig.h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) ==
             PN_OK);
     for (i = 0; i < 4; i++)
-        for (a = 0; a < PN_X_ALGOS; a++) {
-            opts(&o, &s, 40, 32, ks[i], pn_x_algos[a].algo);
-            snprintf(what, sizeof(what), "spot k=%u %s", ks[i], pn_x_algos[a].name);
+        for (a = 0; a < PN_ALGO_COUNT; a++) {
+            opts(&o, &s, 40, 32, ks[i], (pn_algo)a);
+            snprintf(what, sizeof(what), "spot k=%u %s", ks[i], pn_algo_name((pn_algo)a));
             CHECK(cross(&g_rig, &s.camera, &s.light, &o, what) == PN_OK);
         }
     /* Without a clock the frame takes no timestamps, and the OpenCL port then never waits
      * for the device between passes (pn_dev_timestamp): the same bytes all the same. */
     REQUIRE(pn_set_clock(g_rig.h.ctx, NULL, NULL) == PN_OK);
-    for (a = 0; a < PN_X_ALGOS; a++) {
+    for (a = 0; a < PN_ALGO_COUNT; a++) {
         pn_stats st;
-        opts(&o, &s, 40, 32, 16, pn_x_algos[a].algo);
-        snprintf(what, sizeof(what), "spot k=16 %s, no clock", pn_x_algos[a].name);
+        opts(&o, &s, 40, 32, 16, (pn_algo)a);
+        snprintf(what, sizeof(what), "spot k=16 %s, no clock", pn_algo_name((pn_algo)a));
         CHECK(cross(&g_rig, &s.camera, &s.light, &o, what) == PN_OK);
         CHECK(pn_get_stats(g_rig.h.ctx, &st) == PN_OK && st.pass_ns[PN_PASS_SHADOW] == 0u);
     }

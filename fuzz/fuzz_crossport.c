@@ -93,7 +93,7 @@ static uint8_t k_rgba[MAX_W * MAX_H * 4];
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     rd r = {data, size, 0};
-    uint32_t algo = byte(&r) % 7u, flags = byte(&r), k = 4u << (byte(&r) % 4u), grid = 1u + byte(&r) % 64u;
+    uint32_t algo = byte(&r) % PN_ALGO_COUNT, flags = byte(&r), k = 4u << (byte(&r) % 4u), grid = 1u + byte(&r) % 64u;
     uint32_t w = 1u + byte(&r) % MAX_W, h = 1u + byte(&r) % MAX_H, nv = 3u + byte(&r) % (MAX_V - 2u);
     uint32_t nt = 1u + byte(&r) % (MAX_T - 2u), i, q;
     float scale = (flags & 32u) ? 1e-3f : (flags & 64u) ? 1e3f : 1.0f;
@@ -107,8 +107,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     pn_status sa, sb, s1;
     char msg[256];
     rig *rg = get_rig((flags >> 3) & 3u);
-    const pn_algo algos[7] = {PN_ALGO_REFERENCE, PN_ALGO_GEARS, PN_ALGO_RAYTRACE, PN_ALGO_SRT, PN_ALGO_OCCTEX,
-                              PN_ALGO_MCSM, PN_ALGO_WEDGES};
 
     /* Camera around the origin, light above, both scaled with the scene. */
     for (q = 0; q < 3; q++) cam.eye[q] = scale * 3.0f * num(&r);
@@ -161,7 +159,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     opt.width = w;
     opt.height = h;
     opt.k = k;
-    opt.algo = algos[algo];
+    opt.algo = (pn_algo)algo;
     opt.gears_grid = grid;
     opt.exact_stats = (flags >> 1) & 1u;
     /* Occlusion textures: every filter, combination and slice count from the grid byte. */
@@ -197,7 +195,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                pn_last_error(rg->ctx));
     if (getenv("PN_FUZZ_VERBOSE"))
         fprintf(stderr, "%s %ux%u k=%u %s light, %u triangles: %s, %u lit, %llu candidates, %u GEARS tiles\n",
-                algo == 0 ? "reference" : algo == 1 ? "gears" : algo == 2 ? "raytrace" : algo == 3 ? "srt" : algo == 4 ? "occtex" : algo == 5 ? "mcsm" : "wedges", w, h, k, (flags & 1u) ? "point" : "area", nt,
+                pn_algo_name((pn_algo)algo), w, h, k, (flags & 1u) ? "point" : "area", nt,
                 pn_status_str(sa), sa == PN_OK ? sa_st.lit_pixels : 0u,
                 sa == PN_OK ? (unsigned long long)sa_st.shadow_candidates : 0ull, sa == PN_OK ? sa_st.gears_tiles : 0u);
     if (sa != PN_OK) {

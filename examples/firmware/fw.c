@@ -157,17 +157,6 @@ static int fail(const char *what, pn_status st, const pn_context *ctx)
 
 int fw_run(fw_write_fn write)
 {
-    static const struct {
-        pn_algo algo;
-        uint32_t flag;
-        const char *name;
-    } algos[] = {{PN_ALGO_REFERENCE, PN_BUILD_REFERENCE, "reference"},
-                 {PN_ALGO_GEARS, PN_BUILD_GEARS, "gears"},
-                 {PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE, "raytrace"},
-                 {PN_ALGO_SRT, PN_BUILD_SRT, "srt"},
-                 {PN_ALGO_OCCTEX, PN_BUILD_OCCTEX, "occtex"},
-                 {PN_ALGO_MCSM, PN_BUILD_MCSM, "mcsm"},
-                 {PN_ALGO_WEDGES, PN_BUILD_WEDGES, "wedges"}};
     static const uint32_t ks[] = {4u, 8u};
     const pn_limits lim = {PN_MAX_TRIANGLES, FW_WIDTH, FW_HEIGHT, 0u, 0u, 0u, 0u, 0u, 0u, 0u};
     const pn_camera cam = {{0.0f, 2.5f, 3.5f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 50.0f};
@@ -206,8 +195,9 @@ int fw_run(fw_write_fn write)
     put_u32(FW_HEIGHT);
     end_line();
 
-    for (a = 0; a < sizeof algos / sizeof algos[0]; a++) {
-        if ((info & algos[a].flag) == 0u)
+    /* Every algorithm compiled in (pn_build_info has bit 1u << algo), in pn_algo order. */
+    for (a = 0; a < PN_ALGO_COUNT; a++) {
+        if ((info & (1u << a)) == 0u)
             continue;
         for (ki = 0; ki < sizeof ks / sizeof ks[0]; ki++)
             for (li = 0; li < 2u; li++) {
@@ -218,15 +208,15 @@ int fw_run(fw_write_fn write)
                 opt.width = FW_WIDTH;
                 opt.height = FW_HEIGHT;
                 opt.k = ks[ki];
-                opt.algo = algos[a].algo;
+                opt.algo = (pn_algo)a;
                 opt.gears_grid = PN_GEARS_GRID_MAX;
                 st = pn_render(ctx, &cam, li == 0u ? &area : &point, &opt, &frame);
                 if (st != PN_OK)
-                    return fail(algos[a].name, st, ctx);
+                    return fail(pn_algo_name((pn_algo)a), st, ctx);
                 for (p = 0; p < FW_WIDTH * FW_HEIGHT; p++)
                     umbra += frame.visibility[p] == 0.0f;
                 put_str("frame ");
-                put_str(algos[a].name);
+                put_str(pn_algo_name((pn_algo)a));
                 put_str(" k=");
                 put_u32(opt.k);
                 put_str(li == 0u ? " area" : " point");

@@ -4,7 +4,7 @@
 #   usage: tools/bench.sh full|quick PENUMBRA_BENCH OUT_DIR [SCENES_DIR]
 # full:  every built-in scene and every .glb in SCENES_DIR, the paper-style sweeps, the
 #        gallery; OUT_DIR (docs/bench) is emptied first, so it is regenerated from scratch.
-# quick: a small subset with every code path (see --quick in tools/penumbra_bench.c).
+# quick: a small subset with every code path (see --quick in tools/bench/main.c).
 # full also appends tools/bench_profile.sh's callgrind table (where the time goes).
 # Plots and the gallery are drawn by gnuplot from OUT_DIR/plots.gp when gnuplot is
 # installed (make bench installs it); without it the tables are still written.

@@ -1,4 +1,4 @@
-/* pn_bench.h - the pieces of tools/penumbra_bench.c that live in their own files: the
+/* pn_bench.h - the pieces of penumbra_bench (tools/bench/) that live in their own files: the
  * shadow-ray set-up shared with the library's kernels, the G-buffer snapshot every baseline
  * traces from, the Embree 3 baseline and our own per-pixel masks. Host code: may allocate.
  *

@@ -541,7 +541,9 @@ static void test_api(void)
     CHECK(pn_cl_open(g_rig.h.ctx, &o, &cl) == PN_E_DEVICE && cl == NULL);
     setenv("PN_OPENCL_DEVICE", "no-such-opencl-device", 1);
     CHECK(pn_cl_open(g_rig.h.ctx, NULL, &cl) == PN_E_DEVICE && cl == NULL);
-    o.device = "portable computing language"; /* the option wins over the environment */
+    /* The option wins over the environment: the device the harness runs on (the caller's
+     * PN_OPENCL_DEVICE, e.g. "gpu" on a GPU machine; else the default, a CPU device). */
+    o.device = env ? saved_env : "cpu";
     st = pn_cl_open(g_rig.h.ctx, &o, &other);
     CHECK_MSG(st == PN_OK, "%s", pn_last_error(g_rig.h.ctx));
     setenv("PN_OPENCL_DEVICE", "0:0", 1);

@@ -22,25 +22,11 @@
 #define PN_CLI_PORTS "scalar"
 #endif
 
-typedef struct cli_algo {
-    const char *name;
-    pn_algo algo;
-    uint32_t build_flag;
-} cli_algo;
-
-static const cli_algo pn_algos[] = {
-    {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE},
-    {"gears", PN_ALGO_GEARS, PN_BUILD_GEARS},
-    {"srt", PN_ALGO_SRT, PN_BUILD_SRT},
-    {"occtex", PN_ALGO_OCCTEX, PN_BUILD_OCCTEX},
-    {"mcsm", PN_ALGO_MCSM, PN_BUILD_MCSM},
-    {"wedges", PN_ALGO_WEDGES, PN_BUILD_WEDGES},
-    {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},
-};
-#define CLI_ALGO_COUNT (sizeof(pn_algos) / sizeof(pn_algos[0]))
-/* The demo renders the first entries only: raytrace is a baseline with the reference's bits
- * by construction and the slowest of all (k^2 rays per pixel); the benchmark measures it. */
-#define PN_DEMO_ALGO_COUNT 6u
+/* The algorithms are the registry's (pn_algo 0 .. PN_ALGO_COUNT - 1, pn_algo_name, compiled
+ * in when pn_build_info() has bit 1u << algo). The demo renders all but raytrace, a baseline
+ * with the reference's bits by construction and the slowest of all (k^2 rays per pixel);
+ * the benchmark measures it. */
+#define PN_DEMO_ALGO_COUNT (PN_ALGO_COUNT - 1u)
 
 static void usage(FILE *f)
 {
@@ -62,10 +48,10 @@ static void usage(FILE *f)
             "                  [--wg-mode blend|additive]\n"
             "                  --out image.png [--vis vis.pfm] [--ids ids.bin] [--stats stats.json]\n"
             "  penumbra demo [--out DIR] [--size WxH] [--k K] [--threads N]\n"
-            "  penumbra info\n"
+            "  penumbra info [--no-build]\n"
             "algorithms:");
-    for (i = 0; i < CLI_ALGO_COUNT; i++)
-        if (pn_build_info() & pn_algos[i].build_flag) fprintf(f, " %s", pn_algos[i].name);
+    for (i = 0; i < PN_ALGO_COUNT; i++)
+        if (pn_build_info() & (1u << i)) fprintf(f, " %s", pn_algo_name((pn_algo)i));
     fprintf(f, "\nports: " PN_CLI_PORTS "\nbuilt-in scenes:");
     for (; *names; names++) fprintf(f, " %s", *names);
     fprintf(f, "\n");
@@ -73,23 +59,17 @@ static void usage(FILE *f)
 
 static int find_algo(const char *name, pn_algo *out)
 {
-    size_t i;
-    for (i = 0; i < CLI_ALGO_COUNT; i++)
-        if (strcmp(name, pn_algos[i].name) == 0) {
-            if (!(pn_build_info() & pn_algos[i].build_flag)) return 2;
-            *out = pn_algos[i].algo;
+    uint32_t i;
+    for (i = 0; i < PN_ALGO_COUNT; i++)
+        if (strcmp(name, pn_algo_name((pn_algo)i)) == 0) {
+            if (!(pn_build_info() & (1u << i))) return 2;
+            *out = (pn_algo)i;
             return 0;
         }
     return 1;
 }
 
-static const char *algo_name(pn_algo a)
-{
-    size_t i;
-    for (i = 0; i < CLI_ALGO_COUNT; i++)
-        if (pn_algos[i].algo == a) return pn_algos[i].name;
-    return "?";
-}
+static const char *algo_name(pn_algo a) { return pn_algo_name(a) ? pn_algo_name(a) : "?"; }
 
 /* The port a frame is rendered with: "scalar" (pn_render) or "opencl" (pn_opencl_render,
  * on the device PN_OPENCL_DEVICE or --cl-device picks). */
@@ -141,6 +121,16 @@ static pn_status cli_port_render(cli_port *p, pn_context *ctx, const pn_camera *
     return pn_render(ctx, cam, light, opt, fr);
 }
 
+/* The OpenCL device's name when the port is OpenCL, else NULL. */
+static const char *cli_port_device(const cli_port *p)
+{
+#if PN_HAVE_OPENCL
+    if (p->cl) return pn_opencl_device_name(p->cl);
+#endif
+    (void)p;
+    return NULL;
+}
+
 static void cli_port_close(cli_port *p)
 {
 #if PN_HAVE_OPENCL
@@ -154,8 +144,22 @@ static void json_vec(FILE *f, const char *key, const float v[3], int comma)
     fprintf(f, "  \"%s\": [%.9g, %.9g, %.9g]%s\n", key, v[0], v[1], v[2], comma ? "," : "");
 }
 
+/* A JSON string value: quotes, backslashes and control characters escaped. */
+static void json_str(FILE *f, const char *v)
+{
+    fputc('"', f);
+    for (; *v; v++) {
+        unsigned char c = (unsigned char)*v;
+        if (c == '"' || c == '\\') fprintf(f, "\\%c", c);
+        else if (c < 0x20u) fprintf(f, "\\u%04x", c);
+        else fputc(c, f);
+    }
+    fputc('"', f);
+}
+
+/* device: the OpenCL device's name for --port opencl ("opencl_device" in the file), else NULL. */
 static int write_stats(const char *path, const pn_setup *s, const pn_frame_options *opt, const char *port,
-                       int threads, const pn_stats *st, double ms_total, const pn_frame *fr)
+                       const char *device, int threads, const pn_stats *st, double ms_total, const pn_frame *fr)
 {
     FILE *f = fopen(path, "w");
     double mean = 0.0;
@@ -177,6 +181,11 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
     fprintf(f, "  \"scene_diag\": %.9g,\n  \"eps_rel\": %.9g,\n  \"eps\": %.9g,\n", s->diag, s->eps_rel, opt->eps);
     fprintf(f, "  \"width\": %u,\n  \"height\": %u,\n  \"k\": %u,\n", opt->width, opt->height, opt->k);
     fprintf(f, "  \"algo\": \"%s\",\n  \"port\": \"%s\",\n  \"threads\": %d,\n", algo_name(opt->algo), port, threads);
+    if (device) {
+        fprintf(f, "  \"opencl_device\": ");
+        json_str(f, device);
+        fprintf(f, ",\n");
+    }
     fprintf(f, "  \"arena_bytes\": %zu,\n  \"arena_carved\": %zu,\n  \"arena_persistent\": %zu,\n"
                "  \"arena_high_water\": %zu,\n",
             st->arena_bytes, st->arena_carved, st->arena_persistent, st->arena_high_water);
@@ -441,7 +450,7 @@ static int cmd_render(int argc, char **argv)
         fprintf(stderr, "penumbra: %s\n", err);
         goto fail;
     }
-    if (stats && write_stats(stats, &s, &opt, port, h.threads.count, &st, ms, &fr)) {
+    if (stats && write_stats(stats, &s, &opt, port, cli_port_device(&cp), h.threads.count, &st, ms, &fr)) {
         fprintf(stderr, "penumbra: cannot write %s: %s\n", stats, strerror(errno));
         goto fail;
     }
@@ -530,24 +539,26 @@ static int cmd_demo(int argc, char **argv)
         /* Every frame again on the OpenCL port when it is built: same bytes, its time. */
         if (rc == 0 && PN_HAVE_OPENCL && cli_port_open(&cp, "opencl", NULL, h.ctx) != 0)
             fprintf(stderr, "penumbra demo: scalar port only\n");
-        for (a = 0; rc == 0 && a < PN_DEMO_ALGO_COUNT; a++) {
+        for (a = 0; rc == 0 && a < PN_ALGO_COUNT; a++) {
             pn_frame fr;
             uint64_t t0;
             double ms, se = 0.0, mx = 0.0;
-            uint32_t col = a == 0 ? 0 : 2 + 2 * (uint32_t)(a - 1);
-            if (!(pn_build_info() & pn_algos[a].build_flag)) continue;
-            opt.algo = pn_algos[a].algo;
+            /* the sheet's column: the reference, then every other algorithm but raytrace */
+            uint32_t d = (uint32_t)a - ((uint32_t)a > PN_ALGO_RAYTRACE), col = d == 0 ? 0 : 2 + 2 * (d - 1u);
+            const char *an = pn_algo_name((pn_algo)a);
+            if (a == PN_ALGO_RAYTRACE || !(pn_build_info() & (1u << a))) continue;
+            opt.algo = (pn_algo)a;
             t0 = pn_threads_now_ns(NULL);
             if (pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) != PN_OK) {
-                fprintf(stderr, "penumbra: %s/%s: %s\n", names[si], pn_algos[a].name, pn_last_error(h.ctx));
+                fprintf(stderr, "penumbra: %s/%s: %s\n", names[si], an, pn_last_error(h.ctx));
                 rc = 1;
                 break;
             }
             ms = (pn_threads_now_ns(NULL) - t0) / 1e6;
             if (a == 0) memcpy(ref, fr.visibility, n * sizeof(float));
             vis_error(fr.visibility, ref, n, &se, &mx);
-            printf("%-16s %-10s %-7s %10.1f %10.6f %10.6f\n", names[si], pn_algos[a].name, "scalar", ms, se, mx);
-            snprintf(path, sizeof(path), "%s/%s_%s.png", outdir, names[si], pn_algos[a].name);
+            printf("%-16s %-10s %-7s %10.1f %10.6f %10.6f\n", names[si], an, "scalar", ms, se, mx);
+            snprintf(path, sizeof(path), "%s/%s_%s.png", outdir, names[si], an);
             if (pn_write_png(path, fr.rgba, w, hgt, err, sizeof(err))) { fprintf(stderr, "%s\n", err); rc = 1; }
             pn_blit_rgba(sheet, sw, fr.rgba, w, hgt, gap + col * (w + gap), gap + si * (hgt + gap));
             if (a == 0) {
@@ -564,16 +575,16 @@ static int cmd_demo(int argc, char **argv)
                 memcpy(kept + n * 4, fr.rgba, n * 4);
                 t0 = pn_threads_now_ns(NULL);
                 if (cli_port_render(&cp, h.ctx, &s.camera, &s.light, &opt, &fo) != PN_OK) {
-                    fprintf(stderr, "penumbra: %s/%s/opencl: %s\n", names[si], pn_algos[a].name, pn_last_error(h.ctx));
+                    fprintf(stderr, "penumbra: %s/%s/opencl: %s\n", names[si], an, pn_last_error(h.ctx));
                     rc = 1;
                     break;
                 }
                 ms = (pn_threads_now_ns(NULL) - t0) / 1e6;
                 vis_error(fo.visibility, ref, n, &se, &mx);
-                printf("%-16s %-10s %-7s %10.1f %10.6f %10.6f\n", names[si], pn_algos[a].name, "opencl", ms, se, mx);
+                printf("%-16s %-10s %-7s %10.1f %10.6f %10.6f\n", names[si], an, "opencl", ms, se, mx);
                 if (memcmp(kept, fo.visibility, n * 4) != 0 || memcmp(kept + n * 4, fo.rgba, n * 4) != 0) {
                     fprintf(stderr, "penumbra: %s/%s: the OpenCL frame differs from the scalar one\n", names[si],
-                            pn_algos[a].name);
+                            an);
                     rc = 1;
                 }
             }
@@ -597,6 +608,61 @@ static int cmd_demo(int argc, char **argv)
     return rc;
 }
 
+/* penumbra info: the OpenCL devices, with their type and whether the port takes them; with
+ * build, each one the checks pass is also opened on a small context (kernels built, the
+ * numerics probe run), which is what decides. */
+static void cl_info(int build)
+{
+#if PN_HAVE_OPENCL
+    enum { CAP = 16 };
+    static pn_opencl_device devs[CAP];
+    unsigned n = 0, i;
+    pn_status st = pn_opencl_devices(devs, CAP, &n);
+    printf("OpenCL devices (--cl-device / PN_OPENCL_DEVICE: P:D, gpu, cpu, accelerator, gpu:N, or part of the name):\n");
+    if (st != PN_OK || n == 0) {
+        printf("  none: no OpenCL platform or device is installed (%s)\n", pn_status_str(st));
+        return;
+    }
+    for (i = 0; i < n && i < CAP; i++) {
+        const pn_opencl_device *d = &devs[i];
+        printf("  %-5s %-11s %s / %s [%s]: ", d->spec, d->type, d->platform, d->name, d->version);
+        if (!d->usable) {
+            printf("refused: %s\n", d->problem);
+            continue;
+        }
+        if (!build) {
+            printf("checks pass (kernels not built: --no-build)\n");
+            continue;
+        }
+        {
+            pn_host h;
+            char err[256];
+            pn_opencl *cl = NULL;
+            pn_opencl_options o;
+            pn_opencl_info info;
+            if (pn_host_open(&h, 16, 16, 16, 1, err, sizeof(err)) != 0) {
+                printf("cannot open a context: %s\n", err);
+                continue;
+            }
+            pn_opencl_options_default(&o);
+            o.device = d->spec;
+            st = pn_cl_open(h.ctx, &o, &cl);
+            if (st == PN_OK && pn_opencl_get_info(cl, &info) == PN_OK)
+                printf("accepted (kernels built in %.0f ms + %.0f ms first launches, numerics probe passed)\n",
+                       info.build_ms, info.warmup_ms);
+            else
+                printf("refused: %s (%s)\n", pn_last_error(h.ctx), pn_status_str(st));
+            pn_cl_close(cl);
+            pn_host_close(&h);
+        }
+    }
+    if (n > CAP) printf("  ... and %u more\n", n - CAP);
+#else
+    (void)build;
+    printf("OpenCL devices: the OpenCL port is not built\n");
+#endif
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -606,10 +672,16 @@ int main(int argc, char **argv)
     if (strcmp(argv[1], "render") == 0) return cmd_render(argc - 2, argv + 2);
     if (strcmp(argv[1], "demo") == 0) return cmd_demo(argc - 2, argv + 2);
     if (strcmp(argv[1], "info") == 0) {
+        int build = !(argc > 2 && strcmp(argv[2], "--no-build") == 0);
+        if (argc > 2 + !build) {
+            usage(stderr);
+            return 2;
+        }
         printf("penumbra build: flags 0x%x, PN_MASK_K_MAX %u, PN_MAX_TRIANGLES %u, max image %ux%u\n",
                pn_build_info(), (unsigned)PN_MASK_K_MAX, (unsigned)PN_MAX_TRIANGLES, (unsigned)PN_MAX_WIDTH,
                (unsigned)PN_MAX_HEIGHT);
         usage(stdout);
+        cl_info(build);
         return 0;
     }
     if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {

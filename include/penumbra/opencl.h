@@ -14,16 +14,34 @@
  *   Kernels are built with -cl-std=CL1.2 -cl-fp32-correctly-rounded-divide-sqrt and
  *   FP_CONTRACT OFF; they use no relaxed math, no float atomics, and nothing whose result
  *   depends on the order work items run in. A device must report correctly rounded
- *   divide/sqrt, round to nearest, denormals and inf/NaN for single precision and the
- *   host's endianness, or pn_opencl_create returns PN_E_UNSUPPORTED saying which is missing.
+ *   divide/sqrt, round to nearest, denormals and inf/NaN for single precision, the host's
+ *   endianness, a compiler, OpenCL C 1.2 or later and room for a pass's arguments
+ *   (CL_DEVICE_MAX_PARAMETER_SIZE), and run every kernel in work groups of the size the port
+ *   launches (CL_KERNEL_WORK_GROUP_SIZE), or pn_opencl_create returns PN_E_UNSUPPORTED
+ *   saying which is missing. The kernels need no extension (32-bit integer atomics on
+ *   global memory are core OpenCL C 1.1). Then a numerics probe runs on the device: a*b - p
+ *   with p = a*b (contraction), a*b + c*d, a/b, sqrt and denormal products over 4096 hashed
+ *   inputs, compared bit for bit (through order-independent sums of hashes) with the same
+ *   arithmetic in C on the host; a device that differs (a compiler that contracts despite
+ *   FP_CONTRACT OFF, a division that is not correctly rounded although the device says it
+ *   is, denormals flushed) gets PN_E_UNSUPPORTED naming the check, before any frame runs.
+ *   The probe catches what a device's properties promise and its compiler breaks; the
+ *   cross-port tests (test_crossport, test_golden --port opencl) prove the bytes on it.
  *
  * DEVICE CHOICE (first that applies)
  *   1. pn_opencl_options.device, if not NULL and not empty;
  *   2. the environment variable PN_OPENCL_DEVICE, if set and not empty;
  *   3. the first CPU device of a PoCL platform ("Portable Computing Language"), else the
  *      first device of the first platform that has one.
- *   A device string is either "P:D" (platform index, device index, as clinfo -l lists
- *   them) or text matched, ignoring case, against "<platform name> / <device name>".
+ *   A device string is one of, in this order:
+ *   - a device type: "gpu", "cpu" or "accelerator" (any case), the first device of that
+ *     CL_DEVICE_TYPE in clinfo order; "gpu:N" (likewise "cpu:N", "accelerator:N") the N-th
+ *     one, from 0. No such device: PN_E_DEVICE, the message listing the devices found
+ *     ("P:D name (type)"). The type picks the device; the checks below still apply to it.
+ *   - "P:D" (platform index, device index, as clinfo -l lists them);
+ *   - text matched, ignoring case, against "<platform name> / <device name>" (the first
+ *     device that contains it).
+ *   pn_opencl_devices lists what is there, with the type and the index of each.
  *
  * MEMORY
  *   The port's state lives in a block the caller hands to pn_opencl_create (size query:
@@ -89,6 +107,7 @@ const char *pn_opencl_device_name(const pn_opencl *cl);
 typedef struct pn_opencl_info {
     double build_ms;       /* clBuildProgram, wall clock */
     double warmup_ms;      /* the first launch of every kernel (per-launch JIT, PoCL) */
+    double probe_ms;       /* the numerics probe (NUMERICS), its first launch included */
     uint64_t buffer_bytes; /* the device buffer: the arena's carved size */
     uint32_t scene_uploads;  /* scenes uploaded so far (one per changed scene) */
     uint32_t kernels;        /* kernels in the program */
@@ -96,6 +115,24 @@ typedef struct pn_opencl_info {
 
 /* Statuses: PN_E_INVALID_ARG (NULL). */
 pn_status pn_opencl_get_info(const pn_opencl *cl, pn_opencl_info *out);
+
+/* One OpenCL device as pn_opencl_devices reports it. */
+typedef struct pn_opencl_device {
+    char spec[24];      /* "P:D", a device string that picks exactly this device */
+    char type[16];      /* "gpu", "cpu", "accelerator" or "other" (the type keywords) */
+    char platform[160]; /* CL_PLATFORM_NAME */
+    char name[200];     /* CL_DEVICE_NAME */
+    char version[64];   /* CL_DEVICE_VERSION */
+    int usable;         /* 1: its properties pass the checks of NUMERICS (the numerics probe
+                         * and the kernel build run in pn_opencl_create only) */
+    char problem[256];  /* when usable is 0: why, as pn_opencl_create would say it */
+} pn_opencl_device;
+
+/* Every OpenCL device of every platform, in clinfo order: the first `cap` into out[] (the
+ * caller's array; out may be NULL when cap is 0), the number there is into *count. Needs no
+ * context and builds nothing. Statuses: PN_E_INVALID_ARG (count NULL, or out NULL with cap
+ * > 0), PN_E_DEVICE (no OpenCL platform or no device: *count is 0). */
+pn_status pn_opencl_devices(pn_opencl_device *out, unsigned cap, unsigned *count);
 
 #ifdef __cplusplus
 }

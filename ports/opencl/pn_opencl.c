@@ -3,6 +3,7 @@
  * public API, and the launch and transfer helpers the passes use. */
 #define _POSIX_C_SOURCE 200809L
 #include <ctype.h>
+#include <math.h> /* sqrtf: the numerics probe's host side */
 #include <stdio.h>
 #include <stdlib.h> /* getenv */
 #include <string.h>
@@ -127,6 +128,7 @@ typedef struct pn_cl_dev {
     unsigned pi, di;
     cl_device_type type;
     int pocl;
+    char pname[160], dname[200];
     char label[400]; /* "<platform> / <device>" */
 } pn_cl_dev;
 
@@ -141,8 +143,49 @@ static int pn_cl_contains_nocase(const char *hay, const char *needle)
     return n == 0;
 }
 
+/* The keyword of a device type, as DEVICE CHOICE spells it. */
+static const char *pn_cl_type_word(cl_device_type t)
+{
+    if (t & CL_DEVICE_TYPE_GPU) return "gpu";
+    if (t & CL_DEVICE_TYPE_CPU) return "cpu";
+    if (t & CL_DEVICE_TYPE_ACCELERATOR) return "accelerator";
+    return "other";
+}
+
+/* "gpu", "cpu" or "accelerator" (any case), alone or followed by ":N" (the N-th device of
+ * that type, from 0, in clinfo order): 1 and the type and N; 0 for any other string. */
+static int pn_cl_type_spec(const char *spec, cl_device_type *type, unsigned *nth)
+{
+    static const struct {
+        const char *word;
+        cl_device_type type;
+    } kw[] = {{"gpu", CL_DEVICE_TYPE_GPU}, {"cpu", CL_DEVICE_TYPE_CPU}, {"accelerator", CL_DEVICE_TYPE_ACCELERATOR}};
+    size_t k, j;
+    for (k = 0; k < sizeof(kw) / sizeof(kw[0]); k++) {
+        const char *w = kw[k].word, *rest;
+        unsigned long n = 0;
+        for (j = 0; w[j] && tolower((unsigned char)spec[j]) == w[j]; j++) {
+        }
+        if (w[j]) continue;
+        rest = spec + j;
+        if (*rest == ':') {
+            if (!rest[1]) return 0;
+            for (rest++; *rest >= '0' && *rest <= '9'; rest++) {
+                n = n * 10u + (unsigned long)(*rest - '0');
+                if (n > 65535u) return 0;
+            }
+        }
+        if (*rest) return 0;
+        *type = kw[k].type;
+        *nth = (unsigned)n;
+        return 1;
+    }
+    return 0;
+}
+
 /* Every device of every platform, in clinfo order: calls visit(e, arg) for each until it
- * returns non-zero, which stops the walk. No list is kept (no heap). */
+ * returns non-zero, which stops the walk. No list is kept (no heap). ctx may be NULL (the
+ * status alone). */
 typedef int (*pn_cl_visit_fn)(const pn_cl_dev *e, void *arg);
 
 static pn_status pn_cl_each(pn_context *ctx, pn_cl_visit_fn visit, void *arg, unsigned *count)
@@ -162,16 +205,16 @@ static pn_status pn_cl_each(pn_context *ctx, pn_cl_visit_fn visit, void *arg, un
         if (clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, PN_CL_MAX_DEVICES, devs, &nd) != CL_SUCCESS) continue;
         for (d = 0; d < nd && d < PN_CL_MAX_DEVICES; d++) {
             pn_cl_dev e;
-            char dname[200] = "";
             memset(&e, 0, sizeof(e));
-            clGetDeviceInfo(devs[d], CL_DEVICE_NAME, sizeof(dname) - 1, dname, NULL);
+            clGetDeviceInfo(devs[d], CL_DEVICE_NAME, sizeof(e.dname) - 1, e.dname, NULL);
             clGetDeviceInfo(devs[d], CL_DEVICE_TYPE, sizeof(e.type), &e.type, NULL);
             e.platform = plats[p];
             e.device = devs[d];
             e.pi = p;
             e.di = d;
             e.pocl = pn_cl_contains_nocase(pname, "Portable Computing Language") || pn_cl_contains_nocase(pname, "pocl");
-            snprintf(e.label, sizeof(e.label), "%s / %s", pname, dname);
+            snprintf(e.pname, sizeof(e.pname), "%s", pname);
+            snprintf(e.label, sizeof(e.label), "%s / %s", pname, e.dname);
             (*count)++;
             if (visit(&e, arg)) return PN_OK;
         }
@@ -182,26 +225,33 @@ static pn_status pn_cl_each(pn_context *ctx, pn_cl_visit_fn visit, void *arg, un
 
 typedef struct pn_cl_pick_state {
     const char *spec;
-    unsigned pi, di;
-    int by_index, found, first_set;
+    unsigned pi, di, nth, seen;
+    cl_device_type type;
+    int by_index, by_type, found, first_set;
     pn_cl_dev pick, first;
+    char list[200]; /* "P:D name (type), ..." for the message when a type has no device */
 } pn_cl_pick_state;
 
 static int pn_cl_pick_visit(const pn_cl_dev *e, void *arg)
 {
     pn_cl_pick_state *s = (pn_cl_pick_state *)arg;
     int match;
+    size_t len = strlen(s->list);
     if (!s->first_set) {
         s->first = *e;
         s->first_set = 1;
     }
-    if (s->spec) match = s->by_index ? (e->pi == s->pi && e->di == s->di) : pn_cl_contains_nocase(e->label, s->spec);
+    snprintf(s->list + len, sizeof(s->list) - len, "%s%u:%u %s (%s)", len ? ", " : "", e->pi, e->di, e->dname,
+             pn_cl_type_word(e->type));
+    if (s->by_type) match = (e->type & s->type) != 0 && s->seen++ == s->nth;
+    else if (s->spec) match = s->by_index ? (e->pi == s->pi && e->di == s->di) : pn_cl_contains_nocase(e->label, s->spec);
     else match = e->pocl && (e->type & CL_DEVICE_TYPE_CPU);
     if (match) {
         s->pick = *e;
         s->found = 1;
     }
-    return match;
+    /* A type keyword looks at every device, so that its message can list them all. */
+    return match && !s->by_type;
 }
 
 static pn_status pn_cl_pick(pn_context *ctx, const char *spec, pn_cl_dev *out)
@@ -212,8 +262,15 @@ static pn_status pn_cl_pick(pn_context *ctx, const char *spec, pn_cl_dev *out)
     pn_status st;
     memset(&s, 0, sizeof(s));
     s.spec = spec && spec[0] ? spec : NULL;
-    if (s.spec && sscanf(s.spec, "%u:%u%c", &s.pi, &s.di, &tail) == 2) s.by_index = 1;
+    if (s.spec && pn_cl_type_spec(s.spec, &s.type, &s.nth)) s.by_type = 1;
+    else if (s.spec && sscanf(s.spec, "%u:%u%c", &s.pi, &s.di, &tail) == 2) s.by_index = 1;
     if ((st = pn_cl_each(ctx, pn_cl_pick_visit, &s, &n)) != PN_OK) return st;
+    if (!s.found && s.by_type) {
+        char which[48] = "";
+        if (strchr(s.spec, ':')) snprintf(which, sizeof(which), " number %u (from 0)", s.nth);
+        return pn_fail(ctx, PN_E_DEVICE, "no OpenCL %s device%s for '%s'; the devices found: %s",
+                       pn_cl_type_word(s.type), which, s.spec, s.list);
+    }
     if (!s.found && s.spec)
         return pn_fail(ctx, PN_E_DEVICE, "no OpenCL device matches '%s' (give \"P:D\" or part of \"%s\")", s.spec,
                        s.first.label);
@@ -221,8 +278,10 @@ static pn_status pn_cl_pick(pn_context *ctx, const char *spec, pn_cl_dev *out)
     return PN_OK;
 }
 
-/* What bit-identical results need of the device (NUMERICS in opencl.h). */
-static pn_status pn_cl_check_device(pn_context *ctx, cl_device_id dev, const char *label)
+/* What bit-identical results need of the device (NUMERICS in opencl.h), asked of its
+ * properties: PN_OK, or the status and its message in why (ctx-free, for
+ * pn_opencl_devices too). */
+static pn_status pn_cl_device_problem(cl_device_id dev, const char *label, char *why, size_t cap)
 {
     static const struct {
         cl_device_fp_config bit;
@@ -235,25 +294,110 @@ static pn_status pn_cl_check_device(pn_context *ctx, cl_device_id dev, const cha
     cl_bool little = CL_FALSE, compiler = CL_FALSE;
     const uint32_t one = 1u;
     int host_little = *(const unsigned char *)&one == 1u;
+    char cver[256] = ""; /* the whole string: a short buffer fails the query */
+    unsigned major = 0, minor = 0;
     cl_int err;
     size_t i;
+#define PN_CL_QUERY_FAIL(what)                                                                                    \
+    do {                                                                                                          \
+        snprintf(why, cap, "%s: %s (%d)", what, pn_cl_error_name(err), (int)err);                                 \
+        return PN_E_DEVICE;                                                                                       \
+    } while (0)
+    why[0] = 0;
     if ((err = clGetDeviceInfo(dev, CL_DEVICE_SINGLE_FP_CONFIG, sizeof(fp), &fp, NULL)) != CL_SUCCESS)
-        return pn_cl_fail(ctx, "clGetDeviceInfo(CL_DEVICE_SINGLE_FP_CONFIG)", err);
+        PN_CL_QUERY_FAIL("clGetDeviceInfo(CL_DEVICE_SINGLE_FP_CONFIG)");
     for (i = 0; i < sizeof(need) / sizeof(need[0]); i++)
-        if (!(fp & need[i].bit))
-            return pn_fail(ctx, PN_E_UNSUPPORTED,
-                           "OpenCL device '%s' lacks %s in CL_DEVICE_SINGLE_FP_CONFIG: its results could differ "
-                           "from the scalar port's",
-                           label, need[i].name);
+        if (!(fp & need[i].bit)) {
+            snprintf(why, cap,
+                     "OpenCL device '%s' lacks %s in CL_DEVICE_SINGLE_FP_CONFIG: its results could differ "
+                     "from the scalar port's",
+                     label, need[i].name);
+            return PN_E_UNSUPPORTED;
+        }
     if ((err = clGetDeviceInfo(dev, CL_DEVICE_ENDIAN_LITTLE, sizeof(little), &little, NULL)) != CL_SUCCESS)
-        return pn_cl_fail(ctx, "clGetDeviceInfo(CL_DEVICE_ENDIAN_LITTLE)", err);
-    if ((little == CL_TRUE) != host_little)
-        return pn_fail(ctx, PN_E_UNSUPPORTED, "OpenCL device '%s' has the other byte order than the host", label);
+        PN_CL_QUERY_FAIL("clGetDeviceInfo(CL_DEVICE_ENDIAN_LITTLE)");
+    if ((little == CL_TRUE) != host_little) {
+        snprintf(why, cap, "OpenCL device '%s' has the other byte order than the host", label);
+        return PN_E_UNSUPPORTED;
+    }
     if ((err = clGetDeviceInfo(dev, CL_DEVICE_COMPILER_AVAILABLE, sizeof(compiler), &compiler, NULL)) != CL_SUCCESS)
-        return pn_cl_fail(ctx, "clGetDeviceInfo(CL_DEVICE_COMPILER_AVAILABLE)", err);
-    if (compiler != CL_TRUE)
-        return pn_fail(ctx, PN_E_UNSUPPORTED, "OpenCL device '%s' has no compiler", label);
+        PN_CL_QUERY_FAIL("clGetDeviceInfo(CL_DEVICE_COMPILER_AVAILABLE)");
+    if (compiler != CL_TRUE) {
+        snprintf(why, cap, "OpenCL device '%s' has no compiler", label);
+        return PN_E_UNSUPPORTED;
+    }
+    /* A pass's arguments (the arena, pn_kpools, pn_kparams, n) by value. */
+    {
+        size_t most = 0, args = sizeof(cl_mem) + sizeof(pn_kpools) + sizeof(pn_kparams) + sizeof(cl_uint);
+        if ((err = clGetDeviceInfo(dev, CL_DEVICE_MAX_PARAMETER_SIZE, sizeof(most), &most, NULL)) != CL_SUCCESS)
+            PN_CL_QUERY_FAIL("clGetDeviceInfo(CL_DEVICE_MAX_PARAMETER_SIZE)");
+        if (most < args) {
+            snprintf(why, cap, "OpenCL device '%s' takes %llu bytes of kernel arguments, the passes pass %llu", label,
+                     (unsigned long long)most, (unsigned long long)args);
+            return PN_E_UNSUPPORTED;
+        }
+    }
+    /* The kernels are OpenCL C 1.2 (-cl-std=CL1.2): "OpenCL C <major>.<minor> ...". */
+    err = clGetDeviceInfo(dev, CL_DEVICE_OPENCL_C_VERSION, sizeof(cver) - 1, cver, NULL);
+    if (err != CL_SUCCESS || sscanf(cver, "OpenCL C %u.%u", &major, &minor) != 2 || major * 100u + minor < 102u) {
+        snprintf(why, cap, "OpenCL device '%s' compiles '%.40s', the kernels need OpenCL C 1.2", label,
+                 err == CL_SUCCESS ? cver : "no OpenCL C version");
+        return PN_E_UNSUPPORTED;
+    }
+#undef PN_CL_QUERY_FAIL
     return PN_OK;
+}
+
+static pn_status pn_cl_check_device(pn_context *ctx, cl_device_id dev, const char *label)
+{
+    char why[256];
+    pn_status st = pn_cl_device_problem(dev, label, why, sizeof(why));
+    return st == PN_OK ? PN_OK : pn_fail(ctx, st, "%s", why);
+}
+
+/* ---- Device list ------------------------------------------------------------------------- */
+
+typedef struct pn_cl_list_state {
+    pn_opencl_device *out;
+    unsigned cap, n;
+} pn_cl_list_state;
+
+static int pn_cl_list_visit(const pn_cl_dev *e, void *arg)
+{
+    pn_cl_list_state *s = (pn_cl_list_state *)arg;
+    pn_opencl_device *d;
+    if (s->n < s->cap) {
+        d = &s->out[s->n];
+        memset(d, 0, sizeof(*d));
+        snprintf(d->spec, sizeof(d->spec), "%u:%u", e->pi, e->di);
+        snprintf(d->type, sizeof(d->type), "%s", pn_cl_type_word(e->type));
+        snprintf(d->platform, sizeof(d->platform), "%s", e->pname);
+        snprintf(d->name, sizeof(d->name), "%s", e->dname);
+        {
+            /* The whole string (a short buffer fails the query), cut to the field. */
+            char v[1024] = "";
+            clGetDeviceInfo(e->device, CL_DEVICE_VERSION, sizeof(v) - 1, v, NULL);
+            snprintf(d->version, sizeof(d->version), "%s", v);
+        }
+        d->usable = pn_cl_device_problem(e->device, e->label, d->problem, sizeof(d->problem)) == PN_OK;
+    }
+    s->n++;
+    return 0;
+}
+
+pn_status pn_opencl_devices(pn_opencl_device *out, unsigned cap, unsigned *count)
+{
+    pn_cl_list_state s;
+    unsigned n = 0;
+    pn_status st;
+    if (!count || (!out && cap)) return PN_E_INVALID_ARG;
+    *count = 0;
+    s.out = out;
+    s.cap = cap;
+    s.n = 0;
+    st = pn_cl_each(NULL, pn_cl_list_visit, &s, &n);
+    *count = s.n;
+    return st;
 }
 
 /* ---- Program ---------------------------------------------------------------------------- */
@@ -268,6 +412,142 @@ size_t pn_cl_arg_size(char kind)
     case 'l': return sizeof(cl_ulong);
     }
     return 0;
+}
+
+/* ---- Numerics probe ---------------------------------------------------------------------- *
+ * What the device's properties promise (pn_cl_device_problem), checked on the device: one
+ * small kernel, built with the passes in the same program and with the same options, does
+ * the arithmetic the passes rely on over PN_CL_PROBE_ITEMS hashed inputs, and the host does
+ * the same in C (compiled, like the scalar port, without contraction). Each check sums a hash
+ * of every item's result bits with integer atomics (any order gives the same sum); a sum that
+ * differs from the host's means the device's results would differ from the scalar port's,
+ * and the device is refused before a frame runs. */
+
+#define PN_CL_PROBE_ITEMS 4096u
+#define PN_CL_PROBE_CHECKS 5u
+/* 2^-140: products of the inputs (2^-20 .. 2^21 in magnitude) with it are denormal or tiny. */
+#define PN_CL_PROBE_TINY 7.17464814e-43f
+
+static const char *const pn_cl_probe_what[PN_CL_PROBE_CHECKS] = {
+    "a*b - p with p = a*b is not 0 (it contracts into fma despite FP_CONTRACT OFF)",
+    "a*b + c*d (contraction)",
+    "a/b is not correctly rounded",
+    "sqrt is not correctly rounded",
+    "denormal results are flushed to zero",
+};
+
+static const char pn_cl_probe_source[] =
+    "#pragma OPENCL FP_CONTRACT OFF\n"
+    "uint pn_probe_hash(uint x)\n"
+    "{\n"
+    "    x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;\n"
+    "    return x;\n"
+    "}\n"
+    "float pn_probe_float(uint i)\n"
+    "{\n"
+    "    uint h = pn_probe_hash(i * 0x9e3779b9u + 0x632be5abu);\n"
+    "    return as_float((h & 0x807FFFFFu) | ((107u + (h >> 23) % 41u) << 23));\n"
+    "}\n"
+    "__kernel void pn_k_numerics_probe(__global uint *out, uint n, float tiny)\n"
+    "{\n"
+    "    uint i = (uint)get_global_id(0);\n"
+    "    float a, b, c, d, p;\n"
+    "    if (i >= n) return;\n"
+    "    a = pn_probe_float(4u * i);\n"
+    "    b = pn_probe_float(4u * i + 1u);\n"
+    "    c = pn_probe_float(4u * i + 2u);\n"
+    "    d = pn_probe_float(4u * i + 3u);\n"
+    "    p = a * b;\n"
+    "    atomic_add(&out[0], pn_probe_hash(as_uint(a * b - p) ^ i));\n"
+    "    atomic_add(&out[1], pn_probe_hash(as_uint(a * b + c * d) ^ i));\n"
+    "    atomic_add(&out[2], pn_probe_hash(as_uint(a / b) ^ i));\n"
+    "    atomic_add(&out[3], pn_probe_hash(as_uint(sqrt(fabs(c))) ^ i));\n"
+    "    atomic_add(&out[4], pn_probe_hash(as_uint(d * tiny) ^ i));\n"
+    "}\n";
+
+static uint32_t pn_cl_probe_hash(uint32_t x)
+{
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+
+static float pn_cl_probe_float(uint32_t i)
+{
+    uint32_t h = pn_cl_probe_hash(i * 0x9e3779b9u + 0x632be5abu), b = (h & 0x807FFFFFu) | ((107u + (h >> 23) % 41u) << 23);
+    float f;
+    memcpy(&f, &b, sizeof(f));
+    return f;
+}
+
+static uint32_t pn_cl_probe_bits(float f, uint32_t i)
+{
+    uint32_t b;
+    memcpy(&b, &f, sizeof(b));
+    return pn_cl_probe_hash(b ^ i);
+}
+
+/* The host's sums: the scalar port's arithmetic (C, no contraction); tiny is volatile so that
+ * its products are computed at run time, as the scalar port's would be. */
+static void pn_cl_probe_host(uint32_t sums[PN_CL_PROBE_CHECKS])
+{
+    uint32_t i;
+    memset(sums, 0, PN_CL_PROBE_CHECKS * sizeof(uint32_t));
+    for (i = 0; i < PN_CL_PROBE_ITEMS; i++) {
+        volatile float tiny = PN_CL_PROBE_TINY;
+        float a = pn_cl_probe_float(4u * i), b = pn_cl_probe_float(4u * i + 1u);
+        float c = pn_cl_probe_float(4u * i + 2u), d = pn_cl_probe_float(4u * i + 3u);
+        float p = a * b;
+        sums[0] += pn_cl_probe_bits(a * b - p, i);
+        sums[1] += pn_cl_probe_bits(a * b + c * d, i);
+        sums[2] += pn_cl_probe_bits(a / b, i);
+        sums[3] += pn_cl_probe_bits(sqrtf(c < 0.0f ? -c : c), i);
+        sums[4] += pn_cl_probe_bits(d * tiny, i);
+    }
+}
+
+static pn_status pn_cl_probe(pn_opencl *cl)
+{
+    uint32_t dev[PN_CL_PROBE_CHECKS], host[PN_CL_PROBE_CHECKS];
+    const cl_uint n = PN_CL_PROBE_ITEMS;
+    const cl_float tiny = PN_CL_PROBE_TINY;
+    size_t global = PN_CL_PROBE_ITEMS;
+    cl_kernel kn;
+    cl_mem buf;
+    cl_int err;
+    pn_status st = PN_OK;
+    unsigned k;
+    struct timespec t0;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    memset(dev, 0, sizeof(dev));
+    kn = clCreateKernel(cl->program, "pn_k_numerics_probe", &err);
+    if (err != CL_SUCCESS) return pn_cl_fail(cl->ctx, "clCreateKernel(pn_k_numerics_probe)", err);
+    buf = clCreateBuffer(cl->clctx, CL_MEM_READ_WRITE, sizeof(dev), NULL, &err);
+    if (err != CL_SUCCESS) {
+        clReleaseKernel(kn);
+        return pn_cl_fail(cl->ctx, "clCreateBuffer(numerics probe)", err);
+    }
+    err = clEnqueueWriteBuffer(cl->queue, buf, CL_TRUE, 0, sizeof(dev), dev, 0, NULL, NULL);
+    if (err == CL_SUCCESS) err = clSetKernelArg(kn, 0, sizeof(cl_mem), &buf);
+    if (err == CL_SUCCESS) err = clSetKernelArg(kn, 1, sizeof(cl_uint), &n);
+    if (err == CL_SUCCESS) err = clSetKernelArg(kn, 2, sizeof(cl_float), &tiny);
+    if (err == CL_SUCCESS) err = clEnqueueNDRangeKernel(cl->queue, kn, 1, NULL, &global, NULL, 0, NULL, NULL);
+    if (err == CL_SUCCESS) err = clEnqueueReadBuffer(cl->queue, buf, CL_TRUE, 0, sizeof(dev), dev, 0, NULL, NULL);
+    clReleaseMemObject(buf);
+    clReleaseKernel(kn);
+    if (err != CL_SUCCESS) return pn_cl_fail(cl->ctx, "running the numerics probe", err);
+    pn_cl_probe_host(host);
+    for (k = 0; k < PN_CL_PROBE_CHECKS && st == PN_OK; k++)
+        if (dev[k] != host[k])
+            st = pn_fail(cl->ctx, PN_E_UNSUPPORTED,
+                         "OpenCL device '%s' fails the numerics probe: %s, so its results would differ from the "
+                         "scalar port's",
+                         cl->name, pn_cl_probe_what[k]);
+    cl->probe_ms = pn_cl_ms(&t0);
+    return st;
 }
 
 static pn_status pn_cl_build(pn_opencl *cl)
@@ -293,7 +573,12 @@ static pn_status pn_cl_build(pn_opencl *cl)
             snprintf(opts + len, sizeof(opts) - len, " -D%s=%uu", cfg[i].name, cfg[i].value);
         }
     }
-    cl->program = clCreateProgramWithSource(cl->clctx, PN_CL_SOURCE_COUNT, (const char **)pn_cl_sources, NULL, &err);
+    {
+        const char *src[PN_CL_SOURCE_COUNT + 1];
+        for (k = 0; k < PN_CL_SOURCE_COUNT; k++) src[k] = pn_cl_sources[k];
+        src[PN_CL_SOURCE_COUNT] = pn_cl_probe_source;
+        cl->program = clCreateProgramWithSource(cl->clctx, PN_CL_SOURCE_COUNT + 1, src, NULL, &err);
+    }
     if (err != CL_SUCCESS) return pn_cl_fail(cl->ctx, "clCreateProgramWithSource", err);
     clock_gettime(CLOCK_MONOTONIC, &t0);
     err = clBuildProgram(cl->program, 1, &cl->device, opts, NULL, NULL);
@@ -308,11 +593,22 @@ static pn_status pn_cl_build(pn_opencl *cl)
         return pn_cl_fail(cl->ctx, what, err);
     }
     for (k = 0; k < PN_CL_KERNEL_COUNT; k++) {
+        size_t most = 0;
         cl->kernels[k] = clCreateKernel(cl->program, pn_cl_kernel_names[k], &err);
         if (err != CL_SUCCESS) {
             snprintf(what, sizeof(what), "clCreateKernel(%s)", pn_cl_kernel_names[k]);
             return pn_cl_fail(cl->ctx, what, err);
         }
+        /* The work-group size the port launches it with must fit what the device can run
+         * of this kernel (registers, private memory): a clear refusal, not a launch error. */
+        err = clGetKernelWorkGroupInfo(cl->kernels[k], cl->device, CL_KERNEL_WORK_GROUP_SIZE, sizeof(most), &most,
+                                       NULL);
+        if (err == CL_SUCCESS && most < pn_cl_local[k])
+            return pn_fail(cl->ctx, PN_E_UNSUPPORTED,
+                           "OpenCL device '%s' runs kernel %s in work groups of at most %z items; the port "
+                           "launches %z",
+                           cl->name, pn_cl_kernel_names[k], (unsigned long long)most,
+                           (unsigned long long)pn_cl_local[k]);
     }
     return PN_OK;
 }
@@ -418,7 +714,8 @@ pn_status pn_opencl_create(pn_context *ctx, const pn_opencl_options *opt, void *
         st = pn_cl_fail(ctx, what, err);
         goto fail;
     }
-    if ((st = pn_cl_build(cl)) != PN_OK || (st = pn_cl_warm_up(cl)) != PN_OK) goto fail;
+    if ((st = pn_cl_build(cl)) != PN_OK || (st = pn_cl_probe(cl)) != PN_OK || (st = pn_cl_warm_up(cl)) != PN_OK)
+        goto fail;
     cl->port.name = "opencl";
     cl->port.host_memory = 0;
     cl->port.exec = pn_cl_exec;
@@ -459,6 +756,7 @@ pn_status pn_opencl_get_info(const pn_opencl *cl, pn_opencl_info *out)
     memset(out, 0, sizeof(*out));
     out->build_ms = cl->build_ms;
     out->warmup_ms = cl->warmup_ms;
+    out->probe_ms = cl->probe_ms;
     out->buffer_bytes = cl->arena_bytes;
     out->scene_uploads = cl->scene.uploads;
     out->kernels = PN_CL_KERNEL_COUNT;

@@ -44,7 +44,7 @@ struct pn_opencl {
     cl_kernel kernels[PN_CL_KERNEL_COUNT];
     cl_mem arena;        /* mirrors ctx->base .. ctx->base + layout.end */
     size_t arena_bytes;
-    double build_ms, warmup_ms;
+    double build_ms, warmup_ms, probe_ms;
     char name[512];
 };
 

@@ -160,22 +160,22 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     opt.height = h;
     opt.k = k;
     opt.algo = (pn_algo)algo;
-    opt.gears_grid = grid;
+    opt.gears.grid = grid;
     opt.exact_stats = (flags >> 1) & 1u;
     /* Occlusion textures: every filter, combination and slice count from the grid byte. */
-    opt.occ_filter = 1u + (grid - 1u) % 3u;
-    opt.occ_combine = 1u + ((grid - 1u) / 3u) % 3u;
-    opt.occ_slices = 2u + ((grid - 1u) / 9u) % 15u;
-    opt.occ_flags = (flags >> 7) ? PN_OCC_LEAK_FIX : 0u;
+    opt.occtex.filter = 1u + (grid - 1u) % 3u;
+    opt.occtex.combine = 1u + ((grid - 1u) / 3u) % 3u;
+    opt.occtex.slices = 2u + ((grid - 1u) / 9u) % 15u;
+    opt.occtex.flags = (flags >> 7) ? PN_OCC_LEAK_FIX : 0u;
     /* Monte Carlo shadow maps: every layer count, search and ray count, blur radius and flag. */
-    opt.mc_layers = 1u + (grid - 1u) % 3u;
-    opt.mc_search = 1u + ((grid - 1u) / 3u) % 2u;
-    opt.mc_rays = 1u + ((grid - 1u) / 6u) % 8u;
-    opt.mc_blur = (flags >> 7) ? PN_MC_BLUR_OFF : 1u + (grid - 1u) % 8u;
-    opt.mc_flags = ((grid - 1u) / 2u) % 4u;
-    opt.mc_seed = grid;
+    opt.mcsm.layers = 1u + (grid - 1u) % 3u;
+    opt.mcsm.search = 1u + ((grid - 1u) / 3u) % 2u;
+    opt.mcsm.rays = 1u + ((grid - 1u) / 6u) % 8u;
+    opt.mcsm.blur = (flags >> 7) ? PN_MC_BLUR_OFF : 1u + (grid - 1u) % 8u;
+    opt.mcsm.flags = ((grid - 1u) / 2u) % 4u;
+    opt.mcsm.seed = grid;
     /* Penumbra wedges: both modes. */
-    opt.wg_mode = 1u + (grid & 1u);
+    opt.wedges.mode = 1u + (grid & 1u);
     opt.eps = 1e-4f * scale;
 
     sa = pn_render(rg->ctx, &cam, &light, &opt, &fa);

@@ -12,7 +12,7 @@
  *     short, 16 indices taken modulo the vertex count, 32 limits from bytes 8..10,
  *     64 first render under the reversed schedule (the second always uses the other)
  *   7 algo: low 3 bits below 0xF0, else the raw byte   8..10 limits - 1 (% 64, % 24, % 24)
- *   GEARS builds: 11 gears_grid, 12..13 limits.gears_pairs (u16), 14 limits.gears_grid_max,
+ *   GEARS builds: 11 gears.grid, 12..13 limits.gears_pairs (u16), 14 limits.gears_grid_max,
  *   15 bit 0 exact_stats (0 in a limit means the default); SRT builds: bits 1..7 the map limit
  *   8 + n % 57; occlusion-texture builds: the same bits the texture limit, and 11 slices
  *   % 18, 12 filter % 5, 13 combination % 5, 14 flags & 3 (out-of-range values included);
@@ -146,7 +146,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 #ifdef PN_BUILD_GEARS
     lim.gears_pairs = (uint32_t)h[12] | (uint32_t)h[13] << 8;
     lim.gears_grid_max = h[14];
-    opt.gears_grid = h[11];
+    opt.gears.grid = h[11];
     opt.exact_stats = h[15] & 1u;
 #endif
 #ifdef PN_BUILD_SRT
@@ -155,22 +155,22 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 #endif
 #ifdef PN_BUILD_OCCTEX
     lim.occ_map_max = 8u + (uint32_t)(h[15] >> 1) % 57u;
-    opt.occ_slices = h[11] % 18u;
-    opt.occ_filter = h[12] % 5u;
-    opt.occ_combine = h[13] % 5u;
-    opt.occ_flags = h[14] & 3u;
+    opt.occtex.slices = h[11] % 18u;
+    opt.occtex.filter = h[12] % 5u;
+    opt.occtex.combine = h[13] % 5u;
+    opt.occtex.flags = h[14] & 3u;
 #endif
 #ifdef PN_BUILD_MCSM
     lim.mc_map_max = 8u + (uint32_t)(h[15] >> 1) % 57u;
-    opt.mc_layers = h[11] % 5u;
-    opt.mc_search = h[12] % 4u;
-    opt.mc_rays = h[13] % 10u;
-    opt.mc_flags = h[14] & 7u;
-    opt.mc_blur = (h[14] >> 3) == 31u ? PN_MC_BLUR_OFF : (uint32_t)(h[14] >> 3) % 11u;
-    opt.mc_seed = h[15];
+    opt.mcsm.layers = h[11] % 5u;
+    opt.mcsm.search = h[12] % 4u;
+    opt.mcsm.rays = h[13] % 10u;
+    opt.mcsm.flags = h[14] & 7u;
+    opt.mcsm.blur = (h[14] >> 3) == 31u ? PN_MC_BLUR_OFF : (uint32_t)(h[14] >> 3) % 11u;
+    opt.mcsm.seed = h[15];
 #endif
 #ifdef PN_BUILD_WEDGES
-    opt.wg_mode = h[12] % 4u; /* 3: invalid */
+    opt.wedges.mode = h[12] % 4u; /* 3: invalid */
     lim.wg_pairs = (uint32_t)h[13] * 16u; /* below a frame's pairs now and then */
 #endif
     take(&r, &cam, sizeof cam);
@@ -240,22 +240,22 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         may |= BIT(PN_E_POOL_EXHAUSTED);
     }
 #ifdef PN_BUILD_GEARS
-    if (opt.gears_grid == 0u || opt.gears_grid > (lim.gears_grid_max ? lim.gears_grid_max : PN_GEARS_GRID_MAX)) {
+    if (opt.gears.grid > (lim.gears_grid_max ? lim.gears_grid_max : PN_GEARS_GRID_MAX)) {
         must |= opt.algo == PN_ALGO_GEARS ? BIT(PN_E_INVALID_ARG) : 0u;
         may |= BIT(PN_E_INVALID_ARG);
     }
 #endif
 #ifdef PN_BUILD_OCCTEX
-    if (opt.algo == PN_ALGO_OCCTEX && (opt.occ_slices == 1u || opt.occ_slices > 16u || opt.occ_filter > 3u ||
-                                       opt.occ_combine > 3u || (opt.occ_flags & ~PN_OCC_LEAK_FIX)))
+    if (opt.algo == PN_ALGO_OCCTEX && (opt.occtex.slices == 1u || opt.occtex.slices > 16u || opt.occtex.filter > 3u ||
+                                       opt.occtex.combine > 3u || (opt.occtex.flags & ~PN_OCC_LEAK_FIX)))
         must |= BIT(PN_E_INVALID_ARG);
 #endif
 #ifdef PN_BUILD_WEDGES
-    if (opt.algo == PN_ALGO_WEDGES && opt.wg_mode > PN_WG_MODE_ADDITIVE) must |= BIT(PN_E_INVALID_ARG);
+    if (opt.algo == PN_ALGO_WEDGES && opt.wedges.mode > PN_WG_MODE_ADDITIVE) must |= BIT(PN_E_INVALID_ARG);
 #endif
 #ifdef PN_BUILD_MCSM
-    if (opt.algo == PN_ALGO_MCSM && (opt.mc_layers > 3u || opt.mc_search > 2u || opt.mc_rays > 8u ||
-                                     (opt.mc_blur > 8u && opt.mc_blur != PN_MC_BLUR_OFF) || (opt.mc_flags & 4u)))
+    if (opt.algo == PN_ALGO_MCSM && (opt.mcsm.layers > 3u || opt.mcsm.search > 2u || opt.mcsm.rays > 8u ||
+                                     (opt.mcsm.blur > 8u && opt.mcsm.blur != PN_MC_BLUR_OFF) || (opt.mcsm.flags & 4u)))
         must |= BIT(PN_E_INVALID_ARG);
 #endif
     must |= vec_causes(shade, 3u) & BIT(PN_E_NONFINITE);

@@ -11,14 +11,16 @@
 
 #if PN_ENABLE_GEARS
 
-/* PN_ALGO_GEARS's options (pn_algorithms.h): the grid. */
+/* PN_ALGO_GEARS's options (pn_algorithms.h): the grid; 0 is the default, 128 cells per axis
+ * or the context's limit if smaller. */
 pn_status pn_gears_prepare(pn_frame_state *fs, const pn_frame_options *opt)
 {
     pn_context *ctx = fs->ctx;
-    if (opt->gears_grid < 1u || opt->gears_grid > pn_gears_grid_max(&ctx->limits))
-        return pn_fail(ctx, PN_E_INVALID_ARG, "gears_grid = %u; it must be in 1 .. %u (pn_limits.gears_grid_max)",
-                       opt->gears_grid, pn_gears_grid_max(&ctx->limits));
-    fs->gears_grid = opt->gears_grid;
+    uint32_t gmax = pn_gears_grid_max(&ctx->limits);
+    if (opt->gears.grid > gmax)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "gears.grid = %u; it must be 0 or in 1 .. %u (pn_limits.gears_grid_max)",
+                       opt->gears.grid, gmax);
+    fs->gears_grid = opt->gears.grid ? opt->gears.grid : gmax < 128u ? gmax : 128u;
     return PN_OK;
 }
 

@@ -15,29 +15,29 @@
 pn_status pn_mcsm_prepare(pn_frame_state *fs, const pn_frame_options *opt)
 {
     pn_context *ctx = fs->ctx;
-    if (opt->mc_layers > 3u)
-        return pn_fail(ctx, PN_E_INVALID_ARG, "mc_layers = %u; it must be 0 or in 1 .. 3", opt->mc_layers);
-    if (opt->mc_search > PN_MC_SEARCH_HIER)
-        return pn_fail(ctx, PN_E_INVALID_ARG, "mc_search = %u; it must be 0 or a PN_MC_SEARCH_*", opt->mc_search);
-    if (opt->mc_rays > 8u)
-        return pn_fail(ctx, PN_E_INVALID_ARG, "mc_rays = %u; it must be 0 or in 1 .. 8 (n x n rays)", opt->mc_rays);
-    if (opt->mc_blur > 8u && opt->mc_blur != PN_MC_BLUR_OFF)
-        return pn_fail(ctx, PN_E_INVALID_ARG, "mc_blur = %u; it must be 0, 1 .. 8 or PN_MC_BLUR_OFF", opt->mc_blur);
-    if (opt->mc_map != 0u && (opt->mc_map < 8u || opt->mc_map > pn_mc_map_max(&ctx->limits)))
-        return pn_fail(ctx, PN_E_INVALID_ARG, "mc_map = %u; it must be 0 or in 8 .. %u (pn_limits.mc_map_max)",
-                       opt->mc_map, pn_mc_map_max(&ctx->limits));
-    if (opt->mc_flags & ~(PN_MC_NO_BIAS | PN_MC_NO_CLASSIFY))
-        return pn_fail(ctx, PN_E_INVALID_ARG, "mc_flags = %u has unknown bits", opt->mc_flags);
+    if (opt->mcsm.layers > 3u)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "mcsm.layers = %u; it must be 0 or in 1 .. 3", opt->mcsm.layers);
+    if (opt->mcsm.search > PN_MC_SEARCH_HIER)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "mcsm.search = %u; it must be 0 or a PN_MC_SEARCH_*", opt->mcsm.search);
+    if (opt->mcsm.rays > 8u)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "mcsm.rays = %u; it must be 0 or in 1 .. 8 (n x n rays)", opt->mcsm.rays);
+    if (opt->mcsm.blur > 8u && opt->mcsm.blur != PN_MC_BLUR_OFF)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "mcsm.blur = %u; it must be 0, 1 .. 8 or PN_MC_BLUR_OFF", opt->mcsm.blur);
+    if (opt->mcsm.map != 0u && (opt->mcsm.map < 8u || opt->mcsm.map > pn_mc_map_max(&ctx->limits)))
+        return pn_fail(ctx, PN_E_INVALID_ARG, "mcsm.map = %u; it must be 0 or in 8 .. %u (pn_limits.mc_map_max)",
+                       opt->mcsm.map, pn_mc_map_max(&ctx->limits));
+    if (opt->mcsm.flags & ~(PN_MC_NO_BIAS | PN_MC_NO_CLASSIFY))
+        return pn_fail(ctx, PN_E_INVALID_ARG, "mcsm.flags = %u has unknown bits", opt->mcsm.flags);
     /* Defaults: the configuration docs/bench/RESULTS.md recommends ("Monte Carlo shadow
      * maps"): two layers, hierarchical search, 3 x 3 rays, blur radius 1, 512^2 layers. */
-    fs->mc_map = opt->mc_map ? opt->mc_map : pn_mc_map_max(&ctx->limits);
-    if (!opt->mc_map && fs->mc_map > 512u) fs->mc_map = 512u;
-    fs->K.mc.layers = opt->mc_layers ? opt->mc_layers : 2u;
-    fs->K.mc.search = opt->mc_search ? opt->mc_search : PN_MC_SEARCH_HIER;
-    fs->K.mc.rays = opt->mc_rays ? opt->mc_rays : 3u;
-    fs->K.mc.blur = opt->mc_blur == PN_MC_BLUR_OFF ? 0u : opt->mc_blur ? opt->mc_blur : 1u;
-    fs->K.mc.flags = opt->mc_flags;
-    fs->K.mc.seed = opt->mc_seed;
+    fs->mc_map = opt->mcsm.map ? opt->mcsm.map : pn_mc_map_max(&ctx->limits);
+    if (!opt->mcsm.map && fs->mc_map > 512u) fs->mc_map = 512u;
+    fs->K.mc.layers = opt->mcsm.layers ? opt->mcsm.layers : 2u;
+    fs->K.mc.search = opt->mcsm.search ? opt->mcsm.search : PN_MC_SEARCH_HIER;
+    fs->K.mc.rays = opt->mcsm.rays ? opt->mcsm.rays : 3u;
+    fs->K.mc.blur = opt->mcsm.blur == PN_MC_BLUR_OFF ? 0u : opt->mcsm.blur ? opt->mcsm.blur : 1u;
+    fs->K.mc.flags = opt->mcsm.flags;
+    fs->K.mc.seed = opt->mcsm.seed;
     return PN_OK;
 }
 

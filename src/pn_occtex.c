@@ -15,25 +15,26 @@
 pn_status pn_occtex_prepare(pn_frame_state *fs, const pn_frame_options *opt)
 {
     pn_context *ctx = fs->ctx;
-    if (opt->occ_slices != 0u && (opt->occ_slices < 2u || opt->occ_slices > 16u))
-        return pn_fail(ctx, PN_E_INVALID_ARG, "occ_slices = %u; it must be 0 or in 2 .. 16", opt->occ_slices);
-    if (opt->occ_map != 0u && (opt->occ_map < 8u || opt->occ_map > pn_occ_map_max(&ctx->limits)))
-        return pn_fail(ctx, PN_E_INVALID_ARG, "occ_map = %u; it must be 0 or in 8 .. %u (pn_limits.occ_map_max)",
-                       opt->occ_map, pn_occ_map_max(&ctx->limits));
-    if (opt->occ_filter > PN_OCC_FILTER_MIPMAP)
-        return pn_fail(ctx, PN_E_INVALID_ARG, "occ_filter = %u; it must be 0 or a PN_OCC_FILTER_*", opt->occ_filter);
-    if (opt->occ_combine > PN_OCC_COMBINE_SUM)
-        return pn_fail(ctx, PN_E_INVALID_ARG, "occ_combine = %u; it must be 0 or a PN_OCC_COMBINE_*",
-                       opt->occ_combine);
-    if (opt->occ_flags & ~PN_OCC_LEAK_FIX)
-        return pn_fail(ctx, PN_E_INVALID_ARG, "occ_flags = %u has unknown bits", opt->occ_flags);
+    if (opt->occtex.slices != 0u && (opt->occtex.slices < 2u || opt->occtex.slices > 16u))
+        return pn_fail(ctx, PN_E_INVALID_ARG, "occtex.slices = %u; it must be 0 or in 2 .. 16", opt->occtex.slices);
+    if (opt->occtex.map != 0u && (opt->occtex.map < 8u || opt->occtex.map > pn_occ_map_max(&ctx->limits)))
+        return pn_fail(ctx, PN_E_INVALID_ARG, "occtex.map = %u; it must be 0 or in 8 .. %u (pn_limits.occ_map_max)",
+                       opt->occtex.map, pn_occ_map_max(&ctx->limits));
+    if (opt->occtex.filter > PN_OCC_FILTER_MIPMAP)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "occtex.filter = %u; it must be 0 or a PN_OCC_FILTER_*",
+                       opt->occtex.filter);
+    if (opt->occtex.combine > PN_OCC_COMBINE_SUM)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "occtex.combine = %u; it must be 0 or a PN_OCC_COMBINE_*",
+                       opt->occtex.combine);
+    if (opt->occtex.flags & ~PN_OCC_LEAK_FIX)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "occtex.flags = %u has unknown bits", opt->occtex.flags);
     /* Defaults: the configuration docs/bench/RESULTS.md recommends ("Occlusion textures"). */
-    fs->occ_map = opt->occ_map ? opt->occ_map : pn_occ_map_max(&ctx->limits);
-    if (!opt->occ_map && fs->occ_map > 512u) fs->occ_map = 512u;
-    fs->K.occ.slices = opt->occ_slices ? opt->occ_slices : 16u;
-    fs->K.occ.filter = opt->occ_filter ? opt->occ_filter : PN_OCC_FILTER_SAT;
-    fs->K.occ.combine = opt->occ_combine ? opt->occ_combine : PN_OCC_COMBINE_PRODUCT;
-    fs->K.occ.flags = opt->occ_flags;
+    fs->occ_map = opt->occtex.map ? opt->occtex.map : pn_occ_map_max(&ctx->limits);
+    if (!opt->occtex.map && fs->occ_map > 512u) fs->occ_map = 512u;
+    fs->K.occ.slices = opt->occtex.slices ? opt->occtex.slices : 16u;
+    fs->K.occ.filter = opt->occtex.filter ? opt->occtex.filter : PN_OCC_FILTER_SAT;
+    fs->K.occ.combine = opt->occtex.combine ? opt->occtex.combine : PN_OCC_COMBINE_PRODUCT;
+    fs->K.occ.flags = opt->occtex.flags;
     return PN_OK;
 }
 

@@ -15,19 +15,19 @@
 pn_status pn_srt_prepare(pn_frame_state *fs, const pn_frame_options *opt)
 {
     pn_context *ctx = fs->ctx;
-    if (opt->srt_map != 0u && (opt->srt_map < 8u || opt->srt_map > pn_srt_map_max(&ctx->limits)))
-        return pn_fail(ctx, PN_E_INVALID_ARG, "srt_map = %u; it must be 0 or in 8 .. %u (pn_limits.srt_map_max)",
-                       opt->srt_map, pn_srt_map_max(&ctx->limits));
-    if (opt->srt_flags & ~(PN_SRT_NO_CONSERVATIVE | PN_SRT_FORCE_PIP))
-        return pn_fail(ctx, PN_E_INVALID_ARG, "srt_flags = %u has unknown bits", opt->srt_flags);
-    if (!pn_finite(opt->srt_delta) || !(opt->srt_delta >= 0.0f) || opt->srt_delta > 1.0f)
-        return pn_fail(ctx, PN_E_INVALID_ARG, "srt_delta must be in [0, 1] (0: the default 1e-3)");
+    if (opt->srt.map != 0u && (opt->srt.map < 8u || opt->srt.map > pn_srt_map_max(&ctx->limits)))
+        return pn_fail(ctx, PN_E_INVALID_ARG, "srt.map = %u; it must be 0 or in 8 .. %u (pn_limits.srt_map_max)",
+                       opt->srt.map, pn_srt_map_max(&ctx->limits));
+    if (opt->srt.flags & ~(PN_SRT_NO_CONSERVATIVE | PN_SRT_FORCE_PIP))
+        return pn_fail(ctx, PN_E_INVALID_ARG, "srt.flags = %u has unknown bits", opt->srt.flags);
+    if (!pn_finite(opt->srt.delta) || !(opt->srt.delta >= 0.0f) || opt->srt.delta > 1.0f)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "srt.delta must be in [0, 1] (0: the default 1e-3)");
     /* Default map: the paper's 2048^2, at most the limit (a coarser map marks far more
      * pixels: test_srt at 256^2 marks 61-100% of the lit pixels, at 2048^2 7-72%). */
-    fs->srt_map = opt->srt_map ? opt->srt_map : pn_srt_map_max(&ctx->limits);
-    if (!opt->srt_map && fs->srt_map > 2048u) fs->srt_map = 2048u;
-    fs->K.srt_flags = opt->srt_flags;
-    fs->K.srt_delta = (opt->srt_delta > 0.0f ? opt->srt_delta : 1e-3f) * ctx->scene_diag;
+    fs->srt_map = opt->srt.map ? opt->srt.map : pn_srt_map_max(&ctx->limits);
+    if (!opt->srt.map && fs->srt_map > 2048u) fs->srt_map = 2048u;
+    fs->K.srt_flags = opt->srt.flags;
+    fs->K.srt_delta = (opt->srt.delta > 0.0f ? opt->srt.delta : 1e-3f) * ctx->scene_diag;
     return PN_OK;
 }
 

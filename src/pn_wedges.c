@@ -14,9 +14,9 @@
 pn_status pn_wedges_prepare(pn_frame_state *fs, const pn_frame_options *opt)
 {
     pn_context *ctx = fs->ctx;
-    if (opt->wg_mode > PN_WG_MODE_ADDITIVE)
-        return pn_fail(ctx, PN_E_INVALID_ARG, "wg_mode = %u; it must be 0 or a PN_WG_MODE_*", opt->wg_mode);
-    fs->K.wg.mode = opt->wg_mode ? opt->wg_mode : PN_WG_MODE_BLEND;
+    if (opt->wedges.mode > PN_WG_MODE_ADDITIVE)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "wedges.mode = %u; it must be 0 or a PN_WG_MODE_*", opt->wedges.mode);
+    fs->K.wg.mode = opt->wedges.mode ? opt->wedges.mode : PN_WG_MODE_BLEND;
     return PN_OK;
 }
 

@@ -36,7 +36,7 @@ static inline int render_vis(pn_host *h, const pn_setup *s, const pn_light *ligh
     opt.height = hh;
     opt.k = k;
     opt.algo = algo;
-    opt.gears_grid = grid;
+    opt.gears.grid = grid;
     return render_opt(h, s, light, &opt, out, NULL, st);
 }
 

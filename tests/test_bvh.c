@@ -473,7 +473,7 @@ static void frames_same(const char *label, const float *pos, uint32_t verts, con
             opt.k = 8;
             opt.eps = eps;
             opt.algo = algos[a].algo;
-            opt.gears_grid = 16;
+            opt.gears.grid = 16;
             rs = pn_render(ctx[c], cam, light, &opt, &fr);
             CHECK_MSG(rs == PN_OK, "%s %s: %s", label, algos[a].name, pn_last_error(ctx[c]));
             if (rs != PN_OK) break;
@@ -536,7 +536,7 @@ static void test_frames_two_wide(void)
             opt.k = 8;
             opt.eps = s.eps;
             opt.algo = algos[a].algo;
-            opt.gears_grid = 16;
+            opt.gears.grid = 16;
             if (pn_render(ctx, &s.camera, &s.light, &opt, &fr) != PN_OK) {
                 CHECK_MSG(0, "room %s: %s", algos[a].name, pn_last_error(ctx));
                 continue;
@@ -630,7 +630,7 @@ static void test_deep_tree(void)
         opt.k = 8;
         opt.eps = sq.eps;
         opt.algo = algos[a].algo;
-        opt.gears_grid = 16;
+        opt.gears.grid = 16;
         rs = pn_render(ctx, &sq.camera, &sq.light, &opt, &fr);
         CHECK_MSG(rs == PN_OK, "deep tree %s: %s", algos[a].name, pn_last_error(ctx));
         if (rs != PN_OK) continue;

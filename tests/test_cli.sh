@@ -42,7 +42,7 @@ check sh -c '! cmp -s oc.pfm oc2.pfm'
 check test $r -eq 2
 "$bin" render --builtin square --algo occtex --occ-slices 17 --out x.png 2>err.txt; r=$?
 check test $r -eq 1
-check grep -q 'occ_slices' err.txt
+check grep -q 'occtex.slices' err.txt
 
 # View and light flags override the defaults and are recorded; point light via zero edges.
 "$bin" render --builtin square --size 32x32 --eye 0,6,6 --target 0,0,0 --up 0,1,0 --fov 45 \

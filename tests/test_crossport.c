@@ -355,9 +355,9 @@ static void test_options(void)
             PN_OK);
     for (i = 0; i < 3; i++) {
         opts(&o, &s, 40, 40, 16, PN_ALGO_GEARS);
-        o.gears_grid = i == 0 ? 1u : 37u;
+        o.gears.grid = i == 0 ? 1u : 37u;
         o.exact_stats = i == 2;
-        snprintf(what, sizeof(what), "spheres GEARS grid %u exact_stats %u", o.gears_grid, o.exact_stats);
+        snprintf(what, sizeof(what), "spheres GEARS grid %u exact_stats %u", o.gears.grid, o.exact_stats);
         CHECK(cross(&g_rig, &s.camera, &s.light, &o, what) == PN_OK);
     }
     /* Occlusion textures: every filter, combination and slice count at the extremes, the
@@ -367,13 +367,13 @@ static void test_options(void)
         for (i = 0; i < 3 * 3 * 3; i++) {
             pn_light light = i % 9 == 4 ? point_light(&s.light) : s.light;
             opts(&o, &s, 40, 40, 16, PN_ALGO_OCCTEX);
-            o.occ_filter = 1u + (uint32_t)i % 3u;
-            o.occ_combine = 1u + (uint32_t)(i / 3) % 3u;
-            o.occ_slices = slices[(i / 9) % 3];
-            o.occ_map = maps[(i + i / 9) % 3];
-            o.occ_flags = (i & 1) ? PN_OCC_LEAK_FIX : 0u;
-            snprintf(what, sizeof(what), "spheres occtex filter %u combine %u slices %u map %u flags %u%s", o.occ_filter,
-                     o.occ_combine, o.occ_slices, o.occ_map, o.occ_flags, i % 9 == 4 ? " point light" : "");
+            o.occtex.filter = 1u + (uint32_t)i % 3u;
+            o.occtex.combine = 1u + (uint32_t)(i / 3) % 3u;
+            o.occtex.slices = slices[(i / 9) % 3];
+            o.occtex.map = maps[(i + i / 9) % 3];
+            o.occtex.flags = (i & 1) ? PN_OCC_LEAK_FIX : 0u;
+            snprintf(what, sizeof(what), "spheres occtex filter %u combine %u slices %u map %u flags %u%s",
+                     o.occtex.filter, o.occtex.combine, o.occtex.slices, o.occtex.map, o.occtex.flags, i % 9 == 4 ? " point light" : "");
             CHECK(cross(&g_rig, &s.camera, &light, &o, what) == PN_OK);
         }
     }
@@ -388,15 +388,15 @@ static void test_options(void)
             REQUIRE(pn_scene_set_receivers(g_rig.h.ctx, s.mesh.receiver_first, (i & 1) ? s.mesh.receiver_count : 0u) ==
                     PN_OK);
             opts(&o, &s, 40, 40, 16, PN_ALGO_MCSM);
-            o.mc_layers = 1u + (uint32_t)i % 3u;
-            o.mc_search = 1u + (uint32_t)(i / 3) % 2u;
-            o.mc_rays = rays[(i / 2) % 4];
-            o.mc_blur = blurs[(i / 4) % 3];
-            o.mc_map = maps[(i + i / 6) % 3];
-            o.mc_flags = (i % 5 == 2 ? PN_MC_NO_BIAS : 0u) | (i % 6 == 5 ? PN_MC_NO_CLASSIFY : 0u);
-            o.mc_seed = (uint32_t)i * 2654435761u;
+            o.mcsm.layers = 1u + (uint32_t)i % 3u;
+            o.mcsm.search = 1u + (uint32_t)(i / 3) % 2u;
+            o.mcsm.rays = rays[(i / 2) % 4];
+            o.mcsm.blur = blurs[(i / 4) % 3];
+            o.mcsm.map = maps[(i + i / 6) % 3];
+            o.mcsm.flags = (i % 5 == 2 ? PN_MC_NO_BIAS : 0u) | (i % 6 == 5 ? PN_MC_NO_CLASSIFY : 0u);
+            o.mcsm.seed = (uint32_t)i * 2654435761u;
             snprintf(what, sizeof(what), "spheres mcsm layers %u search %u rays %u blur %u map %u flags %u%s%s",
-                     o.mc_layers, o.mc_search, o.mc_rays, o.mc_blur, o.mc_map, o.mc_flags,
+                     o.mcsm.layers, o.mcsm.search, o.mcsm.rays, o.mcsm.blur, o.mcsm.map, o.mcsm.flags,
                      i % 7 == 3 ? " point light" : "", (i & 1) ? " receivers" : "");
             CHECK(cross(&g_rig, &s.camera, &light, &o, what) == PN_OK);
         }
@@ -407,8 +407,8 @@ static void test_options(void)
         for (i = 0; i < 4; i++) {
             pn_light light = i >= 2 ? point_light(&s.light) : s.light;
             opts(&o, &s, 40, 40, 16, PN_ALGO_WEDGES);
-            o.wg_mode = (i & 1) ? PN_WG_MODE_ADDITIVE : PN_WG_MODE_BLEND;
-            snprintf(what, sizeof(what), "spheres wedges mode %u%s", o.wg_mode, i >= 2 ? " point light" : "");
+            o.wedges.mode = (i & 1) ? PN_WG_MODE_ADDITIVE : PN_WG_MODE_BLEND;
+            snprintf(what, sizeof(what), "spheres wedges mode %u%s", o.wedges.mode, i >= 2 ? " point light" : "");
             CHECK(cross(&g_rig, &s.camera, &light, &o, what) == PN_OK);
         }
     }
@@ -433,7 +433,7 @@ static void test_tiling(void)
     for (q = 0; q < 2; q++) {
         pn_light light = q ? point_light(&s.light) : s.light;
         opts(&o, &s, 48, 48, 16, PN_ALGO_GEARS);
-        o.gears_grid = 32;
+        o.gears.grid = 32;
         snprintf(what, sizeof(what), "spheres GEARS one pass, %s light", q ? "point" : "area");
         REQUIRE(cross(&g_rig, &s.camera, &light, &o, what) == PN_OK);
         CHECK(q ? g_rig.a.st.gears_tiles <= g_rig.a.st.gears_faces : g_rig.a.st.gears_tiles == 1u);

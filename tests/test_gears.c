@@ -151,7 +151,7 @@ static void test_tiling(void)
         opt.width = w;
         opt.height = hh;
         opt.algo = PN_ALGO_GEARS;
-        opt.gears_grid = 64;
+        opt.gears.grid = 64;
         opt.eps = s.eps;
         CHECK(pn_render(ctx, &s.camera, &s.light, &opt, &fr) == PN_E_POOL_EXHAUSTED);
         fprintf(stderr, "message: %s\n", pn_last_error(ctx));

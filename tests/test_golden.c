@@ -166,7 +166,7 @@ static void one_scene(const char *source, int builtin)
             opt.k = GOLDEN_K;
             opt.eps = s.eps;
             opt.algo = (pn_algo)a;
-            opt.gears_grid = 32;
+            opt.gears.grid = 32;
 #if PN_GOLDEN_OPENCL
             if (cl) rs = pn_opencl_render(cl, &s.camera, &light, &opt, &fr);
             else

@@ -160,11 +160,11 @@ static void mc_opts(pn_frame_options *o, uint32_t layers, uint32_t search, uint3
     o->height = H;
     o->k = 32;
     o->algo = PN_ALGO_MCSM;
-    o->mc_layers = layers;
-    o->mc_search = search;
-    o->mc_rays = rays;
-    o->mc_blur = blur;
-    o->mc_flags = flags;
+    o->mcsm.layers = layers;
+    o->mcsm.search = search;
+    o->mcsm.rays = rays;
+    o->mcsm.blur = blur;
+    o->mcsm.flags = flags;
 }
 
 static double rmse(const float *a, const float *b)
@@ -225,7 +225,7 @@ static long classify_pair(pn_host *h, const pn_setup *s, uint32_t w, uint32_t hh
     o.width = w;
     o.height = hh;
     if (render_opt(h, s, &s->light, &o, va, NULL, a) != 0) return -1;
-    o.mc_flags = PN_MC_NO_CLASSIFY;
+    o.mcsm.flags = PN_MC_NO_CLASSIFY;
     if (render_opt(h, s, &s->light, &o, vb, NULL, b) != 0) return -1;
     for (p = 0; p < (size_t)w * hh; p++) {
         if (va[p] != vb[p] && getenv("PN_MC_DEBUG")) fprintf(stderr, "  pixel %zu: %g vs %g\n", p, va[p], vb[p]);
@@ -338,12 +338,12 @@ static void test_determinism_and_stats(void)
               (unsigned long long)st.mc_rays, st.mc_penumbra);
     CHECK_MSG(st.mc_map == 512u && st.shadow_candidates == st.mc_rays && st.mc_capped == 0u,
               "map %u, candidates %llu, capped %u", st.mc_map, (unsigned long long)st.shadow_candidates, st.mc_capped);
-    o.mc_seed = 12345u;
+    o.mcsm.seed = 12345u;
     REQUIRE(render_opt(&h2, &s, &s.light, &o, g_b, NULL, NULL) == 0);
     CHECK_MSG(memcmp(g_a, g_b, sizeof(g_a)) != 0, "another frame key gave the same bytes");
     {
         pn_camera cam = s.camera;
-        o.mc_seed = 0u;
+        o.mcsm.seed = 0u;
         o.eps = s.eps;
         REQUIRE(pn_set_clock(h1.ctx, NULL, NULL) == PN_OK);
         check_stage_times(h1.ctx, &cam, &s.light, &o, stages, &st);
@@ -369,13 +369,13 @@ static void test_options_and_pools(void)
         mc_opts(&o, 0u, 0u, 0u, 0u, 0u);
         o.eps = s.eps;
         switch (i) {
-        case 0: o.mc_layers = 4u; break;
-        case 1: o.mc_search = 3u; break;
-        case 2: o.mc_rays = 9u; break;
-        case 3: o.mc_blur = 9u; break;
-        case 4: o.mc_map = 7u; break;
-        case 5: o.mc_map = 1024u; break; /* above the limit (512) */
-        default: o.mc_flags = 4u; break;
+        case 0: o.mcsm.layers = 4u; break;
+        case 1: o.mcsm.search = 3u; break;
+        case 2: o.mcsm.rays = 9u; break;
+        case 3: o.mcsm.blur = 9u; break;
+        case 4: o.mcsm.map = 7u; break;
+        case 5: o.mcsm.map = 1024u; break; /* above the limit (512) */
+        default: o.mcsm.flags = 4u; break;
         }
         CHECK_MSG(pn_render(h.ctx, &s.camera, &s.light, &o, &fr) == PN_E_INVALID_ARG && pn_last_error(h.ctx)[0] != '\0',
                   "bad option %d accepted", i);
@@ -404,7 +404,7 @@ static void test_options_and_pools(void)
         pn_stats st;
         CHECK(pn_get_stats(ctx, &st) == PN_OK && st.mc_map == 64u);
     }
-    o.mc_map = 65u;
+    o.mcsm.map = 65u;
     CHECK(pn_render(ctx, &s.camera, &s.light, &o, &fr) == PN_E_INVALID_ARG);
     free(mem);
     pn_setup_free(&s);

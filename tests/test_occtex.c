@@ -11,7 +11,7 @@
  *    prod (1 - I) <= min (1 - I) for I in [0, 1]), up to float rounding, with the
  *    inequalities strict somewhere (spheres: overlapping penumbrae).
  * 3. Determinism: the same bytes from 1 and 2 threads and from two runs.
- * 4. Options and pools: occ_slices, occ_map, occ_filter, occ_combine, occ_flags outside
+ * 4. Options and pools: occtex.slices, .map, .filter, .combine, .flags outside
  *    their ranges are PN_E_INVALID_ARG; a context whose occ_map_max is 64 has a smaller
  *    arena and renders at that size; the stats hold the slices, map, bits and lookups
  *    (= shadow_candidates), and with a clock the stage times lie inside the shadow pass.
@@ -47,9 +47,9 @@ static int render(pn_host *h, const pn_setup *s, const pn_light *light, pn_algo 
     opt.height = H;
     opt.k = k;
     opt.algo = algo;
-    opt.occ_filter = filter;
-    opt.occ_combine = combine;
-    opt.occ_flags = flags;
+    opt.occtex.filter = filter;
+    opt.occtex.combine = combine;
+    opt.occtex.flags = flags;
     return render_opt(h, s, light, &opt, out->vis, out->rgba, &out->st);
 }
 
@@ -191,30 +191,30 @@ static void test_options(void)
     pn_frame_options_default(&opt);
     opt.width = opt.height = 32;
     opt.algo = PN_ALGO_OCCTEX;
-    opt.occ_slices = 1;
+    opt.occtex.slices = 1;
     CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
-    opt.occ_slices = 17;
+    opt.occtex.slices = 17;
     CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
-    opt.occ_slices = 0;
-    opt.occ_map = 7;
+    opt.occtex.slices = 0;
+    opt.occtex.map = 7;
     CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
-    opt.occ_map = PN_OCCTEX_MAP_MAX + 1u;
+    opt.occtex.map = PN_OCCTEX_MAP_MAX + 1u;
     CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
-    opt.occ_map = 0;
-    opt.occ_filter = 4;
+    opt.occtex.map = 0;
+    opt.occtex.filter = 4;
     CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
-    opt.occ_filter = 0;
-    opt.occ_combine = 4;
+    opt.occtex.filter = 0;
+    opt.occtex.combine = 4;
     CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
-    opt.occ_combine = 0;
-    opt.occ_flags = 2;
+    opt.occtex.combine = 0;
+    opt.occtex.flags = 2;
     CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
-    CHECK(strstr(pn_last_error(h.ctx), "occ_flags") != NULL);
-    opt.occ_flags = 0;
-    opt.occ_slices = 2; /* one occluder slice and the receivers' */
+    CHECK(strstr(pn_last_error(h.ctx), "occtex.flags") != NULL);
+    opt.occtex.flags = 0;
+    opt.occtex.slices = 2; /* one occluder slice and the receivers' */
     CHECK_MSG(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_OK, "%s", pn_last_error(h.ctx));
     CHECK(pn_get_stats(h.ctx, &st) == PN_OK && st.occ_slices == 2u && st.occ_texels_set > 0u);
-    opt.occ_slices = 0;
+    opt.occtex.slices = 0;
     pn_host_close(&h);
 
     /* A small map limit: a smaller arena, and frames at that map size. */
@@ -234,9 +234,9 @@ static void test_options(void)
     REQUIRE(mem != NULL);
     REQUIRE(pn_init(&ctx, mem, bytes, &lim) == PN_OK);
     REQUIRE(pn_scene_set(ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
-    opt.occ_map = 65;
+    opt.occtex.map = 65;
     CHECK(pn_render(ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
-    opt.occ_map = 0;
+    opt.occtex.map = 0;
     {
         /* Stage timings: none without a clock; with one, inside the shadow pass. */
         static const size_t off[3] = {offsetof(pn_stats, occ_ns_slice), offsetof(pn_stats, occ_ns_filter),

@@ -17,7 +17,7 @@
  *    documented case (g_cases: the misses the paper admits, regular light-space sampling
  *    missing what falls between texel centres) and may not grow; every other one must
  *    meet the goal. The whole rate is printed.
- * 3. Options and pools: srt_map outside 8 .. the limit and unknown flags are
+ * 3. Options and pools: srt.map outside 8 .. the limit and unknown flags are
  *    PN_E_INVALID_ARG; a context whose srt_map_max is 64 renders, with its map size in the
  *    stats, and with a clock its stage timings lie inside the shadow pass. */
 #include <math.h>
@@ -51,8 +51,8 @@ static int render(pn_host *h, const pn_setup *s, const pn_light *light, pn_algo 
     opt.height = H;
     opt.k = k;
     opt.algo = algo;
-    opt.srt_flags = flags;
-    opt.srt_map = map;
+    opt.srt.flags = flags;
+    opt.srt.map = map;
     return render_opt(h, s, light, &opt, out->vis, out->rgba, &out->st);
 }
 
@@ -297,17 +297,17 @@ static void test_options(void)
     pn_frame_options_default(&opt);
     opt.width = opt.height = 32;
     opt.algo = PN_ALGO_SRT;
-    opt.srt_map = 7;
+    opt.srt.map = 7;
     CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
-    opt.srt_map = PN_SRT_MAP_MAX + 1u;
+    opt.srt.map = PN_SRT_MAP_MAX + 1u;
     CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
-    opt.srt_map = 0;
-    opt.srt_flags = 4u;
+    opt.srt.map = 0;
+    opt.srt.flags = 4u;
     CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
-    opt.srt_flags = 0;
-    opt.srt_delta = -1.0f;
+    opt.srt.flags = 0;
+    opt.srt.delta = -1.0f;
     CHECK(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
-    opt.srt_delta = 0.0f;
+    opt.srt.delta = 0.0f;
     pn_host_close(&h);
 
     /* A small map limit: a smaller arena, and frames at that map size. */
@@ -325,9 +325,9 @@ static void test_options(void)
     REQUIRE(mem != NULL);
     REQUIRE(pn_init(&ctx, mem, bytes, &lim) == PN_OK);
     REQUIRE(pn_scene_set(ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
-    opt.srt_map = 65;
+    opt.srt.map = 65;
     CHECK(pn_render(ctx, &s.camera, &s.light, &opt, &fr) == PN_E_INVALID_ARG);
-    opt.srt_map = 0;
+    opt.srt.map = 0;
     {
         /* Stage timings: none without a clock; with one, inside the shadow pass. */
         static const size_t off[3] = {offsetof(pn_stats, srt_ns_map), offsetof(pn_stats, srt_ns_classify),

@@ -229,6 +229,58 @@ static void test_frame_input(void)
     CHECK(render_with(&S.camera, &S.light, &o) == PN_E_INVALID_ARG);
 }
 
+/* GEARS' grid: 0 is the default, 128 cells per axis or the context's gears_grid_max if
+ * smaller (the same bytes as asking for it); above the limit is PN_E_INVALID_ARG naming
+ * gears.grid. */
+static int render_vis(pn_context *ctx, const pn_frame_options *o, float *vis)
+{
+    pn_frame fr;
+    if (pn_render(ctx, &S.camera, &S.light, o, &fr) != PN_OK) return 0;
+    memcpy(vis, fr.visibility, sizeof(float) * 64u * 64u);
+    return 1;
+}
+
+static void test_gears_grid_default(void)
+{
+    static float a[64 * 64], b[64 * 64];
+    pn_frame_options o = OPT;
+    pn_host h2;
+    pn_limits lim;
+    char err[256];
+    if (!(pn_build_info() & PN_BUILD_GEARS)) return;
+    REQUIRE(pn_scene_set(H.ctx, S.mesh.positions, S.mesh.vertex_count, S.mesh.indices, S.mesh.triangle_count) == PN_OK);
+    o.algo = PN_ALGO_GEARS;
+    CHECK(OPT.gears.grid == 0u); /* pn_frame_options_default */
+    o.gears.grid = 0;
+    CHECK_MSG(render_vis(H.ctx, &o, a), "grid 0: %s", pn_last_error(H.ctx));
+    o.gears.grid = 128;
+    CHECK(render_vis(H.ctx, &o, b));
+    CHECK(memcmp(a, b, sizeof(a)) == 0);
+    o.gears.grid = PN_GEARS_GRID_MAX + 1u;
+    CHECK(render_with(&S.camera, &S.light, &o) == PN_E_INVALID_ARG);
+    CHECK(strstr(pn_last_error(H.ctx), "gears.grid") != NULL);
+    o.gears.grid = PN_GEARS_GRID_MAX;
+    CHECK(render_with(&S.camera, &S.light, &o) == PN_OK);
+
+    /* A limit below 128: 0 is the limit. */
+    memset(&lim, 0, sizeof(lim));
+    lim.max_triangles = S.mesh.triangle_count;
+    lim.max_width = 64;
+    lim.max_height = 64;
+    lim.gears_grid_max = 40;
+    REQUIRE(pn_host_open_limits(&h2, &lim, 1, err, sizeof(err)) == 0);
+    REQUIRE(pn_scene_set(h2.ctx, S.mesh.positions, S.mesh.vertex_count, S.mesh.indices,
+                         S.mesh.triangle_count) == PN_OK);
+    o.gears.grid = 0;
+    CHECK_MSG(render_vis(h2.ctx, &o, a), "grid 0, limit 40: %s", pn_last_error(h2.ctx));
+    o.gears.grid = 40;
+    CHECK(render_vis(h2.ctx, &o, b));
+    CHECK(memcmp(a, b, sizeof(a)) == 0);
+    o.gears.grid = 41;
+    CHECK(!render_vis(h2.ctx, &o, b) && strstr(pn_last_error(h2.ctx), "gears.grid = 41") != NULL);
+    pn_host_close(&h2);
+}
+
 /* Issue 20: frames and normals that cannot be formed in float. A triangle whose cross
  * product has no component of at least FLT_MIN (2^-126) is degenerate; a camera or light
  * whose frame would need a subnormal square, or a fov whose pixels' rays coincide, gets
@@ -399,7 +451,7 @@ static int recv_frames(const pn_setup *s, float vis[RECV_N][RECV_PIXELS])
         if (!(pn_build_info() & RECV_ALGOS[a].build)) continue;
         o.algo = RECV_ALGOS[a].algo;
         o.eps = s->eps;
-        o.gears_grid = 32;
+        o.gears.grid = 32;
         st = pn_render(H.ctx, &s->camera, &s->light, &o, &fr);
         CHECK_MSG(st == PN_OK, "%s: %s", RECV_ALGOS[a].name, pn_last_error(H.ctx));
         if (st != PN_OK) return 0;
@@ -579,6 +631,7 @@ int main(void)
     RUN(test_previous_scene_kept);
     RUN(test_degenerate_counted);
     RUN(test_frame_input);
+    RUN(test_gears_grid_default);
     RUN(test_subnormal_triangles);
     RUN(test_float_frames);
     RUN(test_no_scene);

@@ -152,7 +152,7 @@ static void wg_opts(pn_frame_options *o, uint32_t mode)
     o->height = H;
     o->k = 32;
     o->algo = PN_ALGO_WEDGES;
-    o->wg_mode = mode;
+    o->wedges.mode = mode;
 }
 
 static void errors(const float *a, const float *b, double *mae, double *rmse, double *mx)
@@ -294,7 +294,7 @@ static void test_blend_spheres(void)
     {
         pn_frame fr;
         CHECK(pn_render(h2.ctx, &s.camera, &s.light, &o, &fr) == PN_E_INVALID_ARG);
-        CHECK(strstr(pn_last_error(h2.ctx), "wg_mode") != NULL);
+        CHECK(strstr(pn_last_error(h2.ctx), "wedges.mode") != NULL);
     }
     pn_host_close(&h1);
     pn_host_close(&h2);

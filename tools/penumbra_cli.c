@@ -206,7 +206,9 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
                "  \"gears_max_tris_per_cell\": %u,\n  \"gears_mean_tris_per_cell\": %.3f,\n"
                "  \"gears_max_pixels_per_cell\": %u,\n  \"gears_mean_pixels_per_cell\": %.3f,\n"
                "  \"gears_pairs_high_water\": %u,\n",
-            opt->gears_grid, (unsigned long long)st->gears_pairs, (unsigned long long)st->gears_assignments,
+            /* the grid rendered: 0 is 128, at most the limit (the CLI's context has the default) */
+            opt->gears.grid ? opt->gears.grid : PN_GEARS_GRID_MAX < 128u ? PN_GEARS_GRID_MAX : 128u,
+            (unsigned long long)st->gears_pairs, (unsigned long long)st->gears_assignments,
             st->gears_tiles, st->gears_faces, st->gears_cells_used, st->gears_max_tris_per_cell,
             st->gears_mean_tris_per_cell, st->gears_max_pixels_per_cell, st->gears_mean_pixels_per_cell,
             st->gears_pairs_high_water);
@@ -315,49 +317,49 @@ static int cmd_render(int argc, char **argv)
             else if (strcmp(v, "off") == 0) ground = 0;
             else BAD("--ground");
         } else if (strcmp(a, "--eps") == 0) { NEED_ARG; eps_rel = strtof(v, NULL); }
-        else if (strcmp(a, "--grid") == 0) { NEED_ARG; opt.gears_grid = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--grid") == 0) { NEED_ARG; opt.gears.grid = (uint32_t)strtoul(v, NULL, 10); }
         else if (strcmp(a, "--exact-stats") == 0) opt.exact_stats = 1;
-        else if (strcmp(a, "--srt-map") == 0) { NEED_ARG; opt.srt_map = (uint32_t)strtoul(v, NULL, 10); }
-        else if (strcmp(a, "--srt-delta") == 0) { NEED_ARG; opt.srt_delta = strtof(v, NULL); }
-        else if (strcmp(a, "--srt-no-conservative") == 0) opt.srt_flags |= PN_SRT_NO_CONSERVATIVE;
-        else if (strcmp(a, "--srt-force-pip") == 0) opt.srt_flags |= PN_SRT_FORCE_PIP;
-        else if (strcmp(a, "--occ-slices") == 0) { NEED_ARG; opt.occ_slices = (uint32_t)strtoul(v, NULL, 10); }
-        else if (strcmp(a, "--occ-map") == 0) { NEED_ARG; opt.occ_map = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--srt-map") == 0) { NEED_ARG; opt.srt.map = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--srt-delta") == 0) { NEED_ARG; opt.srt.delta = strtof(v, NULL); }
+        else if (strcmp(a, "--srt-no-conservative") == 0) opt.srt.flags |= PN_SRT_NO_CONSERVATIVE;
+        else if (strcmp(a, "--srt-force-pip") == 0) opt.srt.flags |= PN_SRT_FORCE_PIP;
+        else if (strcmp(a, "--occ-slices") == 0) { NEED_ARG; opt.occtex.slices = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--occ-map") == 0) { NEED_ARG; opt.occtex.map = (uint32_t)strtoul(v, NULL, 10); }
         else if (strcmp(a, "--occ-filter") == 0) {
             NEED_ARG;
-            if (strcmp(v, "nbuffer") == 0) opt.occ_filter = PN_OCC_FILTER_NBUFFER;
-            else if (strcmp(v, "sat") == 0) opt.occ_filter = PN_OCC_FILTER_SAT;
-            else if (strcmp(v, "mipmap") == 0) opt.occ_filter = PN_OCC_FILTER_MIPMAP;
+            if (strcmp(v, "nbuffer") == 0) opt.occtex.filter = PN_OCC_FILTER_NBUFFER;
+            else if (strcmp(v, "sat") == 0) opt.occtex.filter = PN_OCC_FILTER_SAT;
+            else if (strcmp(v, "mipmap") == 0) opt.occtex.filter = PN_OCC_FILTER_MIPMAP;
             else BAD(a);
         }
         else if (strcmp(a, "--occ-combine") == 0) {
             NEED_ARG;
-            if (strcmp(v, "product") == 0) opt.occ_combine = PN_OCC_COMBINE_PRODUCT;
-            else if (strcmp(v, "max") == 0) opt.occ_combine = PN_OCC_COMBINE_MAX;
-            else if (strcmp(v, "sum") == 0) opt.occ_combine = PN_OCC_COMBINE_SUM;
+            if (strcmp(v, "product") == 0) opt.occtex.combine = PN_OCC_COMBINE_PRODUCT;
+            else if (strcmp(v, "max") == 0) opt.occtex.combine = PN_OCC_COMBINE_MAX;
+            else if (strcmp(v, "sum") == 0) opt.occtex.combine = PN_OCC_COMBINE_SUM;
             else BAD(a);
         }
-        else if (strcmp(a, "--occ-leak-fix") == 0) opt.occ_flags |= PN_OCC_LEAK_FIX;
-        else if (strcmp(a, "--mc-layers") == 0) { NEED_ARG; opt.mc_layers = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--occ-leak-fix") == 0) opt.occtex.flags |= PN_OCC_LEAK_FIX;
+        else if (strcmp(a, "--mc-layers") == 0) { NEED_ARG; opt.mcsm.layers = (uint32_t)strtoul(v, NULL, 10); }
         else if (strcmp(a, "--mc-search") == 0) {
             NEED_ARG;
-            if (strcmp(v, "linear") == 0) opt.mc_search = PN_MC_SEARCH_LINEAR;
-            else if (strcmp(v, "hier") == 0) opt.mc_search = PN_MC_SEARCH_HIER;
+            if (strcmp(v, "linear") == 0) opt.mcsm.search = PN_MC_SEARCH_LINEAR;
+            else if (strcmp(v, "hier") == 0) opt.mcsm.search = PN_MC_SEARCH_HIER;
             else BAD(a);
         }
-        else if (strcmp(a, "--mc-rays") == 0) { NEED_ARG; opt.mc_rays = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--mc-rays") == 0) { NEED_ARG; opt.mcsm.rays = (uint32_t)strtoul(v, NULL, 10); }
         else if (strcmp(a, "--mc-blur") == 0) {
             NEED_ARG;
-            opt.mc_blur = strcmp(v, "off") == 0 ? PN_MC_BLUR_OFF : (uint32_t)strtoul(v, NULL, 10);
+            opt.mcsm.blur = strcmp(v, "off") == 0 ? PN_MC_BLUR_OFF : (uint32_t)strtoul(v, NULL, 10);
         }
-        else if (strcmp(a, "--mc-map") == 0) { NEED_ARG; opt.mc_map = (uint32_t)strtoul(v, NULL, 10); }
-        else if (strcmp(a, "--mc-no-bias") == 0) opt.mc_flags |= PN_MC_NO_BIAS;
-        else if (strcmp(a, "--mc-no-classify") == 0) opt.mc_flags |= PN_MC_NO_CLASSIFY;
-        else if (strcmp(a, "--mc-seed") == 0) { NEED_ARG; opt.mc_seed = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--mc-map") == 0) { NEED_ARG; opt.mcsm.map = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--mc-no-bias") == 0) opt.mcsm.flags |= PN_MC_NO_BIAS;
+        else if (strcmp(a, "--mc-no-classify") == 0) opt.mcsm.flags |= PN_MC_NO_CLASSIFY;
+        else if (strcmp(a, "--mc-seed") == 0) { NEED_ARG; opt.mcsm.seed = (uint32_t)strtoul(v, NULL, 10); }
         else if (strcmp(a, "--wg-mode") == 0) {
             NEED_ARG;
-            if (strcmp(v, "blend") == 0) opt.wg_mode = PN_WG_MODE_BLEND;
-            else if (strcmp(v, "additive") == 0) opt.wg_mode = PN_WG_MODE_ADDITIVE;
+            if (strcmp(v, "blend") == 0) opt.wedges.mode = PN_WG_MODE_BLEND;
+            else if (strcmp(v, "additive") == 0) opt.wedges.mode = PN_WG_MODE_ADDITIVE;
             else BAD(a);
         }
         else if (strcmp(a, "--threads") == 0) { NEED_ARG; threads = atoi(v); if (threads < 1) BAD(a); }

@@ -209,7 +209,7 @@ int fw_run(fw_write_fn write)
                 opt.height = FW_HEIGHT;
                 opt.k = ks[ki];
                 opt.algo = (pn_algo)a;
-                opt.gears_grid = PN_GEARS_GRID_MAX;
+                opt.gears.grid = PN_GEARS_GRID_MAX;
                 st = pn_render(ctx, &cam, li == 0u ? &area : &point, &opt, &frame);
                 if (st != PN_OK)
                     return fail(pn_algo_name((pn_algo)a), st, ctx);

@@ -41,7 +41,7 @@
 #define PN_ENABLE_SRT 1
 #endif
 
-/* Largest SRT shadow-map resolution per axis (the frame option srt_map, default the
+/* Largest SRT shadow-map resolution per axis (the frame option srt.map, default the
  * smaller of 2048 and this, may be any value from 8 up to it; pn_limits.srt_map_max lowers
  * it per context). Costs 12 bytes of frame arena per texel (depth 4, triangle id 4, thin-
  * triangle mark 4; 48 MiB at 2048) plus 8 per 64 texels (penumbra tiles), plus 8 bytes per
@@ -58,7 +58,7 @@
 #define PN_ENABLE_OCCTEX 1
 #endif
 
-/* Largest occlusion-texture resolution per axis (frame option occ_map, default the smaller
+/* Largest occlusion-texture resolution per axis (frame option occtex.map, default the smaller
  * of 512 and this; pn_limits.occ_map_max lowers it per context). Costs 4 bytes per texel
  * (the slices' bits, 16 in a word) plus the filter of one slice at a time: 4 bytes per
  * texel per N-buffer level (floor(log2 res) + 1 levels: 10 MiB at 512), which covers the
@@ -75,7 +75,7 @@
 #define PN_ENABLE_MCSM 1
 #endif
 
-/* Largest depth-layer resolution per axis (frame option mc_map, default the smaller of 512
+/* Largest depth-layer resolution per axis (frame option mcsm.map, default the smaller of 512
  * and this; pn_limits.mc_map_max lowers it per context). The N-buffer is the method's main
  * memory cost (the thesis says so, and limits its maps to 1024): 12 bytes per texel per
  * level (min near, max far, max near as floats), floor(log2 res) + 1 levels, level 0 being
@@ -144,7 +144,7 @@
 
 /* ---- GEARS ---------------------------------------------------------------------------- */
 
-/* Largest grid resolution per axis (the frame option gears_grid, default 128, may be any
+/* Largest grid resolution per axis (the frame option gears.grid, default 128, may be any
  * value up to this). Costs 6 faces x res^2 x 12 bytes of frame arena (cell offsets and
  * pixel counts; a point light uses a cube of 6 grids). Range 1 .. 1024. */
 #ifndef PN_GEARS_GRID_MAX

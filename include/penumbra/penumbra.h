@@ -292,6 +292,55 @@ typedef enum pn_algo {
 } pn_algo;
 #define PN_ALGO_COUNT 7 /* pn_algo values are 0 .. PN_ALGO_COUNT - 1 */
 
+/* Each algorithm's own options, a sub-struct of pn_frame_options named after its module
+ * (opt.srt, opt.mcsm, ...): all zero is every default of that algorithm. */
+typedef struct pn_gears_options {
+    uint32_t grid;         /* GEARS grid cells per axis, 1 .. limits.gears_grid_max; 0: the
+                              smaller of 128 and the limit */
+} pn_gears_options;
+
+typedef struct pn_srt_options { /* PN_ALGO_SRT (0 everywhere is the recommended configuration) */
+    uint32_t map;          /* shadow-map texels per axis, 8 .. limits.srt_map_max; 0: the
+                              smaller of 2048 and the limit */
+    float delta;           /* depth-discontinuity threshold, fraction of the scene diagonal;
+                              0: 1e-3 */
+    uint32_t flags;        /* PN_SRT_NO_CONSERVATIVE: no conservative rasterization of thin
+                              triangles; PN_SRT_FORCE_PIP: every pixel exact (= reference) */
+} pn_srt_options;
+
+typedef struct pn_occtex_options { /* PN_ALGO_OCCTEX (0 everywhere is the recommended
+                                      configuration) */
+    uint32_t slices;       /* slices, 2 .. 16; 0: 16 */
+    uint32_t map;          /* occlusion-texture texels per axis, 8 .. limits.occ_map_max; 0:
+                              the smaller of 512 and the limit */
+    uint32_t filter;       /* PN_OCC_FILTER_*; 0: PN_OCC_FILTER_SAT */
+    uint32_t combine;      /* PN_OCC_COMBINE_*; 0: PN_OCC_COMBINE_PRODUCT */
+    uint32_t flags;        /* PN_OCC_LEAK_FIX: a fragment marks the next slice too (paper
+                              §3.4; off by default: measured, it does not reduce leaks here
+                              and doubles planar occluders) */
+} pn_occtex_options;
+
+typedef struct pn_mcsm_options { /* PN_ALGO_MCSM (0 everywhere is the recommended
+                                    configuration) */
+    uint32_t layers;       /* depth layers: 1 (near only), 2 (near, far) or 3 (near, far and
+                              the eye's depth, Algorithm 1); 0: 2 */
+    uint32_t search;       /* PN_MC_SEARCH_*; 0: PN_MC_SEARCH_HIER */
+    uint32_t rays;         /* n: n x n jittered rays per pixel, 1 .. 8; 0: 3 */
+    uint32_t blur;         /* depth- and normal-aware blur radius in pixels, 1 .. 8, or
+                              PN_MC_BLUR_OFF; 0: 1 */
+    uint32_t map;          /* depth-layer texels per axis, 8 .. limits.mc_map_max; 0: the
+                              smaller of 512 and the limit */
+    uint32_t flags;        /* PN_MC_NO_BIAS: no adaptive bias (eq. 3.2); PN_MC_NO_CLASSIFY:
+                              no penumbra classification, early-outs or ray shortening
+                              (every ray searched whole) */
+    uint32_t seed;         /* frame key of the sample hash (Appendix A's key) */
+} pn_mcsm_options;
+
+typedef struct pn_wedges_options { /* PN_ALGO_WEDGES (0 is the recommended configuration) */
+    uint32_t mode;         /* PN_WG_MODE_BLEND (Forest et al. 2006's overlap blending) or
+                              PN_WG_MODE_ADDITIVE (the classic sum); 0: PN_WG_MODE_BLEND */
+} pn_wedges_options;
+
 typedef struct pn_frame_options {
     uint32_t width, height; /* >= 1, <= the context's limits */
     uint32_t k;             /* 4, 8, 16 or 32, <= PN_MASK_K_MAX (checked even for a point
@@ -302,41 +351,14 @@ typedef struct pn_frame_options {
     float albedo;   /* shading: rgb = albedo * (ambient + visibility * cos) ; [0, 1] */
     float ambient;  /* [0, 1] */
     uint8_t background[4]; /* RGBA8 of pixels that see no triangle */
-    uint32_t gears_grid;   /* GEARS grid cells per axis, 1 .. limits.gears_grid_max (128) */
     uint32_t exact_stats;  /* 1: no early exit on a full mask, so pn_stats counts every
                               candidate's predicate ("necessary" assignments, paper Table 6) */
-    /* PN_ALGO_SRT (0 everywhere is the recommended configuration) */
-    uint32_t srt_map;      /* shadow-map texels per axis, 8 .. limits.srt_map_max; 0: the
-                              smaller of 2048 and the limit */
-    uint32_t srt_flags;    /* PN_SRT_NO_CONSERVATIVE: no conservative rasterization of thin
-                              triangles; PN_SRT_FORCE_PIP: every pixel exact (= reference) */
-    float srt_delta;       /* depth-discontinuity threshold, fraction of the scene diagonal;
-                              0: 1e-3 */
-    /* PN_ALGO_OCCTEX (0 everywhere is the recommended configuration) */
-    uint32_t occ_slices;   /* slices, 2 .. 16; 0: 16 */
-    uint32_t occ_map;      /* occlusion-texture texels per axis, 8 .. limits.occ_map_max; 0:
-                              the smaller of 512 and the limit */
-    uint32_t occ_filter;   /* PN_OCC_FILTER_*; 0: PN_OCC_FILTER_SAT */
-    uint32_t occ_combine;  /* PN_OCC_COMBINE_*; 0: PN_OCC_COMBINE_PRODUCT */
-    uint32_t occ_flags;    /* PN_OCC_LEAK_FIX: a fragment marks the next slice too (paper
-                              §3.4; off by default: measured, it does not reduce leaks here
-                              and doubles planar occluders) */
-    /* PN_ALGO_MCSM (0 everywhere is the recommended configuration) */
-    uint32_t mc_layers;    /* depth layers: 1 (near only), 2 (near, far) or 3 (near, far and
-                              the eye's depth, Algorithm 1); 0: 2 */
-    uint32_t mc_search;    /* PN_MC_SEARCH_*; 0: PN_MC_SEARCH_HIER */
-    uint32_t mc_rays;      /* n: n x n jittered rays per pixel, 1 .. 8; 0: 3 */
-    uint32_t mc_blur;      /* depth- and normal-aware blur radius in pixels, 1 .. 8, or
-                              PN_MC_BLUR_OFF; 0: 1 */
-    uint32_t mc_map;       /* depth-layer texels per axis, 8 .. limits.mc_map_max; 0: the
-                              smaller of 512 and the limit */
-    uint32_t mc_flags;     /* PN_MC_NO_BIAS: no adaptive bias (eq. 3.2); PN_MC_NO_CLASSIFY:
-                              no penumbra classification, early-outs or ray shortening
-                              (every ray searched whole) */
-    uint32_t mc_seed;      /* frame key of the sample hash (Appendix A's key) */
-    /* PN_ALGO_WEDGES (0 is the recommended configuration) */
-    uint32_t wg_mode;      /* PN_WG_MODE_BLEND (Forest et al. 2006's overlap blending) or
-                              PN_WG_MODE_ADDITIVE (the classic sum); 0: PN_WG_MODE_BLEND */
+    /* each algorithm's own options (only the frame's algo reads its own) */
+    pn_gears_options gears;
+    pn_srt_options srt;
+    pn_occtex_options occtex;
+    pn_mcsm_options mcsm;
+    pn_wedges_options wedges;
 } pn_frame_options;
 
 #define PN_WG_MODE_BLEND 1u
@@ -360,7 +382,8 @@ typedef struct pn_frame_options {
 #define PN_MC_NO_BIAS 0x1u
 #define PN_MC_NO_CLASSIFY 0x2u
 
-/* 512x512, k = 16, reference, eps = 1e-4, albedo 0.8, ambient 0.1, dark blue background. */
+/* 512x512, k = 16, reference, eps = 1e-4, albedo 0.8, ambient 0.1, dark blue background;
+ * every algorithm's sub-struct zero (its defaults: GEARS' grid 128, at most the limit). */
 void pn_frame_options_default(pn_frame_options *opt);
 
 #define PN_NO_TRIANGLE 0xFFFFFFFFu

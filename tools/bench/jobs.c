@@ -416,6 +416,6 @@ void base_options(const bench_opts *o, const scene_state *ss, pn_frame_options *
     pn_frame_options_default(opt);
     opt->width = opt->height = o->size;
     opt->k = o->k;
-    opt->gears_grid = o->grid;
+    opt->gears.grid = o->grid;
     opt->eps = ss->s.eps;
 }

@@ -42,19 +42,19 @@ static const mc_cfg mc_leak_cfgs[MC_LEAK_CFGS] = {
     {"2 layers, no bias", 2u, 0u, 0u, 0u, PN_MC_NO_BIAS, 0u},
     {"1 layer, no bias", 1u, 0u, 0u, 0u, PN_MC_NO_BIAS, 0u},
 };
-#define MC_RAYS_MAX 8 /* mc_rays: n x n rays, n in 1 .. 8 (penumbra.h) */
+#define MC_RAYS_MAX 8 /* mcsm.rays: n x n rays, n in 1 .. 8 (penumbra.h) */
 #define MC_GOAL_RMSE 0.05
 #define MC_GOAL_SPEED 5.0
 
 static void mc_job(job *j, int a_mc, const pn_frame_options *opt, const mc_cfg *c, int keep)
 {
     job_lib(j, a_mc, opt, keep);
-    j->opt.mc_layers = c->layers;
-    j->opt.mc_search = c->search;
-    j->opt.mc_rays = c->rays;
-    j->opt.mc_blur = c->blur;
-    j->opt.mc_flags = c->flags;
-    j->opt.mc_map = c->map;
+    j->opt.mcsm.layers = c->layers;
+    j->opt.mcsm.search = c->search;
+    j->opt.mcsm.rays = c->rays;
+    j->opt.mcsm.blur = c->blur;
+    j->opt.mcsm.flags = c->flags;
+    j->opt.mcsm.map = c->map;
 }
 
 static void mc_stages(char *b, size_t n, const job *j)
@@ -412,7 +412,7 @@ static const bench_note mc_notes[] = {
      "Every configuration against a k = 32 reference at the main point's size (area light): the default (what "
      "`--algo mcsm` renders: near and far depth layers of 512x512 texels seen from behind the light, hierarchical "
      "search through their N-buffer, 3x3 jittered rays per pixel, the depth-aware blur at its default radius "
-     "(`mc_blur` = 0, penumbra.h)) and one change of "
+     "(`mcsm.blur` = 0, penumbra.h)) and one change of "
      "it per row; three layers with linear/binary search (texel-spaced steps, bisection on a transition) is the "
      "thesis' other version. ms: the shadow pass's median; the stages are the last repetition's (layers: window and "
      "rasterization of the occluders; N-buffer: its levels; rays: classification and search; blur). Leaks: pixels "

@@ -58,10 +58,10 @@ void occ_section(const bench_opts *o, report *r, scene_state *ss)
     for (i = 0; i < OCC_CFGS; i++) {
         job_lib(&jobs[i], a_occ, &opt, 1);
         jobs[i].opt.k = 32;
-        jobs[i].opt.occ_filter = occ_cfgs[i].filter;
-        jobs[i].opt.occ_combine = occ_cfgs[i].combine;
-        jobs[i].opt.occ_slices = occ_cfgs[i].slices;
-        jobs[i].opt.occ_flags = occ_cfgs[i].flags;
+        jobs[i].opt.occtex.filter = occ_cfgs[i].filter;
+        jobs[i].opt.occtex.combine = occ_cfgs[i].combine;
+        jobs[i].opt.occtex.slices = occ_cfgs[i].slices;
+        jobs[i].opt.occtex.flags = occ_cfgs[i].flags;
         cfg16[i] = jobs[i];
         cfg16[i].opt.k = opt.k;
     }

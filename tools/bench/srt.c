@@ -111,8 +111,8 @@ void srt_section(const bench_opts *o, report *r, scene_state *ss)
                 }
         for (i = 0; i < SRT_CFGS; i++) {
             job_lib(&jobs[nj], a_srt, &opt, 1);
-            jobs[nj].opt.srt_flags = srt_cfgs[i].flags;
-            jobs[nj].opt.srt_map = srt_cfgs[i].map;
+            jobs[nj].opt.srt.flags = srt_cfgs[i].flags;
+            jobs[nj].opt.srt.map = srt_cfgs[i].map;
             nj++;
         }
         progress("  %s: SRT, %s light, %ux%u", ss->s.name, li ? "point" : "area", opt.width, opt.height);

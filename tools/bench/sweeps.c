@@ -76,7 +76,7 @@ void sweep(const bench_opts *o, report *r, scene_state *ss, int kind, pn_embree_
         pn_stats xs[8];
         for (v = 0; v < nv; v++) {
             job_lib(&jobs[nj], A_GEARS, &base, 0);
-            jobs[nj].opt.gears_grid = o->sweep_grid[v];
+            jobs[nj].opt.gears.grid = o->sweep_grid[v];
             nj++;
         }
         /* The reference first in the array would give the G-buffer before Embree needs it. */
@@ -93,7 +93,7 @@ void sweep(const bench_opts *o, report *r, scene_state *ss, int kind, pn_embree_
         for (v = 0; v < nv; v++) {
             job x;
             job_lib(&x, A_GEARS, &base, 0);
-            x.opt.gears_grid = o->sweep_grid[v];
+            x.opt.gears.grid = o->sweep_grid[v];
             x.opt.exact_stats = 1;
             job_run(ss, &x, &ss->s.light, 1);
             if (x.ok) xs[v] = x.st;

@@ -24,7 +24,7 @@ static const struct {
     {"additive", PN_WG_MODE_ADDITIVE},
 };
 #define WG_TOL (1.0 / 255.0) /* one step of an 8-bit image: the "nearly exact" */
-#define WG_SPHERE_TRIS 762u  /* the built-in spheres' triangles per sphere (tools/pn_scenes.c) */
+#define WG_SPHERE_TRIS 762u  /* the built-in spheres' triangles per sphere (tools/pn_scenes_objects.c) */
 #define WG_SPHERES 81u       /* ...and spheres */
 
 static void wg_stages(char *b, size_t n, const pn_stats *st)
@@ -92,7 +92,7 @@ void wg_claims(const bench_opts *o, scene_state *ss)
     n = (size_t)opt.width * opt.height;
     for (m = 0; m < WG_MODES; m++) {
         job_lib(&jobs[m], a_wg, &opt, 1);
-        jobs[m].opt.wg_mode = wg_modes[m].mode;
+        jobs[m].opt.wedges.mode = wg_modes[m].mode;
     }
     progress("  %s: wedges, blended and additive", ss->s.name);
     run_jobs(o, ss, jobs, WG_MODES, &ss->s.light);
@@ -101,7 +101,7 @@ void wg_claims(const bench_opts *o, scene_state *ss)
     for (m = 0; m < WG_MODES; m++) {
         job_lib(&x[m], a_wg, &opt, 1);
         x[m].opt.k = 32;
-        x[m].opt.wg_mode = wg_modes[m].mode;
+        x[m].opt.wedges.mode = wg_modes[m].mode;
         job_run(ss, &x[m], &ss->s.light, 0);
     }
     for (m = 0; m < WG_MODES && !ss->wg.err[0]; m++)
@@ -288,7 +288,7 @@ void wg_sweep(const bench_opts *o, report *r)
             if ((pn_build_info() & algos[a].build_flag) && in_list(o->algos, algos[a].name)) job_lib(&jobs[nj++], a, &opt, 0);
         for (m = 0; m < WG_MODES; m++) {
             job_lib(&jobs[nj], a_wg, &opt, 0);
-            jobs[nj++].opt.wg_mode = wg_modes[m].mode;
+            jobs[nj++].opt.wedges.mode = wg_modes[m].mode;
         }
         progress("  spheres: %u of %u spheres, %u triangles", ns, WG_SPHERES, part.triangle_count);
         run_jobs(o, &ss, jobs, nj, &ss.s.light);
@@ -301,7 +301,7 @@ void wg_sweep(const bench_opts *o, report *r)
             accuracy acc;
             job_lib(&x, a_wg, &opt, 1);
             x.opt.k = 32;
-            x.opt.wg_mode = wg_modes[m].mode;
+            x.opt.wedges.mode = wg_modes[m].mode;
             job_run(&ss, &x, &ss.s.light, 0);
             acc = compare_vis(x.vis, ref, n);
             rmse[m] = x.ok && acc.ok ? acc.rmse : NAN;
@@ -384,8 +384,8 @@ static const bench_note wg_notes[] = {
     {SEC_WG_MODES, "## Penumbra wedges (Forest et al. 2006): additive against blended",
      "Per scene at the main point's size and k (area light), run interleaved: the default (what `--algo wedges` "
      "renders: the objects' occluded areas combined by the paper's overlap blending, §3.2) and the classic sum of "
-     "the penumbra-wedges algorithm (`wg_mode` = PN_WG_MODE_ADDITIVE). ms: the shadow pass's median; the stages are "
-     "the blended frame's last repetition, from `pn_stats` (silhouettes: how each triangle casts and the silhouette "
+     "the penumbra-wedges algorithm (`wedges.mode` = PN_WG_MODE_ADDITIVE). ms: the shadow pass's median; the stages "
+     "are the blended frame's last repetition, from `pn_stats` (silhouettes: how each triangle casts and the silhouette "
      "edges seen from the light centre; binning: each wedge's screen tiles, sorted by tile; pixels: each pixel's "
      "centre ray and its tile's wedges, with the blending). Silhouette edges: the wedges built (`wg_silhouettes`); "
      "objects: triangles joined by shared vertices (`wg_objects`, what the blending combines); pairs: (screen tile, "

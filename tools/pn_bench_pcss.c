@@ -340,16 +340,6 @@ static void pn_pcss_raster(void *task, uint32_t begin, uint32_t end)
 
 /* ---- 3. per pixel --------------------------------------------------------------------- */
 
-/* Integer hash (lowbias32, C. Wellons). */
-static uint32_t pn_pcss_hash(uint32_t x)
-{
-    x ^= x >> 16;
-    x *= 0x7feb352du;
-    x ^= x >> 15;
-    x *= 0x846ca68bu;
-    x ^= x >> 16;
-    return x;
-}
 
 /* Hammersley point i of n in [0, 1)^2, cell-centred. */
 static void pn_pcss_hammersley(uint32_t i, uint32_t n, float *a, float *b)
@@ -435,7 +425,7 @@ static float pn_pcss_pixel_pcf(const pn_pcss *s, size_t pix, pn_v3 O, pn_v3 n)
     hv = s->vlen * (r.zr - s->near) / (r.zr * s->near) / s->dsy;
     hu = pn_pcss_minf(hu, 2.0f * (float)PN_PCSS_MAP); /* beyond the map either way */
     hv = pn_pcss_minf(hv, 2.0f * (float)PN_PCSS_MAP);
-    h = pn_pcss_hash((uint32_t)pix * 2u + 1u);
+    h = pn_hash32((uint32_t)pix * 2u + 1u);
     au = (float)(h & 0xFFFFu) * (1.0f / 65536.0f);
     bu = (float)(h >> 16) * (1.0f / 65536.0f);
     for (t = 0; t < PN_PCSS_SEARCH_TAPS; t++) {
@@ -462,7 +452,7 @@ static float pn_pcss_pixel_pcf(const pn_pcss *s, size_t pix, pn_v3 O, pn_v3 n)
     rv = pn_pcss_maxf(1.0f, pn_pcss_minf(rv, hv));
 
     /* PCF: bilinear 2x2 comparisons */
-    h = pn_pcss_hash((uint32_t)pix * 2u + 2u);
+    h = pn_hash32((uint32_t)pix * 2u + 2u);
     au = (float)(h & 0xFFFFu) * (1.0f / 65536.0f);
     bu = (float)(h >> 16) * (1.0f / 65536.0f);
     for (t = 0; t < PN_PCSS_PCF_TAPS; t++) {

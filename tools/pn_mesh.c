@@ -170,3 +170,15 @@ int pn_mesh_add_ground(pn_mesh *mesh, char *err, size_t err_size)
     mesh->triangle_count += 2u;
     return 0;
 }
+
+/* lowbias32 (C. Wellons, "Prospecting for hash functions"): a full-avalanche integer
+ * hash; the generator is hash(seed ^ hash(counter)), stateless and order-independent. */
+uint32_t pn_hash32(uint32_t x)
+{
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}

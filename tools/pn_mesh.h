@@ -34,6 +34,10 @@ typedef struct pn_mesh {
 /* Formats a message into err (if err != NULL and err_size > 0); shared by the tools. */
 void pn_tools_err(char *err, size_t err_size, const char *fmt, ...);
 
+/* lowbias32 (C. Wellons): a full-avalanche integer hash, the tools' one source of
+ * deterministic pseudo-randomness (built-in scenes, the PCSS baseline's tap rotation). */
+uint32_t pn_hash32(uint32_t x);
+
 /* Frees the arrays and zeroes the struct. NULL and an empty mesh are fine. */
 void pn_mesh_free(pn_mesh *mesh);
 

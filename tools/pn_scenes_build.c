@@ -309,22 +309,11 @@ void pn_sc_sphere(pn_sc_builder *b, double cx, double cy, double cz, double r)
 
 /* ---- Randomness ----------------------------------------------------------------------- */
 
-/* lowbias32 (C. Wellons, "Prospecting for hash functions"): a full-avalanche integer
- * hash; the generator is hash(seed ^ hash(counter)), stateless and order-independent. */
-uint32_t pn_sc_hash(uint32_t x)
-{
-    x ^= x >> 16;
-    x *= 0x7feb352du;
-    x ^= x >> 15;
-    x *= 0x846ca68bu;
-    x ^= x >> 16;
-    return x;
-}
 
 /* Uniform in [0, 1) with 24 bits, exact in float and double. */
 double pn_sc_rand01(uint32_t seed, uint32_t counter)
 {
-    return (double)(pn_sc_hash(seed ^ pn_sc_hash(counter)) >> 8) * (1.0 / 16777216.0);
+    return (double)(pn_hash32(seed ^ pn_hash32(counter)) >> 8) * (1.0 / 16777216.0);
 }
 
 /* ---- Views ---------------------------------------------------------------------------- */

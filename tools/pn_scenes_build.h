@@ -49,7 +49,6 @@ void pn_sc_hex(pn_sc_builder *b, const double c[8][3]);
 void pn_sc_sphere(pn_sc_builder *b, double cx, double cy, double cz, double r);
 
 /* ---- Randomness and views (pn_scenes_build.c) ---- */
-uint32_t pn_sc_hash(uint32_t x);
 double pn_sc_rand01(uint32_t seed, uint32_t counter);
 void pn_sc_set3(float d[3], float x, float y, float z);
 void pn_sc_view(pn_scene_view *v, float ex, float ey, float ez, float ty, float fov,

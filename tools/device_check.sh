@@ -236,6 +236,8 @@ for s in "$here/../shared/scenes" "$here/.scenes" "${PN_SCENES:-}"; do
     [ -n "$s" ] && ls "$s"/*.glb >/dev/null 2>&1 && { scenes=$(cd "$s" && pwd); break; }
 done
 : "${build_dir:=$here/build-device}"
+# Absolute: the tests run from inside the build tree.
+case "$build_dir" in /*) ;; *) build_dir=$PWD/$build_dir ;; esac
 build_log=$out_dir/build.log
 : >"$build_log"
 exe_cli=$build_dir/tools/penumbra exe_cross=$build_dir/tests/test_crossport

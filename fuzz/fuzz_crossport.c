@@ -197,7 +197,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fprintf(stderr, "%s %ux%u k=%u %s light, %u triangles: %s, %u lit, %llu candidates, %u GEARS tiles\n",
                 pn_algo_name((pn_algo)algo), w, h, k, (flags & 1u) ? "point" : "area", nt,
                 pn_status_str(sa), sa == PN_OK ? sa_st.lit_pixels : 0u,
-                sa == PN_OK ? (unsigned long long)sa_st.shadow_candidates : 0ull, sa == PN_OK ? sa_st.gears_tiles : 0u);
+                sa == PN_OK ? (unsigned long long)sa_st.shadow_candidates : 0ull, sa == PN_OK ? sa_st.gears.tiles : 0u);
     if (sa != PN_OK) {
         FUZZ_CHECK(strcmp(msg, pn_last_error(rg->ctx)) == 0, "messages differ: '%s' / '%s'", msg,
                    pn_last_error(rg->ctx));
@@ -219,16 +219,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                    "shadow counters differ: %llu/%llu %llu/%llu %u/%u", (unsigned long long)sa_st.shadow_candidates,
                    (unsigned long long)sb_st.shadow_candidates, (unsigned long long)sa_st.shadow_blocking,
                    (unsigned long long)sb_st.shadow_blocking, sa_st.lit_pixels, sb_st.lit_pixels);
-        FUZZ_CHECK(sa_st.gears_pairs == sb_st.gears_pairs && sa_st.gears_assignments == sb_st.gears_assignments &&
-                       sa_st.gears_tiles == sb_st.gears_tiles && sa_st.gears_cells_used == sb_st.gears_cells_used &&
-                       sa_st.gears_pairs_high_water == sb_st.gears_pairs_high_water,
-                   "GEARS statistics differ: tiles %u/%u pairs %llu/%llu", sa_st.gears_tiles, sb_st.gears_tiles,
-                   (unsigned long long)sa_st.gears_pairs, (unsigned long long)sb_st.gears_pairs);
-        FUZZ_CHECK(sa_st.wg_silhouettes == sb_st.wg_silhouettes && sa_st.wg_pairs == sb_st.wg_pairs &&
-                       sa_st.wg_evaluated == sb_st.wg_evaluated && sa_st.wg_touched == sb_st.wg_touched &&
-                       sa_st.wg_hard_blockers == sb_st.wg_hard_blockers,
-                   "wedge statistics differ: silhouettes %u/%u pairs %llu/%llu", sa_st.wg_silhouettes,
-                   sb_st.wg_silhouettes, (unsigned long long)sa_st.wg_pairs, (unsigned long long)sb_st.wg_pairs);
+        FUZZ_CHECK(sa_st.gears.pairs == sb_st.gears.pairs && sa_st.gears.assignments == sb_st.gears.assignments &&
+                       sa_st.gears.tiles == sb_st.gears.tiles && sa_st.gears.cells_used == sb_st.gears.cells_used &&
+                       sa_st.gears.pairs_high_water == sb_st.gears.pairs_high_water,
+                   "GEARS statistics differ: tiles %u/%u pairs %llu/%llu", sa_st.gears.tiles, sb_st.gears.tiles,
+                   (unsigned long long)sa_st.gears.pairs, (unsigned long long)sb_st.gears.pairs);
+        FUZZ_CHECK(sa_st.wedges.silhouettes == sb_st.wedges.silhouettes && sa_st.wedges.pairs == sb_st.wedges.pairs &&
+                       sa_st.wedges.evaluated == sb_st.wedges.evaluated && sa_st.wedges.touched == sb_st.wedges.touched &&
+                       sa_st.wedges.hard_blockers == sb_st.wedges.hard_blockers,
+                   "wedge statistics differ: silhouettes %u/%u pairs %llu/%llu", sa_st.wedges.silhouettes,
+                   sb_st.wedges.silhouettes, (unsigned long long)sa_st.wedges.pairs, (unsigned long long)sb_st.wedges.pairs);
     }
     return 0;
 }

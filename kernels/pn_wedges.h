@@ -700,9 +700,9 @@ PN_KFN int pn_wg_listed(PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t
 /* Visibility of one lit pixel (shadow origin O, own triangle own, tile edges list[lo, hi)).
  * Counters: candidates = edges evaluated, blocking = edges covering some of the light,
  * nodes = blockers of the centre ray, capped = more than PN_WG_HARD_MAX objects listed in
- * the tile block the centre (taken as umbra; reported as wg_hard_overflow, not an error),
- * overflow = the centre ray's walk lost a stack entry (a broken invariant: pn_bvh_widen
- * bounds the stack). */
+ * the tile block the centre (taken as umbra; reported as pn_stats.wedges.hard_overflow, not
+ * an error), overflow = the centre ray's walk lost a stack entry (a broken invariant:
+ * pn_bvh_widen bounds the stack). */
 PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mode, PN_CONST float *tris,
                          PN_CONST pn_kbvh_node *nodes, PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index,
                          PN_CONST uint32_t *tcomp,

@@ -343,11 +343,11 @@ static void pn_gears_end(pn_context *ctx, const pn_gears_frame_pools *g)
     ctx->gears.tiles = g->tiles;
     ctx->gears.faces = g->faces->n;
     ctx->gears.cells_used = used;
-    ctx->gears.max_tris = g->max_tris_cell;
-    ctx->gears.max_pix = max_pix;
-    ctx->gears.mean_tris = used ? pn_u64_to_f32(g->sum_tris_cell) / (float)used : 0.0f;
-    ctx->gears.mean_pix = used ? pn_u64_to_f32(g->lit) / (float)used : 0.0f;
-    ctx->gears.pairs_high = g->pairs_high;
+    ctx->gears.max_tris_per_cell = g->max_tris_cell;
+    ctx->gears.max_pixels_per_cell = max_pix;
+    ctx->gears.mean_tris_per_cell = used ? pn_u64_to_f32(g->sum_tris_cell) / (float)used : 0.0f;
+    ctx->gears.mean_pixels_per_cell = used ? pn_u64_to_f32(g->lit) / (float)used : 0.0f;
+    ctx->gears.pairs_high_water = g->pairs_high;
 }
 
 /* One tile: count -> exclusive prefix sum -> scatter -> sort by cell -> chunk and

@@ -104,29 +104,14 @@ struct pn_context {
     uint64_t shadow_candidates, shadow_blocking, shadow_nodes;
     uint32_t lit_pixels;
     float cull_tol;
+    /* each algorithm's public statistics (pn_stats' sub-structs) */
+    pn_gears_stats gears;
+    pn_srt_stats srt;
+    pn_occtex_stats occ;
+    pn_mcsm_stats mc;
     struct {
-        uint64_t pairs, assignments;
-        uint32_t tiles, faces, cells_used, max_tris, max_pix, pairs_high;
-        float mean_tris, mean_pix;
-    } gears;
-    struct {
-        uint32_t map, pip, thin, tiles_masked, cons_texels;
-        uint64_t ns_map, ns_classify, ns_exact;
-    } srt;
-    struct {
-        uint32_t map, slices;
-        uint64_t texels, lookups, ns_slice, ns_filter, ns_lookup;
-    } occ;
-    struct {
-        uint32_t map, lit, umbra, penumbra, penumbra_open, penumbra_shut, capped;
-        uint64_t rays, steps, ns_layers, ns_nbuffer, ns_rays, ns_blur;
-    } mc;
-    struct {
-        /* connectivity (pn_connect.c) */
-        uint32_t vertices, hedges, runs, components, closed, open_edges, nonmanifold;
-        /* last frame */
-        uint32_t sils, hard_overflow;
-        uint64_t pairs, evaluated, touched, hard_blockers, ns_silhouettes, ns_binning, ns_pixels;
+        pn_wedges_stats stats; /* connectivity (pn_connect.c) and the last frame */
+        uint32_t hedges;       /* connectivity: half-edges (pn_connect.c) */
     } wg;
     char message[256];
 };

@@ -179,7 +179,7 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
         return st;
     t1 = pn_dev_timestamp(fs);
     ctx->occ.ns_slice = t1 - t0;
-    ctx->occ.texels = s.words[PN_OCC_WORD_TEXELS];
+    ctx->occ.texels_set = s.words[PN_OCC_WORD_TEXELS];
 
     /* Per slice: its filter, then its lookups. The deepest slice holds receivers only. */
     for (k = 0; k + 1u < o->slices; k++) {

@@ -41,7 +41,7 @@ static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
     uint32_t tiles = pn_wg_tiles_of(fs->width, fs->height);
     /* Same pools, same order as pn_wg_pools() in src/pn_arena.c (sized for this frame). */
     if (!(s->tcast = (uint32_t *)pn_frame_alloc(ctx, ctx->tri_count, 4u, "wedges triangle casting")) ||
-        !(s->soff = (uint32_t *)pn_frame_alloc(ctx, (size_t)ctx->wg.runs + 1u, 4u, "wedges silhouette slots")) ||
+        !(s->soff = (uint32_t *)pn_frame_alloc(ctx, (size_t)ctx->wg.stats.edges + 1u, 4u, "wedges silhouette slots")) ||
         !(s->sil = (pn_wsil *)pn_frame_alloc(ctx, pn_wg_sil_max(l), sizeof(pn_wsil), "wedges silhouettes")) ||
         !(s->poff = (uint32_t *)pn_frame_alloc(ctx, (size_t)pn_wg_sil_max(l) + 1u, 4u, "wedges pair offsets")) ||
         !(s->pairs = (uint32_t *)pn_frame_alloc(ctx, pn_wg_pairs_max(l), 8u, "wedges tile pairs")) ||
@@ -56,15 +56,15 @@ static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
     P->wg_pairs = pn_dev_off(ctx, s->pairs);
     P->wg_sorted = pn_dev_off(ctx, s->sorted);
     P->wg_toff = pn_dev_off(ctx, s->toff);
-    ctx->wg.sils = 0;
-    ctx->wg.pairs = 0;
-    ctx->wg.touched = 0;
-    ctx->wg.evaluated = 0;
-    ctx->wg.hard_blockers = 0;
-    ctx->wg.hard_overflow = 0;
-    ctx->wg.ns_silhouettes = 0;
-    ctx->wg.ns_binning = 0;
-    ctx->wg.ns_pixels = 0;
+    ctx->wg.stats.silhouettes = 0;
+    ctx->wg.stats.pairs = 0;
+    ctx->wg.stats.touched = 0;
+    ctx->wg.stats.evaluated = 0;
+    ctx->wg.stats.hard_blockers = 0;
+    ctx->wg.stats.hard_overflow = 0;
+    ctx->wg.stats.ns_silhouettes = 0;
+    ctx->wg.stats.ns_binning = 0;
+    ctx->wg.stats.ns_pixels = 0;
     return PN_OK;
 }
 
@@ -73,7 +73,7 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
     pn_context *ctx = fs->ctx;
     pn_kparams *K = &fs->K;
     pn_wg_pools s;
-    uint32_t T = ctx->tri_count, R = ctx->wg.runs, npix = fs->width * fs->height, y, nsil = 0, npairs = 0;
+    uint32_t T = ctx->tri_count, R = ctx->wg.stats.edges, npix = fs->width * fs->height, y, nsil = 0, npairs = 0;
     uint32_t tiles = pn_wg_tiles_of(fs->width, fs->height);
     uint64_t t0 = pn_dev_timestamp(fs), t1;
     pn_status st;
@@ -106,7 +106,7 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
             return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
                            "wedges: %u silhouette edges; the silhouette pool holds %u (PN_WEDGES_SIL_MAX)", nsil,
                            pn_wg_sil_max(&ctx->limits));
-        ctx->wg.sils = nsil;
+        ctx->wg.stats.silhouettes = nsil;
         if (nsil > 0u) {
             if ((st = pn_dev_run(fs, PN_K_WG_SIL_MAKE, R)) != PN_OK || (st = pn_dev_scan(fs, s.poff, nsil)) != PN_OK ||
                 (st = pn_dev_to_host(fs, s.poff + nsil, 4u)) != PN_OK)
@@ -115,14 +115,14 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
         }
     }
     t1 = pn_dev_timestamp(fs);
-    ctx->wg.ns_silhouettes = t1 - t0;
+    ctx->wg.stats.ns_silhouettes = t1 - t0;
     t0 = t1;
     if (npairs > pn_wg_pairs_max(&ctx->limits))
         return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
                        "wedges: the frame needs %u (tile, wedge) pairs; the pair pool holds %u "
                        "(pn_limits.wg_pairs, PN_WEDGES_PAIRS)", npairs,
                        pn_wg_pairs_max(&ctx->limits));
-    ctx->wg.pairs = npairs;
+    ctx->wg.stats.pairs = npairs;
     K->wg.sils = nsil;
     if (npairs > 0u) {
         /* Pairs are scattered in silhouette order, so each tile's silhouettes ascend: the
@@ -134,18 +134,18 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
         return st;
     }
     t1 = pn_dev_timestamp(fs);
-    ctx->wg.ns_binning = t1 - t0;
+    ctx->wg.stats.ns_binning = t1 - t0;
     t0 = t1;
     if ((st = pn_dev_run(fs, PN_K_WG_PIXEL, npix)) != PN_OK ||
         (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_row_counters))) != PN_OK)
         return st;
-    ctx->wg.ns_pixels = pn_dev_timestamp(fs) - t0;
+    ctx->wg.stats.ns_pixels = pn_dev_timestamp(fs) - t0;
     for (y = 0; y < fs->height; y++) {
         const pn_shadow_counters *c = &((const pn_row_counters *)fs->counters)[y].c;
-        ctx->wg.evaluated += c->candidates;
-        ctx->wg.touched += c->blocking;
-        ctx->wg.hard_blockers += c->nodes;
-        ctx->wg.hard_overflow += c->capped;
+        ctx->wg.stats.evaluated += c->candidates;
+        ctx->wg.stats.touched += c->blocking;
+        ctx->wg.stats.hard_blockers += c->nodes;
+        ctx->wg.stats.hard_overflow += c->capped;
     }
     return PN_OK;
 }

@@ -107,42 +107,42 @@ static int same_frame(const char *what, const pn_xframe *a, const pn_xframe *b)
     SAME_STAT(shadow_candidates);
     SAME_STAT(shadow_blocking);
     SAME_STAT(lit_pixels);
-    SAME_STAT(gears_pairs);
-    SAME_STAT(gears_assignments);
-    SAME_STAT(gears_tiles);
-    SAME_STAT(gears_faces);
-    SAME_STAT(gears_cells_used);
-    SAME_STAT(gears_max_tris_per_cell);
-    SAME_STAT(gears_max_pixels_per_cell);
-    SAME_STAT(gears_pairs_high_water);
+    SAME_STAT(gears.pairs);
+    SAME_STAT(gears.assignments);
+    SAME_STAT(gears.tiles);
+    SAME_STAT(gears.faces);
+    SAME_STAT(gears.cells_used);
+    SAME_STAT(gears.max_tris_per_cell);
+    SAME_STAT(gears.max_pixels_per_cell);
+    SAME_STAT(gears.pairs_high_water);
     SAME_STAT(shadow_nodes);
-    SAME_STAT(srt_map);
-    SAME_STAT(srt_pip);
-    SAME_STAT(srt_thin);
-    SAME_STAT(srt_cons_texels);
-    SAME_STAT(srt_tiles_masked);
-    SAME_STAT(occ_map);
-    SAME_STAT(occ_slices);
-    SAME_STAT(occ_texels_set);
-    SAME_STAT(occ_lookups);
-    SAME_STAT(mc_map);
-    SAME_STAT(mc_lit);
-    SAME_STAT(mc_umbra);
-    SAME_STAT(mc_penumbra);
-    SAME_STAT(mc_penumbra_open);
-    SAME_STAT(mc_penumbra_shut);
-    SAME_STAT(mc_rays);
-    SAME_STAT(mc_steps);
-    SAME_STAT(mc_capped);
-    SAME_STAT(wg_silhouettes);
-    SAME_STAT(wg_pairs);
-    SAME_STAT(wg_evaluated);
-    SAME_STAT(wg_touched);
-    SAME_STAT(wg_hard_blockers);
-    SAME_STAT(wg_hard_overflow);
+    SAME_STAT(srt.map);
+    SAME_STAT(srt.pip);
+    SAME_STAT(srt.thin);
+    SAME_STAT(srt.cons_texels);
+    SAME_STAT(srt.tiles_masked);
+    SAME_STAT(occtex.map);
+    SAME_STAT(occtex.slices);
+    SAME_STAT(occtex.texels_set);
+    SAME_STAT(occtex.lookups);
+    SAME_STAT(mcsm.map);
+    SAME_STAT(mcsm.lit);
+    SAME_STAT(mcsm.umbra);
+    SAME_STAT(mcsm.penumbra);
+    SAME_STAT(mcsm.penumbra_open);
+    SAME_STAT(mcsm.penumbra_shut);
+    SAME_STAT(mcsm.rays);
+    SAME_STAT(mcsm.steps);
+    SAME_STAT(mcsm.capped);
+    SAME_STAT(wedges.silhouettes);
+    SAME_STAT(wedges.pairs);
+    SAME_STAT(wedges.evaluated);
+    SAME_STAT(wedges.touched);
+    SAME_STAT(wedges.hard_blockers);
+    SAME_STAT(wedges.hard_overflow);
 #undef SAME_STAT
-    CHECK_MSG(memcmp(&a->st.gears_mean_tris_per_cell, &b->st.gears_mean_tris_per_cell, sizeof(float)) == 0 &&
-                  memcmp(&a->st.gears_mean_pixels_per_cell, &b->st.gears_mean_pixels_per_cell, sizeof(float)) == 0,
+    CHECK_MSG(memcmp(&a->st.gears.mean_tris_per_cell, &b->st.gears.mean_tris_per_cell, sizeof(float)) == 0 &&
+                  memcmp(&a->st.gears.mean_pixels_per_cell, &b->st.gears.mean_pixels_per_cell, sizeof(float)) == 0,
               "%s: GEARS means differ", what);
     return ok;
 }
@@ -436,9 +436,9 @@ static void test_tiling(void)
         o.gears.grid = 32;
         snprintf(what, sizeof(what), "spheres GEARS one pass, %s light", q ? "point" : "area");
         REQUIRE(cross(&g_rig, &s.camera, &light, &o, what) == PN_OK);
-        CHECK(q ? g_rig.a.st.gears_tiles <= g_rig.a.st.gears_faces : g_rig.a.st.gears_tiles == 1u);
-        pairs = g_rig.a.st.gears_pairs;
-        max_cell = g_rig.a.st.gears_max_tris_per_cell;
+        CHECK(q ? g_rig.a.st.gears.tiles <= g_rig.a.st.gears.faces : g_rig.a.st.gears.tiles == 1u);
+        pairs = g_rig.a.st.gears.pairs;
+        max_cell = g_rig.a.st.gears.max_tris_per_cell;
         memcpy(one.vis, g_rig.a.vis, 48u * 48u * sizeof(float));
         pools[0] = (uint32_t)(pairs / 5u);
         pools[1] = max_cell + max_cell / 2u; /* below a grid row of 32 cells: split rows */
@@ -464,12 +464,12 @@ static void test_tiling(void)
             st = cross(&small, &s.camera, &light, &o, what);
             if (i < 2) {
                 CHECK_MSG(st == PN_OK, "%s", what);
-                CHECK_MSG(small.b.st.gears_tiles > 1u, "%s: %u tiles", what, small.b.st.gears_tiles);
-                CHECK_MSG(i == 0 || small.b.st.gears_tiles > (uint32_t)(pairs / pools[1]),
-                          "%s: %u tiles, no row split?", what, small.b.st.gears_tiles);
+                CHECK_MSG(small.b.st.gears.tiles > 1u, "%s: %u tiles", what, small.b.st.gears.tiles);
+                CHECK_MSG(i == 0 || small.b.st.gears.tiles > (uint32_t)(pairs / pools[1]),
+                          "%s: %u tiles, no row split?", what, small.b.st.gears.tiles);
                 CHECK_MSG(memcmp(small.b.vis, one.vis, 48u * 48u * sizeof(float)) == 0, "%s: differs from one pass",
                           what);
-                fprintf(stderr, "same: %s: %u tiles\n", what, small.b.st.gears_tiles);
+                fprintf(stderr, "same: %s: %u tiles\n", what, small.b.st.gears.tiles);
             } else {
                 CHECK_MSG(st == PN_E_POOL_EXHAUSTED, "%s: %s", what, pn_status_str(st));
                 CHECK(strstr(pn_last_error(small.h.ctx), "gears pairs") != NULL);

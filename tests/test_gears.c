@@ -58,15 +58,15 @@ static void exact_scene(const char *src, int builtin, uint32_t w, uint32_t hh, c
             {
                 uint32_t d = count_diff(ref, gears, n, what);
                 fprintf(stderr, "%s: %u differing pixels; pairs %llu, assignments %llu, necessary share %.1f%%\n", what, d,
-                        (unsigned long long)st.gears_pairs, (unsigned long long)st.gears_assignments,
-                        st.gears_assignments ? 100.0 * (double)st.shadow_blocking / (double)st.gears_assignments : 0.0);
+                        (unsigned long long)st.gears.pairs, (unsigned long long)st.gears.assignments,
+                        st.gears.assignments ? 100.0 * (double)st.shadow_blocking / (double)st.gears.assignments : 0.0);
                 CHECK_MSG(d == 0u, "%s", what);
-                CHECK(st.gears_faces == (q == nk ? 6u : 1u));
+                CHECK(st.gears.faces == (q == nk ? 6u : 1u));
                 /* Boxes tested (shadow_nodes): a pixel whose cell holds n entries meets at
                  * most n/64 + 2 superchunks and n/8 + 2 chunks, and some when n > 0. */
-                CHECK_MSG(st.shadow_nodes <= st.gears_assignments * 9u / 64u + 4u * (uint64_t)st.lit_pixels,
+                CHECK_MSG(st.shadow_nodes <= st.gears.assignments * 9u / 64u + 4u * (uint64_t)st.lit_pixels,
                           "%s: %llu boxes", what, (unsigned long long)st.shadow_nodes);
-                CHECK_MSG(st.gears_assignments == 0u || st.shadow_nodes > 0u, "%s: no box tested", what);
+                CHECK_MSG(st.gears.assignments == 0u || st.shadow_nodes > 0u, "%s: no box tested", what);
             }
         }
     }
@@ -103,16 +103,16 @@ static void test_tiling(void)
     b = (float *)malloc(w * hh * sizeof(float));
     REQUIRE(a && b);
     REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_GEARS, w, hh, 16, 64, a, &st) == 0);
-    CHECK(st.gears_tiles == 1u);
-    fprintf(stderr, "spheres: %llu pairs in one pass; most triangles in a cell %u\n", (unsigned long long)st.gears_pairs,
-            st.gears_max_tris_per_cell);
+    CHECK(st.gears.tiles == 1u);
+    fprintf(stderr, "spheres: %llu pairs in one pass; most triangles in a cell %u\n", (unsigned long long)st.gears.pairs,
+            st.gears.max_tris_per_cell);
     /* Pool: a fifth of the frame's pairs, but at least the largest cell. */
     memset(&small, 0, sizeof(small));
     memset(&lim, 0, sizeof(lim));
     lim.max_triangles = s.mesh.triangle_count;
     lim.max_width = w;
     lim.max_height = hh;
-    lim.gears_pairs = (uint32_t)(st.gears_pairs / 5u);
+    lim.gears_pairs = (uint32_t)(st.gears.pairs / 5u);
     {
         size_t bytes;
         pn_context *ctx;
@@ -126,17 +126,17 @@ static void test_tiling(void)
         {
             pn_stats st2;
             REQUIRE(render_vis(&small, &s, &s.light, PN_ALGO_GEARS, w, hh, 16, 64, b, &st2) == 0);
-            fprintf(stderr, "pool %u pairs: %u tiles, %llu pairs, high water %u\n", lim.gears_pairs, st2.gears_tiles,
-                    (unsigned long long)st2.gears_pairs, st2.gears_pairs_high_water);
-            CHECK(st2.gears_tiles >= 5u);
-            CHECK(st2.gears_pairs == st.gears_pairs);
-            CHECK(st2.gears_pairs_high_water <= lim.gears_pairs);
+            fprintf(stderr, "pool %u pairs: %u tiles, %llu pairs, high water %u\n", lim.gears_pairs, st2.gears.tiles,
+                    (unsigned long long)st2.gears.pairs, st2.gears.pairs_high_water);
+            CHECK(st2.gears.tiles >= 5u);
+            CHECK(st2.gears.pairs == st.gears.pairs);
+            CHECK(st2.gears.pairs_high_water <= lim.gears_pairs);
             CHECK(count_diff(a, b, (size_t)w * hh, "tiled") == 0u);
         }
         free(mem);
     }
     /* A pool smaller than the largest cell: no silent drop, a named error. */
-    lim.gears_pairs = st.gears_max_tris_per_cell - 1u;
+    lim.gears_pairs = st.gears.max_tris_per_cell - 1u;
     {
         size_t bytes;
         pn_context *ctx;
@@ -158,7 +158,7 @@ static void test_tiling(void)
         CHECK(strstr(pn_last_error(ctx), "gears pairs") != NULL);
         {
             char need[32];
-            snprintf(need, sizeof(need), "needs %u", st.gears_max_tris_per_cell);
+            snprintf(need, sizeof(need), "needs %u", st.gears.max_tris_per_cell);
             CHECK(strstr(pn_last_error(ctx), need) != NULL);
         }
         free(mem);
@@ -199,9 +199,9 @@ static void test_dragon_tiled(void)
     g = (float *)malloc(n * sizeof(float));
     REQUIRE(ref && g);
     REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_GEARS, 512, 512, 16, 128, g, &st) == 0);
-    fprintf(stderr, "dragon 512x512 k=16, pool 2^20 pairs: %u tiles, %llu pairs\n", st.gears_tiles,
-            (unsigned long long)st.gears_pairs);
-    CHECK(st.gears_tiles > 1u);
+    fprintf(stderr, "dragon 512x512 k=16, pool 2^20 pairs: %u tiles, %llu pairs\n", st.gears.tiles,
+            (unsigned long long)st.gears.pairs);
+    CHECK(st.gears.tiles > 1u);
     REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_REFERENCE, 512, 512, 16, 128, ref, NULL) == 0);
     CHECK(count_diff(ref, g, n, "dragon tiled") == 0u);
     free(ref);

@@ -232,9 +232,9 @@ static long classify_pair(pn_host *h, const pn_setup *s, uint32_t w, uint32_t hh
         diff += va[p] != vb[p];
     }
     fprintf(stderr, "%s one layer, %ux%u: %ld pixels differ with the classification off; rays %llu -> %llu\n", s->name, w,
-            hh, diff, (unsigned long long)a->mc_rays, (unsigned long long)b->mc_rays);
-    CHECK_MSG(diff == 0 && a->mc_rays < b->mc_rays, "%s: %ld pixels differ; classification traced %llu rays, %llu without",
-              s->name, diff, (unsigned long long)a->mc_rays, (unsigned long long)b->mc_rays);
+            hh, diff, (unsigned long long)a->mcsm.rays, (unsigned long long)b->mcsm.rays);
+    CHECK_MSG(diff == 0 && a->mcsm.rays < b->mcsm.rays, "%s: %ld pixels differ; classification traced %llu rays, %llu without",
+              s->name, diff, (unsigned long long)a->mcsm.rays, (unsigned long long)b->mcsm.rays);
     return diff;
 }
 
@@ -251,30 +251,30 @@ static void test_classify_exact(void)
         if (!open_scene(scenes[i], &s, &h, 2, 1)) return;
         REQUIRE(classify_pair(&h, &s, W, H, g_a, g_b, &a, &b) >= 0);
         /* Without the classification only surfaces facing away from the light are umbra. */
-        CHECK_MSG(b.mc_lit == 0u && b.mc_umbra <= a.mc_umbra, "%s: no classification, yet %u lit / %u umbra (%u with it)",
-                  scenes[i], b.mc_lit, b.mc_umbra, a.mc_umbra);
+        CHECK_MSG(b.mcsm.lit == 0u && b.mcsm.umbra <= a.mcsm.umbra, "%s: no classification, yet %u lit / %u umbra (%u with it)",
+                  scenes[i], b.mcsm.lit, b.mcsm.umbra, a.mcsm.umbra);
         {
             /* What the rays found: every pixel the classification called lit traces with no
              * ray blocked when it is off; a pixel whose rays all came back blocked is black
              * and one whose rays were mixed is neither black nor white (blur off). */
             size_t black = 0, grey = 0;
-            uint32_t mixed = b.mc_penumbra - b.mc_penumbra_open - b.mc_penumbra_shut;
+            uint32_t mixed = b.mcsm.penumbra - b.mcsm.penumbra_open - b.mcsm.penumbra_shut;
             for (p = 0; p < (size_t)W * H; p++) {
                 black += g_b[p] == 0.0f;
                 grey += g_b[p] > 0.0f && g_b[p] < 1.0f;
             }
             fprintf(stderr, "%s: penumbra pixels without the classification %u: open %u, shut %u, mixed %u (lit %u with it)\n",
-                    scenes[i], b.mc_penumbra, b.mc_penumbra_open, b.mc_penumbra_shut, mixed, a.mc_lit);
-            CHECK_MSG(b.mc_penumbra_open + b.mc_penumbra_shut <= b.mc_penumbra, "%s: %u open + %u shut of %u", scenes[i],
-                      b.mc_penumbra_open, b.mc_penumbra_shut, b.mc_penumbra);
-            CHECK_MSG(b.mc_penumbra_open >= a.mc_lit, "%s: %u lit with the classification, %u open without", scenes[i],
-                      a.mc_lit, b.mc_penumbra_open);
-            CHECK_MSG(b.mc_penumbra_shut <= black && mixed <= grey && mixed > 0u,
-                      "%s: %u shut for %zu black pixels, %u mixed for %zu grey", scenes[i], b.mc_penumbra_shut, black, mixed,
+                    scenes[i], b.mcsm.penumbra, b.mcsm.penumbra_open, b.mcsm.penumbra_shut, mixed, a.mcsm.lit);
+            CHECK_MSG(b.mcsm.penumbra_open + b.mcsm.penumbra_shut <= b.mcsm.penumbra, "%s: %u open + %u shut of %u", scenes[i],
+                      b.mcsm.penumbra_open, b.mcsm.penumbra_shut, b.mcsm.penumbra);
+            CHECK_MSG(b.mcsm.penumbra_open >= a.mcsm.lit, "%s: %u lit with the classification, %u open without", scenes[i],
+                      a.mcsm.lit, b.mcsm.penumbra_open);
+            CHECK_MSG(b.mcsm.penumbra_shut <= black && mixed <= grey && mixed > 0u,
+                      "%s: %u shut for %zu black pixels, %u mixed for %zu grey", scenes[i], b.mcsm.penumbra_shut, black, mixed,
                       grey);
-            CHECK_MSG(a.mc_penumbra_open <= b.mc_penumbra_open - a.mc_lit,
-                      "%s: %u open with the classification, %u without beyond its %u lit", scenes[i], a.mc_penumbra_open,
-                      b.mc_penumbra_open, a.mc_lit);
+            CHECK_MSG(a.mcsm.penumbra_open <= b.mcsm.penumbra_open - a.mcsm.lit,
+                      "%s: %u open with the classification, %u without beyond its %u lit", scenes[i], a.mcsm.penumbra_open,
+                      b.mcsm.penumbra_open, a.mcsm.lit);
         }
         pn_host_close(&h);
         pn_setup_free(&s);
@@ -317,8 +317,8 @@ static void test_determinism_and_stats(void)
     pn_host h1, h2;
     pn_frame_options o;
     pn_stats st;
-    static const size_t stages[3] = {offsetof(pn_stats, mc_ns_layers), offsetof(pn_stats, mc_ns_nbuffer),
-                                     offsetof(pn_stats, mc_ns_rays)};
+    static const size_t stages[3] = {offsetof(pn_stats, mcsm.ns_layers), offsetof(pn_stats, mcsm.ns_nbuffer),
+                                     offsetof(pn_stats, mcsm.ns_rays)};
     if (!open_scene("spheres", &s, &h1, 1, 1)) return;
     pn_setup_free(&s);
     if (!open_scene("spheres", &s, &h2, 2, 1)) return;
@@ -328,16 +328,16 @@ static void test_determinism_and_stats(void)
     CHECK_MSG(memcmp(g_a, g_b, sizeof(g_a)) == 0, "1 and 2 threads differ");
     REQUIRE(render_opt(&h2, &s, &s.light, &o, g_b, NULL, NULL) == 0);
     CHECK_MSG(memcmp(g_a, g_b, sizeof(g_a)) == 0, "two runs differ");
-    CHECK_MSG(st.mc_lit + st.mc_umbra + st.mc_penumbra == st.lit_pixels, "classes %u + %u + %u, lit pixels %u",
-              st.mc_lit, st.mc_umbra, st.mc_penumbra, st.lit_pixels);
-    CHECK_MSG(st.mc_penumbra > 0u && st.mc_lit > 0u && st.mc_umbra > 0u, "classes %u / %u / %u", st.mc_lit, st.mc_umbra,
-              st.mc_penumbra);
-    CHECK_MSG(st.mc_penumbra_open + st.mc_penumbra_shut < st.mc_penumbra, "penumbra %u: %u open, %u shut", st.mc_penumbra,
-              st.mc_penumbra_open, st.mc_penumbra_shut);
-    CHECK_MSG(st.mc_rays <= (uint64_t)st.mc_penumbra * 9u && st.mc_rays > 0u, "rays %llu for %u penumbra pixels",
-              (unsigned long long)st.mc_rays, st.mc_penumbra);
-    CHECK_MSG(st.mc_map == 512u && st.shadow_candidates == st.mc_rays && st.mc_capped == 0u,
-              "map %u, candidates %llu, capped %u", st.mc_map, (unsigned long long)st.shadow_candidates, st.mc_capped);
+    CHECK_MSG(st.mcsm.lit + st.mcsm.umbra + st.mcsm.penumbra == st.lit_pixels, "classes %u + %u + %u, lit pixels %u",
+              st.mcsm.lit, st.mcsm.umbra, st.mcsm.penumbra, st.lit_pixels);
+    CHECK_MSG(st.mcsm.penumbra > 0u && st.mcsm.lit > 0u && st.mcsm.umbra > 0u, "classes %u / %u / %u", st.mcsm.lit, st.mcsm.umbra,
+              st.mcsm.penumbra);
+    CHECK_MSG(st.mcsm.penumbra_open + st.mcsm.penumbra_shut < st.mcsm.penumbra, "penumbra %u: %u open, %u shut", st.mcsm.penumbra,
+              st.mcsm.penumbra_open, st.mcsm.penumbra_shut);
+    CHECK_MSG(st.mcsm.rays <= (uint64_t)st.mcsm.penumbra * 9u && st.mcsm.rays > 0u, "rays %llu for %u penumbra pixels",
+              (unsigned long long)st.mcsm.rays, st.mcsm.penumbra);
+    CHECK_MSG(st.mcsm.map == 512u && st.shadow_candidates == st.mcsm.rays && st.mcsm.capped == 0u,
+              "map %u, candidates %llu, capped %u", st.mcsm.map, (unsigned long long)st.shadow_candidates, st.mcsm.capped);
     o.mcsm.seed = 12345u;
     REQUIRE(render_opt(&h2, &s, &s.light, &o, g_b, NULL, NULL) == 0);
     CHECK_MSG(memcmp(g_a, g_b, sizeof(g_a)) != 0, "another frame key gave the same bytes");
@@ -402,7 +402,7 @@ static void test_options_and_pools(void)
     CHECK_MSG(pn_render(ctx, &s.camera, &s.light, &o, &fr) == PN_OK, "%s", pn_last_error(ctx));
     {
         pn_stats st;
-        CHECK(pn_get_stats(ctx, &st) == PN_OK && st.mc_map == 64u);
+        CHECK(pn_get_stats(ctx, &st) == PN_OK && st.mcsm.map == 64u);
     }
     o.mcsm.map = 65u;
     CHECK(pn_render(ctx, &s.camera, &s.light, &o, &fr) == PN_E_INVALID_ARG);

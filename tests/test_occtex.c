@@ -101,8 +101,8 @@ static void test_exact_case(void)
     CHECK_MSG(sat_mean < 1.0 / 255.0, "mean |error| %.5f", sat_mean);
     CHECK_MSG(sat_max <= 2.0 / 32.0, "max |error| %.4f", sat_max);
     /* The slicing did its work: the occluder's bits and lookups are there. */
-    CHECK(g_b.st.occ_texels_set > 0u && g_b.st.occ_lookups > 0u && g_b.st.occ_lookups == g_b.st.shadow_candidates);
-    CHECK(g_b.st.occ_slices == 16u && g_b.st.occ_map == 512u);
+    CHECK(g_b.st.occtex.texels_set > 0u && g_b.st.occtex.lookups > 0u && g_b.st.occtex.lookups == g_b.st.shadow_candidates);
+    CHECK(g_b.st.occtex.slices == 16u && g_b.st.occtex.map == 512u);
     REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 32, PN_OCC_FILTER_NBUFFER, 0, 0, &g_c) == 0);
     error_of(&g_a, &g_c, &nb_mean, &nb_max);
     REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 32, PN_OCC_FILTER_MIPMAP, 0, 0, &g_c) == 0);
@@ -113,8 +113,8 @@ static void test_exact_case(void)
         pn_stats plain = g_c.st;
         size_t i, lighter = 0;
         REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 32, PN_OCC_FILTER_MIPMAP, 0, PN_OCC_LEAK_FIX, &g_b) == 0);
-        CHECK_MSG(g_b.st.occ_texels_set == 2u * plain.occ_texels_set, "leak fix: %llu bits, without %llu",
-                  (unsigned long long)g_b.st.occ_texels_set, (unsigned long long)plain.occ_texels_set);
+        CHECK_MSG(g_b.st.occtex.texels_set == 2u * plain.occtex.texels_set, "leak fix: %llu bits, without %llu",
+                  (unsigned long long)g_b.st.occtex.texels_set, (unsigned long long)plain.occtex.texels_set);
         for (i = 0; i < W * H; i++) lighter += g_b.vis[i] > g_c.vis[i];
         CHECK_MSG(lighter == 0u, "%zu pixels lighter with the leak fix", lighter);
     }
@@ -169,7 +169,7 @@ static void test_determinism(void)
         CHECK_MSG(memcmp(g_a.vis, g_b.vis, sizeof(g_a.vis)) == 0 && memcmp(g_a.rgba, g_b.rgba, sizeof(g_a.rgba)) == 0,
                   "room %s light: 1 and 2 threads differ", li ? "point" : "area");
         CHECK(memcmp(g_b.vis, g_c.vis, sizeof(g_b.vis)) == 0);
-        CHECK(g_a.st.occ_texels_set == g_b.st.occ_texels_set && g_a.st.occ_lookups == g_b.st.occ_lookups);
+        CHECK(g_a.st.occtex.texels_set == g_b.st.occtex.texels_set && g_a.st.occtex.lookups == g_b.st.occtex.lookups);
     }
     pn_host_close(&h1);
     pn_host_close(&h2);
@@ -213,7 +213,7 @@ static void test_options(void)
     opt.occtex.flags = 0;
     opt.occtex.slices = 2; /* one occluder slice and the receivers' */
     CHECK_MSG(pn_render(h.ctx, &s.camera, &s.light, &opt, &fr) == PN_OK, "%s", pn_last_error(h.ctx));
-    CHECK(pn_get_stats(h.ctx, &st) == PN_OK && st.occ_slices == 2u && st.occ_texels_set > 0u);
+    CHECK(pn_get_stats(h.ctx, &st) == PN_OK && st.occtex.slices == 2u && st.occtex.texels_set > 0u);
     opt.occtex.slices = 0;
     pn_host_close(&h);
 
@@ -239,11 +239,11 @@ static void test_options(void)
     opt.occtex.map = 0;
     {
         /* Stage timings: none without a clock; with one, inside the shadow pass. */
-        static const size_t off[3] = {offsetof(pn_stats, occ_ns_slice), offsetof(pn_stats, occ_ns_filter),
-                                      offsetof(pn_stats, occ_ns_lookup)};
+        static const size_t off[3] = {offsetof(pn_stats, occtex.ns_slice), offsetof(pn_stats, occtex.ns_filter),
+                                      offsetof(pn_stats, occtex.ns_lookup)};
         check_stage_times(ctx, &s.camera, &s.light, &opt, off, &st);
     }
-    CHECK(st.occ_map == 64u);
+    CHECK(st.occtex.map == 64u);
     free(mem);
     pn_setup_free(&s);
 }

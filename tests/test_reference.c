@@ -206,8 +206,8 @@ static void brute_compare(const char *name, pn_setup *s, const pn_light *light, 
         /* With exact statistics no superchunk is skipped but by the frustum test, which
          * runs on all of them: a pixel whose cell holds n entries tests at least
          * ceil(n / 64) superchunk boxes (shadow_nodes counts them with the chunks'). */
-        CHECK_MSG(st.shadow_nodes * 64u >= st.gears_assignments, "%s: %llu boxes for %llu assignments", name,
-                  (unsigned long long)st.shadow_nodes, (unsigned long long)st.gears_assignments);
+        CHECK_MSG(st.shadow_nodes * 64u >= st.gears.assignments, "%s: %llu boxes for %llu assignments", name,
+                  (unsigned long long)st.shadow_nodes, (unsigned long long)st.gears.assignments);
     }
 #endif
     pn_host_close(&h);

@@ -83,7 +83,7 @@ static void one_scene(const char *source, int builtin)
         CHECK_MSG(memcmp(g_ref.vis, g_srt.vis, sizeof(g_ref.vis)) == 0, "%s %s: forced PIP differs from the reference",
                   s.name, li ? "point" : "area");
         CHECK(memcmp(g_ref.rgba, g_srt.rgba, sizeof(g_ref.rgba)) == 0);
-        CHECK_MSG(g_srt.st.srt_pip == g_srt.st.lit_pixels, "%s: forced PIP %u, lit %u", s.name, g_srt.st.srt_pip,
+        CHECK_MSG(g_srt.st.srt.pip == g_srt.st.lit_pixels, "%s: forced PIP %u, lit %u", s.name, g_srt.st.srt.pip,
                   g_srt.st.lit_pixels);
         /* 2. The defaults against the reference. */
         REQUIRE(render(&h, &s, &light, PN_ALGO_SRT, k, 0u, 0u, &g_srt) == 0);
@@ -91,14 +91,14 @@ static void one_scene(const char *source, int builtin)
             diff += g_srt.vis[i] != g_ref.vis[i];
             brighter += g_srt.vis[i] > g_ref.vis[i];
         }
-        CHECK(g_srt.st.srt_pip <= g_srt.st.lit_pixels);
+        CHECK(g_srt.st.srt.pip <= g_srt.st.lit_pixels);
         /* A thin triangle marks at least one texel (its extent is widened by a texel). */
-        CHECK_MSG((g_srt.st.srt_thin > 0u) == (g_srt.st.srt_cons_texels > 0u), "%s: %u thin triangles, %u texels marked",
-                  s.name, g_srt.st.srt_thin, g_srt.st.srt_cons_texels);
+        CHECK_MSG((g_srt.st.srt.thin > 0u) == (g_srt.st.srt.cons_texels > 0u), "%s: %u thin triangles, %u texels marked",
+                  s.name, g_srt.st.srt.thin, g_srt.st.srt.cons_texels);
         fprintf(stderr, "%-24s %-5s map %4u  PIP %5.1f%% of lit  thin %6u (%u texels)  differing %u (%.3f%%), brighter %u\n",
-                s.name, li ? "point" : "area", g_srt.st.srt_map,
-                g_srt.st.lit_pixels ? 100.0 * g_srt.st.srt_pip / g_srt.st.lit_pixels : 0.0, g_srt.st.srt_thin,
-                g_srt.st.srt_cons_texels, diff, 100.0 * diff / n, brighter);
+                s.name, li ? "point" : "area", g_srt.st.srt.map,
+                g_srt.st.lit_pixels ? 100.0 * g_srt.st.srt.pip / g_srt.st.lit_pixels : 0.0, g_srt.st.srt.thin,
+                g_srt.st.srt.cons_texels, diff, 100.0 * diff / n, brighter);
         /* room's point light missed 21 shadow pixels (0.17%) until the classification sent
          * pixels lit only by the slope bias to the PIP set (kernels/pn_srt.h); now 1. */
         CHECK_MSG(diff * 1000u <= n, "%s %s: %u of %u pixels differ from the reference (goal: at most 0.1%%)", s.name,
@@ -107,11 +107,11 @@ static void one_scene(const char *source, int builtin)
             CHECK_MSG(brighter == 0u, "thin %s: %u pixels miss a shadow", li ? "point" : "area", brighter);
         /* Without conservative rasterization: printed for the record. */
         if (render(&h, &s, &light, PN_ALGO_SRT, k, PN_SRT_NO_CONSERVATIVE, 0u, &g_srt) == 0) {
-            CHECK(g_srt.st.srt_thin == 0u && g_srt.st.srt_cons_texels == 0u);
+            CHECK(g_srt.st.srt.thin == 0u && g_srt.st.srt.cons_texels == 0u);
             for (i = 0; i < n; i++) diff_nc += g_srt.vis[i] != g_ref.vis[i];
             fprintf(stderr, "%-24s %-5s without conservative rasterization: PIP %5.1f%%, differing %u (%.3f%%)\n",
                     s.name, li ? "point" : "area",
-                    g_srt.st.lit_pixels ? 100.0 * g_srt.st.srt_pip / g_srt.st.lit_pixels : 0.0, diff_nc,
+                    g_srt.st.lit_pixels ? 100.0 * g_srt.st.srt.pip / g_srt.st.lit_pixels : 0.0, diff_nc,
                     100.0 * diff_nc / n);
         }
     }
@@ -265,7 +265,7 @@ static void test_random(void)
             total += diff;
             px += W * H;
             over += diff * 1000u > W * H;
-            pip += g_srt.st.srt_pip;
+            pip += g_srt.st.srt.pip;
             lit += g_srt.st.lit_pixels;
         }
     }
@@ -330,11 +330,11 @@ static void test_options(void)
     opt.srt.map = 0;
     {
         /* Stage timings: none without a clock; with one, inside the shadow pass. */
-        static const size_t off[3] = {offsetof(pn_stats, srt_ns_map), offsetof(pn_stats, srt_ns_classify),
-                                      offsetof(pn_stats, srt_ns_exact)};
+        static const size_t off[3] = {offsetof(pn_stats, srt.ns_map), offsetof(pn_stats, srt.ns_classify),
+                                      offsetof(pn_stats, srt.ns_exact)};
         check_stage_times(ctx, &s.camera, &s.light, &opt, off, &st);
     }
-    CHECK(st.srt_map == 64u);
+    CHECK(st.srt.map == 64u);
     free(mem);
     pn_setup_free(&s);
 }

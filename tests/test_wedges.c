@@ -92,10 +92,10 @@ static void connect_case(const char *what, const float *pos, uint32_t nv, const 
     REQUIRE(pn_init(&ctx, mem, need, &lim) == PN_OK);
     REQUIRE(pn_scene_set(ctx, pos, nv, idx, nt) == PN_OK);
     REQUIRE(pn_get_stats(ctx, &st) == PN_OK);
-    fprintf(stderr, "%s: %u vertices, %u edges (%u open, %u non-manifold), %u objects (%u closed)\n", what, st.wg_vertices,
-            st.wg_edges, st.wg_open_edges, st.wg_nonmanifold_edges, st.wg_objects, st.wg_closed_objects);
-    CHECK_MSG(st.wg_vertices == verts && st.wg_edges == edges && st.wg_open_edges == open &&
-                  st.wg_nonmanifold_edges == nonman && st.wg_objects == objects && st.wg_closed_objects == closed,
+    fprintf(stderr, "%s: %u vertices, %u edges (%u open, %u non-manifold), %u objects (%u closed)\n", what, st.wedges.vertices,
+            st.wedges.edges, st.wedges.open_edges, st.wedges.nonmanifold_edges, st.wedges.objects, st.wedges.closed_objects);
+    CHECK_MSG(st.wedges.vertices == verts && st.wedges.edges == edges && st.wedges.open_edges == open &&
+                  st.wedges.nonmanifold_edges == nonman && st.wedges.objects == objects && st.wedges.closed_objects == closed,
               "%s: want %u vertices, %u edges (%u open, %u non-manifold), %u objects (%u closed)", what, verts, edges, open,
               nonman, objects, closed);
     free(mem);
@@ -279,15 +279,15 @@ static void test_blend_spheres(void)
     errors(g_b, g_ref, &mae_a, &rmse_a, &mx_a);
     fprintf(stderr, "spheres: blended RMSE %.4f (max %.3f), additive %.4f (max %.3f); %u silhouette edges, %llu pairs, "
                     "%.1f pixels touched per wedge\n",
-            rmse_b, mx_b, rmse_a, mx_a, st.wg_silhouettes, (unsigned long long)st.wg_pairs,
-            st.wg_silhouettes ? (double)st.wg_touched / st.wg_silhouettes : 0.0);
+            rmse_b, mx_b, rmse_a, mx_a, st.wedges.silhouettes, (unsigned long long)st.wedges.pairs,
+            st.wedges.silhouettes ? (double)st.wedges.touched / st.wedges.silhouettes : 0.0);
     /* Neighbouring spheres mostly hide different parts of the light, so the two modes differ
      * on few pixels (the benchmark's table and heat map say where); the stacked test below is
      * the overlap the blending is for. Here: the objects are the 81 spheres and the ground. */
-    CHECK_MSG(st.wg_objects == 82u && st.wg_closed_objects == 81u && st.wg_silhouettes > 0u &&
-                  st.wg_touched > 0u && st.wg_touched <= st.wg_evaluated,
-              "spheres stats: %u objects, %u silhouettes, %llu touched of %llu evaluated", st.wg_objects,
-              st.wg_silhouettes, (unsigned long long)st.wg_touched, (unsigned long long)st.wg_evaluated);
+    CHECK_MSG(st.wedges.objects == 82u && st.wedges.closed_objects == 81u && st.wedges.silhouettes > 0u &&
+                  st.wedges.touched > 0u && st.wedges.touched <= st.wedges.evaluated,
+              "spheres stats: %u objects, %u silhouettes, %llu touched of %llu evaluated", st.wedges.objects,
+              st.wedges.silhouettes, (unsigned long long)st.wedges.touched, (unsigned long long)st.wedges.evaluated);
     /* Options. */
     wg_opts(&o, 3u);
     o.eps = s.eps;
@@ -343,8 +343,8 @@ static void test_blend_stacked(void)
     errors(g_b, g_ref, &mae_a, &rmse_a, &mx_a);
     fprintf(stderr, "stacked squares: blended RMSE %.4f MAE %.5f (max %.3f), additive RMSE %.4f MAE %.5f (max %.3f); "
                     "%u objects, %u silhouette edges\n",
-            rmse_b, mae_b, mx_b, rmse_a, mae_a, mx_a, st.wg_objects, st.wg_silhouettes);
-    CHECK_MSG(st.wg_objects == 3u, "%u objects, want 3", st.wg_objects);
+            rmse_b, mae_b, mx_b, rmse_a, mae_a, mx_a, st.wedges.objects, st.wedges.silhouettes);
+    CHECK_MSG(st.wedges.objects == 3u, "%u objects, want 3", st.wedges.objects);
     CHECK_MSG(rmse_b < rmse_a && mae_b < mae_a, "stacked squares: blended RMSE %.4f / MAE %.5f not below additive %.4f / %.5f",
               rmse_b, mae_b, rmse_a, mae_a);
     pn_host_close(&h);
@@ -354,7 +354,7 @@ static void test_blend_stacked(void)
 /* More objects on a pixel's centre ray than the blending lists (PN_WG_HARD_MAX): 24 squares
  * stacked under the square scene's light, each its own object (half-size 0.4, at heights
  * 0.5 .. 2.8), over its ground. The ground under the stack is decided at the cap (umbra), a
- * documented limit that pn_stats counts (wg_hard_overflow), never PN_E_INTERNAL, which is
+ * documented limit that pn_stats counts (wedges.hard_overflow), never PN_E_INTERNAL, which is
  * reserved for broken invariants (the copper beech's view failed with it before: the cap was
  * counted as a traversal stack overflow). */
 static void test_many_blockers(void)
@@ -388,10 +388,10 @@ static void test_many_blockers(void)
     wg_opts(&o, PN_WG_MODE_BLEND);
     CHECK_MSG(render_opt(&h, &s, &s.light, &o, g_a, NULL, &st) == 0, "wedges on %d stacked squares: %s", STRIPS,
               pn_last_error(h.ctx));
-    fprintf(stderr, "stacked squares: %u objects, %u pixels at the cap of %u objects\n", st.wg_objects,
-            st.wg_hard_overflow, (unsigned)PN_WG_HARD_MAX);
-    CHECK_MSG(st.wg_objects == STRIPS + 1u, "%u objects, want %u", st.wg_objects, STRIPS + 1u);
-    CHECK_MSG(st.wg_hard_overflow > 0u, "no pixel reached the cap: the test does not exercise it");
+    fprintf(stderr, "stacked squares: %u objects, %u pixels at the cap of %u objects\n", st.wedges.objects,
+            st.wedges.hard_overflow, (unsigned)PN_WG_HARD_MAX);
+    CHECK_MSG(st.wedges.objects == STRIPS + 1u, "%u objects, want %u", st.wedges.objects, STRIPS + 1u);
+    CHECK_MSG(st.wedges.hard_overflow > 0u, "no pixel reached the cap: the test does not exercise it");
     pn_host_close(&h);
     pn_setup_free(&s);
 }

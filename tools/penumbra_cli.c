@@ -208,36 +208,36 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
                "  \"gears_pairs_high_water\": %u,\n",
             /* the grid rendered: 0 is 128, at most the limit (the CLI's context has the default) */
             opt->gears.grid ? opt->gears.grid : PN_GEARS_GRID_MAX < 128u ? PN_GEARS_GRID_MAX : 128u,
-            (unsigned long long)st->gears_pairs, (unsigned long long)st->gears_assignments,
-            st->gears_tiles, st->gears_faces, st->gears_cells_used, st->gears_max_tris_per_cell,
-            st->gears_mean_tris_per_cell, st->gears_max_pixels_per_cell, st->gears_mean_pixels_per_cell,
-            st->gears_pairs_high_water);
+            (unsigned long long)st->gears.pairs, (unsigned long long)st->gears.assignments,
+            st->gears.tiles, st->gears.faces, st->gears.cells_used, st->gears.max_tris_per_cell,
+            st->gears.mean_tris_per_cell, st->gears.max_pixels_per_cell, st->gears.mean_pixels_per_cell,
+            st->gears.pairs_high_water);
     fprintf(f, "  \"srt_map\": %u,\n  \"srt_pip\": %u,\n  \"srt_thin\": %u,\n  \"srt_cons_texels\": %u,\n"
                "  \"srt_tiles_masked\": %u,\n",
-            st->srt_map, st->srt_pip, st->srt_thin, st->srt_cons_texels, st->srt_tiles_masked);
+            st->srt.map, st->srt.pip, st->srt.thin, st->srt.cons_texels, st->srt.tiles_masked);
     fprintf(f, "  \"ms_srt_map\": %.3f,\n  \"ms_srt_classify\": %.3f,\n  \"ms_srt_exact\": %.3f,\n",
-            (double)st->srt_ns_map * 1e-6, (double)st->srt_ns_classify * 1e-6, (double)st->srt_ns_exact * 1e-6);
+            (double)st->srt.ns_map * 1e-6, (double)st->srt.ns_classify * 1e-6, (double)st->srt.ns_exact * 1e-6);
     fprintf(f, "  \"occ_map\": %u,\n  \"occ_slices\": %u,\n  \"occ_texels_set\": %llu,\n  \"occ_lookups\": %llu,\n",
-            st->occ_map, st->occ_slices, (unsigned long long)st->occ_texels_set, (unsigned long long)st->occ_lookups);
+            st->occtex.map, st->occtex.slices, (unsigned long long)st->occtex.texels_set, (unsigned long long)st->occtex.lookups);
     fprintf(f, "  \"ms_occ_slice\": %.3f,\n  \"ms_occ_filter\": %.3f,\n  \"ms_occ_lookup\": %.3f,\n",
-            (double)st->occ_ns_slice * 1e-6, (double)st->occ_ns_filter * 1e-6, (double)st->occ_ns_lookup * 1e-6);
+            (double)st->occtex.ns_slice * 1e-6, (double)st->occtex.ns_filter * 1e-6, (double)st->occtex.ns_lookup * 1e-6);
     fprintf(f, "  \"mc_map\": %u,\n  \"mc_lit\": %u,\n  \"mc_umbra\": %u,\n  \"mc_penumbra\": %u,\n",
-            st->mc_map, st->mc_lit, st->mc_umbra, st->mc_penumbra);
-    fprintf(f, "  \"mc_penumbra_open\": %u,\n  \"mc_penumbra_shut\": %u,\n", st->mc_penumbra_open, st->mc_penumbra_shut);
-    fprintf(f, "  \"mc_rays\": %llu,\n  \"mc_steps\": %llu,\n  \"mc_capped\": %u,\n", (unsigned long long)st->mc_rays,
-            (unsigned long long)st->mc_steps, st->mc_capped);
+            st->mcsm.map, st->mcsm.lit, st->mcsm.umbra, st->mcsm.penumbra);
+    fprintf(f, "  \"mc_penumbra_open\": %u,\n  \"mc_penumbra_shut\": %u,\n", st->mcsm.penumbra_open, st->mcsm.penumbra_shut);
+    fprintf(f, "  \"mc_rays\": %llu,\n  \"mc_steps\": %llu,\n  \"mc_capped\": %u,\n", (unsigned long long)st->mcsm.rays,
+            (unsigned long long)st->mcsm.steps, st->mcsm.capped);
     fprintf(f, "  \"ms_mc_layers\": %.3f,\n  \"ms_mc_nbuffer\": %.3f,\n  \"ms_mc_rays\": %.3f,\n  \"ms_mc_blur\": %.3f,\n",
-            (double)st->mc_ns_layers * 1e-6, (double)st->mc_ns_nbuffer * 1e-6, (double)st->mc_ns_rays * 1e-6,
-            (double)st->mc_ns_blur * 1e-6);
+            (double)st->mcsm.ns_layers * 1e-6, (double)st->mcsm.ns_nbuffer * 1e-6, (double)st->mcsm.ns_rays * 1e-6,
+            (double)st->mcsm.ns_blur * 1e-6);
     fprintf(f, "  \"wg_vertices\": %u,\n  \"wg_edges\": %u,\n  \"wg_open_edges\": %u,\n  \"wg_nonmanifold_edges\": %u,\n",
-            st->wg_vertices, st->wg_edges, st->wg_open_edges, st->wg_nonmanifold_edges);
+            st->wedges.vertices, st->wedges.edges, st->wedges.open_edges, st->wedges.nonmanifold_edges);
     fprintf(f, "  \"wg_objects\": %u,\n  \"wg_closed_objects\": %u,\n  \"wg_silhouettes\": %u,\n  \"wg_pairs\": %llu,\n",
-            st->wg_objects, st->wg_closed_objects, st->wg_silhouettes, (unsigned long long)st->wg_pairs);
+            st->wedges.objects, st->wedges.closed_objects, st->wedges.silhouettes, (unsigned long long)st->wedges.pairs);
     fprintf(f, "  \"wg_evaluated\": %llu,\n  \"wg_touched\": %llu,\n  \"wg_hard_blockers\": %llu,\n  \"wg_hard_overflow\": %u,\n",
-            (unsigned long long)st->wg_evaluated, (unsigned long long)st->wg_touched,
-            (unsigned long long)st->wg_hard_blockers, st->wg_hard_overflow);
+            (unsigned long long)st->wedges.evaluated, (unsigned long long)st->wedges.touched,
+            (unsigned long long)st->wedges.hard_blockers, st->wedges.hard_overflow);
     fprintf(f, "  \"ms_wg_silhouettes\": %.3f,\n  \"ms_wg_binning\": %.3f,\n  \"ms_wg_pixels\": %.3f,\n",
-            (double)st->wg_ns_silhouettes * 1e-6, (double)st->wg_ns_binning * 1e-6, (double)st->wg_ns_pixels * 1e-6);
+            (double)st->wedges.ns_silhouettes * 1e-6, (double)st->wedges.ns_binning * 1e-6, (double)st->wedges.ns_pixels * 1e-6);
     fprintf(f, "  \"mean_visibility\": %.9g\n}\n", mean);
     return fclose(f) != 0;
 }

@@ -415,6 +415,80 @@ pn_status pn_render(pn_context *ctx, const pn_camera *camera, const pn_light *li
 enum { PN_PASS_SCENE_COPY, PN_PASS_BVH_BUILD, PN_PASS_GBUFFER, PN_PASS_SHADOW, PN_PASS_SHADE,
        PN_PASS_COUNT };
 
+/* Each algorithm's own statistics, a sub-struct of pn_stats named after its module
+ * (stats.gears, stats.mcsm, ...), as the last frame that ran that algorithm left them. */
+typedef struct pn_gears_stats { /* GEARS (paper Tables 5 and 6), last frame */
+    uint64_t pairs;              /* (triangle, cell) pairs generated, over all tiles */
+    uint64_t assignments;        /* triangle-to-pixel assignments: sum over cells of
+                                    triangles x pixels */
+    uint32_t tiles;              /* passes the pair pool needed */
+    uint32_t faces;              /* 1 for an area light, 6 for a point light (cube) */
+    uint32_t cells_used;         /* cells with at least one pixel */
+    uint32_t max_tris_per_cell, max_pixels_per_cell;
+    float mean_tris_per_cell, mean_pixels_per_cell; /* over cells with pixels */
+    uint32_t pairs_high_water;   /* most pairs held at once */
+} pn_gears_stats;
+
+typedef struct pn_srt_stats { /* Selective ray tracing, last frame */
+    uint32_t map;                /* shadow-map texels per axis */
+    uint32_t pip;                /* pixels in the PIP set (exact masks computed) */
+    uint32_t thin;               /* thin triangles conservatively rasterized into the map */
+    uint32_t tiles_masked;       /* penumbra-mask tiles (8x8 texels) set (area light) */
+    uint32_t cons_texels;        /* map texels the thin triangles marked (each counted once) */
+    /* ...and its stages' share of pass_ns[PN_PASS_SHADOW] (0 without a clock): the map
+     * (window, rasterization, conservative marks, penumbra tiles), the classification
+     * with the PIP list, and the exact masks of the PIP pixels */
+    uint64_t ns_map, ns_classify, ns_exact;
+} pn_srt_stats;
+
+typedef struct pn_occtex_stats { /* Occlusion textures, last frame */
+    uint32_t map;                /* texels per axis */
+    uint32_t slices;             /* slices */
+    uint64_t texels_set;         /* (texel, slice) bits set, over all slices */
+    uint64_t lookups;            /* filtered lookups: slices weighted > 0, over lit pixels */
+    /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: slicing (window, depth range,
+     * rasterization), pre-filtering (every slice), lookups and combination */
+    uint64_t ns_slice, ns_filter, ns_lookup;
+} pn_occtex_stats;
+
+typedef struct pn_mcsm_stats { /* Monte Carlo shadow maps, last frame */
+    uint32_t map;                /* depth-layer texels per axis */
+    uint32_t lit, umbra, penumbra; /* lit pixels the classification called fully lit,
+                                    umbra (with those whose surface faces away from the
+                                    light centre), or potentially in penumbra (rays traced) */
+    uint32_t penumbra_open;      /* ...of the penumbra pixels, those whose rays no layer
+                                    blocked (the classification could have called them lit) */
+    uint32_t penumbra_shut;      /* ...and those with samples in front of their surface, every
+                                    one of them blocked by the layers (the rest: mixed) */
+    uint64_t rays;               /* rays searched through the layers (after the early-outs) */
+    uint64_t steps;              /* search steps: N-buffer boxes or linear samples looked up */
+    uint32_t capped;             /* searches stopped by the step cap (taken as unblocked) */
+    /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: layers (window, rasterization),
+     * N-buffer, rays (classification and search), blur */
+    uint64_t ns_layers, ns_nbuffer, ns_rays, ns_blur;
+} pn_mcsm_stats;
+
+typedef struct pn_wedges_stats { /* Penumbra wedges: the scene's connectivity (at
+                                    pn_scene_set) */
+    uint32_t vertices;           /* distinct vertex positions after welding */
+    uint32_t edges;              /* edges (distinct vertex pairs of non-degenerate triangles) */
+    uint32_t open_edges;         /* edges with one triangle: silhouettes from every view */
+    uint32_t nonmanifold_edges;  /* edges with three or more triangles, or two winding
+                                    the same way */
+    uint32_t objects, closed_objects; /* triangles joined by shared vertices */
+    /* ...and the last frame */
+    uint32_t silhouettes;        /* silhouette edges seen from the light centre (= wedges) */
+    uint64_t pairs;              /* (screen tile, wedge) pairs binned */
+    uint64_t evaluated;          /* (pixel, wedge) pairs evaluated */
+    uint64_t touched;            /* ...of which the edge covered some of the light: the pixels
+                                    touched per wedge are touched / silhouettes */
+    uint64_t hard_blockers;      /* triangles found blocking the pixels' centre rays */
+    uint32_t hard_overflow;      /* pixels with more than 16 objects blocking the centre
+                                    whose wedges reach them (taken as umbra) */
+    /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: silhouettes, binning, pixels */
+    uint64_t ns_silhouettes, ns_binning, ns_pixels;
+} pn_wedges_stats;
+
 typedef struct pn_stats {
     size_t arena_bytes;          /* size of the block given to pn_init */
     size_t arena_carved;         /* bytes the carve routine laid out (persistent + frame) */
@@ -431,7 +505,7 @@ typedef struct pn_stats {
     uint64_t pass_ns[PN_PASS_COUNT]; /* 0 without a clock; last scene set / last frame */
     uint64_t shadow_candidates;  /* triangles handed to the predicate in the last frame
                                     (PN_ALGO_RAYTRACE: ray-triangle tests; PN_ALGO_OCCTEX:
-                                    its filtered lookups, = occ_lookups) */
+                                    its filtered lookups, = occtex.lookups) */
     uint64_t shadow_blocking;    /* ...of which blocked at least one sample (per pixel;
                                     PN_ALGO_RAYTRACE: blocked rays) */
     uint64_t shadow_nodes;       /* BVH nodes whose boxes the shadow pass tested (GEARS,
@@ -440,73 +514,19 @@ typedef struct pn_stats {
     uint32_t lit_pixels;         /* pixels that see a triangle facing the light */
     float cull_tol;              /* last frame, scene units: slack of the conservative culls
                                     (their own rounding; the predicate is exact) */
-    /* GEARS (paper Tables 5 and 6), last frame */
-    uint64_t gears_pairs;        /* (triangle, cell) pairs generated, over all tiles */
-    uint64_t gears_assignments;  /* triangle-to-pixel assignments: sum over cells of
-                                    triangles x pixels */
-    uint32_t gears_tiles;        /* passes the pair pool needed */
-    uint32_t gears_faces;        /* 1 for an area light, 6 for a point light (cube) */
-    uint32_t gears_cells_used;   /* cells with at least one pixel */
-    uint32_t gears_max_tris_per_cell, gears_max_pixels_per_cell;
-    float gears_mean_tris_per_cell, gears_mean_pixels_per_cell; /* over cells with pixels */
-    uint32_t gears_pairs_high_water; /* most pairs held at once */
-    /* Selective ray tracing, last frame */
-    uint32_t srt_map;            /* shadow-map texels per axis */
-    uint32_t srt_pip;            /* pixels in the PIP set (exact masks computed) */
-    uint32_t srt_thin;           /* thin triangles conservatively rasterized into the map */
-    uint32_t srt_tiles_masked;   /* penumbra-mask tiles (8x8 texels) set (area light) */
-    uint32_t srt_cons_texels;    /* map texels the thin triangles marked (each counted once) */
-    /* ...and its stages' share of pass_ns[PN_PASS_SHADOW] (0 without a clock): the map
-     * (window, rasterization, conservative marks, penumbra tiles), the classification
-     * with the PIP list, and the exact masks of the PIP pixels */
-    uint64_t srt_ns_map, srt_ns_classify, srt_ns_exact;
-    /* Occlusion textures, last frame */
-    uint32_t occ_map;            /* texels per axis */
-    uint32_t occ_slices;         /* slices */
-    uint64_t occ_texels_set;     /* (texel, slice) bits set, over all slices */
-    uint64_t occ_lookups;        /* filtered lookups: slices weighted > 0, over lit pixels */
-    /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: slicing (window, depth range,
-     * rasterization), pre-filtering (every slice), lookups and combination */
-    uint64_t occ_ns_slice, occ_ns_filter, occ_ns_lookup;
-    /* Monte Carlo shadow maps, last frame */
-    uint32_t mc_map;             /* depth-layer texels per axis */
-    uint32_t mc_lit, mc_umbra, mc_penumbra; /* lit pixels the classification called fully lit,
-                                    umbra (with those whose surface faces away from the
-                                    light centre), or potentially in penumbra (rays traced) */
-    uint32_t mc_penumbra_open;   /* ...of the penumbra pixels, those whose rays no layer
-                                    blocked (the classification could have called them lit) */
-    uint32_t mc_penumbra_shut;   /* ...and those with samples in front of their surface, every
-                                    one of them blocked by the layers (the rest: mixed) */
-    uint64_t mc_rays;            /* rays searched through the layers (after the early-outs) */
-    uint64_t mc_steps;           /* search steps: N-buffer boxes or linear samples looked up */
-    uint32_t mc_capped;          /* searches stopped by the step cap (taken as unblocked) */
-    /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: layers (window, rasterization),
-     * N-buffer, rays (classification and search), blur */
-    uint64_t mc_ns_layers, mc_ns_nbuffer, mc_ns_rays, mc_ns_blur;
-    /* Penumbra wedges: the scene's connectivity (at pn_scene_set) */
-    uint32_t wg_vertices;        /* distinct vertex positions after welding */
-    uint32_t wg_edges;           /* edges (distinct vertex pairs of non-degenerate triangles) */
-    uint32_t wg_open_edges;      /* edges with one triangle: silhouettes from every view */
-    uint32_t wg_nonmanifold_edges; /* edges with three or more triangles, or two winding
-                                    the same way */
-    uint32_t wg_objects, wg_closed_objects; /* triangles joined by shared vertices */
-    /* ...and the last frame */
-    uint32_t wg_silhouettes;     /* silhouette edges seen from the light centre (= wedges) */
-    uint64_t wg_pairs;           /* (screen tile, wedge) pairs binned */
-    uint64_t wg_evaluated;       /* (pixel, wedge) pairs evaluated */
-    uint64_t wg_touched;         /* ...of which the edge covered some of the light: the pixels
-                                    touched per wedge are wg_touched / wg_silhouettes */
-    uint64_t wg_hard_blockers;   /* triangles found blocking the pixels' centre rays */
-    uint32_t wg_hard_overflow;   /* pixels with more than 16 objects blocking the centre
-                                    whose wedges reach them (taken as umbra) */
-    /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: silhouettes, binning, pixels */
-    uint64_t wg_ns_silhouettes, wg_ns_binning, wg_ns_pixels;
+    /* each algorithm's own statistics, as the last frame that ran it left them (the
+     * wedges' connectivity: as the last pn_scene_set left it) */
+    pn_gears_stats gears;
+    pn_srt_stats srt;
+    pn_occtex_stats occtex;
+    pn_mcsm_stats mcsm;
+    pn_wedges_stats wedges;
 } pn_stats;
 
 /* Copies the context's statistics into *out: the arena's sizes and high-water mark, the
  * last pn_scene_set's counts and times, the last frame's per-pass times and shadow
- * counters, and each algorithm's own fields (gears_*, srt_*, occ_*, mc_*, wg_*) as the last
- * frame that ran that algorithm left them. Every time is 0 without a clock (pn_set_clock).
+ * counters, and each algorithm's own sub-struct (gears, srt, occtex, mcsm, wedges) as
+ * the last frame that ran that algorithm left them. Every time is 0 without a clock (pn_set_clock).
  * Cheap: no pass runs. ctx and out must not be NULL
  * (PN_E_INVALID_ARG, *out untouched, no message: there may be no context to hold one);
  * otherwise PN_OK. */

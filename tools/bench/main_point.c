@@ -335,8 +335,8 @@ void main_point(const bench_opts *o, report *r, scene_state *ss, int first_port)
         } else {
             memset(&xst, 0, sizeof(xst));
         }
-        if (have_exact && xst.gears_assignments > 0)
-            snprintf(c[6], sizeof(c[6]), "%.1f%%", 100.0 * (double)xst.shadow_blocking / (double)xst.gears_assignments);
+        if (have_exact && xst.gears.assignments > 0)
+            snprintf(c[6], sizeof(c[6]), "%.1f%%", 100.0 * (double)xst.shadow_blocking / (double)xst.gears.assignments);
         else snprintf(c[6], sizeof(c[6]), "n/a");
         sec(r, SEC_HEADLINE, "| %s | %u | %u | %s | %s | %s | %s | %s | %s | %s | %s |\n", ss->s.name,
             lib[A_REF].st.triangles, lib[A_REF].st.lit_pixels, c[0], c[1], c[2], c[9], c[3], c[4], c[5], c[6]);
@@ -344,12 +344,12 @@ void main_point(const bench_opts *o, report *r, scene_state *ss, int first_port)
         /* Grid efficiency at the main point (paper Tables 5 and 6). */
         if (have_exact)
             sec(r, SEC_GRIDEFF, "| %s | %u | %u | %u | %.1f | %u | %.1f | %llu | %.0f | %.0f | %.0f | %.1f%% | %.1f%% | %u |\n",
-                ss->s.name, o->grid, xst.gears_cells_used, xst.gears_max_tris_per_cell, xst.gears_mean_tris_per_cell,
-                xst.gears_max_pixels_per_cell, xst.gears_mean_pixels_per_cell, (unsigned long long)xst.gears_pairs,
-                xst.gears_assignments / 1e3, xst.shadow_candidates / 1e3, xst.shadow_blocking / 1e3,
-                xst.gears_assignments ? 100.0 * (double)xst.shadow_candidates / (double)xst.gears_assignments : 0.0,
-                xst.gears_assignments ? 100.0 * (double)xst.shadow_blocking / (double)xst.gears_assignments : 0.0,
-                xst.gears_tiles);
+                ss->s.name, o->grid, xst.gears.cells_used, xst.gears.max_tris_per_cell, xst.gears.mean_tris_per_cell,
+                xst.gears.max_pixels_per_cell, xst.gears.mean_pixels_per_cell, (unsigned long long)xst.gears.pairs,
+                xst.gears.assignments / 1e3, xst.shadow_candidates / 1e3, xst.shadow_blocking / 1e3,
+                xst.gears.assignments ? 100.0 * (double)xst.shadow_candidates / (double)xst.gears.assignments : 0.0,
+                xst.gears.assignments ? 100.0 * (double)xst.shadow_blocking / (double)xst.gears.assignments : 0.0,
+                xst.gears.tiles);
 
         /* Memory: the size query for this scene at a few configurations, and what the
          * frames actually used. */
@@ -370,7 +370,7 @@ void main_point(const bench_opts *o, report *r, scene_state *ss, int first_port)
             sec(r, SEC_MEMORY, "| %s | %u | %.1f | %.1f | %.1f | %.1f | %.1f | %u | %u |\n", ss->s.name,
                 ss->s.mesh.triangle_count, b512 / 1048576.0, bsmall / 1048576.0, b1280 / 1048576.0,
                 ref_only.arena_persistent / 1048576.0, ref_only.arena_high_water / 1048576.0,
-                gst.gears_pairs_high_water, gst.gears_tiles);
+                gst.gears.pairs_high_water, gst.gears.tiles);
         }
 
         /* Accuracy of every algorithm against the reference, of the baselines and of Embree. */

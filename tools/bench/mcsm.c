@@ -60,10 +60,10 @@ static void mc_job(job *j, int a_mc, const pn_frame_options *opt, const mc_cfg *
 static void mc_stages(char *b, size_t n, const job *j)
 {
     char c[4][20];
-    fmt_ms(c[0], sizeof(c[0]), j->st.mc_ns_layers / 1e6);
-    fmt_ms(c[1], sizeof(c[1]), j->st.mc_ns_nbuffer / 1e6);
-    fmt_ms(c[2], sizeof(c[2]), j->st.mc_ns_rays / 1e6);
-    fmt_ms(c[3], sizeof(c[3]), j->st.mc_ns_blur / 1e6);
+    fmt_ms(c[0], sizeof(c[0]), j->st.mcsm.ns_layers / 1e6);
+    fmt_ms(c[1], sizeof(c[1]), j->st.mcsm.ns_nbuffer / 1e6);
+    fmt_ms(c[2], sizeof(c[2]), j->st.mcsm.ns_rays / 1e6);
+    fmt_ms(c[3], sizeof(c[3]), j->st.mcsm.ns_blur / 1e6);
     snprintf(b, n, "%s / %s / %s / %s", c[0], c[1], c[2], c[3]);
 }
 
@@ -114,10 +114,10 @@ void mc_claims(const bench_opts *o, report *r, scene_state *ss)
         sec(r, SEC_MC_CLAIMS,
             "| %s | %s | %.5f | %.4f | %zu | %zu | %s | %s | %u / %u / %u | %u / %u (%.0f%% / %.0f%%) | %llu | %.1f | %u |\n",
             ss->s.name, mc_cfgs[i].name, acc.rmse, acc.max_err, px_brighter(j->vis, ref, n), px_brighter(ref, j->vis, n),
-            c[0], c[1], j->st.mc_lit, j->st.mc_umbra, j->st.mc_penumbra, j->st.mc_penumbra_open, j->st.mc_penumbra_shut,
-            j->st.mc_penumbra ? 100.0 * j->st.mc_penumbra_open / j->st.mc_penumbra : 0.0,
-            j->st.mc_penumbra ? 100.0 * j->st.mc_penumbra_shut / j->st.mc_penumbra : 0.0, (unsigned long long)j->st.mc_rays,
-            j->st.mc_rays ? (double)j->st.mc_steps / (double)j->st.mc_rays : 0.0, j->st.mc_capped);
+            c[0], c[1], j->st.mcsm.lit, j->st.mcsm.umbra, j->st.mcsm.penumbra, j->st.mcsm.penumbra_open, j->st.mcsm.penumbra_shut,
+            j->st.mcsm.penumbra ? 100.0 * j->st.mcsm.penumbra_open / j->st.mcsm.penumbra : 0.0,
+            j->st.mcsm.penumbra ? 100.0 * j->st.mcsm.penumbra_shut / j->st.mcsm.penumbra : 0.0, (unsigned long long)j->st.mcsm.rays,
+            j->st.mcsm.rays ? (double)j->st.mcsm.steps / (double)j->st.mcsm.rays : 0.0, j->st.mcsm.capped);
     }
     for (i = 0; i < MC_CFGS; i++) chart_point(ss, "MCSM", mc_cfgs[i].name, &jobs[i], 15);
     if (jobs[0].ok && jobs[0].vis && ss->ref_vis) {

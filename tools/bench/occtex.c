@@ -33,9 +33,9 @@ static const float occ_light_scale[OCC_LIGHTS] = {0.25f, 0.5f, 1.0f, 2.0f, 4.0f}
 static void occ_stages(char *b, size_t n, const job *j)
 {
     char c[3][20];
-    fmt_ms(c[0], sizeof(c[0]), j->st.occ_ns_slice / 1e6);
-    fmt_ms(c[1], sizeof(c[1]), j->st.occ_ns_filter / 1e6);
-    fmt_ms(c[2], sizeof(c[2]), j->st.occ_ns_lookup / 1e6);
+    fmt_ms(c[0], sizeof(c[0]), j->st.occtex.ns_slice / 1e6);
+    fmt_ms(c[1], sizeof(c[1]), j->st.occtex.ns_filter / 1e6);
+    fmt_ms(c[2], sizeof(c[2]), j->st.occtex.ns_lookup / 1e6);
     snprintf(b, n, "%s / %s / %s", c[0], c[1], c[2]);
 }
 
@@ -79,7 +79,7 @@ void occ_section(const bench_opts *o, report *r, scene_state *ss)
         occ_stages(c[1], sizeof(c[1]), j);
         sec(r, SEC_OCC_CLAIMS, "| %s | %s | %.5f | %.4f | %zu | %s | %s | %llu / %llu |\n", ss->s.name,
             occ_cfgs[i].name, acc.rmse, acc.max_err, px_brighter(j->vis, ref, n), c[0], c[1],
-            (unsigned long long)j->st.occ_texels_set, (unsigned long long)j->st.occ_lookups);
+            (unsigned long long)j->st.occtex.texels_set, (unsigned long long)j->st.occtex.lookups);
     }
     for (i = 0; i < OCC_CFGS; i++) job_free(&jobs[i]);
 

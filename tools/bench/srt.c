@@ -52,8 +52,8 @@ static void srt_row(report *r, const scene_state *ss, const char *light, uint32_
     fmt_ms(c[1], sizeof(c[1]), exact_ms);
     fmt_ratio(c[2], sizeof(c[2]), exact_ms, job_pass(j));
     sec(r, SEC_SRT_ACC, "| %s | %s | %u | %s | %.2f%% | %u / %u | %.4f%% | %zu | %zu | %.6f | %.4f | %s | %s (%s) | %s |\n",
-        ss->s.name, light, size, cfg, j->st.lit_pixels ? 100.0 * j->st.srt_pip / (double)j->st.lit_pixels : 0.0,
-        j->st.srt_thin, j->st.srt_cons_texels,
+        ss->s.name, light, size, cfg, j->st.lit_pixels ? 100.0 * j->st.srt.pip / (double)j->st.lit_pixels : 0.0,
+        j->st.srt.thin, j->st.srt.cons_texels,
         100.0 * acc.wrong_frac, missing, extra, acc.rmse, acc.max_err, c[0], c[1], exact_name, c[2]);
 }
 
@@ -65,9 +65,9 @@ static void srt_speed_row(report *r, const scene_state *ss, const char *light, u
     char c[7][48];
     fmt_ms(c[0], sizeof(c[0]), exact_ms);
     fmt_ms(c[1], sizeof(c[1]), job_pass(srt));
-    fmt_ms(c[2], sizeof(c[2]), srt->st.srt_ns_map / 1e6);
-    fmt_ms(c[3], sizeof(c[3]), srt->st.srt_ns_classify / 1e6);
-    fmt_ms(c[4], sizeof(c[4]), srt->st.srt_ns_exact / 1e6);
+    fmt_ms(c[2], sizeof(c[2]), srt->st.srt.ns_map / 1e6);
+    fmt_ms(c[3], sizeof(c[3]), srt->st.srt.ns_classify / 1e6);
+    fmt_ms(c[4], sizeof(c[4]), srt->st.srt.ns_exact / 1e6);
     fmt_ratio(c[5], sizeof(c[5]), exact_ms, job_pass(srt));
     if (acc.ok) snprintf(c[6], sizeof(c[6]), "%.4f%%", 100.0 * acc.wrong_frac);
     else snprintf(c[6], sizeof(c[6]), "n/a");
@@ -78,7 +78,7 @@ static void srt_speed_row(report *r, const scene_state *ss, const char *light, u
     }
     sec(r, SEC_SRT_SPEED, "| %s | %s | %ux%u | %s | %s | %s | %s / %s / %s | %.2f%% | %s | %s |\n", ss->s.name, light,
         size, size, exact_name, c[0], c[1], c[2], c[3], c[4],
-        srt->st.lit_pixels ? 100.0 * srt->st.srt_pip / (double)srt->st.lit_pixels : 0.0, c[6], c[5]);
+        srt->st.lit_pixels ? 100.0 * srt->st.srt.pip / (double)srt->st.lit_pixels : 0.0, c[6], c[5]);
 }
 
 void srt_section(const bench_opts *o, report *r, scene_state *ss)
@@ -151,11 +151,11 @@ void srt_section(const bench_opts *o, report *r, scene_state *ss)
                     fmt_ratio(cb[0], sizeof(cb[0]), wt, cc.work[2]);
                     fmt_ratio(cb[1], sizeof(cb[1]), nt, cc.ns[2]);
                     fmt_ratio(cb[2], sizeof(cb[2]), exact_ms, job_pass(d));
-                    fmt_ratio(cb[3], sizeof(cb[3]), ss->pt_ms[A_REF], d->st.srt_ns_exact / 1e6);
+                    fmt_ratio(cb[3], sizeof(cb[3]), ss->pt_ms[A_REF], d->st.srt.ns_exact / 1e6);
                     sec(r, SEC_SRT_BOUND,
                         "| %s | %llu | %.2f%% | %.2f%% | %.1f%% / %.1f%% / %.1f%% | %.1f%% / %.1f%% / %.1f%% | %s | %s | %s | %s | %s |\n",
                         ss->s.name, (unsigned long long)lit, lit ? 100.0 * cc.pixels[2] / (double)lit : 0.0,
-                        d->st.lit_pixels ? 100.0 * d->st.srt_pip / (double)d->st.lit_pixels : 0.0,
+                        d->st.lit_pixels ? 100.0 * d->st.srt.pip / (double)d->st.lit_pixels : 0.0,
                         wt > 0 ? 100.0 * cc.work[0] / wt : 0.0, wt > 0 ? 100.0 * cc.work[1] / wt : 0.0,
                         wt > 0 ? 100.0 * cc.work[2] / wt : 0.0, nt > 0 ? 100.0 * cc.ns[0] / nt : 0.0,
                         nt > 0 ? 100.0 * cc.ns[1] / nt : 0.0, nt > 0 ? 100.0 * cc.ns[2] / nt : 0.0, cb[0], cb[1], cb[3],
@@ -217,8 +217,8 @@ static const bench_note srt_notes[] = {
      "one that was fastest at the first)."},
     {SEC_SRT_SPEED, "### SRT's speed against the fastest exact algorithm",
      "The default configuration. SRT ms is the median over the repetitions; the stages are the last "
-     "repetition's, from `pn_stats` (srt_ns_map: window, shadow map, conservative marks, penumbra "
-     "tiles; srt_ns_classify: classification and the PIP list; srt_ns_exact: the PIP pixels' exact masks). The issue's "
+     "repetition's, from `pn_stats` (srt.ns_map: window, shadow map, conservative marks, penumbra "
+     "tiles; srt.ns_classify: classification and the PIP list; srt.ns_exact: the PIP pixels' exact masks). The issue's "
      "goal: at least 5x on every shared scene for soft shadows."},
     {SEC_SRT_BOUND, "### What SRT can save: the reference's cost by pixel class (area light)",
      "The library's per-pixel kernel (`pn_reference_pixel`) over a host BVH, each lit pixel timed alone and classed "

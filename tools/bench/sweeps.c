@@ -102,14 +102,14 @@ void sweep(const bench_opts *o, report *r, scene_state *ss, int kind, pn_embree_
         for (v = 0; v < nv; v++) {
             const job *g = v == 0 ? &jobs[nv] : &jobs[v];
             double gm = job_pass(g), rm = job_pass(&jobs[0]), em = job_pass(&jobs[nv + 1]);
-            double pct = xs[v].gears_assignments ? 100.0 * (double)xs[v].shadow_blocking / (double)xs[v].gears_assignments : NAN;
+            double pct = xs[v].gears.assignments ? 100.0 * (double)xs[v].shadow_blocking / (double)xs[v].gears.assignments : NAN;
             row_ms(&rs, 0, gm);
             row_ms(&rs, 1, rm);
             row_ms(&rs, 2, em);
             if (pct == pct) snprintf(cell, sizeof(cell), "%.1f%%", pct);
             else snprintf(cell, sizeof(cell), "n/a");
             row_add(&rs, 3, cell);
-            snprintf(cell, sizeof(cell), "%u / %.1f", xs[v].gears_max_tris_per_cell, xs[v].gears_mean_tris_per_cell);
+            snprintf(cell, sizeof(cell), "%u / %.1f", xs[v].gears.max_tris_per_cell, xs[v].gears.mean_tris_per_cell);
             row_add(&rs, 4, cell);
             row_ratio(&rs, 5, em, gm);
             dl += snprintf(data + dl, sizeof(data) - (size_t)dl, "%u %.4f %.4f %.4f %.3f\n", o->sweep_grid[v], gm, rm,

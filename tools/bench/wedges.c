@@ -30,9 +30,9 @@ static const struct {
 static void wg_stages(char *b, size_t n, const pn_stats *st)
 {
     char c[3][20];
-    fmt_ms(c[0], sizeof(c[0]), st->wg_ns_silhouettes / 1e6);
-    fmt_ms(c[1], sizeof(c[1]), st->wg_ns_binning / 1e6);
-    fmt_ms(c[2], sizeof(c[2]), st->wg_ns_pixels / 1e6);
+    fmt_ms(c[0], sizeof(c[0]), st->wedges.ns_silhouettes / 1e6);
+    fmt_ms(c[1], sizeof(c[1]), st->wedges.ns_binning / 1e6);
+    fmt_ms(c[2], sizeof(c[2]), st->wedges.ns_pixels / 1e6);
     snprintf(b, n, "%s / %s / %s", c[0], c[1], c[2]);
 }
 
@@ -169,7 +169,7 @@ void wg_section(const bench_opts *o, report *r, scene_state *ss)
     sec(r, SEC_WG_MODES,
         "| %s | %u | %u | %u | %llu | %s | %s | %s | %s | %s | %s | %s | %.5f | %.4f | %.5f | %.5f | %.4f | %zu | %zu | "
         "%zu | %s | %s |\n",
-        ss->s.name, ss->s.mesh.triangle_count, st->wg_silhouettes, st->wg_objects, (unsigned long long)st->wg_pairs, c[0],
+        ss->s.name, ss->s.mesh.triangle_count, st->wedges.silhouettes, st->wedges.objects, (unsigned long long)st->wedges.pairs, c[0],
         c[1], c[2], c[3], fastest >= 0 ? algos[fastest].name : "none", c[4], c[5], ss->wg.rmse32[0], ss->wg.max32[0],
         ss->wg.mae32, ss->wg.rmse32[1], ss->wg.max32[1], ss->wg.differ, ss->wg.closer, ss->wg.farther, link, fr);
     if (ss->wg.heat)
@@ -322,13 +322,13 @@ void wg_sweep(const bench_opts *o, report *r)
             else snprintf(c[5], sizeof(c[5]), "n/a");
             if (rmse[1] == rmse[1]) snprintf(c[6], sizeof(c[6]), "%.5f", rmse[1]);
             else snprintf(c[6], sizeof(c[6]), "n/a");
-            if (b->ok) snprintf(c[7], sizeof(c[7]), "%u", b->st.wg_silhouettes);
+            if (b->ok) snprintf(c[7], sizeof(c[7]), "%u", b->st.wedges.silhouettes);
             else snprintf(c[7], sizeof(c[7]), "n/a");
             sec(r, SEC_WG_SWEEP, "| %u | %u | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", ns, part.triangle_count,
                 c[7], c[0], c[1], c[2], fastest >= 0 ? algos[fastest].name : "none", c[3], c[4], c[5], c[6],
                 b->ok && ad->ok ? "" : b->ok ? ad->err : b->err);
             dl += snprintf(data + dl, sizeof(data) - (size_t)dl, "%u %u %u %.4f %.4f %.4f %.6g %.6g\n", ns,
-                           part.triangle_count, b->ok ? b->st.wg_silhouettes : 0u, job_pass(b), job_pass(ad), exact_ms,
+                           part.triangle_count, b->ok ? b->st.wedges.silhouettes : 0u, job_pass(b), job_pass(ad), exact_ms,
                            rmse[0], rmse[1]);
             if (exact_ms == exact_ms) r->wg_sweep_exact = 1;
             if (b->ok || ad->ok) r->wg_sweep = 1;
@@ -387,9 +387,9 @@ static const bench_note wg_notes[] = {
      "the penumbra-wedges algorithm (`wedges.mode` = PN_WG_MODE_ADDITIVE). ms: the shadow pass's median; the stages "
      "are the blended frame's last repetition, from `pn_stats` (silhouettes: how each triangle casts and the silhouette "
      "edges seen from the light centre; binning: each wedge's screen tiles, sorted by tile; pixels: each pixel's "
-     "centre ray and its tile's wedges, with the blending). Silhouette edges: the wedges built (`wg_silhouettes`); "
-     "objects: triangles joined by shared vertices (`wg_objects`, what the blending combines); pairs: (screen tile, "
-     "wedge) pairs binned (`wg_pairs`). \"Additive vs blended\": blended's median over additive's (above 1: the "
+     "centre ray and its tile's wedges, with the blending). Silhouette edges: the wedges built (`wedges.silhouettes`); "
+     "objects: triangles joined by shared vertices (`wedges.objects`, what the blending combines); pairs: (screen tile, "
+     "wedge) pairs binned (`wedges.pairs`). \"Additive vs blended\": blended's median over additive's (above 1: the "
      "blending costs that factor; the paper's Fig. 12(b)). Fastest exact: of reference, GEARS and raytrace at the "
      "main point (its medians, this run); \"wedges vs fastest exact\": its median over blended's (above 1: wedges "
      "faster). RMSE, max error and MAE (mean absolute error): one frame of each mode at k = 32 against the k = 32 "

@@ -422,16 +422,18 @@ static void test_containment(void)
     free_scene(&s);
 }
 
-static const struct {
-    const char *name;
-    pn_algo algo;
-    uint32_t build_flag;
-} algos[] = {
-    {"reference", PN_ALGO_REFERENCE, PN_BUILD_REFERENCE}, {"gears", PN_ALGO_GEARS, PN_BUILD_GEARS},
-    {"raytrace", PN_ALGO_RAYTRACE, PN_BUILD_RAYTRACE},    {"srt", PN_ALGO_SRT, PN_BUILD_SRT},
-    {"occtex", PN_ALGO_OCCTEX, PN_BUILD_OCCTEX},          {"mcsm", PN_ALGO_MCSM, PN_BUILD_MCSM},
-    {"wedges", PN_ALGO_WEDGES, PN_BUILD_WEDGES},
-};
+/* Every algorithm (the registry: pn_algo 0 .. PN_ALGO_COUNT - 1), at this file's frame size,
+ * k = 8 and a GEARS grid of 16: the options every frame here renders with. */
+static void frame_opts(pn_frame_options *opt, uint32_t algo, float eps)
+{
+    pn_frame_options_default(opt);
+    opt->width = FRAME_W;
+    opt->height = FRAME_H;
+    opt->k = 8;
+    opt->eps = eps;
+    opt->algo = (pn_algo)algo;
+    opt->gears.grid = 16;
+}
 
 /* Renders every algorithm compiled in on three contexts (no splitting, the default
  * reserve, a reserve one short of the default's references) and compares the bytes. */
@@ -461,28 +463,22 @@ static void frames_same(const char *label, const float *pos, uint32_t verts, con
     CHECK(pn_get_stats(ctx[2], &st) == PN_OK);
     CHECK_MSG(st.bvh_refs <= refs_default - 1u && st.bvh_refs > tris, "%s: short reserve %u gave %u references",
               label, refs_default - 1u, st.bvh_refs);
-    for (a = 0; a < sizeof(algos) / sizeof(algos[0]); a++) {
-        if (!(built & algos[a].build_flag)) continue;
+    for (a = 0; a < PN_ALGO_COUNT; a++) {
+        if (!(built & (1u << a))) continue;
         for (c = 0; c < 3u; c++) {
             pn_frame_options opt;
             pn_frame fr;
             pn_status rs;
-            pn_frame_options_default(&opt);
-            opt.width = FRAME_W;
-            opt.height = FRAME_H;
-            opt.k = 8;
-            opt.eps = eps;
-            opt.algo = algos[a].algo;
-            opt.gears.grid = 16;
+            frame_opts(&opt, a, eps);
             rs = pn_render(ctx[c], cam, light, &opt, &fr);
-            CHECK_MSG(rs == PN_OK, "%s %s: %s", label, algos[a].name, pn_last_error(ctx[c]));
+            CHECK_MSG(rs == PN_OK, "%s %s: %s", label, pn_algo_name((pn_algo)a), pn_last_error(ctx[c]));
             if (rs != PN_OK) break;
             if (c == 0u) {
                 memcpy(vis0, fr.visibility, npix * sizeof(float));
                 memcpy(rgba0, fr.rgba, npix * 4u);
             } else {
                 CHECK_MSG(memcmp(vis0, fr.visibility, npix * sizeof(float)) == 0 && memcmp(rgba0, fr.rgba, npix * 4u) == 0,
-                          "%s %s: reserve %s renders other bytes than no splitting", label, algos[a].name,
+                          "%s %s: reserve %s renders other bytes than no splitting", label, pn_algo_name((pn_algo)a),
                           c == 1u ? "default" : "short");
             }
         }
@@ -512,7 +508,7 @@ static void test_frames_two_wide(void)
     char err[256];
     uint32_t a, i, wide4, two = 0, built = pn_build_info();
     size_t npix = (size_t)FRAME_W * FRAME_H;
-    float *vis0 = (float *)malloc(npix * sizeof(float) * (sizeof(algos) / sizeof(algos[0])));
+    float *vis0 = (float *)malloc(npix * sizeof(float) * (PN_ALGO_COUNT));
     REQUIRE(vis0);
     REQUIRE(pn_setup_load(&s, "room", 1, -1, err, sizeof(err)) == 0);
     ctx = open_ctx(&h, s.mesh.triangle_count, 0);
@@ -526,26 +522,20 @@ static void test_frames_two_wide(void)
             CHECK_MSG(two == ctx->bvh_wide && ctx->bvh_wide > wide4, "two-wide fold: %u of %u nodes (four-wide %u)", two,
                       ctx->bvh_wide, wide4);
         }
-        for (a = 0; a < sizeof(algos) / sizeof(algos[0]); a++) {
+        for (a = 0; a < PN_ALGO_COUNT; a++) {
             pn_frame_options opt;
             pn_frame fr;
-            if (!(built & algos[a].build_flag)) continue;
-            pn_frame_options_default(&opt);
-            opt.width = FRAME_W;
-            opt.height = FRAME_H;
-            opt.k = 8;
-            opt.eps = s.eps;
-            opt.algo = algos[a].algo;
-            opt.gears.grid = 16;
+            if (!(built & (1u << a))) continue;
+            frame_opts(&opt, a, s.eps);
             if (pn_render(ctx, &s.camera, &s.light, &opt, &fr) != PN_OK) {
-                CHECK_MSG(0, "room %s: %s", algos[a].name, pn_last_error(ctx));
+                CHECK_MSG(0, "room %s: %s", pn_algo_name((pn_algo)a), pn_last_error(ctx));
                 continue;
             }
             if (i == 0u)
                 memcpy(vis0 + a * npix, fr.visibility, npix * sizeof(float));
             else
                 CHECK_MSG(memcmp(vis0 + a * npix, fr.visibility, npix * sizeof(float)) == 0,
-                          "room %s: the two-wide tree renders other bytes", algos[a].name);
+                          "room %s: the two-wide tree renders other bytes", pn_algo_name((pn_algo)a));
         }
     }
     pn_host_close(&h);
@@ -619,25 +609,19 @@ static void test_deep_tree(void)
             (unsigned)PN_BVH_SAH_DEPTH + 27u, (unsigned)PN_BVH_STACK);
     CHECK_MSG(st.bvh_depth >= 20u, "depth %u: the scene does not build a deep tree", st.bvh_depth);
     CHECK(st.bvh_depth <= PN_BVH_SAH_DEPTH + 27u && st.bvh_depth + 1u <= PN_BVH_STACK);
-    for (a = 0; a < sizeof(algos) / sizeof(algos[0]); a++) {
+    for (a = 0; a < PN_ALGO_COUNT; a++) {
         pn_frame_options opt;
         pn_frame fr;
         pn_status rs;
-        if (!(built & algos[a].build_flag)) continue;
-        pn_frame_options_default(&opt);
-        opt.width = FRAME_W;
-        opt.height = FRAME_H;
-        opt.k = 8;
-        opt.eps = sq.eps;
-        opt.algo = algos[a].algo;
-        opt.gears.grid = 16;
+        if (!(built & (1u << a))) continue;
+        frame_opts(&opt, a, sq.eps);
         rs = pn_render(ctx, &sq.camera, &sq.light, &opt, &fr);
-        CHECK_MSG(rs == PN_OK, "deep tree %s: %s", algos[a].name, pn_last_error(ctx));
+        CHECK_MSG(rs == PN_OK, "deep tree %s: %s", pn_algo_name((pn_algo)a), pn_last_error(ctx));
         if (rs != PN_OK) continue;
-        if (algos[a].algo == PN_ALGO_REFERENCE) memcpy(ref, fr.visibility, npix * sizeof(float));
-        else if (algos[a].algo == PN_ALGO_GEARS || algos[a].algo == PN_ALGO_RAYTRACE)
+        if ((pn_algo)a == PN_ALGO_REFERENCE) memcpy(ref, fr.visibility, npix * sizeof(float));
+        else if ((pn_algo)a == PN_ALGO_GEARS || (pn_algo)a == PN_ALGO_RAYTRACE)
             CHECK_MSG(memcmp(ref, fr.visibility, npix * sizeof(float)) == 0, "deep tree %s: not the reference's bytes",
-                      algos[a].name);
+                      pn_algo_name((pn_algo)a));
     }
     pn_host_close(&h);
     free_scene(&s);

@@ -359,9 +359,9 @@ static void test_blend_stacked(void)
  * counted as a traversal stack overflow). */
 static void test_many_blockers(void)
 {
-    enum { STRIPS = 24 };
-    float pos[(STRIPS + 1) * 12];
-    uint32_t idx[(STRIPS + 1) * 6], i;
+    enum { SQUARES = 24 };
+    float pos[(SQUARES + 1) * 12];
+    uint32_t idx[(SQUARES + 1) * 6], i;
     pn_setup s;
     pn_host h;
     pn_frame_options o;
@@ -371,26 +371,26 @@ static void test_many_blockers(void)
         CHECK_MSG(0, "loading square: %s", err);
         return;
     }
-    if (pn_host_open(&h, STRIPS * 2u + 2u, W, H, 2, err, sizeof(err)) != 0) {
+    if (pn_host_open(&h, SQUARES * 2u + 2u, W, H, 2, err, sizeof(err)) != 0) {
         CHECK_MSG(0, "context: %s", err);
         pn_setup_free(&s);
         return;
     }
-    for (i = 0; i <= STRIPS; i++) {
-        float *p = pos + i * 12u, y = i < STRIPS ? 0.5f + 0.1f * (float)i : 0.0f, r = i < STRIPS ? 0.4f : 4.0f;
+    for (i = 0; i <= SQUARES; i++) {
+        float *p = pos + i * 12u, y = i < SQUARES ? 0.5f + 0.1f * (float)i : 0.0f, r = i < SQUARES ? 0.4f : 4.0f;
         p[0] = -r, p[1] = y, p[2] = -r;
         p[3] = -r, p[4] = y, p[5] = r;
         p[6] = r, p[7] = y, p[8] = r;
         p[9] = r, p[10] = y, p[11] = -r;
         quad_tris(idx, i);
     }
-    REQUIRE(pn_scene_set(h.ctx, pos, (STRIPS + 1u) * 4u, idx, (STRIPS + 1u) * 2u) == PN_OK);
+    REQUIRE(pn_scene_set(h.ctx, pos, (SQUARES + 1u) * 4u, idx, (SQUARES + 1u) * 2u) == PN_OK);
     wg_opts(&o, PN_WG_MODE_BLEND);
-    CHECK_MSG(render_opt(&h, &s, &s.light, &o, g_a, NULL, &st) == 0, "wedges on %d stacked squares: %s", STRIPS,
+    CHECK_MSG(render_opt(&h, &s, &s.light, &o, g_a, NULL, &st) == 0, "wedges on %d stacked squares: %s", SQUARES,
               pn_last_error(h.ctx));
     fprintf(stderr, "stacked squares: %u objects, %u pixels at the cap of %u objects\n", st.wedges.objects,
             st.wedges.hard_overflow, (unsigned)PN_WG_HARD_MAX);
-    CHECK_MSG(st.wedges.objects == STRIPS + 1u, "%u objects, want %u", st.wedges.objects, STRIPS + 1u);
+    CHECK_MSG(st.wedges.objects == SQUARES + 1u, "%u objects, want %u", st.wedges.objects, SQUARES + 1u);
     CHECK_MSG(st.wedges.hard_overflow > 0u, "no pixel reached the cap: the test does not exercise it");
     pn_host_close(&h);
     pn_setup_free(&s);

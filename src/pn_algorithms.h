@@ -10,6 +10,9 @@
  *   pn_<name>_prepare(fs, opt)  checks the algorithm's own options (pn_fail naming the
  *                               option) and derives the frame's parameters from them (fs
  *                               and fs->K; 0 means the default), before any pool is carved;
+ *   pn_<name>_query(c, l)       its frame pools' size query: the carve its frame runs
+ *                               (pn_internal.h pn_carver), run at the limits' maxima;
+ *                               pn_carve sizes the frame region for the largest set;
  *   pn_<name>_frame(fs)         its shadow pass: the visibility buffer and one
  *                               pn_row_counters per row, through the port commands of
  *                               src/pn_device.h. Not internal to this header. */
@@ -29,17 +32,24 @@
 
 #define PN_ALGO_DECLARE(ID, name)                                                              \
     pn_status pn_##name##_prepare(pn_frame_state *fs, const pn_frame_options *opt);             \
+    void pn_##name##_query(pn_carver *c, const pn_limits *l);                                   \
     pn_status pn_##name##_frame(pn_frame_state *fs);
 PN_ALGORITHMS(PN_ALGO_DECLARE)
 #undef PN_ALGO_DECLARE
 
-/* The module of an algorithm that is not compiled in: its prepare refuses every frame. */
+/* The module of an algorithm that is not compiled in: its prepare refuses every frame, and
+ * it has no pools. */
 #define PN_ALGO_STUBS(ID, name)                                                                \
     pn_status pn_##name##_prepare(pn_frame_state *fs, const pn_frame_options *opt)             \
     {                                                                                          \
         (void)opt;                                                                             \
         return pn_fail(fs->ctx, PN_E_UNSUPPORTED,                                              \
                        "PN_ALGO_" #ID " is not compiled in (PN_ENABLE_" #ID " 0)");             \
+    }                                                                                          \
+    void pn_##name##_query(pn_carver *c, const pn_limits *l)                                    \
+    {                                                                                          \
+        (void)c;                                                                               \
+        (void)l;                                                                               \
     }                                                                                          \
     pn_status pn_##name##_frame(pn_frame_state *fs)                                            \
     {                                                                                          \

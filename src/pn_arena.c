@@ -3,14 +3,8 @@
  * allocator. */
 #include <string.h>
 
-#include "pn_internal.h"
+#include "pn_algorithms.h"
 #include "pn_reference.h" /* pn_row_counters */
-#if PN_ENABLE_GEARS
-#include "pn_gears_pass.h" /* pn_kfaces */
-#endif
-#if PN_ENABLE_WEDGES
-#include "pn_wedges.h" /* pn_wsil */
-#endif
 
 /* Appends a pool of count * elem bytes at the next 64-byte boundary. Sizes are checked in
  * 64-bit arithmetic, then against SIZE_MAX (a 32-bit target must not wrap). */
@@ -29,147 +23,32 @@ static int pn_bump(uint64_t *off, uint64_t count, uint64_t elem, size_t *out)
 /* A row's counters fill one cache line (kernels/pn_reference.h). */
 typedef char pn_row_counters_is_64[sizeof(pn_row_counters) == 64u ? 1 : -1];
 
-/* The frame pools, in allocation order; pn_frame.c allocates exactly these (any frame
- * within the limits fits, because each is at most its size here). */
-static int pn_frame_pools_common(const pn_limits *l, uint64_t *off)
+void pn_carver_query(pn_carver *c, uint64_t start)
 {
-    uint64_t px = (uint64_t)l->max_width * l->max_height;
-    size_t dummy;
-    if (!(pn_bump(off, px, sizeof(float), &dummy) &&          /* depth */
-          pn_bump(off, px, sizeof(uint32_t), &dummy) &&       /* tri_id */
-          pn_bump(off, px * 3u, sizeof(float), &dummy) &&     /* position */
-          pn_bump(off, px * 3u, sizeof(float), &dummy) &&     /* normal */
-          pn_bump(off, px, sizeof(float), &dummy) &&          /* visibility */
-          pn_bump(off, px, 4u, &dummy) &&                     /* rgba */
-          pn_bump(off, l->max_triangles, sizeof(uint32_t), &dummy) && /* raster rows */
-          pn_bump(off, PN_RASTER_CHUNKS(l->max_triangles), sizeof(uint32_t), &dummy) && /* chunks */
-          pn_bump(off, l->max_height, sizeof(pn_row_counters), &dummy)))
-        return 0;
-    return 1;
+    c->ctx = NULL;
+    c->top = start;
+    c->ok = 1;
 }
 
-/* PN_GEARS_BYTES_MAX (include/penumbra/penumbra.h) counts a 24-byte chunk box per 8 pairs
- * and a superchunk box per 64. */
-typedef char pn_gears_chunk_is_8[(PN_GEARS_CHUNK == 8u && PN_GEARS_SUPER == 8u) ? 1 : -1];
-
-/* GEARS' frame pools, after the common ones. */
-static int pn_gears_pools(const pn_limits *l, uint64_t *off)
+void pn_carver_frame(pn_carver *c, pn_context *ctx)
 {
-#if PN_ENABLE_GEARS
-    uint64_t px = (uint64_t)l->max_width * l->max_height;
-    size_t dummy;
-    {
-        /* pn_gears_begin() in src/pn_gears.c allocates exactly these, in this order. */
-        uint64_t g = pn_gears_grid_max(l), cells = 6u * g * g;
-        return pn_bump(off, 1u, sizeof(pn_kfaces), &dummy) &&              /* grid cameras */
-               pn_bump(off, l->max_triangles, 6u * 8u, &dummy) &&         /* cell rects */
-               pn_bump(off, (uint64_t)l->max_triangles + 1u, 4u, &dummy) && /* pair offsets */
-               pn_bump(off, px, 4u, &dummy) &&                            /* pixel cells */
-               pn_bump(off, l->max_height, 32u, &dummy) &&                /* row boxes */
-               pn_bump(off, cells + 1u, 4u, &dummy) &&                    /* cell offsets */
-               pn_bump(off, cells, 4u, &dummy) &&                         /* pixels per cell */
-               pn_bump(off, 6u * g * (g + 1u), 4u, &dummy) &&             /* row prefixes */
-               pn_bump(off, cells, 4u, &dummy) &&                         /* cell cursors */
-               pn_bump(off, 6u * g, 8u, &dummy) &&                        /* pairs per grid row */
-               pn_bump(off, pn_gears_pairs_max(l), 8u, &dummy) &&         /* pairs */
-               pn_bump(off, pn_gears_pairs_max(l), 4u, &dummy) &&         /* cell-sorted */
-               pn_bump(off, pn_gears_pairs_max(l) / PN_GEARS_CHUNK + 1u, 24u, &dummy) && /* chunk boxes */
-               pn_bump(off, pn_gears_pairs_max(l) / (PN_GEARS_CHUNK * PN_GEARS_SUPER) + 1u, 24u, &dummy); /* superchunks */
+    c->ctx = ctx;
+    c->top = 0;
+    c->ok = 1;
+}
+
+void *pn_pool(pn_carver *c, uint64_t count, uint64_t elem, const char *name)
+{
+    size_t start;
+    void *p;
+    if (!c->ok) return NULL;
+    if (!c->ctx) {
+        if (!pn_bump(&c->top, count, elem, &start)) c->ok = 0;
+        return NULL;
     }
-#else
-    (void)l;
-    (void)off;
-    return 1;
-#endif
-}
-
-/* The SRT frame pools, after the GEARS ones (a frame carves one algorithm's pools, so the
- * region holds the larger of the two sets; both are laid out to keep the query simple). */
-static int pn_srt_pools(const pn_limits *l, uint64_t *off)
-{
-#if PN_ENABLE_SRT
-    uint64_t px = (uint64_t)l->max_width * l->max_height, r = pn_srt_map_max(l), tl = r / 8u + 1u;
-    size_t dummy;
-    /* pn_srt_frame() in src/pn_srt.c allocates exactly these, in this order. */
-    return pn_bump(off, l->max_height, 4u * PN_LVIEW_BOX_FLOATS, &dummy) && /* row bounds */
-           pn_bump(off, r * r, 4u, &dummy) &&              /* map depth */
-           pn_bump(off, r * r, 4u, &dummy) &&              /* map triangle ids */
-           pn_bump(off, r * r, 4u, &dummy) &&              /* thin-triangle marks */
-           pn_bump(off, tl * tl, 4u, &dummy) &&            /* tile weights */
-           pn_bump(off, tl * tl, 4u, &dummy) &&            /* tile row weights */
-           pn_bump(off, tl * tl, 4u, &dummy) &&            /* tile mask */
-           pn_bump(off, 4u, 4u, &dummy) &&                 /* largest weight, counters */
-           pn_bump(off, px + 1u, 4u, &dummy) &&            /* PIP offsets */
-           pn_bump(off, px, 4u, &dummy);                   /* PIP list */
-#else
-    (void)l;
-    (void)off;
-    return 1;
-#endif
-}
-
-/* The occlusion-texture frame pools (one filter pool: the largest of N-buffer levels^2,
- * summed-area table and mipmap is the N-buffer, or the table for a tiny map). */
-static int pn_occ_pools(const pn_limits *l, uint64_t *off)
-{
-#if PN_ENABLE_OCCTEX
-    uint64_t r = pn_occ_map_max(l);
-    size_t dummy;
-    /* pn_occtex_frame() in src/pn_occtex.c allocates exactly these, in this order. */
-    return pn_bump(off, l->max_height, 4u * PN_LVIEW_BOX_FLOATS, &dummy) && /* row bounds */
-           pn_bump(off, r * r, 4u, &dummy) &&                               /* slice bits */
-           pn_bump(off, pn_occ_filter_words((uint32_t)r), 4u, &dummy) &&    /* one slice's filter */
-           pn_bump(off, 32u, 4u, &dummy);                                   /* counters */
-#else
-    (void)l;
-    (void)off;
-    return 1;
-#endif
-}
-
-/* The Monte Carlo shadow maps' frame pools. */
-static int pn_mc_pools(const pn_limits *l, uint64_t *off)
-{
-#if PN_ENABLE_MCSM
-    uint64_t r = pn_mc_map_max(l), px = (uint64_t)l->max_width * l->max_height;
-    size_t dummy;
-    /* pn_mcsm_frame() in src/pn_mcsm.c allocates exactly these, in this order. */
-    return pn_bump(off, l->max_height, 4u * PN_LVIEW_BOX_FLOATS, &dummy) &&     /* row bounds */
-           pn_bump(off, (uint64_t)pn_occ_levels((uint32_t)r) * r * r, 12u, &dummy) && /* N-buffer */
-           pn_bump(off, px, 4u, &dummy) &&                                     /* blur buffer */
-           pn_bump(off, l->max_height, 64u, &dummy);                           /* counters */
-#else
-    (void)l;
-    (void)off;
-    return 1;
-#endif
-}
-
-/* The penumbra wedges' frame pools; the frame region also holds pn_connect_build's
- * scratch (24 bytes a triangle) at pn_scene_set. */
-static int pn_wg_pools(const pn_limits *l, uint64_t *off)
-{
-#if PN_ENABLE_WEDGES
-    uint64_t weld = *off, tiles = pn_wg_tiles_of(l->max_width, l->max_height);
-    size_t dummy;
-    /* pn_wedges_frame() in src/pn_wedges.c allocates exactly these, in this order. */
-    if (!(pn_bump(off, l->max_triangles, 4u, &dummy) &&                        /* casting */
-          pn_bump(off, 3u * (uint64_t)l->max_triangles + 1u, 4u, &dummy) &&    /* silhouette slots */
-          pn_bump(off, pn_wg_sil_max(l), sizeof(pn_wsil), &dummy) &&          /* silhouettes */
-          pn_bump(off, (uint64_t)pn_wg_sil_max(l) + 1u, 4u, &dummy) &&         /* pair offsets */
-          pn_bump(off, pn_wg_pairs_max(l), 8u, &dummy) &&                      /* pairs */
-          pn_bump(off, pn_wg_pairs_max(l), 4u, &dummy) &&                      /* tile lists */
-          pn_bump(off, tiles + 1u, 4u, &dummy) &&                              /* tile offsets */
-          pn_bump(off, tiles, 4u, &dummy) &&                                   /* sort scratch */
-          pn_bump(&weld, 6u * (uint64_t)l->max_triangles, 4u, &dummy)))         /* welding */
-        return 0;
-    if (weld > *off) *off = weld;
-    return 1;
-#else
-    (void)l;
-    (void)off;
-    return 1;
-#endif
+    p = pn_frame_alloc(c->ctx, count, elem, name);
+    if (!p) c->ok = 0;
+    return p;
 }
 
 pn_status pn_carve(const pn_limits *l, pn_layout *out)
@@ -199,24 +78,28 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
         return PN_E_LIMIT;
     frame_start = off;
     {
-        /* The common pools, then the largest of GEARS', SRT's and the occlusion textures'
-         * (one algorithm a frame). */
-        uint64_t common = off, a, b, c, m, w;
-        if (!pn_frame_pools_common(l, &common)) return PN_E_LIMIT;
-        a = common;
-        b = common;
-        c = common;
-        m = common;
-        w = common;
-        if (!pn_gears_pools(l, &a) || !pn_srt_pools(l, &b) || !pn_occ_pools(l, &c) || !pn_mc_pools(l, &m) ||
-            !pn_wg_pools(l, &w))
-            return PN_E_LIMIT;
-        off = a > b ? a : b;
-        off = off > c ? off : c;
-        off = off > m ? off : m;
-        off = off > w ? off : w;
+        /* The frame's own pools, then the largest of the algorithms' sets (one algorithm a
+         * frame): each set's carve run at the limits' maxima. */
+        pn_carver c;
+        pn_frame_state fs;
+        uint64_t common;
+        pn_carver_query(&c, off);
+        pn_frame_carve(&c, l->max_width, l->max_height, l->max_triangles, &fs);
+        if (!c.ok) return PN_E_LIMIT;
+        common = c.top;
+#define PN_ALGO_QUERY(ID, name)                                                                \
+        pn_carver_query(&c, common);                                                           \
+        pn_##name##_query(&c, l);                                                              \
+        if (!c.ok) return PN_E_LIMIT;                                                          \
+        if (c.top > off) off = c.top;
+        PN_ALGORITHMS(PN_ALGO_QUERY)
+#undef PN_ALGO_QUERY
         /* pn_scene_set's BVH build uses the region as scratch too. */
         if (pn_bvh_scratch_bytes(l) > off - frame_start) off = frame_start + pn_bvh_scratch_bytes(l);
+#if PN_ENABLE_WEDGES
+        /* ...and so does the wedges' connectivity (pn_connect_build): 6 words a triangle. */
+        if (24u * (uint64_t)l->max_triangles > off - frame_start) off = frame_start + 24u * (uint64_t)l->max_triangles;
+#endif
     }
     /* Round the end so the last pool's alignment padding is inside the region. */
     if (!pn_bump(&off, 0u, 1u, &lay.end)) return PN_E_LIMIT;
@@ -228,14 +111,14 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
 
 void pn_frame_reset(pn_context *ctx) { ctx->frame_top = 0; }
 
-void *pn_frame_alloc(pn_context *ctx, size_t count, size_t elem, const char *pool)
+void *pn_frame_alloc(pn_context *ctx, uint64_t count, uint64_t elem, const char *pool)
 {
     uint64_t off = ctx->frame_top;
     size_t start = 0;
     if (!pn_bump(&off, count, elem, &start) || off > ctx->layout.frame_cap) {
         pn_fail(ctx, PN_E_POOL_EXHAUSTED,
                 "frame pool '%s' needs %z bytes at offset %z; the frame region holds %z", pool,
-                (unsigned long long)((uint64_t)count * elem), (unsigned long long)start,
+                (unsigned long long)(count * elem), (unsigned long long)start,
                 (unsigned long long)ctx->layout.frame_cap);
         return NULL;
     }

@@ -272,6 +272,20 @@ static pn_status pn_shade(pn_frame_state *fs)
     return pn_dev_to_host(fs, fs->rgba, (size_t)npix * 4u);
 }
 
+void pn_frame_carve(pn_carver *c, uint32_t w, uint32_t h, uint32_t tris, pn_frame_state *fs)
+{
+    uint64_t px = (uint64_t)w * h;
+    fs->depth = (float *)pn_pool(c, px, sizeof(float), "depth");
+    fs->tri_id = (uint32_t *)pn_pool(c, px, sizeof(uint32_t), "tri_id");
+    fs->pos = (float *)pn_pool(c, px * 3u, sizeof(float), "position");
+    fs->nrm = (float *)pn_pool(c, px * 3u, sizeof(float), "normal");
+    fs->vis = (float *)pn_pool(c, px, sizeof(float), "visibility");
+    fs->rgba = (uint8_t *)pn_pool(c, px, 4u, "rgba");
+    fs->rows = (uint32_t *)pn_pool(c, tris, sizeof(uint32_t), "raster rows");
+    fs->chunks = (uint32_t *)pn_pool(c, PN_RASTER_CHUNKS(tris), sizeof(uint32_t), "raster chunks");
+    fs->counters = pn_pool(c, h, sizeof(pn_row_counters), "shadow counters");
+}
+
 static void pn_frame_pool_offsets(pn_frame_state *fs)
 {
     const pn_context *ctx = fs->ctx;
@@ -303,8 +317,8 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
                          const pn_light *light, const pn_frame_options *opt, pn_frame *out)
 {
     pn_frame_state fs;
+    pn_carver c;
     pn_status st;
-    size_t px;
     uint64_t t0;
     if (!ctx) return PN_E_INVALID_ARG;
     if (!camera || !light || !opt || !out)
@@ -328,20 +342,10 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
     fs.width = opt->width;
     fs.height = opt->height;
 
-    px = (size_t)opt->width * opt->height;
     pn_frame_reset(ctx);
-    /* Same pools, same order as pn_frame_pools() in pn_arena.c. */
-    if (!(fs.depth = (float *)pn_frame_alloc(ctx, px, sizeof(float), "depth")) ||
-        !(fs.tri_id = (uint32_t *)pn_frame_alloc(ctx, px, sizeof(uint32_t), "tri_id")) ||
-        !(fs.pos = (float *)pn_frame_alloc(ctx, px * 3u, sizeof(float), "position")) ||
-        !(fs.nrm = (float *)pn_frame_alloc(ctx, px * 3u, sizeof(float), "normal")) ||
-        !(fs.vis = (float *)pn_frame_alloc(ctx, px, sizeof(float), "visibility")) ||
-        !(fs.rgba = (uint8_t *)pn_frame_alloc(ctx, px, 4u, "rgba")) ||
-        !(fs.rows = (uint32_t *)pn_frame_alloc(ctx, ctx->tri_count, sizeof(uint32_t), "raster rows")) ||
-        !(fs.chunks = (uint32_t *)pn_frame_alloc(ctx, PN_RASTER_CHUNKS(ctx->tri_count), sizeof(uint32_t),
-                                                 "raster chunks")) ||
-        !(fs.counters = pn_frame_alloc(ctx, opt->height, sizeof(pn_row_counters), "shadow counters")))
-        return PN_E_POOL_EXHAUSTED;
+    pn_carver_frame(&c, ctx);
+    pn_frame_carve(&c, opt->width, opt->height, ctx->tri_count, &fs);
+    if (!c.ok) return PN_E_POOL_EXHAUSTED;
     pn_frame_pool_offsets(&fs);
 
     t0 = pn_dev_timestamp(&fs);

@@ -24,8 +24,8 @@ pn_status pn_gears_prepare(pn_frame_state *fs, const pn_frame_options *opt)
     return PN_OK;
 }
 
-/* One frame's pools (addresses in the arena, carved in the order of pn_frame_pools() in
- * pn_arena.c), grid, tile plan and statistics. */
+/* One frame's pools (addresses in the arena, pn_gears_carve), grid, tile plan and
+ * statistics. */
 typedef struct pn_gears_frame {
     pn_kfaces *faces;    /* [1]: the grid cameras, written by the host, read by passes */
     pn_cellrect *rects;  /* [max_triangles * 6]: rectangle of triangle t on face f at t * 6 + f */
@@ -152,33 +152,50 @@ static float pn_u64_to_f32(uint64_t v)
     return (float)(uint32_t)(v >> 32) * 4294967296.0f + (float)(uint32_t)v;
 }
 
+/* The frame's pools at w x h: run by the frame on the frame region and by pn_gears_query
+ * at the limits' maxima. The per-triangle and per-cell pools are the context's (its
+ * triangles, its largest grid), the pair pool what a tile may hold. */
+static void pn_gears_carve(pn_carver *c, const pn_limits *l, uint32_t w, uint32_t h, pn_gears_frame_pools *g)
+{
+    uint64_t px = (uint64_t)w * h, gmax = pn_gears_grid_max(l), cmax = 6u * gmax * gmax;
+    uint64_t pool = pn_gears_pairs_max(l);
+    g->pool = (uint32_t)pool;
+    g->cells_max = (uint32_t)cmax;
+    g->faces = (pn_kfaces *)pn_pool(c, 1u, sizeof(pn_kfaces), "gears grid cameras");
+    g->rects = (pn_cellrect *)pn_pool(c, l->max_triangles, 6u * 8u, "gears cell rects");
+    g->tri_off = (uint32_t *)pn_pool(c, (uint64_t)l->max_triangles + 1u, 4u, "gears pair offsets");
+    g->pix_cell = (uint32_t *)pn_pool(c, px, 4u, "gears pixel cells");
+    g->row_box = (float *)pn_pool(c, h, 32u, "gears row boxes");
+    g->cell_off = (uint32_t *)pn_pool(c, cmax + 1u, 4u, "gears cell offsets");
+    g->cell_pix = (uint32_t *)pn_pool(c, cmax, 4u, "gears pixels per cell");
+    g->row_pre = (uint32_t *)pn_pool(c, 6u * gmax * (gmax + 1u), 4u, "gears row prefixes");
+    g->cell_cur = (uint32_t *)pn_pool(c, cmax, 4u, "gears cell cursors");
+    g->row_pairs = (uint32_t *)pn_pool(c, 6u * gmax, 8u, "gears pairs per row");
+    g->pairs = (uint32_t *)pn_pool(c, pool, 8u, "gears pairs");
+    g->sorted = (uint32_t *)pn_pool(c, pool, 4u, "gears sorted pairs");
+    g->chunk_box = (float *)pn_pool(c, pool / PN_GEARS_CHUNK + 1u, 24u, "gears chunk boxes");
+    g->super_box = (float *)pn_pool(c, pool / (PN_GEARS_CHUNK * PN_GEARS_SUPER) + 1u, 24u, "gears superchunk boxes");
+}
+
+/* PN_GEARS_BYTES_MAX (include/penumbra/penumbra.h) counts a 24-byte chunk box per 8 pairs
+ * and a superchunk box per 64. */
+typedef char pn_gears_chunk_is_8[(PN_GEARS_CHUNK == 8u && PN_GEARS_SUPER == 8u) ? 1 : -1];
+
+void pn_gears_query(pn_carver *c, const pn_limits *l)
+{
+    pn_gears_frame_pools g;
+    pn_gears_carve(c, l, l->max_width, l->max_height, &g);
+}
+
 static pn_status pn_gears_begin(pn_frame_state *fs, pn_gears_frame_pools *g)
 {
     pn_context *ctx = fs->ctx;
     pn_kpools *P = &fs->P;
-    size_t px = (size_t)fs->width * fs->height;
-    uint32_t gmax = pn_gears_grid_max(&ctx->limits);
-    size_t cmax = 6u * (size_t)gmax * gmax;
+    pn_carver c;
     memset(g, 0, sizeof(*g));
-    g->pool = pn_gears_pairs_max(&ctx->limits);
-    g->cells_max = (uint32_t)cmax;
-    /* Same pools, same order as pn_frame_pools() in src/pn_arena.c. */
-    if (!(g->faces = (pn_kfaces *)pn_frame_alloc(ctx, 1u, sizeof(pn_kfaces), "gears grid cameras")) ||
-        !(g->rects = (pn_cellrect *)pn_frame_alloc(ctx, ctx->limits.max_triangles, 6u * 8u, "gears cell rects")) ||
-        !(g->tri_off = (uint32_t *)pn_frame_alloc(ctx, (size_t)ctx->limits.max_triangles + 1u, 4u, "gears pair offsets")) ||
-        !(g->pix_cell = (uint32_t *)pn_frame_alloc(ctx, px, 4u, "gears pixel cells")) ||
-        !(g->row_box = (float *)pn_frame_alloc(ctx, fs->height, 32u, "gears row boxes")) ||
-        !(g->cell_off = (uint32_t *)pn_frame_alloc(ctx, cmax + 1u, 4u, "gears cell offsets")) ||
-        !(g->cell_pix = (uint32_t *)pn_frame_alloc(ctx, cmax, 4u, "gears pixels per cell")) ||
-        !(g->row_pre = (uint32_t *)pn_frame_alloc(ctx, 6u * (size_t)gmax * (gmax + 1u), 4u, "gears row prefixes")) ||
-        !(g->cell_cur = (uint32_t *)pn_frame_alloc(ctx, cmax, 4u, "gears cell cursors")) ||
-        !(g->row_pairs = (uint32_t *)pn_frame_alloc(ctx, 6u * (size_t)gmax, 8u, "gears pairs per row")) ||
-        !(g->pairs = (uint32_t *)pn_frame_alloc(ctx, g->pool, 8u, "gears pairs")) ||
-        !(g->sorted = (uint32_t *)pn_frame_alloc(ctx, g->pool, 4u, "gears sorted pairs")) ||
-        !(g->chunk_box = (float *)pn_frame_alloc(ctx, (size_t)g->pool / PN_GEARS_CHUNK + 1u, 24u, "gears chunk boxes")) ||
-        !(g->super_box = (float *)pn_frame_alloc(ctx, (size_t)g->pool / (PN_GEARS_CHUNK * PN_GEARS_SUPER) + 1u, 24u,
-                                                 "gears superchunk boxes")))
-        return PN_E_POOL_EXHAUSTED;
+    pn_carver_frame(&c, ctx);
+    pn_gears_carve(&c, &ctx->limits, fs->width, fs->height, g);
+    if (!c.ok) return PN_E_POOL_EXHAUSTED;
     memset(g->faces, 0, sizeof(*g->faces));
     g->faces->res = fs->gears_grid;
     P->faces = pn_dev_off(ctx, g->faces);

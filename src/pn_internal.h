@@ -166,7 +166,24 @@ int pn_lview_window(const pn_context *ctx, const float *box, uint32_t height, ui
 void pn_lview_fit_occluders(const pn_context *ctx, uint32_t res, const pn_klight *L, pn_kview *lv, pn_lwin *w);
 pn_status pn_carve(const pn_limits *limits, pn_layout *out);
 void pn_frame_reset(pn_context *ctx);
-void *pn_frame_alloc(pn_context *ctx, size_t count, size_t elem, const char *pool);
+void *pn_frame_alloc(pn_context *ctx, uint64_t count, uint64_t elem, const char *pool);
+
+/* A pool set's carve runs twice: in the size query (pn_carve: no memory, the limits'
+ * maxima) and in the frame (the frame region, the frame's sizes). Each pool goes at the
+ * next 64-byte boundary; the query only counts and hands out NULL. After the first failure
+ * (the region exhausted: pn_fail names the pool; or a size past SIZE_MAX) every pool is
+ * NULL and ok is 0, so a carve is a list of pn_pool calls and one test of ok. */
+typedef struct pn_carver {
+    pn_context *ctx; /* the frame's context; NULL: the size query */
+    uint64_t top;    /* the query's offset */
+    int ok;
+} pn_carver;
+void pn_carver_query(pn_carver *c, uint64_t start);
+void pn_carver_frame(pn_carver *c, pn_context *ctx);
+void *pn_pool(pn_carver *c, uint64_t count, uint64_t elem, const char *name);
+/* The frame's own pools (G-buffer, visibility, RGBA, the rasterizer's set-up, the shadow
+ * counters) for a w x h frame of `tris` triangles, into fs (pn_frame.c). */
+void pn_frame_carve(pn_carver *c, uint32_t w, uint32_t h, uint32_t tris, pn_frame_state *fs);
 size_t pn_frame_mark(const pn_context *ctx);
 void pn_frame_rewind(pn_context *ctx, size_t mark);
 

@@ -46,7 +46,7 @@ typedef char pn_mc_consts_agree[PN_MC_S_LINEAR == PN_MC_SEARCH_LINEAR && PN_MC_S
                                         PN_MC_F_NO_BIAS == PN_MC_NO_BIAS && PN_MC_F_NO_CLASSIFY == PN_MC_NO_CLASSIFY &&
                                         PN_MC_RAYS_MAX == 8u && PN_MC_BLUR_MAX + 1u <= 12u &&
                                         PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS && PN_MC_WORDS == 6u &&
-                                        PN_MC_ROW_WORDS == 16u /* 64 bytes a row in pn_mc_pools (src/pn_arena.c) */
+                                        PN_MC_ROW_WORDS == 16u /* 64 bytes a row (pn_mc_carve) */
                                         && PN_MCSM_MAP_MAX <= 2048u /* N-buffer offsets in 32 bits (pn_nb_mm_rect_at) */
                                     ? 1
                                     : -1];
@@ -58,17 +58,30 @@ typedef struct pn_mc_pools {
     uint32_t *words; /* [height * PN_MC_ROW_WORDS]: class counters per row */
 } pn_mc_pools;
 
+/* The frame's pools at w x h with a res^2 map: run by the frame on the frame region and
+ * by pn_mcsm_query at the limits' maxima. */
+static void pn_mc_carve(pn_carver *c, uint32_t w, uint32_t h, uint32_t res, pn_mc_pools *s)
+{
+    s->box = (float *)pn_pool(c, h, 4u * PN_LVIEW_BOX_FLOATS, "mcsm row bounds");
+    s->nb = (float *)pn_pool(c, (uint64_t)pn_occ_levels(res) * res * res, 4u * PN_NB_MM, "mcsm N-buffer");
+    s->tmp = (float *)pn_pool(c, (uint64_t)w * h, 4u, "mcsm blur buffer");
+    s->words = (uint32_t *)pn_pool(c, h, 4u * PN_MC_ROW_WORDS, "mcsm counters");
+}
+
+void pn_mcsm_query(pn_carver *c, const pn_limits *l)
+{
+    pn_mc_pools s;
+    pn_mc_carve(c, l->max_width, l->max_height, pn_mc_map_max(l), &s);
+}
+
 static pn_status pn_mc_begin(pn_frame_state *fs, pn_mc_pools *s, uint32_t res)
 {
     pn_context *ctx = fs->ctx;
     pn_kpools *P = &fs->P;
-    size_t px = (size_t)fs->width * fs->height;
-    /* Same pools, same order as pn_mc_pools() in src/pn_arena.c. */
-    if (!(s->box = (float *)pn_frame_alloc(ctx, fs->height, 4u * PN_LVIEW_BOX_FLOATS, "mcsm row bounds")) ||
-        !(s->nb = (float *)pn_frame_alloc(ctx, (size_t)pn_occ_levels(res) * res * res, 4u * PN_NB_MM, "mcsm N-buffer")) ||
-        !(s->tmp = (float *)pn_frame_alloc(ctx, px, 4u, "mcsm blur buffer")) ||
-        !(s->words = (uint32_t *)pn_frame_alloc(ctx, fs->height, 4u * PN_MC_ROW_WORDS, "mcsm counters")))
-        return PN_E_POOL_EXHAUSTED;
+    pn_carver c;
+    pn_carver_frame(&c, ctx);
+    pn_mc_carve(&c, fs->width, fs->height, res, s);
+    if (!c.ok) return PN_E_POOL_EXHAUSTED;
     P->lview_box = pn_dev_off(ctx, s->box);
     P->mc_nb = pn_dev_off(ctx, s->nb);
     P->mc_tmp = pn_dev_off(ctx, s->tmp);

@@ -55,16 +55,30 @@ typedef struct pn_occ_pools {
     uint32_t *words; /* [PN_OCC_WORDS]: bits set, and per slice */
 } pn_occ_pools;
 
+/* The frame's pools at height h with a res^2 map: run by the frame on the frame region
+ * and by pn_occtex_query at the limits' maxima. */
+static void pn_occ_carve(pn_carver *c, uint32_t h, uint32_t res, pn_occ_pools *s)
+{
+    s->box = (float *)pn_pool(c, h, 4u * PN_LVIEW_BOX_FLOATS, "occtex row bounds");
+    s->bits = (uint32_t *)pn_pool(c, (uint64_t)res * res, 4u, "occtex slice bits");
+    s->filt = (uint32_t *)pn_pool(c, pn_occ_filter_words(res), 4u, "occtex filter");
+    s->words = (uint32_t *)pn_pool(c, PN_OCC_WORDS, 4u, "occtex counters");
+}
+
+void pn_occtex_query(pn_carver *c, const pn_limits *l)
+{
+    pn_occ_pools s;
+    pn_occ_carve(c, l->max_height, pn_occ_map_max(l), &s);
+}
+
 static pn_status pn_occ_begin(pn_frame_state *fs, pn_occ_pools *s, uint32_t res)
 {
     pn_context *ctx = fs->ctx;
     pn_kpools *P = &fs->P;
-    /* Same pools, same order as pn_occ_pools() in src/pn_arena.c. */
-    if (!(s->box = (float *)pn_frame_alloc(ctx, fs->height, 4u * PN_LVIEW_BOX_FLOATS, "occtex row bounds")) ||
-        !(s->bits = (uint32_t *)pn_frame_alloc(ctx, (size_t)res * res, 4u, "occtex slice bits")) ||
-        !(s->filt = (uint32_t *)pn_frame_alloc(ctx, (size_t)pn_occ_filter_words(res), 4u, "occtex filter")) ||
-        !(s->words = (uint32_t *)pn_frame_alloc(ctx, PN_OCC_WORDS, 4u, "occtex counters")))
-        return PN_E_POOL_EXHAUSTED;
+    pn_carver c;
+    pn_carver_frame(&c, ctx);
+    pn_occ_carve(&c, fs->height, res, s);
+    if (!c.ok) return PN_E_POOL_EXHAUSTED;
     P->lview_box = pn_dev_off(ctx, s->box);
     P->occ_bits = pn_dev_off(ctx, s->bits);
     P->occ_filt = pn_dev_off(ctx, s->filt);

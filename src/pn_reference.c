@@ -12,6 +12,13 @@ pn_status pn_reference_prepare(pn_frame_state *fs, const pn_frame_options *opt)
     return PN_OK;
 }
 
+/* No pools of its own. */
+void pn_reference_query(pn_carver *c, const pn_limits *l)
+{
+    (void)c;
+    (void)l;
+}
+
 pn_status pn_reference_frame(pn_frame_state *fs) { return pn_dev_run(fs, PN_K_REFERENCE, fs->width * fs->height); }
 #else
 PN_ALGO_STUBS(REFERENCE, reference)

@@ -47,23 +47,38 @@ typedef struct pn_srt_pools {
     uint32_t *pip_list;  /* [pixels]: the PIP pixels, dense */
 } pn_srt_pools;
 
-static pn_status pn_srt_begin(pn_frame_state *fs, pn_srt_pools *s, uint32_t res, uint32_t tiles)
+/* The frame's pools at w x h with a res^2 map: run by the frame on the frame region and
+ * by pn_srt_query at the limits' maxima. */
+static void pn_srt_carve(pn_carver *c, uint32_t w, uint32_t h, uint32_t res, pn_srt_pools *s)
+{
+    uint64_t px = (uint64_t)w * h, texels = (uint64_t)res * res, tiles = (res + PN_SRT_TILE - 1u) / PN_SRT_TILE;
+    uint64_t tl = tiles * tiles;
+    s->box = (float *)pn_pool(c, h, 4u * PN_LVIEW_BOX_FLOATS, "srt row bounds");
+    s->depth = (float *)pn_pool(c, texels, 4u, "srt map depth");
+    s->id = (uint32_t *)pn_pool(c, texels, 4u, "srt map triangle ids");
+    s->cons = (uint32_t *)pn_pool(c, texels, 4u, "srt thin-triangle marks");
+    s->tile_w = (uint32_t *)pn_pool(c, tl, 4u, "srt tile weights");
+    s->tile_h = (uint32_t *)pn_pool(c, tl, 4u, "srt tile row weights");
+    s->tile_mask = (uint32_t *)pn_pool(c, tl, 4u, "srt tile mask");
+    s->words = (uint32_t *)pn_pool(c, 4u, 4u, "srt counters");
+    s->pip_off = (uint32_t *)pn_pool(c, px + 1u, 4u, "srt PIP offsets");
+    s->pip_list = (uint32_t *)pn_pool(c, px, 4u, "srt PIP list");
+}
+
+void pn_srt_query(pn_carver *c, const pn_limits *l)
+{
+    pn_srt_pools s;
+    pn_srt_carve(c, l->max_width, l->max_height, pn_srt_map_max(l), &s);
+}
+
+static pn_status pn_srt_begin(pn_frame_state *fs, pn_srt_pools *s, uint32_t res)
 {
     pn_context *ctx = fs->ctx;
     pn_kpools *P = &fs->P;
-    size_t px = (size_t)fs->width * fs->height, texels = (size_t)res * res, tl = (size_t)tiles * tiles;
-    /* Same pools, same order as pn_srt_pools() in src/pn_arena.c. */
-    if (!(s->box = (float *)pn_frame_alloc(ctx, fs->height, 4u * PN_LVIEW_BOX_FLOATS, "srt row bounds")) ||
-        !(s->depth = (float *)pn_frame_alloc(ctx, texels, 4u, "srt map depth")) ||
-        !(s->id = (uint32_t *)pn_frame_alloc(ctx, texels, 4u, "srt map triangle ids")) ||
-        !(s->cons = (uint32_t *)pn_frame_alloc(ctx, texels, 4u, "srt thin-triangle marks")) ||
-        !(s->tile_w = (uint32_t *)pn_frame_alloc(ctx, tl, 4u, "srt tile weights")) ||
-        !(s->tile_h = (uint32_t *)pn_frame_alloc(ctx, tl, 4u, "srt tile row weights")) ||
-        !(s->tile_mask = (uint32_t *)pn_frame_alloc(ctx, tl, 4u, "srt tile mask")) ||
-        !(s->words = (uint32_t *)pn_frame_alloc(ctx, 4u, 4u, "srt counters")) ||
-        !(s->pip_off = (uint32_t *)pn_frame_alloc(ctx, px + 1u, 4u, "srt PIP offsets")) ||
-        !(s->pip_list = (uint32_t *)pn_frame_alloc(ctx, px, 4u, "srt PIP list")))
-        return PN_E_POOL_EXHAUSTED;
+    pn_carver c;
+    pn_carver_frame(&c, ctx);
+    pn_srt_carve(&c, fs->width, fs->height, res, s);
+    if (!c.ok) return PN_E_POOL_EXHAUSTED;
     P->lview_box = pn_dev_off(ctx, s->box);
     P->lmap_depth = pn_dev_off(ctx, s->depth);
     P->lmap_id = pn_dev_off(ctx, s->id);
@@ -113,7 +128,7 @@ pn_status pn_srt_frame(pn_frame_state *fs)
     uint64_t t0 = pn_dev_timestamp(fs), t1, t2;
     pn_status st;
 
-    if ((st = pn_srt_begin(fs, &s, res, tiles)) != PN_OK) return st;
+    if ((st = pn_srt_begin(fs, &s, res)) != PN_OK) return st;
     pn_light_view(ctx, &K->light, res, &K->lview);
     K->lview_ha = 0.0f;
     K->lview_hb = 0.0f;

@@ -33,22 +33,36 @@ typedef struct pn_wg_pools {
     uint32_t *tscr;   /* [tiles] sort scratch */
 } pn_wg_pools;
 
+/* The frame's pools at w x h for `tris` triangles of `edges` edges: run by the frame on
+ * the frame region and by pn_wedges_query at the limits' maxima (an edge per triangle side). */
+static void pn_wg_carve(pn_carver *c, const pn_limits *l, uint32_t w, uint32_t h, uint32_t tris, uint64_t edges,
+                        pn_wg_pools *s)
+{
+    uint32_t tiles = pn_wg_tiles_of(w, h);
+    s->tcast = (uint32_t *)pn_pool(c, tris, 4u, "wedges triangle casting");
+    s->soff = (uint32_t *)pn_pool(c, edges + 1u, 4u, "wedges silhouette slots");
+    s->sil = (pn_wsil *)pn_pool(c, pn_wg_sil_max(l), sizeof(pn_wsil), "wedges silhouettes");
+    s->poff = (uint32_t *)pn_pool(c, (uint64_t)pn_wg_sil_max(l) + 1u, 4u, "wedges pair offsets");
+    s->pairs = (uint32_t *)pn_pool(c, pn_wg_pairs_max(l), 8u, "wedges tile pairs");
+    s->sorted = (uint32_t *)pn_pool(c, pn_wg_pairs_max(l), 4u, "wedges tile lists");
+    s->toff = (uint32_t *)pn_pool(c, (uint64_t)tiles + 1u, 4u, "wedges tile offsets");
+    s->tscr = (uint32_t *)pn_pool(c, tiles, 4u, "wedges sort scratch");
+}
+
+void pn_wedges_query(pn_carver *c, const pn_limits *l)
+{
+    pn_wg_pools s;
+    pn_wg_carve(c, l, l->max_width, l->max_height, l->max_triangles, 3u * (uint64_t)l->max_triangles, &s);
+}
+
 static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
 {
     pn_context *ctx = fs->ctx;
     pn_kpools *P = &fs->P;
-    const pn_limits *l = &ctx->limits;
-    uint32_t tiles = pn_wg_tiles_of(fs->width, fs->height);
-    /* Same pools, same order as pn_wg_pools() in src/pn_arena.c (sized for this frame). */
-    if (!(s->tcast = (uint32_t *)pn_frame_alloc(ctx, ctx->tri_count, 4u, "wedges triangle casting")) ||
-        !(s->soff = (uint32_t *)pn_frame_alloc(ctx, (size_t)ctx->wg.stats.edges + 1u, 4u, "wedges silhouette slots")) ||
-        !(s->sil = (pn_wsil *)pn_frame_alloc(ctx, pn_wg_sil_max(l), sizeof(pn_wsil), "wedges silhouettes")) ||
-        !(s->poff = (uint32_t *)pn_frame_alloc(ctx, (size_t)pn_wg_sil_max(l) + 1u, 4u, "wedges pair offsets")) ||
-        !(s->pairs = (uint32_t *)pn_frame_alloc(ctx, pn_wg_pairs_max(l), 8u, "wedges tile pairs")) ||
-        !(s->sorted = (uint32_t *)pn_frame_alloc(ctx, pn_wg_pairs_max(l), 4u, "wedges tile lists")) ||
-        !(s->toff = (uint32_t *)pn_frame_alloc(ctx, (size_t)tiles + 1u, 4u, "wedges tile offsets")) ||
-        !(s->tscr = (uint32_t *)pn_frame_alloc(ctx, tiles, 4u, "wedges sort scratch")))
-        return PN_E_POOL_EXHAUSTED;
+    pn_carver c;
+    pn_carver_frame(&c, ctx);
+    pn_wg_carve(&c, &ctx->limits, fs->width, fs->height, ctx->tri_count, ctx->wg.stats.edges, s);
+    if (!c.ok) return PN_E_POOL_EXHAUSTED;
     P->wg_tcast = pn_dev_off(ctx, s->tcast);
     P->wg_soff = pn_dev_off(ctx, s->soff);
     P->wg_sil = pn_dev_off(ctx, s->sil);

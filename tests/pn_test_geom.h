@@ -8,20 +8,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "pn_mesh.h"
+#include "pn_test_scene.h"
 
 /* Closed lat-long sphere with shared vertices: poles are fans, quads split in two.
  * Meridian edges lie in planes through the y axis, so a point on the axis sees
  * segments run exactly along edges: the watertightness stress case. */
-static inline int pn_test_uv_sphere(pn_mesh *m, double cx, double cy, double cz, double r, int slices, int stacks)
+static inline int pn_test_uv_sphere(pn_test_mesh *m, double cx, double cy, double cz, double r, int slices, int stacks)
 {
     int i, j, nv = 2 + slices * (stacks - 1), nt = 2 * slices * (stacks - 1), t = 0;
     memset(m, 0, sizeof(*m));
     m->positions = (float *)malloc(sizeof(float) * 3u * (size_t)nv);
     m->indices = (uint32_t *)malloc(sizeof(uint32_t) * 3u * (size_t)nt);
     if (!m->positions || !m->indices) return 1;
-    m->vertex_count = (uint32_t)nv;
-    m->triangle_count = (uint32_t)nt;
+    m->vertex_count = m->cap_v = (uint32_t)nv;
+    m->triangle_count = m->cap_t = (uint32_t)nt;
     m->positions[0] = (float)cx; m->positions[1] = (float)(cy + r); m->positions[2] = (float)cz;
     m->positions[3] = (float)cx; m->positions[4] = (float)(cy - r); m->positions[5] = (float)cz;
     for (j = 1; j < stacks; j++)
@@ -47,12 +47,12 @@ static inline int pn_test_uv_sphere(pn_mesh *m, double cx, double cy, double cz,
             x[0] = V(j, i); x[1] = V(j + 1, i + 1); x[2] = V(j + 1, i);
         }
 #undef V
-    pn_mesh_update_bbox(m);
+    pn_test_mesh_update_bbox(m);
     return 0;
 }
 
-/* Appends mesh b to mesh a. */
-static inline int pn_test_append(pn_mesh *a, const pn_mesh *b)
+/* Appends mesh b to mesh a (b's receiver range is not carried over). */
+static inline int pn_test_append(pn_test_mesh *a, const pn_test_mesh *b)
 {
     uint32_t nv = a->vertex_count + b->vertex_count, nt = a->triangle_count + b->triangle_count, t;
     float *p = (float *)realloc(a->positions, sizeof(float) * 3u * nv);
@@ -64,9 +64,9 @@ static inline int pn_test_append(pn_mesh *a, const pn_mesh *b)
     a->indices = x;
     memcpy(p + 3u * a->vertex_count, b->positions, sizeof(float) * 3u * b->vertex_count);
     for (t = 0; t < 3u * b->triangle_count; t++) x[3u * a->triangle_count + t] = b->indices[t] + a->vertex_count;
-    a->vertex_count = nv;
-    a->triangle_count = nt;
-    pn_mesh_update_bbox(a);
+    a->vertex_count = a->cap_v = nv;
+    a->triangle_count = a->cap_t = nt;
+    pn_test_mesh_update_bbox(a);
     return 0;
 }
 

@@ -6,8 +6,8 @@
 #include <string.h>
 
 #include "penumbra/penumbra.h"
-#include "pn_scenes.h"
 #include "pn_test.h"
+#include "pn_test_scene.h"
 
 #define GUARD 4096u
 
@@ -77,15 +77,13 @@ static void test_bad_limits(void)
  * block that stays intact; every misalignment works. */
 static void test_too_small_and_guard(void)
 {
-    pn_mesh m;
-    pn_scene_view v;
-    char err[256];
+    pn_test_scene s;
     pn_limits lim;
     size_t bytes;
     unsigned off;
-    REQUIRE(pn_builtin_scene("spheres", &m, &v, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_scene_load(&s, "spheres") == 0);
     memset(&lim, 0, sizeof(lim));
-    lim.max_triangles = m.triangle_count;
+    lim.max_triangles = s.mesh.triangle_count;
     lim.max_width = 64;
     lim.max_height = 48;
     lim.srt_map_max = 128;
@@ -96,8 +94,6 @@ static void test_too_small_and_guard(void)
         uint8_t *raw = (uint8_t *)malloc(bytes + GUARD + 64);
         uint8_t *mem;
         pn_context *ctx = (pn_context *)(uintptr_t)0x1234, *keep;
-        pn_camera cam;
-        pn_light light;
         pn_frame_options opt;
         pn_frame fr;
         int f;
@@ -110,14 +106,7 @@ static void test_too_small_and_guard(void)
         CHECK(all_bytes(raw, bytes + GUARD + 64, 0x5A));
         REQUIRE(pn_init(&ctx, mem, bytes, &lim) == PN_OK);
         CHECK((uint8_t *)ctx >= mem && (uint8_t *)ctx < mem + bytes);
-        CHECK(pn_scene_set(ctx, m.positions, m.vertex_count, m.indices, m.triangle_count) == PN_OK);
-        memcpy(cam.eye, v.eye, sizeof(cam.eye));
-        memcpy(cam.target, v.target, sizeof(cam.target));
-        memcpy(cam.up, v.up, sizeof(cam.up));
-        cam.fov_deg = v.fov_deg;
-        memcpy(light.center, v.light_center, sizeof(light.center));
-        memcpy(light.u, v.light_u, sizeof(light.u));
-        memcpy(light.v, v.light_v, sizeof(light.v));
+        CHECK(pn_scene_set(ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
         pn_frame_options_default(&opt);
         opt.k = 8;
         for (f = 0; f < 3 + 7; f++) {
@@ -129,7 +118,7 @@ static void test_too_small_and_guard(void)
             opt.height = f == 1 ? 17u : 48u;
             opt.algo = f < 3 ? PN_ALGO_REFERENCE : algo[f - 3];
             if (f >= 3 && !(pn_build_info() & flag[f - 3])) continue;
-            CHECK_MSG(pn_render(ctx, &cam, &light, &opt, &fr) == PN_OK, "algorithm %d: %s", (int)opt.algo,
+            CHECK_MSG(pn_render(ctx, &s.camera, &s.light, &opt, &fr) == PN_OK, "algorithm %d: %s", (int)opt.algo,
                       pn_last_error(ctx));
             CHECK((const uint8_t *)fr.visibility >= mem &&
                   (const uint8_t *)(fr.visibility + opt.width * opt.height) <= mem + bytes);
@@ -144,7 +133,7 @@ static void test_too_small_and_guard(void)
         }
         free(raw);
     }
-    pn_mesh_free(&m);
+    pn_test_scene_free(&s);
 }
 
 /* A static block of PN_ARENA_BYTES_MAX works (the firmware way), with small limits. */

@@ -30,8 +30,8 @@
 
 #include "penumbra/penumbra.h"
 #include "pn_internal.h"
-#include "pn_setup.h"
 #include "pn_test.h"
+#include "pn_test_scene.h"
 
 #define FRAME_W 64u
 #define FRAME_H 48u
@@ -384,17 +384,16 @@ static void check_tree(pn_context *ctx, const scene *s, int expect_split)
     free(raster_seen);
 }
 
-static pn_context *open_ctx(pn_host *h, uint32_t tris, uint32_t refs)
+static pn_context *open_ctx(pn_test_host *h, uint32_t tris, uint32_t refs)
 {
     pn_limits lim;
-    char err[256];
     memset(&lim, 0, sizeof(lim));
     lim.max_triangles = tris;
     lim.max_width = FRAME_W;
     lim.max_height = FRAME_H;
     lim.bvh_refs = refs;
-    if (pn_host_open_limits(h, &lim, 2, err, sizeof(err)) != 0) {
-        CHECK_MSG(0, "context: %s", err);
+    if (pn_test_open_limits(h, &lim) != 0) {
+        CHECK_MSG(0, "context for %u triangles, %u references", tris, refs);
         return NULL;
     }
     return h->ctx;
@@ -403,21 +402,21 @@ static pn_context *open_ctx(pn_host *h, uint32_t tris, uint32_t refs)
 static void test_containment(void)
 {
     scene s;
-    pn_host h;
+    pn_test_host h;
     pn_context *ctx;
     make_mixed(&s, 4000);
     ctx = open_ctx(&h, s.tris, 0);
     if (ctx) {
         CHECK(pn_scene_set(ctx, s.pos, s.verts, s.idx, s.tris) == PN_OK);
         check_tree(ctx, &s, 1);
-        pn_host_close(&h);
+        pn_test_close(&h);
     }
     ctx = open_ctx(&h, s.tris, s.tris);
     if (ctx) {
         pn_status st = pn_scene_set(ctx, s.pos, s.verts, s.idx, s.tris);
         CHECK_MSG(st == PN_OK, "%s", pn_last_error(ctx));
         check_tree(ctx, &s, 0);
-        pn_host_close(&h);
+        pn_test_close(&h);
     }
     free_scene(&s);
 }
@@ -440,7 +439,7 @@ static void frame_opts(pn_frame_options *opt, uint32_t algo, float eps)
 static void frames_same(const char *label, const float *pos, uint32_t verts, const uint32_t *idx, uint32_t tris,
                         const pn_camera *cam, const pn_light *light, float eps)
 {
-    pn_host h[3];
+    pn_test_host h[3];
     pn_context *ctx[3];
     pn_stats st;
     uint32_t refs_default = 0, c, a, built = pn_build_info();
@@ -483,34 +482,32 @@ static void frames_same(const char *label, const float *pos, uint32_t verts, con
             }
         }
     }
-    for (c = 0; c < 3u; c++) pn_host_close(&h[c]);
+    for (c = 0; c < 3u; c++) pn_test_close(&h[c]);
     free(vis0);
     free(rgba0);
 }
 
 static void test_frames_thin(void)
 {
-    pn_setup s;
-    char err[256];
-    REQUIRE(pn_setup_load(&s, "thin", 1, -1, err, sizeof(err)) == 0);
+    pn_test_scene s;
+    REQUIRE(pn_test_scene_load(&s, "thin") == 0);
     frames_same("thin", s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count, &s.camera,
                 &s.light, s.eps);
-    pn_setup_free(&s);
+    pn_test_scene_free(&s);
 }
 
 /* The two-wide fold (what pn_bvh_widen falls back to when a four-wide walk could overflow
  * PN_BVH_STACK) renders the same bytes as the four-wide one, for every algorithm. */
 static void test_frames_two_wide(void)
 {
-    pn_setup s;
-    pn_host h;
+    pn_test_scene s;
+    pn_test_host h;
     pn_context *ctx;
-    char err[256];
     uint32_t a, i, wide4, two = 0, built = pn_build_info();
     size_t npix = (size_t)FRAME_W * FRAME_H;
     float *vis0 = (float *)malloc(npix * sizeof(float) * (PN_ALGO_COUNT));
     REQUIRE(vis0);
-    REQUIRE(pn_setup_load(&s, "room", 1, -1, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_scene_load(&s, "room") == 0);
     ctx = open_ctx(&h, s.mesh.triangle_count, 0);
     REQUIRE(ctx);
     CHECK(pn_scene_set(ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
@@ -538,20 +535,19 @@ static void test_frames_two_wide(void)
                           "room %s: the two-wide tree renders other bytes", pn_algo_name((pn_algo)a));
         }
     }
-    pn_host_close(&h);
-    pn_setup_free(&s);
+    pn_test_close(&h);
+    pn_test_scene_free(&s);
     free(vis0);
 }
 
 /* Random slivers above a floor, under thin's camera and light. */
 static void test_frames_slivers(void)
 {
-    pn_setup th;
+    pn_test_scene th;
     scene s;
-    char err[256];
     uint32_t i;
     const uint32_t n = 1500;
-    REQUIRE(pn_setup_load(&th, "thin", 1, -1, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_scene_load(&th, "thin") == 0);
     s.pos = (float *)malloc((size_t)(n + 2u) * 9u * sizeof(float));
     s.idx = (uint32_t *)malloc((size_t)(n + 2u) * 3u * sizeof(uint32_t));
     s.tris = s.verts = 0;
@@ -566,7 +562,7 @@ static void test_frames_slivers(void)
     }
     frames_same("slivers", s.pos, s.verts, s.idx, s.tris, &th.camera, &th.light, th.eps);
     free_scene(&s);
-    pn_setup_free(&th);
+    pn_test_scene_free(&th);
 }
 
 /* A tree built to be deep (issue 50): 48 small squares at x = 4 * 0.5^i along a line toward
@@ -579,17 +575,16 @@ static void test_frames_slivers(void)
 static void test_deep_tree(void)
 {
     enum { NEST = 48 };
-    pn_setup sq;
+    pn_test_scene sq;
     scene s;
-    pn_host h;
+    pn_test_host h;
     pn_context *ctx;
     pn_stats st;
-    char err[256];
     uint32_t a, i, built = pn_build_info();
     size_t npix = (size_t)FRAME_W * FRAME_H;
     float *ref = (float *)malloc(npix * sizeof(float));
     REQUIRE(ref);
-    REQUIRE(pn_setup_load(&sq, "square", 1, -1, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_scene_load(&sq, "square") == 0);
     s.pos = (float *)malloc((size_t)(NEST + 1u) * 18u * sizeof(float));
     s.idx = (uint32_t *)malloc((size_t)(NEST + 1u) * 6u * sizeof(uint32_t));
     REQUIRE(s.pos && s.idx);
@@ -623,9 +618,9 @@ static void test_deep_tree(void)
             CHECK_MSG(memcmp(ref, fr.visibility, npix * sizeof(float)) == 0, "deep tree %s: not the reference's bytes",
                       pn_algo_name((pn_algo)a));
     }
-    pn_host_close(&h);
+    pn_test_close(&h);
     free_scene(&s);
-    pn_setup_free(&sq);
+    pn_test_scene_free(&sq);
     free(ref);
 }
 
@@ -661,7 +656,7 @@ static void test_limits(void)
     /* a reserve far below what the slivers want: the deepest cap that fits, never more */
     {
         scene s;
-        pn_host h;
+        pn_test_host h;
         pn_context *ctx;
         pn_stats st;
         make_mixed(&s, 1000);
@@ -670,7 +665,7 @@ static void test_limits(void)
             CHECK(pn_scene_set(ctx, s.pos, s.verts, s.idx, s.tris) == PN_OK);
             CHECK(pn_get_stats(ctx, &st) == PN_OK && st.bvh_refs <= s.tris + 37u && st.bvh_refs == ctx->bvh_refs);
             check_tree(ctx, &s, 0);
-            pn_host_close(&h);
+            pn_test_close(&h);
         }
         free_scene(&s);
     }

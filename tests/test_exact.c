@@ -18,6 +18,9 @@
  *   4. frames of the built-in scenes and spot.glb at small sizes, area and point light:
  *      the reference's, GEARS' and the ray tracer's visibility against the arbiter's, and
  *      the kernel's per-pixel masks bit for bit.
+ * Built twice (tests/CMakeLists.txt): test_exact, linked to the library alone, runs 1 to 4
+ * on the scenes of tests/pn_test_scene.h; test_exact_models (PN_TEST_MODELS=1), linked to the
+ * tools, runs 4 on spot.glb.
  * The counts of values that reached the exact arithmetic are printed and required to be
  * non-zero: the hostile inputs must exercise the slow path, not only the filter. */
 #include <math.h>
@@ -29,29 +32,18 @@
 static unsigned long exact_calls[4];
 #define PN_EXACT_HOOK(kind) (exact_calls[kind]++)
 #include "pn_reference.h"
-#include "pn_scenes.h"
-#include "pn_setup.h"
 #include "pn_test.h"
 #include "pn_test_exact.h"
+#include "pn_test_scene.h"
 
-static uint32_t rng = 20261201u;
-static uint32_t rndu(void)
-{
-    rng ^= rng << 13;
-    rng ^= rng >> 17;
-    rng ^= rng << 5;
-    return rng;
-}
-static float rndf(void) { return (float)(rndu() >> 8) / 16777216.0f; } /* [0, 1) */
-static float rnds(void) { return rndf() * 2.0f - 1.0f; }
-/* A dyadic coordinate: a multiple of 1/8 in [-2, 2]: exact degeneracies are common. */
-static float grid(void) { return (float)((int)(rndu() % 33u) - 16) / 8.0f; }
-static float nudge(float v, int ulps)
-{
-    while (ulps > 0) { v = nextafterf(v, INFINITY); ulps--; }
-    while (ulps < 0) { v = nextafterf(v, -INFINITY); ulps++; }
-    return v;
-}
+/* 0: test_exact, the library alone (tests/pn_test_scene.h); 1: test_exact_models, the frames
+ * of spot.glb through the tools' glTF loader (tests/CMakeLists.txt). */
+#ifndef PN_TEST_MODELS
+#define PN_TEST_MODELS 0
+#endif
+#if PN_TEST_MODELS
+#include "pn_test_tools.h"
+#endif
 
 static pn_klight klight_from(const arb_light *a, float eps)
 {
@@ -71,6 +63,35 @@ static pn_klight klight_from(const arb_light *a, float eps)
         kl.N[2] = N.z;
     }
     return kl;
+}
+
+static void set3(float *d, pn_v3 v)
+{
+    d[0] = v.x;
+    d[1] = v.y;
+    d[2] = v.z;
+}
+static pn_v3 v3(const float *p) { return pn_v3_make(p[0], p[1], p[2]); }
+
+#if !PN_TEST_MODELS
+
+static uint32_t rng = 20261201u;
+static uint32_t rndu(void)
+{
+    rng ^= rng << 13;
+    rng ^= rng >> 17;
+    rng ^= rng << 5;
+    return rng;
+}
+static float rndf(void) { return (float)(rndu() >> 8) / 16777216.0f; } /* [0, 1) */
+static float rnds(void) { return rndf() * 2.0f - 1.0f; }
+/* A dyadic coordinate: a multiple of 1/8 in [-2, 2]: exact degeneracies are common. */
+static float grid(void) { return (float)((int)(rndu() % 33u) - 16) / 8.0f; }
+static float nudge(float v, int ulps)
+{
+    while (ulps > 0) { v = nextafterf(v, INFINITY); ulps--; }
+    while (ulps < 0) { v = nextafterf(v, -INFINITY); ulps++; }
+    return v;
 }
 
 static void random_light(arb_light *L, int dyadic)
@@ -103,14 +124,6 @@ static void random_light(arb_light *L, int dyadic)
 static uint32_t mask_bit(const uint32_t *m, uint32_t bit) { return m[bit >> 5] >> (bit & 31u) & 1u; }
 
 /* ---- 1. hostile single triangles ---------------------------------------------------------- */
-
-static void set3(float *d, pn_v3 v)
-{
-    d[0] = v.x;
-    d[1] = v.y;
-    d[2] = v.z;
-}
-static pn_v3 v3(const float *p) { return pn_v3_make(p[0], p[1], p[2]); }
 
 static void test_triangles(void)
 {
@@ -430,10 +443,12 @@ static void test_scenes_random(void)
     CHECK(cull_fail == 0u);
 }
 
+#endif
+
 /* ---- 4. frames of the built-in scenes and spot.glb --------------------------------------- */
 
-static int render_algo(pn_host *h, const pn_setup *s, const pn_light *light, pn_algo algo, uint32_t w, uint32_t hh,
-                       uint32_t k, pn_frame *fr)
+static int render_algo(pn_context *ctx, const pn_test_scene *s, const pn_light *light, pn_algo algo, uint32_t w,
+                       uint32_t hh, uint32_t k, pn_frame *fr)
 {
     pn_frame_options opt;
     pn_frame_options_default(&opt);
@@ -442,19 +457,19 @@ static int render_algo(pn_host *h, const pn_setup *s, const pn_light *light, pn_
     opt.k = k;
     opt.eps = s->eps;
     opt.algo = algo;
-    if (pn_render(h->ctx, &s->camera, light, &opt, fr) != PN_OK) {
-        fprintf(stderr, "render %s: %s\n", s->name, pn_last_error(h->ctx));
+    if (pn_render(ctx, &s->camera, light, &opt, fr) != PN_OK) {
+        fprintf(stderr, "render %s: %s\n", s->name, pn_last_error(ctx));
         return 1;
     }
     return 0;
 }
 
-static void frame_vs_arbiter(const char *name, pn_setup *s, const pn_light *light, uint32_t w, uint32_t hh, uint32_t k)
+static void frame_vs_arbiter(const char *name, const pn_test_scene *s, const pn_light *light, uint32_t w, uint32_t hh,
+                             uint32_t k)
 {
     static const pn_algo algos[3] = {PN_ALGO_REFERENCE, PN_ALGO_GEARS, PN_ALGO_RAYTRACE};
     static const char *anames[3] = {"reference", "GEARS", "raytrace"};
-    pn_host h;
-    char err[256];
+    pn_test_host h;
     size_t n = (size_t)w * hh, px;
     float *arb_vis = (float *)malloc(n * sizeof(float)), *tris = (float *)malloc((size_t)s->mesh.triangle_count * 36u);
     uint32_t t, bits_diff = 0, shadowed = 0, horizon_bits = 0, a;
@@ -472,9 +487,9 @@ static void frame_vs_arbiter(const char *name, pn_setup *s, const pn_light *ligh
     memcpy(L.V, light->v, 12);
     L.k = (light->u[0] == 0.0f && light->u[1] == 0.0f && light->u[2] == 0.0f) ? 1 : (int)k;
     kl = klight_from(&L, s->eps);
-    REQUIRE(pn_host_open(&h, s->mesh.triangle_count, w, hh, 2, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_open(&h, s->mesh.triangle_count, w, hh) == 0);
     REQUIRE(pn_scene_set(h.ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices, s->mesh.triangle_count) == PN_OK);
-    REQUIRE(render_algo(&h, s, light, PN_ALGO_REFERENCE, w, hh, k, &fr) == 0);
+    REQUIRE(render_algo(h.ctx, s, light, PN_ALGO_REFERENCE, w, hh, k, &fr) == 0);
     for (px = 0; px < n; px++) {
         /* (a point light: k = 1 for the arbiter and the kernel, as the library sets it) */
         float P[3], nrm[3], Of[3];
@@ -516,34 +531,39 @@ static void frame_vs_arbiter(const char *name, pn_setup *s, const pn_light *ligh
     CHECK_MSG(bits_diff == 0u, "%s", name);
     for (a = 0; a < 3u; a++) {
         uint32_t d = 0;
-        REQUIRE(render_algo(&h, s, light, algos[a], w, hh, k, &fr) == 0);
+        REQUIRE(render_algo(h.ctx, s, light, algos[a], w, hh, k, &fr) == 0);
         for (px = 0; px < n; px++) d += memcmp(&arb_vis[px], &fr.visibility[px], sizeof(float)) != 0;
         fprintf(stderr, "  %s: %u pixels differ from the arbiter\n", anames[a], d);
         CHECK_MSG(d == 0u, "%s %s", name, anames[a]);
     }
-    pn_host_close(&h);
+    pn_test_close(&h);
     free(arb_vis);
     free(tris);
 }
 
+#if !PN_TEST_MODELS
 static void test_frames(void)
 {
     static const char *builtins[4] = {"square", "spheres", "elongated-cube", "thin"};
-    pn_setup s;
-    char err[256];
+    pn_test_scene s;
     int i;
     for (i = 0; i < 4; i++) {
         pn_light pt;
-        REQUIRE(pn_setup_load(&s, builtins[i], 1, -1, err, sizeof(err)) == 0);
+        REQUIRE(pn_test_scene_load(&s, builtins[i]) == 0);
         /* spheres has 62k triangles, most of them inside the light's hull: smaller */
         frame_vs_arbiter(builtins[i], &s, &s.light, i == 1 ? 16u : 32u, i == 1 ? 16u : 32u, 8);
         pt = s.light;
         memset(pt.u, 0, sizeof(pt.u));
         memset(pt.v, 0, sizeof(pt.v));
         frame_vs_arbiter(builtins[i], &s, &pt, 24, 24, 4); /* the library takes k = 4, uses 1 */
-        pn_setup_free(&s);
+        pn_test_scene_free(&s);
     }
-    REQUIRE(pn_setup_load(&s, PN_SCENES_DIR "/spot.glb", 0, -1, err, sizeof(err)) == 0);
+}
+#else
+static void test_frames_spot(void)
+{
+    pn_test_scene s;
+    REQUIRE(pn_test_scene_load_tools(&s, PN_SCENES_DIR "/spot.glb", 0, -1) == 0);
     frame_vs_arbiter("spot.glb", &s, &s.light, 24, 20, 4);
     {
         pn_light big = s.light; /* a large, low light: the ground's plane nearer the light */
@@ -552,28 +572,42 @@ static void test_frames(void)
         big.center[1] -= 0.4f * s.diag;
         frame_vs_arbiter("spot.glb big light", &s, &big, 24, 20, 8);
     }
-    pn_setup_free(&s);
+    pn_test_scene_free(&s);
 }
+#endif
 
 /* ---- how often the exact arithmetic runs (a measurement, not a test) ---------------------
- * PN_EXACT_COUNT=1 ./test_exact [scene.glb|builtin]...: for each scene at 64x64, k = 16,
+ * PN_EXACT_COUNT=1 ./test_exact builtin... (square, spheres, elongated-cube, thin, room), or
+ * ./test_exact_models [scene.glb|builtin]... (any file the tools load, any of their
+ * built-ins): for each scene at 64x64, k = 16,
  * the reference's predicate calls (every triangle whose box passes the pixel's frustum, in
  * BVH-free order, stopping at a full mask as the reference does) with the counts of values
  * and of distinct (pixel, sample) pairs that reached the exact fallback. */
+static int count_load(pn_test_scene *s, const char *src)
+{
+#if PN_TEST_MODELS
+    return pn_test_scene_load_tools(s, src, strchr(src, '/') == NULL, -1);
+#else
+    if (strchr(src, '/') != NULL) {
+        fprintf(stderr, "%s: files load through the tools: PN_EXACT_COUNT=1 test_exact_models %s\n", src, src);
+        return 1;
+    }
+    return pn_test_scene_load(s, src);
+#endif
+}
+
 static void count_scene(const char *src)
 {
-    pn_setup s;
-    pn_host h;
+    pn_test_scene s;
+    pn_test_host h;
     pn_frame fr;
-    char err[256];
     uint32_t w = 64, hh = 64, k = 16, t, lit = 0;
     size_t px;
     unsigned long x0[4], samples_exact = 0, calls = 0;
     float *tris;
-    int builtin = strchr(src, '/') == NULL;
     arb_light L;
     pn_klight kl;
-    REQUIRE(pn_setup_load(&s, src, builtin, -1, err, sizeof(err)) == 0);
+    REQUIRE(count_load(&s, src) == 0);
     tris = (float *)malloc((size_t)s.mesh.triangle_count * 36u);
     REQUIRE(tris);
     for (t = 0; t < s.mesh.triangle_count; t++) {
@@ -585,9 +619,9 @@ static void count_scene(const char *src)
     memcpy(L.V, s.light.v, 12);
     L.k = (int)k;
     kl = klight_from(&L, s.eps);
-    REQUIRE(pn_host_open(&h, s.mesh.triangle_count, w, hh, 2, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_open(&h, s.mesh.triangle_count, w, hh) == 0);
     REQUIRE(pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
-    REQUIRE(render_algo(&h, &s, &s.light, PN_ALGO_REFERENCE, w, hh, k, &fr) == 0);
+    REQUIRE(render_algo(h.ctx, &s, &s.light, PN_ALGO_REFERENCE, w, hh, k, &fr) == 0);
     {
         pn_stats st;
         REQUIRE(pn_get_stats(h.ctx, &st) == PN_OK);
@@ -623,9 +657,9 @@ static void count_scene(const char *src)
             "plane values, %lu edge values, %lu horizon values (%.2e exact values per light sample)\n",
             s.name, lit, lit * k * k, calls, exact_calls[0] - x0[0], exact_calls[1] - x0[1], exact_calls[2] - x0[2],
             exact_calls[3] - x0[3], (double)samples_exact / ((double)lit * k * k));
-    pn_host_close(&h);
+    pn_test_close(&h);
     free(tris);
-    pn_setup_free(&s);
+    pn_test_scene_free(&s);
 }
 
 int main(int argc, char **argv)
@@ -636,6 +670,10 @@ int main(int argc, char **argv)
         return 0;
     }
     clock_t t0 = clock();
+#if PN_TEST_MODELS
+    RUN(test_frames_spot);
+    fprintf(stderr, "  (%.1f s cpu)\n", (double)(clock() - t0) / CLOCKS_PER_SEC);
+#else
     RUN(test_triangles);
     fprintf(stderr, "  (%.1f s cpu)\n", (double)(clock() - t0) / CLOCKS_PER_SEC);
     RUN(test_horizons);
@@ -644,6 +682,7 @@ int main(int argc, char **argv)
     fprintf(stderr, "  (%.1f s cpu)\n", (double)(clock() - t0) / CLOCKS_PER_SEC);
     RUN(test_frames);
     fprintf(stderr, "  (%.1f s cpu)\n", (double)(clock() - t0) / CLOCKS_PER_SEC);
+#endif
     fprintf(stderr, "arbiter: %lu values needed the big integers\n", arb_exact_calls);
     return pn_test_summary();
 }

@@ -9,9 +9,18 @@
 
 #include "penumbra/penumbra.h"
 #include "pn_raster.h"
-#include "pn_setup.h"
 #include "pn_test.h"
 #include "pn_test_geom.h"
+#include "pn_test_scene.h"
+
+/* 0: test_raster, the library alone (tests/pn_test_scene.h); 1: test_raster_models, the
+ * same comparison on spot.glb through the tools' glTF loader (tests/CMakeLists.txt). */
+#ifndef PN_TEST_MODELS
+#define PN_TEST_MODELS 0
+#endif
+#if PN_TEST_MODELS
+#include "pn_test_tools.h"
+#endif
 
 #define EDGE_TOL 1e-4
 #define DEPTH_TOL 1e-4
@@ -59,7 +68,7 @@ static void cam_ray(const ray_cam *c, double px, double py, double d[3])
 }
 
 /* Nearest hit (smallest t > 0, ties to the smaller id). */
-static uint32_t cast(const pn_mesh *m, const double o[3], const double d[3], double *t_out, double *margin_out)
+static uint32_t cast(const pn_test_mesh *m, const double o[3], const double d[3], double *t_out, double *margin_out)
 {
     uint32_t t, best = PN_NO_TRIANGLE;
     double bt = INFINITY, bm = 0.0;
@@ -78,23 +87,22 @@ static uint32_t cast(const pn_mesh *m, const double o[3], const double d[3], dou
     return best;
 }
 
-static double tri_t(const pn_mesh *m, uint32_t t, const double o[3], const double d[3], double *margin)
+static double tri_t(const pn_test_mesh *m, uint32_t t, const double o[3], const double d[3], double *margin)
 {
     const uint32_t *x = m->indices + 3u * t;
     return pn_test_ray_tri(o, d, m->positions + 3u * x[0], m->positions + 3u * x[1], m->positions + 3u * x[2], margin);
 }
 
-static void compare(const char *name, const pn_mesh *m, const pn_camera *cam, uint32_t w, uint32_t h, int closed,
+static void compare(const char *name, const pn_test_mesh *m, const pn_camera *cam, uint32_t w, uint32_t h, int closed,
                     uint32_t max_explained)
 {
-    pn_host host;
+    pn_test_host host;
     pn_frame_options opt;
     pn_frame fr;
     pn_light light = {{0, 100, 0}, {0, 0, 0}, {0, 0, 0}};
-    char err[256];
     ray_cam rc;
     uint32_t x, y, matched = 0, explained = 0, unexplained = 0, holes = 0, bad_depth = 0, hits = 0;
-    REQUIRE(pn_host_open(&host, m->triangle_count, w, h, 2, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_open(&host, m->triangle_count, w, h) == 0);
     REQUIRE(pn_scene_set(host.ctx, m->positions, m->vertex_count, m->indices, m->triangle_count) == PN_OK);
     pn_frame_options_default(&opt);
     opt.width = w;
@@ -164,31 +172,36 @@ static void compare(const char *name, const pn_mesh *m, const pn_camera *cam, ui
     CHECK(holes == 0);
     CHECK(bad_depth == 0);
     CHECK(explained <= max_explained);
-    pn_host_close(&host);
+    pn_test_close(&host);
 }
 
+#if PN_TEST_MODELS
 static void test_spot(void)
 {
-    pn_setup s;
-    char err[256];
-    REQUIRE(pn_setup_load(&s, PN_SCENES_DIR "/spot.glb", 0, 1, err, sizeof(err)) == 0);
+    pn_test_scene s;
+    REQUIRE(pn_test_scene_load_tools(&s, PN_SCENES_DIR "/spot.glb", 0, 1) == 0);
     compare("spot.glb", &s.mesh, &s.camera, 96, 80, 0, 96 * 80 / 100);
-    pn_setup_free(&s);
+    pn_test_scene_free(&s);
 }
 
+int main(void)
+{
+    RUN(test_spot);
+    return pn_test_summary();
+}
+#else
 static void test_spheres(void)
 {
-    pn_setup s;
-    char err[256];
-    REQUIRE(pn_setup_load(&s, "spheres", 1, -1, err, sizeof(err)) == 0);
+    pn_test_scene s;
+    REQUIRE(pn_test_scene_load(&s, "spheres") == 0);
     compare("spheres", &s.mesh, &s.camera, 64, 64, 0, 64 * 64 / 100);
-    pn_setup_free(&s);
+    pn_test_scene_free(&s);
 }
 
 /* A closed sphere filling the view: the fill rule must leave no holes. */
 static void test_closed_sphere(void)
 {
-    pn_mesh m;
+    pn_test_mesh m;
     pn_camera cam = {{0.3f, 0.2f, 3.0f}, {0, 0, 0}, {0, 1, 0}, 45.0f};
     REQUIRE(pn_test_uv_sphere(&m, 0, 0, 0, 1.0, 48, 24) == 0);
     compare("uv-sphere", &m, &cam, 96, 96, 1, 96 * 96 / 100);
@@ -199,19 +212,18 @@ static void test_closed_sphere(void)
         pn_camera top = {{0, 3.0f, 0}, {0, 0, 0}, {0, 0, 1}, 40.0f};
         compare("uv-sphere-pole", &m, &top, 63, 63, 1, 2 * 63);
     }
-    pn_mesh_free(&m);
+    pn_test_mesh_free(&m);
 }
 
 /* Triangles crossing the near plane (a ground plane seen from just above it) are clipped,
  * not dropped or mirrored. */
 static void test_near_clip(void)
 {
-    pn_setup s;
-    char err[256];
+    pn_test_scene s;
     pn_camera cam = {{0.3f, 0.05f, 3.9f}, {0.0f, 0.0f, -4.0f}, {0, 1, 0}, 70.0f};
-    REQUIRE(pn_setup_load(&s, "square", 1, -1, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_scene_load(&s, "square") == 0);
     compare("square-grazing", &s.mesh, &cam, 80, 60, 0, 80 * 60 / 100);
-    pn_setup_free(&s);
+    pn_test_scene_free(&s);
 }
 
 /* The band walk (kernels/pn_raster.h) visits triangles in the BVH's leaf order, chunk by
@@ -224,13 +236,12 @@ static void test_band_walk_ties(void)
     enum { COPIES = 48, SMALL = 400 };
     uint32_t nt = 2u * (COPIES + SMALL), nv = 4u * (COPIES + SMALL), q, c = 0, s = 0, x, y, covered = 0, bad = 0;
     unsigned char is_big[COPIES + SMALL];
-    pn_mesh m;
+    pn_test_mesh m;
     pn_camera cam = {{0.0f, 0.0f, 4.0f}, {0, 0, 0}, {0, 1, 0}, 50.0f};
-    pn_host host;
+    pn_test_host host;
     pn_frame_options opt;
     pn_frame fr;
     pn_light light = {{0, 0, 10}, {0, 0, 0}, {0, 0, 0}};
-    char err[256];
     memset(&m, 0, sizeof(m));
     m.positions = (float *)calloc(3u * nv, sizeof(float));
     m.indices = (uint32_t *)calloc(3u * nt, sizeof(uint32_t));
@@ -265,7 +276,7 @@ static void test_band_walk_ties(void)
         ix[3] = v, ix[4] = v + 2u, ix[5] = v + 3u;
     }
     REQUIRE(c == COPIES && s == SMALL);
-    REQUIRE(pn_host_open(&host, nt, 96, 72, 2, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_open(&host, nt, 96, 72) == 0);
     REQUIRE(pn_scene_set(host.ctx, m.positions, m.vertex_count, m.indices, m.triangle_count) == PN_OK);
     pn_frame_options_default(&opt);
     opt.width = 96;
@@ -284,8 +295,8 @@ static void test_band_walk_ties(void)
     fprintf(stderr, "band walk ties: %u pixels on the quad, %u not given to copy 0\n", covered, bad);
     CHECK(covered > 500u);
     CHECK(bad == 0u);
-    pn_host_close(&host);
-    pn_mesh_free(&m);
+    pn_test_close(&host);
+    pn_test_mesh_free(&m);
 }
 
 /* The rows pass (pn_raster_rows_small) against every pixel centre: the rows it gives a triangle
@@ -540,7 +551,6 @@ static void test_span(void)
 
 int main(void)
 {
-    RUN(test_spot);
     RUN(test_spheres);
     RUN(test_closed_sphere);
     RUN(test_near_clip);
@@ -550,3 +560,4 @@ int main(void)
     RUN(test_span);
     return pn_test_summary();
 }
+#endif

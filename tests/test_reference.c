@@ -1,5 +1,11 @@
 /* PN_ALGO_REFERENCE: the closed form of the square scene, culling against brute force,
- * watertightness of the shared predicate, point and one-sided lights, determinism. */
+ * watertightness of the shared predicate, point and one-sided lights, determinism.
+ *
+ * Built twice (tests/CMakeLists.txt): test_reference links the library alone and renders
+ * the scenes of tests/pn_test_scene.h, its determinism check running the work items in
+ * other orders on one thread; test_reference_models (PN_TEST_MODELS=1) links the tools and
+ * runs the culling and watertightness checks on spot.glb and the determinism check on the
+ * tools' thread pool (1, 2 and 7 threads). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -7,13 +13,19 @@
 #include "penumbra/penumbra.h"
 #include "pn_footprint.h"
 #include "pn_predicate.h" /* the kernel predicate itself, for brute force and mask checks */
-#include "pn_scenes.h"
-#include "pn_setup.h"
 #include "pn_test.h"
 #include "pn_test_geom.h"
+#include "pn_test_scene.h"
+
+#ifndef PN_TEST_MODELS
+#define PN_TEST_MODELS 0
+#endif
+#if PN_TEST_MODELS
+#include "pn_test_tools.h"
+#endif
 
 /* A frame of `algo` (exact_stats as given) at the scene's eps. */
-static int render_algo(pn_host *h, const pn_setup *s, const pn_camera *cam, const pn_light *light, uint32_t w,
+static int render_algo(pn_context *ctx, const pn_test_scene *s, const pn_camera *cam, const pn_light *light, uint32_t w,
                        uint32_t hh, uint32_t k, pn_algo algo, uint32_t exact_stats, pn_frame *fr)
 {
     pn_frame_options opt;
@@ -24,57 +36,57 @@ static int render_algo(pn_host *h, const pn_setup *s, const pn_camera *cam, cons
     opt.eps = s->eps;
     opt.algo = algo;
     opt.exact_stats = exact_stats;
-    if (pn_render(h->ctx, cam, light, &opt, fr) != PN_OK) {
-        fprintf(stderr, "render: %s\n", pn_last_error(h->ctx));
+    if (pn_render(ctx, cam, light, &opt, fr) != PN_OK) {
+        fprintf(stderr, "render: %s\n", pn_last_error(ctx));
         return 1;
     }
     return 0;
 }
 
-static int render(pn_host *h, const pn_setup *s, const pn_camera *cam, const pn_light *light, uint32_t w,
+static int render(pn_context *ctx, const pn_test_scene *s, const pn_camera *cam, const pn_light *light, uint32_t w,
                   uint32_t hh, uint32_t k, pn_frame *fr)
 {
-    return render_algo(h, s, cam, light, w, hh, k, PN_ALGO_REFERENCE, 0u, fr);
+    return render_algo(ctx, s, cam, light, w, hh, k, PN_ALGO_REFERENCE, 0u, fr);
 }
 
 /* ---- square: closed form --------------------------------------------------------------- */
 
+#if !PN_TEST_MODELS
 static void test_square_closed_form(void)
 {
-    pn_setup s;
-    pn_host h;
-    pn_square_params sp;
-    char err[256];
+    pn_test_scene s;
+    pn_test_host h;
+    pn_test_square_params sp;
     static const uint32_t ks[4] = {4, 8, 16, 32};
     int q;
-    REQUIRE(pn_setup_load(&s, "square", 1, -1, err, sizeof(err)) == 0);
-    REQUIRE(pn_host_open(&h, s.mesh.triangle_count, 160, 160, 2, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_scene_load(&s, "square") == 0);
+    REQUIRE(pn_test_open(&h, s.mesh.triangle_count, 160, 160) == 0);
     REQUIRE(pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
-    pn_square_scene_params(&sp);
+    pn_test_square_scene_params(&sp);
     for (q = 0; q < 4; q++) {
         pn_frame fr;
         uint32_t k = ks[q], px, compared = 0, skipped = 0, mismatched = 0, penumbra = 0;
         double worst_area = 0.0;
-        REQUIRE(render(&h, &s, &s.camera, &s.light, 160, 160, k, &fr) == 0);
+        REQUIRE(render(h.ctx, &s, &s.camera, &s.light, 160, 160, k, &fr) == 0);
         for (px = 0; px < 160u * 160u; px++) {
-            pn_square_params at = sp;
+            pn_test_square_params at = sp;
             float ox, oy, oz;
             double closed, area, dist, got;
-            /* Triangles 0, 1: occluder; 2, 3: receiver (pn_scenes.c puts the ground last). */
+            /* Triangles 0, 1: occluder; 2, 3: receiver (the ground is last). */
             if (fr.tri_id[px] != 2u && fr.tri_id[px] != 3u) continue;
             /* The library's shadow-ray origin: P + eps * (0, 1, 0), in float. */
             ox = fr.position[px * 3];
             oy = fr.position[px * 3 + 1] + s.eps;
             oz = fr.position[px * 3 + 2];
             at.ground_y = oy;
-            dist = pn_square_min_edge_distance(&at, ox, oz, (int)k);
+            dist = pn_test_square_min_edge_distance(&at, ox, oz, (int)k);
             if (dist < 1e-4) {
                 skipped++;
                 continue;
             }
             compared++;
-            closed = pn_square_closed_form(&at, ox, oz, (int)k);
-            area = pn_square_closed_form(&at, ox, oz, 0);
+            closed = pn_test_square_closed_form(&at, ox, oz, (int)k);
+            area = pn_test_square_closed_form(&at, ox, oz, 0);
             got = fr.visibility[px];
             if (got > 0.0 && got < 1.0) penumbra++;
             if (lround(got * k * k) != lround(closed * k * k) || got * k * k != (double)lround(got * k * k)) {
@@ -93,9 +105,10 @@ static void test_square_closed_form(void)
         CHECK(mismatched == 0u);
         CHECK(worst_area <= 1.0 / k);
     }
-    pn_host_close(&h);
-    pn_setup_free(&s);
+    pn_test_close(&h);
+    pn_test_scene_free(&s);
 }
+#endif
 
 /* ---- culling is conservative: BVH reference == all-triangles brute force ---------------- */
 
@@ -122,7 +135,7 @@ static pn_klight klight_of(const pn_light *l, uint32_t k, float eps, float diag)
     return kl;
 }
 
-static pn_v3 tri_v(const pn_mesh *m, uint32_t t, int c)
+static pn_v3 tri_v(const pn_test_mesh *m, uint32_t t, int c)
 {
     const float *p = m->positions + 3u * m->indices[3u * t + (uint32_t)c];
     return pn_v3_make(p[0], p[1], p[2]);
@@ -131,7 +144,7 @@ static pn_v3 tri_v(const pn_mesh *m, uint32_t t, int c)
 /* Brute-force visibility of pixel px with every triangle tried, each on a mask of its own
  * ORed into the pixel's; *blocking: how many of them block a sample (paper Table 6's
  * necessary assignments of the pixel; 0 without an origin). */
-static float brute_pixel(const pn_mesh *m, const pn_frame *fr, size_t px, const pn_klight *kl, uint32_t *blocking)
+static float brute_pixel(const pn_test_mesh *m, const pn_frame *fr, size_t px, const pn_klight *kl, uint32_t *blocking)
 {
     uint32_t mask[PN_MASK_WORDS_MAX], one[PN_MASK_WORDS_MAX], t;
     pn_v3 P = pn_v3_make(fr->position[px * 3], fr->position[px * 3 + 1], fr->position[px * 3 + 2]);
@@ -156,18 +169,18 @@ static float brute_pixel(const pn_mesh *m, const pn_frame *fr, size_t px, const 
     return pn_mask_visibility(mask, kl->k);
 }
 
-static void brute_compare(const char *name, pn_setup *s, const pn_light *light, uint32_t w, uint32_t hh, uint32_t k)
+static void brute_compare(const char *name, const pn_test_scene *s, const pn_light *light, uint32_t w, uint32_t hh,
+                          uint32_t k)
 {
-    pn_host h;
+    pn_test_host h;
     pn_frame fr;
-    char err[256];
     pn_klight kl = klight_of(light, k, s->eps, 0.0f);
     size_t px;
     uint32_t diff = 0, partial = 0, lit = 0;
     uint64_t necessary = 0;
-    REQUIRE(pn_host_open(&h, s->mesh.triangle_count, w, hh, 2, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_open(&h, s->mesh.triangle_count, w, hh) == 0);
     REQUIRE(pn_scene_set(h.ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices, s->mesh.triangle_count) == PN_OK);
-    REQUIRE(render(&h, s, &s->camera, light, w, hh, k, &fr) == 0);
+    REQUIRE(render(h.ctx, s, &s->camera, light, w, hh, k, &fr) == 0);
     {
         /* The brute force has no culling; the frame's slack is the culls' own rounding. */
         pn_stats st;
@@ -197,7 +210,7 @@ static void brute_compare(const char *name, pn_setup *s, const pn_light *light, 
          * any order of the cell's list. */
         pn_frame gf;
         pn_stats st;
-        REQUIRE(render_algo(&h, s, &s->camera, light, w, hh, k, PN_ALGO_GEARS, 1u, &gf) == 0);
+        REQUIRE(render_algo(h.ctx, s, &s->camera, light, w, hh, k, PN_ALGO_GEARS, 1u, &gf) == 0);
         REQUIRE(pn_get_stats(h.ctx, &st) == PN_OK);
         fprintf(stderr, "%s k=%u: GEARS necessary assignments %llu, brute force %llu\n", name, kl.k,
                 (unsigned long long)st.shadow_blocking, (unsigned long long)necessary);
@@ -210,16 +223,14 @@ static void brute_compare(const char *name, pn_setup *s, const pn_light *light, 
                   (unsigned long long)st.shadow_nodes, (unsigned long long)st.gears.assignments);
     }
 #endif
-    pn_host_close(&h);
+    pn_test_close(&h);
 }
 
-static void test_culling_vs_brute_force(void)
+#if PN_TEST_MODELS
+static void test_culling_vs_brute_force_spot(void)
 {
-    static const char *builtins[3] = {"thin", "elongated-cube", "square"};
-    pn_setup s;
-    char err[256];
-    int i;
-    REQUIRE(pn_setup_load(&s, PN_SCENES_DIR "/spot.glb", 0, 1, err, sizeof(err)) == 0);
+    pn_test_scene s;
+    REQUIRE(pn_test_scene_load_tools(&s, PN_SCENES_DIR "/spot.glb", 0, 1) == 0);
     brute_compare("spot.glb", &s, &s.light, 40, 32, 8);
     {
         pn_light pt = s.light; /* point light: hard shadows */
@@ -232,18 +243,26 @@ static void test_culling_vs_brute_force(void)
         pt.center[1] -= 0.4f * s.diag;
         brute_compare("spot.glb big light", &s, &pt, 40, 32, 16);
     }
-    pn_setup_free(&s);
+    pn_test_scene_free(&s);
+}
+#else
+static void test_culling_vs_brute_force(void)
+{
+    static const char *builtins[3] = {"thin", "elongated-cube", "square"};
+    pn_test_scene s;
+    int i;
     for (i = 0; i < 3; i++) {
-        REQUIRE(pn_setup_load(&s, builtins[i], 1, -1, err, sizeof(err)) == 0);
+        REQUIRE(pn_test_scene_load(&s, builtins[i]) == 0);
         brute_compare(builtins[i], &s, &s.light, 48, 48, i == 0 ? 4u : 32u);
-        pn_setup_free(&s);
+        pn_test_scene_free(&s);
     }
 }
+#endif
 
 /* ---- watertightness -------------------------------------------------------------------- */
 
 /* Does the segment P -> S cross some triangle of m (double precision)? */
-static int seg_hits(const pn_mesh *m, const double P[3], const double S[3])
+static int seg_hits(const pn_test_mesh *m, const double P[3], const double S[3])
 {
     double d[3] = {S[0] - P[0], S[1] - P[1], S[2] - P[2]};
     uint32_t t;
@@ -259,7 +278,7 @@ static int seg_hits(const pn_mesh *m, const double P[3], const double S[3])
  * mesh (the segments to four neighbours of the sample, 1e-4 light half-edges away, all
  * hit: the sample is not on the silhouette) must be blocked by the predicate. Samples
  * whose segments run exactly through shared edges and vertices are the point. */
-static uint32_t leaks(const pn_mesh *m, const pn_klight *kl, const pn_v3 *origins, int n_origins, uint32_t *covered_out)
+static uint32_t leaks(const pn_test_mesh *m, const pn_klight *kl, const pn_v3 *origins, int n_origins, uint32_t *covered_out)
 {
     uint32_t leaked = 0, covered = 0, k = kl->k;
     int o;
@@ -290,11 +309,10 @@ static uint32_t leaks(const pn_mesh *m, const pn_klight *kl, const pn_v3 *origin
     return leaked;
 }
 
+#if !PN_TEST_MODELS
 static void test_watertight(void)
 {
-    pn_mesh sphere;
-    pn_setup s;
-    char err[256];
+    pn_test_mesh sphere;
     pn_v3 origins[64];
     pn_light l;
     pn_klight kl;
@@ -324,10 +342,18 @@ static void test_watertight(void)
     fprintf(stderr, "uv-sphere k=32: %u robustly covered samples, %u leaked\n", covered, leaked);
     CHECK(covered > 1000u);
     CHECK(leaked == 0u);
-    pn_mesh_free(&sphere);
-
-    /* spot.glb: origins on its ground plane inside its shadow. */
-    REQUIRE(pn_setup_load(&s, PN_SCENES_DIR "/spot.glb", 0, 0, err, sizeof(err)) == 0);
+    pn_test_mesh_free(&sphere);
+}
+#else
+/* spot.glb: origins on its ground plane inside its shadow. */
+static void test_watertight_spot(void)
+{
+    pn_test_scene s;
+    pn_v3 origins[64];
+    pn_klight kl;
+    uint32_t covered, leaked;
+    int n = 0, i, j;
+    REQUIRE(pn_test_scene_load_tools(&s, PN_SCENES_DIR "/spot.glb", 0, 0) == 0);
     {
         float cx = 0.5f * (s.mesh.bbox_min[0] + s.mesh.bbox_max[0]), cz = 0.5f * (s.mesh.bbox_min[2] + s.mesh.bbox_max[2]);
         float y = s.mesh.bbox_min[1] - 0.01f * s.diag;
@@ -346,8 +372,9 @@ static void test_watertight(void)
         CHECK(covered > 1000u);
         CHECK(leaked == 0u);
     }
-    pn_setup_free(&s);
+    pn_test_scene_free(&s);
 }
+#endif
 
 /* ---- the predicate against double precision ----------------------------------------------
  * Random triangles of every scale, many tiny and far from O, many nearly edge-on (O close
@@ -357,6 +384,7 @@ static void test_watertight(void)
  * segment that misses the triangle in double precision by no more than double rounding;
  * a sample whose four moved segments all hit must be blocked (there is no certainty test
  * any more). tests/test_exact.c compares every bit with an exact arbiter. */
+#if !PN_TEST_MODELS
 static uint32_t rng_state = 12345u;
 static double rnd(void)
 {
@@ -497,20 +525,19 @@ static void test_predicate_vs_double(void)
 
 static void test_point_and_one_sided(void)
 {
-    pn_setup s;
-    pn_host h;
+    pn_test_scene s;
+    pn_test_host h;
     pn_frame fr;
     pn_light l;
-    char err[256];
     size_t px;
     uint32_t zeros = 0, ones = 0, other = 0, ground_lit = 0;
-    REQUIRE(pn_setup_load(&s, "square", 1, -1, err, sizeof(err)) == 0);
-    REQUIRE(pn_host_open(&h, s.mesh.triangle_count, 64, 64, 1, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_scene_load(&s, "square") == 0);
+    REQUIRE(pn_test_open(&h, s.mesh.triangle_count, 64, 64) == 0);
     REQUIRE(pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
     l = s.light;
     memset(l.u, 0, sizeof(l.u));
     memset(l.v, 0, sizeof(l.v));
-    REQUIRE(render(&h, &s, &s.camera, &l, 64, 64, 16, &fr) == 0);
+    REQUIRE(render(h.ctx, &s, &s.camera, &l, 64, 64, 16, &fr) == 0);
     for (px = 0; px < 64u * 64u; px++) {
         if (fr.tri_id[px] == PN_NO_TRIANGLE) continue;
         zeros += fr.visibility[px] == 0.0f;
@@ -522,30 +549,84 @@ static void test_point_and_one_sided(void)
     /* Flip the light to emit upward: everything below it is behind it and gets 0. */
     l = s.light;
     l.v[2] = -l.v[2];
-    REQUIRE(render(&h, &s, &s.camera, &l, 64, 64, 8, &fr) == 0);
+    REQUIRE(render(h.ctx, &s, &s.camera, &l, 64, 64, 8, &fr) == 0);
     for (px = 0; px < 64u * 64u; px++)
         if (fr.tri_id[px] != PN_NO_TRIANGLE) ground_lit += fr.visibility[px] != 0.0f;
     CHECK(ground_lit == 0u);
-    pn_host_close(&h);
-    pn_setup_free(&s);
+    pn_test_close(&h);
+    pn_test_scene_free(&s);
 }
 
+/* The same bytes whatever order the work items run in: the library's own serial loop
+ * against one item a call forward, backward and shuffled, and uneven ranges from the end
+ * (pn_test_parallel_for; test_reference_models runs it on 1, 2 and 7 threads). */
+static void test_schedule_determinism(void)
+{
+    pn_test_schedule schedules[4] = {{PN_TEST_ITEMS_FORWARD, 0, 0}, {PN_TEST_ITEMS_BACKWARD, 0, 0},
+                                     {PN_TEST_ITEMS_SHUFFLED, 0, 0}, {PN_TEST_CHUNKS_UNEVEN, 0, 0}};
+    pn_test_scene s;
+    pn_test_host h;
+    float *vis0;
+    uint8_t *rgba0;
+    int r;
+    const size_t n = 96u * 72u;
+    REQUIRE(pn_test_scene_load(&s, "spheres") == 0);
+    REQUIRE(pn_test_open(&h, s.mesh.triangle_count, 96, 72) == 0);
+    REQUIRE(pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
+    vis0 = (float *)malloc(n * sizeof(float));
+    rgba0 = (uint8_t *)malloc(n * 4u);
+    REQUIRE(vis0 && rgba0);
+    for (r = 0; r <= 4; r++) {
+        pn_frame fr;
+        if (r > 0) REQUIRE(pn_set_parallel_for(h.ctx, pn_test_parallel_for, &schedules[r - 1]) == PN_OK);
+        REQUIRE(render(h.ctx, &s, &s.camera, &s.light, 96, 72, 8, &fr) == 0);
+        if (r > 0) /* the schedule ran the frame's passes, split into several ranges */
+            CHECK_MSG(schedules[r - 1].jobs > 0u && schedules[r - 1].ranges > 2u * schedules[r - 1].jobs,
+                      "schedule %d: %u jobs, %llu ranges", r - 1, schedules[r - 1].jobs,
+                      (unsigned long long)schedules[r - 1].ranges);
+        if (r == 0) {
+            memcpy(vis0, fr.visibility, n * sizeof(float));
+            memcpy(rgba0, fr.rgba, n * 4u);
+            continue;
+        }
+        CHECK_MSG(memcmp(vis0, fr.visibility, n * sizeof(float)) == 0, "schedule %d: other visibility", r - 1);
+        CHECK_MSG(memcmp(rgba0, fr.rgba, n * 4u) == 0, "schedule %d: other image", r - 1);
+    }
+    free(vis0);
+    free(rgba0);
+    pn_test_close(&h);
+    pn_test_scene_free(&s);
+}
+
+int main(void)
+{
+    RUN(test_square_closed_form);
+    RUN(test_culling_vs_brute_force);
+    RUN(test_watertight);
+    RUN(test_predicate_vs_double);
+    RUN(test_point_and_one_sided);
+    RUN(test_schedule_determinism);
+    return pn_test_summary();
+}
+#else
+/* The same bytes from the library's own serial loop and from the tools' thread pool on 2 and
+ * 7 threads. */
 static void test_thread_determinism(void)
 {
-    pn_setup s;
+    pn_test_scene s;
     char err[256];
     float *vis[3];
     uint8_t *rgba[3];
     int r;
     const size_t n = 96u * 72u;
-    REQUIRE(pn_setup_load(&s, "spheres", 1, -1, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_scene_load(&s, "spheres") == 0);
     for (r = 0; r < 3; r++) {
         pn_host h;
         pn_frame fr;
         REQUIRE(pn_host_open(&h, s.mesh.triangle_count, 96, 72, r == 0 ? 1 : r == 1 ? 2 : 7, err, sizeof(err)) == 0);
         if (r == 0) pn_set_parallel_for(h.ctx, NULL, NULL); /* the library's own serial loop */
         REQUIRE(pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
-        REQUIRE(render(&h, &s, &s.camera, &s.light, 96, 72, 8, &fr) == 0);
+        REQUIRE(render(h.ctx, &s, &s.camera, &s.light, 96, 72, 8, &fr) == 0);
         vis[r] = (float *)malloc(n * sizeof(float));
         rgba[r] = (uint8_t *)malloc(n * 4u);
         REQUIRE(vis[r] && rgba[r]);
@@ -561,16 +642,14 @@ static void test_thread_determinism(void)
         free(vis[r]);
         free(rgba[r]);
     }
-    pn_setup_free(&s);
+    pn_test_scene_free(&s);
 }
 
 int main(void)
 {
-    RUN(test_square_closed_form);
-    RUN(test_culling_vs_brute_force);
-    RUN(test_watertight);
-    RUN(test_predicate_vs_double);
-    RUN(test_point_and_one_sided);
+    RUN(test_culling_vs_brute_force_spot);
+    RUN(test_watertight_spot);
     RUN(test_thread_determinism);
     return pn_test_summary();
 }
+#endif

@@ -7,11 +7,11 @@
 
 #include "penumbra/penumbra.h"
 #include "pn_raster.h" /* pn_tri_cross, pn_normal_ok: the G-buffer normal (kernels/) */
-#include "pn_setup.h"
 #include "pn_test.h"
+#include "pn_test_scene.h"
 
-static pn_host H;
-static pn_setup S;
+static pn_test_host H;
+static pn_test_scene S;
 static pn_frame_options OPT;
 
 static uint64_t checksum(const void *p, size_t n)
@@ -244,9 +244,8 @@ static void test_gears_grid_default(void)
 {
     static float a[64 * 64], b[64 * 64];
     pn_frame_options o = OPT;
-    pn_host h2;
+    pn_test_host h2;
     pn_limits lim;
-    char err[256];
     if (!(pn_build_info() & PN_BUILD_GEARS)) return;
     REQUIRE(pn_scene_set(H.ctx, S.mesh.positions, S.mesh.vertex_count, S.mesh.indices, S.mesh.triangle_count) == PN_OK);
     o.algo = PN_ALGO_GEARS;
@@ -268,7 +267,7 @@ static void test_gears_grid_default(void)
     lim.max_width = 64;
     lim.max_height = 64;
     lim.gears_grid_max = 40;
-    REQUIRE(pn_host_open_limits(&h2, &lim, 1, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_open_limits(&h2, &lim) == 0);
     REQUIRE(pn_scene_set(h2.ctx, S.mesh.positions, S.mesh.vertex_count, S.mesh.indices,
                          S.mesh.triangle_count) == PN_OK);
     o.gears.grid = 0;
@@ -278,7 +277,7 @@ static void test_gears_grid_default(void)
     CHECK(memcmp(a, b, sizeof(a)) == 0);
     o.gears.grid = 41;
     CHECK(!render_vis(h2.ctx, &o, b) && strstr(pn_last_error(h2.ctx), "gears.grid = 41") != NULL);
-    pn_host_close(&h2);
+    pn_test_close(&h2);
 }
 
 /* Issue 20: frames and normals that cannot be formed in float. A triangle whose cross
@@ -414,13 +413,12 @@ static void test_float_frames(void)
 
 static void test_no_scene(void)
 {
-    pn_host h2;
-    char err[128];
+    pn_test_host h2;
     pn_frame fr;
-    REQUIRE(pn_host_open(&h2, 16, 8, 8, 1, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_open(&h2, 16, 8, 8) == 0);
     CHECK(pn_render(h2.ctx, &S.camera, &S.light, &OPT, &fr) == PN_E_NO_SCENE);
     CHECK(strlen(pn_last_error(h2.ctx)) > 0);
-    pn_host_close(&h2);
+    pn_test_close(&h2);
 }
 
 /* pn_scene_set_receivers: its statuses, and no effect on any algorithm but MCSM. The
@@ -440,7 +438,7 @@ static const struct {
 #define RECV_PIXELS (64u * 64u)
 
 /* Every built algorithm's visibility into vis[a]; 0 if one could not render. */
-static int recv_frames(const pn_setup *s, float vis[RECV_N][RECV_PIXELS])
+static int recv_frames(const pn_test_scene *s, float vis[RECV_N][RECV_PIXELS])
 {
     size_t a;
     for (a = 0; a < RECV_N; a++) {
@@ -474,31 +472,28 @@ static int recv_range_error(uint32_t first, uint32_t count)
 static void test_receivers(void)
 {
     static float before[RECV_N][RECV_PIXELS], after[RECV_N][RECV_PIXELS];
-    pn_setup sq, bad;
-    pn_host h2;
+    pn_test_scene sq, bad;
+    pn_test_host h2;
     pn_stats s0, s1;
-    char err[256];
     uint32_t n;
     size_t a;
 
     CHECK(pn_scene_set_receivers(NULL, 0, 0) == PN_E_INVALID_ARG);
-    CHECK(pn_setup_upload(NULL, &S) == PN_E_INVALID_ARG);
-    CHECK(pn_setup_upload(H.ctx, NULL) == PN_E_INVALID_ARG);
     /* No scene yet: PN_E_NO_SCENE, with a message, whatever the range. */
-    REQUIRE(pn_host_open(&h2, 16, 8, 8, 1, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_open(&h2, 16, 8, 8) == 0);
     CHECK(pn_scene_set_receivers(h2.ctx, 0, 0) == PN_E_NO_SCENE);
     CHECK(strstr(pn_last_error(h2.ctx), "pn_scene_set_receivers") != NULL);
     CHECK(pn_scene_set_receivers(h2.ctx, 5, 0xFFFFFFFFu) == PN_E_NO_SCENE);
-    pn_host_close(&h2);
+    pn_test_close(&h2);
 
     /* A small scene (the square: occluder 0..1, ground 2..3), set without the marking. */
-    REQUIRE(pn_setup_load(&sq, "square", 1, -1, err, sizeof(err)) == 0);
+    REQUIRE(pn_test_scene_load(&sq, "square") == 0);
     n = sq.mesh.triangle_count;
     CHECK(n == 4u && sq.mesh.receiver_first == 2u && sq.mesh.receiver_count == 2u);
     REQUIRE(pn_scene_set(H.ctx, sq.mesh.positions, sq.mesh.vertex_count, sq.mesh.indices, n) == PN_OK);
     CHECK(pn_get_stats(H.ctx, &s0) == PN_OK);
     if (!recv_frames(&sq, before)) {
-        pn_setup_free(&sq);
+        pn_test_scene_free(&sq);
         return;
     }
     {
@@ -550,21 +545,22 @@ static void test_receivers(void)
                       RECV_ALGOS[a].name);
     }
 
-    /* pn_setup_upload: the scene, then its range; the range's status when only it fails
-     * (the scene is set by then), pn_scene_set's when the scene fails. */
-    CHECK(pn_setup_upload(H.ctx, &sq) == PN_OK);
+    /* The scene, then its range (pn_test_scene_upload, as the tools' pn_setup_upload, which
+     * tests/test_setup.c checks): the range's status when only it fails (the scene is set
+     * by then), pn_scene_set's when the scene fails. */
+    CHECK(pn_test_scene_upload(H.ctx, &sq) == PN_OK);
     if (recv_frames(&sq, after)) CHECK(memcmp(before[0], after[0], sizeof(before[0])) == 0);
     bad = sq;
     bad.mesh.receiver_first = 3u;
     bad.mesh.receiver_count = 2u;
-    CHECK(pn_setup_upload(H.ctx, &bad) == PN_E_INDEX_RANGE);
+    CHECK(pn_test_scene_upload(H.ctx, &bad) == PN_E_INDEX_RANGE);
     CHECK(has_message());
     CHECK(pn_get_stats(H.ctx, &s1) == PN_OK && s1.triangles == n);
     bad.mesh.indices = NULL;
-    CHECK(pn_setup_upload(H.ctx, &bad) == PN_E_INVALID_ARG);
+    CHECK(pn_test_scene_upload(H.ctx, &bad) == PN_E_INVALID_ARG);
     CHECK(strstr(pn_last_error(H.ctx), "pn_scene_set") != NULL);
     CHECK(pn_get_stats(H.ctx, &s1) == PN_OK && s1.triangles == n);
-    pn_setup_free(&sq);
+    pn_test_scene_free(&sq);
 }
 
 static void test_status_strings(void)
@@ -598,9 +594,9 @@ static void test_error_contract(void)
 {
     static const float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, nan_pos[9] = {0, 0, 0, 1, NAN, 0, 0, 1, 0};
     static const uint32_t idx[3] = {0, 1, 2}, bad_idx[3] = {0, 1, 7};
-    pn_host h;
-    char err[256], first[256];
-    REQUIRE(pn_host_open(&h, 16, 8, 8, 1, err, sizeof(err)) == 0);
+    pn_test_host h;
+    char first[256];
+    REQUIRE(pn_test_open(&h, 16, 8, 8) == 0);
     CHECK(strcmp(pn_last_error(h.ctx), "") == 0);
     CHECK(pn_scene_set(h.ctx, nan_pos, 3, idx, 1) == PN_E_NONFINITE);
     snprintf(first, sizeof(first), "%s", pn_last_error(h.ctx));
@@ -611,17 +607,12 @@ static void test_error_contract(void)
     CHECK(pn_scene_set(h.ctx, pos, 3, bad_idx, 1) == PN_E_INDEX_RANGE);
     CHECK_MSG(strcmp(pn_last_error(h.ctx), first) != 0 && strstr(pn_last_error(h.ctx), "7") != NULL,
               "the second failure's message is '%s'", pn_last_error(h.ctx));
-    pn_host_close(&h);
+    pn_test_close(&h);
 }
 
 int main(void)
 {
-    char err[256];
-    if (pn_setup_load(&S, "spheres", 1, -1, err, sizeof(err)) != 0 ||
-        pn_host_open(&H, S.mesh.triangle_count, 64, 64, 1, err, sizeof(err)) != 0) {
-        fprintf(stderr, "setup: %s\n", err);
-        return 1;
-    }
+    if (pn_test_scene_load(&S, "spheres") != 0 || pn_test_open(&H, S.mesh.triangle_count, 64, 64) != 0) return 1;
     pn_frame_options_default(&OPT);
     OPT.width = 64;
     OPT.height = 64;
@@ -638,7 +629,7 @@ int main(void)
     RUN(test_receivers);
     RUN(test_status_strings);
     RUN(test_error_contract);
-    pn_host_close(&H);
-    pn_setup_free(&S);
+    pn_test_close(&H);
+    pn_test_scene_free(&S);
     return pn_test_summary();
 }

@@ -23,10 +23,20 @@ endif()
 string(REPLACE "," ";" SOURCES "${SOURCES}")
 
 # Appends to `acc` the text of `file` with its kernel-dir includes resolved. A work list of
-# (file, position) frames replaces recursion; `seen` lists the files already inlined.
+# (file, position) frames replaces recursion; `seen` lists the files already inlined where
+# nothing could leave them out. An include inside a conditional (#if/#ifdef/#ifndef beyond
+# a header's own guard, in that file or in any file including it) may be compiled out by
+# the configuration: pn_passes.h includes pn_occtex.h, and with it pn_nbuffer.h, only when
+# PN_ENABLE_OCCTEX, and pn_mcsm.h includes pn_nbuffer.h again. So a file first inlined
+# inside a conditional is inlined again at its next include (its include guard makes the
+# copy empty when the first one was compiled), until an unconditional include marks it seen.
 function(pn_embed_resolve root acc_var)
   set(acc "")
   set(seen "${root}")
+  # cond_<depth>: open conditionals in that file's copied text beyond its guard; nested_<depth>:
+  # whether some file below it on the stack was inside a conditional at its include.
+  set(cond_0 0)
+  set(nested_0 0)
   # Stack of files being expanded and, for each, the text still to copy.
   set(stack_files "${root}")
   file(READ "${KERNEL_DIR}/${root}" text0)
@@ -72,6 +82,12 @@ function(pn_embed_resolve root acc_var)
     # newline is still ahead); the #line that resumes this file names the line after it.
     string(REGEX MATCHALL "\n" nls "${before}")
     list(LENGTH nls nl_count)
+    # Conditionals opened and closed before the include (a header's guard counts as one).
+    string(REGEX MATCHALL "\n[ \t]*#[ \t]*if" opens "\n${before}")
+    string(REGEX MATCHALL "\n[ \t]*#[ \t]*endif" closes "\n${before}")
+    list(LENGTH opens n_open)
+    list(LENGTH closes n_close)
+    math(EXPR cond_${depth} "${cond_${depth}} + ${n_open} - ${n_close}")
     math(EXPR at "${line_${depth}} + ${nl_count}")
     set(line_${depth} ${at})
     # Drop the rest of the include line (its newline stays with `after`).
@@ -80,10 +96,22 @@ function(pn_embed_resolve root acc_var)
     string(STRIP "${directive}" directive)
     if(EXISTS "${KERNEL_DIR}/${name}")
       list(FIND seen "${name}" already)
-      if(already EQUAL -1)
-        list(APPEND seen "${name}")
+      list(FIND stack_files "${name}" cycle)
+      if(already EQUAL -1 AND cycle EQUAL -1)
+        set(guard 0)
+        if(cur MATCHES "\\.h$")
+          set(guard 1)
+        endif()
+        set(inner 0)
+        if(nested_${depth} OR cond_${depth} GREATER guard)
+          set(inner 1)
+        else()
+          list(APPEND seen "${name}")
+        endif()
         list(APPEND stack_files "${name}")
         math(EXPR depth "${depth} + 1")
+        set(cond_${depth} 0)
+        set(nested_${depth} ${inner})
         file(READ "${KERNEL_DIR}/${name}" sub)
         set(text_${depth} "${sub}")
         set(line_${depth} 1)

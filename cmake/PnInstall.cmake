@@ -53,6 +53,11 @@ if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}" OR IS_ABSOLUTE "${CMAKE_INSTALL_INCLUDE
 endif()
 file(RELATIVE_PATH PN_PC_PREFIX_REL /${PN_PKGCONFIG_DIR} /)
 string(REGEX REPLACE "/$" "" PN_PC_PREFIX_REL "${PN_PC_PREFIX_REL}")
+# The algorithms left out (PN_ALGORITHMS), as the exported target carries them.
+set(PN_PC_CFLAGS_EXTRA "")
+foreach(def IN LISTS PN_ALGORITHM_DEFINES)
+  string(APPEND PN_PC_CFLAGS_EXTRA " -D${def}")
+endforeach()
 set(PN_PC_LIBS_EXTRA "")
 if(NOT CMAKE_SYSTEM_NAME STREQUAL "Generic")
   set(PN_PC_LIBS_EXTRA " -lm")

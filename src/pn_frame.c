@@ -15,7 +15,10 @@ void pn_frame_options_default(pn_frame_options *opt)
     opt->width = 512;
     opt->height = 512;
     opt->k = 16;
+    /* The reference, or in a build without it the first algorithm compiled in. */
     opt->algo = PN_ALGO_REFERENCE;
+    while ((uint32_t)opt->algo + 1u < PN_ALGO_COUNT && !(pn_build_info() & (1u << opt->algo)))
+        opt->algo = (pn_algo)(opt->algo + 1);
     opt->eps = 1e-4f;
     opt->albedo = 0.8f;
     opt->ambient = 0.1f;

@@ -19,6 +19,11 @@
 #error "PN_ENABLE_SRT must be 0 or 1"
 #endif
 
+#if !(PN_ENABLE_REFERENCE || PN_ENABLE_GEARS || PN_ENABLE_RAYTRACE || PN_ENABLE_SRT || PN_ENABLE_OCCTEX || \
+      PN_ENABLE_MCSM || PN_ENABLE_WEDGES)
+#error "PN_ALGORITHMS names no algorithm: compile in at least one (CMake -DPN_ALGORITHMS=reference;mcsm, or PN_ENABLE_<NAME> 1 in PN_CONFIG_FILE)"
+#endif
+
 #if PN_SRT_MAP_MAX < 8 || PN_SRT_MAP_MAX > 8192
 #error "PN_SRT_MAP_MAX must be in 8 .. 8192"
 #endif

@@ -382,8 +382,9 @@ typedef struct pn_frame_options {
 #define PN_MC_NO_BIAS 0x1u
 #define PN_MC_NO_CLASSIFY 0x2u
 
-/* 512x512, k = 16, reference, eps = 1e-4, albedo 0.8, ambient 0.1, dark blue background;
- * every algorithm's sub-struct zero (its defaults: GEARS' grid 128, at most the limit). */
+/* 512x512, k = 16, the reference (in a build without it, the first algorithm compiled in,
+ * in pn_algo order), eps = 1e-4, albedo 0.8, ambient 0.1, dark blue background; every
+ * algorithm's sub-struct zero (its defaults: GEARS' grid 128, at most the limit). */
 void pn_frame_options_default(pn_frame_options *opt);
 
 #define PN_NO_TRIANGLE 0xFFFFFFFFu
@@ -543,6 +544,15 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out);
 #define PN_BUILD_WEDGES 0x40u
 #define PN_BUILD_PORT_SCALAR 0x100u
 uint32_t pn_build_info(void);
+/* The algorithms of the configuration this file is compiled with (config.h, PN_ALGORITHMS):
+ * a program compiled against the library's configuration has
+ * (pn_build_info() & 0xFFu) == PN_BUILD_ALGORITHMS (the installed package and pkg-config
+ * carry it; tests/consumer checks it). */
+#define PN_BUILD_ALGORITHMS                                                                     \
+    ((PN_ENABLE_REFERENCE ? PN_BUILD_REFERENCE : 0u) | (PN_ENABLE_GEARS ? PN_BUILD_GEARS : 0u) |   \
+     (PN_ENABLE_RAYTRACE ? PN_BUILD_RAYTRACE : 0u) | (PN_ENABLE_SRT ? PN_BUILD_SRT : 0u) |         \
+     (PN_ENABLE_OCCTEX ? PN_BUILD_OCCTEX : 0u) | (PN_ENABLE_MCSM ? PN_BUILD_MCSM : 0u) |           \
+     (PN_ENABLE_WEDGES ? PN_BUILD_WEDGES : 0u))
 
 /* An algorithm's name: "reference", "gears", "raytrace", "srt", "occtex", "mcsm",
  * "wedges" (what the CLI's --algo takes and the golden frames are keyed by), whether or not

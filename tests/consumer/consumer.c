@@ -20,6 +20,12 @@ int main(void)
     opt.width = opt.height = 8;
     if (pn_init(&ctx, mem, bytes, &lim) != PN_OK || pn_scene_set(ctx, pos, 6, idx, 2) != PN_OK ||
         pn_render(ctx, &cam, &light, &opt, &out) != PN_OK) return 1;
+    /* Compiled with the library's configuration (the package's or pkg-config's flags). */
+    if ((pn_build_info() & 0xFFu) != PN_BUILD_ALGORITHMS) {
+        printf("consumer: library algorithms 0x%x, this program's configuration 0x%x\n",
+               (unsigned)(pn_build_info() & 0xFFu), (unsigned)PN_BUILD_ALGORITHMS);
+        return 1;
+    }
     printf("consumer: %ux%u frame, centre visibility %.3f, build info 0x%x\n", (unsigned)out.width,
            (unsigned)out.height, out.visibility[4 * 8 + 4], (unsigned)pn_build_info());
     free(mem);

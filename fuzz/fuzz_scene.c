@@ -187,7 +187,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 
     /* Arena: exactly the queried size, at a chosen misalignment, fenced by FILL bytes. */
     FUZZ_CHECK(pn_arena_size(&lim, &bytes) == PN_OK, "pn_arena_size failed");
-    FUZZ_CHECK(bytes <= PN_ARENA_BYTES_MAX(lim.max_triangles, lim.max_width, lim.max_height),
+    /* The bound of limits (t, w, h), plus each split reference the limits reserve. */
+    FUZZ_CHECK(bytes <= PN_ARENA_BYTES_MAX(lim.max_triangles, lim.max_width, lim.max_height) +
+                            (lim.bvh_refs > lim.max_triangles ? (size_t)(lim.bvh_refs - lim.max_triangles) : 0u) *
+                                PN_BVH_SPLIT_REF_BYTES,
                "pn_arena_size %zu above PN_ARENA_BYTES_MAX", bytes);
     mem = block + GUARD + (h[5] & 63u);
     end = mem + bytes;

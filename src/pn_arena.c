@@ -20,6 +20,10 @@ static int pn_bump(uint64_t *off, uint64_t count, uint64_t elem, size_t *out)
     return 1;
 }
 
+/* PN_ARENA_BYTES_MAX (include/penumbra/penumbra.h) counts at most 1152 bytes for the context
+ * and 576 for GEARS' grid cameras. */
+typedef char pn_context_fits_bound[sizeof(pn_context) <= 1152u ? 1 : -1];
+
 /* A row's counters fill one cache line (kernels/pn_reference.h). */
 typedef char pn_row_counters_is_64[sizeof(pn_row_counters) == 64u ? 1 : -1];
 
@@ -55,14 +59,18 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
 {
     uint64_t off = 0, frame_start;
     pn_layout lay;
+    int wedges;
     if (l->max_triangles < 1u || l->max_triangles > PN_MAX_TRIANGLES || l->max_width < 1u ||
         l->max_width > PN_MAX_WIDTH || l->max_height < 1u || l->max_height > PN_MAX_HEIGHT ||
         l->gears_pairs > (1u << 28) || l->gears_grid_max > 1024u || l->srt_map_max > PN_SRT_MAP_MAX ||
         (l->srt_map_max != 0u && l->srt_map_max < 8u) || l->occ_map_max > PN_OCCTEX_MAP_MAX ||
         (l->occ_map_max != 0u && l->occ_map_max < 8u) || l->mc_map_max > PN_MCSM_MAP_MAX ||
         (l->mc_map_max != 0u && l->mc_map_max < 8u) || l->wg_pairs > PN_WEDGES_PAIRS ||
-        (l->bvh_refs != 0u && (l->bvh_refs < l->max_triangles || l->bvh_refs > pn_bvh_refs_default(l))))
+        (l->bvh_refs != 0u && (l->bvh_refs < l->max_triangles || l->bvh_refs > pn_bvh_refs_cap(l))) ||
+        (l->algos & ~PN_ALGO_FLAGS) != 0u)
         return PN_E_LIMIT;
+    if (l->algos & ~pn_build_info()) return PN_E_UNSUPPORTED;
+    wedges = PN_ENABLE_WEDGES && (pn_limits_algos(l) & PN_BUILD_WEDGES);
     if (!pn_bump(&off, 1u, sizeof(pn_context), &lay.ctx) ||
         !pn_bump(&off, l->max_triangles, 9u * sizeof(float), &lay.tris) ||
         !pn_bump(&off, l->max_triangles, 1u, &lay.flags) ||
@@ -71,9 +79,9 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
         !pn_bump(&off, pn_bvh_refs_max(l), sizeof(uint32_t), &lay.index) ||
         !pn_bump(&off, l->max_triangles, sizeof(uint32_t), &lay.rindex) ||
         !pn_bump(&off, PN_PORT_SCRATCH_WORDS, sizeof(uint32_t), &lay.scratch) ||
-        !pn_bump(&off, PN_ENABLE_WEDGES ? 3u * (uint64_t)l->max_triangles : 0u, sizeof(uint32_t), &lay.wg_hedge) ||
-        !pn_bump(&off, PN_ENABLE_WEDGES ? 3u * (uint64_t)l->max_triangles + 1u : 0u, sizeof(uint32_t), &lay.wg_run) ||
-        !pn_bump(&off, PN_ENABLE_WEDGES ? (uint64_t)l->max_triangles : 0u, sizeof(uint32_t), &lay.wg_tcomp) ||
+        !pn_bump(&off, wedges ? 3u * (uint64_t)l->max_triangles : 0u, sizeof(uint32_t), &lay.wg_hedge) ||
+        !pn_bump(&off, wedges ? 3u * (uint64_t)l->max_triangles + 1u : 0u, sizeof(uint32_t), &lay.wg_run) ||
+        !pn_bump(&off, wedges ? (uint64_t)l->max_triangles : 0u, sizeof(uint32_t), &lay.wg_tcomp) ||
         !pn_bump(&off, 0u, 1u, &lay.frame))
         return PN_E_LIMIT;
     frame_start = off;
@@ -88,18 +96,19 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
         if (!c.ok) return PN_E_LIMIT;
         common = c.top;
 #define PN_ALGO_QUERY(ID, name)                                                                \
-        pn_carver_query(&c, common);                                                           \
-        pn_##name##_query(&c, l);                                                              \
-        if (!c.ok) return PN_E_LIMIT;                                                          \
-        if (c.top > off) off = c.top;
+        if (pn_limits_algos(l) & (1u << PN_ALGO_##ID)) {                                       \
+            pn_carver_query(&c, common);                                                       \
+            pn_##name##_query(&c, l);                                                          \
+            if (!c.ok) return PN_E_LIMIT;                                                      \
+            if (c.top > off) off = c.top;                                                      \
+        }
         PN_ALGORITHMS(PN_ALGO_QUERY)
 #undef PN_ALGO_QUERY
         /* pn_scene_set's BVH build uses the region as scratch too. */
         if (pn_bvh_scratch_bytes(l) > off - frame_start) off = frame_start + pn_bvh_scratch_bytes(l);
-#if PN_ENABLE_WEDGES
         /* ...and so does the wedges' connectivity (pn_connect_build): 6 words a triangle. */
-        if (24u * (uint64_t)l->max_triangles > off - frame_start) off = frame_start + 24u * (uint64_t)l->max_triangles;
-#endif
+        if (wedges && 24u * (uint64_t)l->max_triangles > off - frame_start)
+            off = frame_start + 24u * (uint64_t)l->max_triangles;
     }
     /* Round the end so the last pool's alignment padding is inside the region. */
     if (!pn_bump(&off, 0u, 1u, &lay.end)) return PN_E_LIMIT;
@@ -156,19 +165,21 @@ void pn_limits_max(pn_limits *limits)
     limits->mc_map_max = 0;
     limits->wg_pairs = 0;
     limits->bvh_refs = 0;
+    limits->algos = 0;
 }
 
 uint32_t pn_gears_pairs_max(const pn_limits *l) { return l->gears_pairs ? l->gears_pairs : PN_GEARS_PAIRS; }
 uint32_t pn_srt_map_max(const pn_limits *l) { return l->srt_map_max ? l->srt_map_max : PN_SRT_MAP_MAX; }
 uint32_t pn_occ_map_max(const pn_limits *l) { return l->occ_map_max ? l->occ_map_max : PN_OCCTEX_MAP_MAX; }
 uint32_t pn_mc_map_max(const pn_limits *l) { return l->mc_map_max ? l->mc_map_max : PN_MCSM_MAP_MAX; }
-uint32_t pn_bvh_refs_default(const pn_limits *l)
+uint32_t pn_limits_algos(const pn_limits *l) { return l->algos ? l->algos : pn_build_info() & PN_ALGO_FLAGS; }
+uint32_t pn_bvh_refs_cap(const pn_limits *l)
 {
     uint64_t n = l->max_triangles, extra = PN_BVH_SPLIT_EXTRA(l->max_triangles);
     if (n + extra > (1u << 26)) extra = n < (1u << 26) ? (1u << 26) - n : 0u;
     return (uint32_t)(n + extra);
 }
-uint32_t pn_bvh_refs_max(const pn_limits *l) { return l->bvh_refs ? l->bvh_refs : pn_bvh_refs_default(l); }
+uint32_t pn_bvh_refs_max(const pn_limits *l) { return l->bvh_refs ? l->bvh_refs : l->max_triangles; }
 uint64_t pn_bvh_scratch_bytes(const pn_limits *l)
 {
     return (uint64_t)pn_bvh_refs_max(l) * PN_BVH_REF_BYTES + ((uint64_t)l->max_triangles / 32u + 1u) * 4u;
@@ -242,11 +253,11 @@ pn_status pn_init(pn_context **out_ctx, void *memory, size_t bytes, const pn_lim
     ctx->tri_index = (uint32_t *)(void *)(base + lay.index);
     ctx->raster_index = (uint32_t *)(void *)(base + lay.rindex);
     ctx->scratch = (uint32_t *)(void *)(base + lay.scratch);
-#if PN_ENABLE_WEDGES
-    ctx->wg_hedge = (uint32_t *)(void *)(base + lay.wg_hedge);
-    ctx->wg_run = (uint32_t *)(void *)(base + lay.wg_run);
-    ctx->wg_tcomp = (uint32_t *)(void *)(base + lay.wg_tcomp);
-#endif
+    if (PN_ENABLE_WEDGES && (pn_limits_algos(limits) & PN_BUILD_WEDGES)) {
+        ctx->wg_hedge = (uint32_t *)(void *)(base + lay.wg_hedge);
+        ctx->wg_run = (uint32_t *)(void *)(base + lay.wg_run);
+        ctx->wg_tcomp = (uint32_t *)(void *)(base + lay.wg_tcomp);
+    }
     ctx->frame = base + lay.frame;
     *out_ctx = ctx;
     return PN_OK;

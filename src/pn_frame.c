@@ -189,6 +189,10 @@ static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
 /* The chosen algorithm's own options and parameters (its module's prepare). */
 static pn_status pn_prepare_algo(pn_frame_state *fs, const pn_frame_options *o)
 {
+    if ((uint32_t)o->algo < PN_ALGO_COUNT && (pn_build_info() & (1u << o->algo)) &&
+        !(pn_limits_algos(&fs->ctx->limits) & (1u << o->algo)))
+        return pn_fail(fs->ctx, PN_E_LIMIT, "algorithm %s is not among the context's pn_limits.algos (flags %u)",
+                       pn_algo_name(o->algo), pn_limits_algos(&fs->ctx->limits));
     switch (o->algo) {
 #define PN_ALGO_PREPARE(ID, name)                                                              \
     case PN_ALGO_##ID:                                                                         \
@@ -215,9 +219,10 @@ static pn_status pn_scene_to_device(pn_frame_state *fs)
         (st = pn_dev_to_device(fs, ctx->raster_index, (size_t)ctx->bvh_tris * sizeof(uint32_t))) != PN_OK)
         return st;
 #if PN_ENABLE_WEDGES
-    if ((st = pn_dev_to_device(fs, ctx->wg_hedge, (size_t)ctx->wg.hedges * sizeof(uint32_t))) != PN_OK ||
-        (st = pn_dev_to_device(fs, ctx->wg_run, ((size_t)ctx->wg.stats.edges + 1u) * sizeof(uint32_t))) != PN_OK ||
-        (st = pn_dev_to_device(fs, ctx->wg_tcomp, (size_t)ctx->tri_count * sizeof(uint32_t))) != PN_OK)
+    if (ctx->wg_hedge &&
+        ((st = pn_dev_to_device(fs, ctx->wg_hedge, (size_t)ctx->wg.hedges * sizeof(uint32_t))) != PN_OK ||
+         (st = pn_dev_to_device(fs, ctx->wg_run, ((size_t)ctx->wg.stats.edges + 1u) * sizeof(uint32_t))) != PN_OK ||
+         (st = pn_dev_to_device(fs, ctx->wg_tcomp, (size_t)ctx->tri_count * sizeof(uint32_t))) != PN_OK))
         return st;
 #endif
     sc->version = ctx->scene_version;
@@ -301,9 +306,11 @@ static void pn_frame_pool_offsets(pn_frame_state *fs)
     P->index = pn_dev_off(ctx, ctx->tri_index);
     P->rindex = pn_dev_off(ctx, ctx->raster_index);
 #if PN_ENABLE_WEDGES
-    P->wg_hedge = pn_dev_off(ctx, ctx->wg_hedge);
-    P->wg_run = pn_dev_off(ctx, ctx->wg_run);
-    P->wg_tcomp = pn_dev_off(ctx, ctx->wg_tcomp);
+    if (ctx->wg_hedge) {
+        P->wg_hedge = pn_dev_off(ctx, ctx->wg_hedge);
+        P->wg_run = pn_dev_off(ctx, ctx->wg_run);
+        P->wg_tcomp = pn_dev_off(ctx, ctx->wg_tcomp);
+    }
 #endif
     P->depth = pn_dev_off(ctx, fs->depth);
     P->tri_id = pn_dev_off(ctx, fs->tri_id);

@@ -179,7 +179,7 @@ static void pn_gears_carve(pn_carver *c, const pn_limits *l, uint32_t w, uint32_
 
 /* PN_GEARS_BYTES_MAX (include/penumbra/penumbra.h) counts a 24-byte chunk box per 8 pairs
  * and a superchunk box per 64. */
-typedef char pn_gears_chunk_is_8[(PN_GEARS_CHUNK == 8u && PN_GEARS_SUPER == 8u) ? 1 : -1];
+typedef char pn_gears_chunk_is_8[(PN_GEARS_CHUNK == 8u && PN_GEARS_SUPER == 8u && sizeof(pn_kfaces) <= 576u) ? 1 : -1];
 
 void pn_gears_query(pn_carver *c, const pn_limits *l)
 {

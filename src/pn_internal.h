@@ -122,11 +122,15 @@ uint32_t pn_gears_grid_max(const pn_limits *l);
 uint32_t pn_srt_map_max(const pn_limits *l);
 uint32_t pn_occ_map_max(const pn_limits *l);
 uint32_t pn_mc_map_max(const pn_limits *l);
-/* BVH references a context reserves: limits.bvh_refs, or the default, max_triangles plus
- * the split ones (config.h PN_BVH_SPLIT_REFS, at most 2^PN_BVH_SPLIT_DEPTH - 1 a
- * triangle), at most 2^26; limits.bvh_refs may not exceed the default. */
-uint32_t pn_bvh_refs_default(const pn_limits *l);
+/* BVH references a context reserves: limits.bvh_refs, or max_triangles (no splitting);
+ * at most the cap, max_triangles plus the split ones (config.h PN_BVH_SPLIT_REFS, at most
+ * 2^PN_BVH_SPLIT_DEPTH - 1 a triangle), at most 2^26. */
+uint32_t pn_bvh_refs_cap(const pn_limits *l);
 uint32_t pn_bvh_refs_max(const pn_limits *l);
+/* Every algorithm's PN_BUILD_ flag, and those a context runs (limits.algos, 0: every one
+ * compiled in). */
+#define PN_ALGO_FLAGS ((1u << PN_ALGO_COUNT) - 1u)
+uint32_t pn_limits_algos(const pn_limits *l);
 /* Penumbra wedges: the silhouette and (tile, wedge) pair pools of a context, and the
  * screen tiles of a frame. */
 uint32_t pn_wg_sil_max(const pn_limits *l);

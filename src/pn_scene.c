@@ -118,7 +118,7 @@ pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_
     ctx->pass_ns[PN_PASS_BVH_BUILD] = pn_now(ctx) - t0;
     if (st != PN_OK) return st;
 #if PN_ENABLE_WEDGES
-    pn_connect_build(ctx);
+    if (ctx->wg_hedge) pn_connect_build(ctx); /* a context that runs the wedges */
 #endif
     ctx->has_scene = 1;
     return PN_OK;

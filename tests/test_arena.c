@@ -19,11 +19,27 @@ static int all_bytes(const uint8_t *p, size_t n, uint8_t v)
     return 1;
 }
 
+/* Limits (t, w, h), every other field 0. */
+static pn_limits lim3(uint32_t t, uint32_t w, uint32_t h)
+{
+    pn_limits l;
+    memset(&l, 0, sizeof(l));
+    l.max_triangles = t;
+    l.max_width = w;
+    l.max_height = h;
+    return l;
+}
+
 static void test_size_equals_carve(void)
 {
-    pn_limits lims[4] = {{1, 1, 1, 0, 0, 0, 0, 0, 0, 0}, {100, 64, 48, 1000, 16, 0, 0, 0, 0, 0}, {1u << 20, 512, 512, 0, 0, 0, 0, 0, 0, 0},
-                         {PN_MAX_TRIANGLES, PN_MAX_WIDTH, PN_MAX_HEIGHT, 0, 0, 0, 0, 0, 0, 0}};
+    pn_limits lims[4];
     int i;
+    lims[0] = lim3(1, 1, 1);
+    lims[1] = lim3(100, 64, 48);
+    lims[1].gears_pairs = 1000;
+    lims[1].gears_grid_max = 16;
+    lims[2] = lim3(1u << 20, 512, 512);
+    lims[3] = lim3(PN_MAX_TRIANGLES, PN_MAX_WIDTH, PN_MAX_HEIGHT);
     for (i = 0; i < 4; i++) {
         size_t bytes = 0;
         REQUIRE(pn_arena_size(&lims[i], &bytes) == PN_OK);
@@ -43,32 +59,109 @@ static void test_size_equals_carve(void)
             free(mem);
         }
     }
-    {
-        size_t bytes = 0;
-        pn_limits l = {1u << 20, 512, 512, 0, 0, 0, 0, 0, 0, 0};
-        CHECK(pn_arena_size(&l, &bytes) == PN_OK);
-        fprintf(stderr, "arena for 512x512, 2^20 triangles: %zu bytes\n", bytes);
+}
+
+/* PN_ARENA_BYTES_MAX takes the largest frame set where the carve does: over a grid of
+ * limits it is at least pn_arena_size and at most 1.25 times it (issue 47). Every
+ * single-algorithm build runs this too (ctest single_algorithm_<name>). */
+static void test_bytes_max_tight(void)
+{
+    static const uint32_t tris[6] = {1, 100, 1000, 10000, 100000, 1000000};
+    static const uint32_t dims[5][2] = {{1, 1}, {160, 120}, {320, 240}, {512, 512}, {1920, 1080}};
+    double worst = 0.0;
+    int i, j;
+    for (i = 0; i < 6; i++)
+        for (j = 0; j < 5; j++) {
+            pn_limits l = lim3(tris[i], dims[j][0], dims[j][1]);
+            size_t bytes = 0, bound = PN_ARENA_BYTES_MAX(tris[i], dims[j][0], dims[j][1]);
+            double r;
+            REQUIRE(pn_arena_size(&l, &bytes) == PN_OK);
+            r = (double)bound / (double)bytes;
+            if (r > worst) worst = r;
+            CHECK_MSG(bytes <= bound && r <= 1.25, "%u triangles %ux%u: pn_arena_size %zu, PN_ARENA_BYTES_MAX %zu (%.3f)",
+                      tris[i], dims[j][0], dims[j][1], bytes, bound, r);
+        }
+    fprintf(stderr, "PN_ARENA_BYTES_MAX / pn_arena_size: at most %.3f over 30 limits (build 0x%x)\n", worst,
+            (unsigned)pn_build_info());
+}
+
+/* limits.algos: the frame region for those algorithms alone; a frame of another fails
+ * PN_E_LIMIT naming the field; a flag outside the registry PN_E_LIMIT, one not compiled in
+ * PN_E_UNSUPPORTED; 0 is every algorithm compiled in. */
+static void test_algos(void)
+{
+    pn_limits l = lim3(64, 32, 32), all;
+    size_t every = 0, bytes = 0, most = 0;
+    uint32_t a, built = pn_build_info() & ((1u << PN_ALGO_COUNT) - 1u);
+    REQUIRE(pn_arena_size(&l, &every) == PN_OK);
+    all = l;
+    all.algos = built;
+    CHECK(pn_arena_size(&all, &bytes) == PN_OK && bytes == every);
+    l.algos = 1u << PN_ALGO_COUNT;
+    CHECK(pn_arena_size(&l, &bytes) == PN_E_LIMIT);
+    for (a = 0; a < PN_ALGO_COUNT; a++) {
+        l.algos = 1u << a;
+        if (!(built & l.algos)) {
+            CHECK(pn_arena_size(&l, &bytes) == PN_E_UNSUPPORTED);
+            continue;
+        }
+        REQUIRE(pn_arena_size(&l, &bytes) == PN_OK);
+        CHECK_MSG(bytes <= every, "%s alone: %zu > %zu", pn_algo_name((pn_algo)a), bytes, every);
+        if (bytes > most) most = bytes;
+        {
+            /* It renders its own frames and refuses the others'. */
+            static const float pos[12] = {-1, 1, -1, 1, 1, -1, 0, 1, 1, -4, 0, -4};
+            static const uint32_t idx[6] = {0, 2, 1, 0, 1, 3};
+            pn_camera cam = {{0, 1, 3}, {0, 0, 0}, {0, 1, 0}, 45.0f};
+            pn_light light = {{0, 3, 0}, {0.5f, 0, 0}, {0, 0, 0.5f}};
+            pn_frame_options o;
+            pn_frame fr;
+            pn_context *ctx;
+            uint32_t b;
+            uint8_t *mem = (uint8_t *)malloc(bytes);
+            REQUIRE(mem != NULL);
+            REQUIRE(pn_init(&ctx, mem, bytes, &l) == PN_OK);
+            REQUIRE(pn_scene_set(ctx, pos, 4, idx, 2) == PN_OK);
+            pn_frame_options_default(&o);
+            o.width = o.height = 32;
+            o.k = 8;
+            for (b = 0; b < PN_ALGO_COUNT; b++) {
+                pn_status st;
+                if (!(built & (1u << b))) continue;
+                o.algo = (pn_algo)b;
+                st = pn_render(ctx, &cam, &light, &o, &fr);
+                if (b == a)
+                    CHECK_MSG(st == PN_OK, "%s alone: %s", pn_algo_name((pn_algo)a), pn_last_error(ctx));
+                else
+                    CHECK_MSG(st == PN_E_LIMIT && strstr(pn_last_error(ctx), "pn_limits.algos"),
+                              "%s in a context for %s: status %d", pn_algo_name((pn_algo)b), pn_algo_name((pn_algo)a),
+                              (int)st);
+            }
+            free(mem);
+        }
     }
+    /* The default context holds the largest single set (and the wedges' connectivity). */
+    CHECK(most <= every);
 }
 
 static void test_bad_limits(void)
 {
     size_t bytes = 12345;
-    pn_limits l0 = {0, 10, 10, 0, 0, 0, 0, 0, 0, 0}, l1 = {10, 0, 10, 0, 0, 0, 0, 0, 0, 0}, l2 = {10, 10, PN_MAX_HEIGHT + 1u, 0, 0, 0, 0, 0, 0, 0},
-              l3 = {PN_MAX_TRIANGLES + 1u, 1, 1, 0, 0, 0, 0, 0, 0, 0}, l4 = {10, 10, 10, (1u << 28) + 1u, 0, 0, 0, 0, 0, 0},
-              l5 = {10, 10, 10, 0, 1025, 0, 0, 0, 0, 0}, l6 = {10, 10, 10, 0, 0, 0, 0, PN_MCSM_MAP_MAX + 1u, 0, 0},
-              l7 = {10, 10, 10, 0, 0, 0, 0, 7, 0, 0}, l8 = {10, 10, 10, 0, 0, 0, 0, 0, PN_WEDGES_PAIRS + 1u, 0};
+    pn_limits l[9];
+    int i;
+    for (i = 0; i < 9; i++) l[i] = lim3(10, 10, 10);
+    l[0].max_triangles = 0;
+    l[1].max_width = 0;
+    l[2].max_height = PN_MAX_HEIGHT + 1u;
+    l[3] = lim3(PN_MAX_TRIANGLES + 1u, 1, 1);
+    l[4].gears_pairs = (1u << 28) + 1u;
+    l[5].gears_grid_max = 1025;
+    l[6].mc_map_max = PN_MCSM_MAP_MAX + 1u;
+    l[7].mc_map_max = 7;
+    l[8].wg_pairs = PN_WEDGES_PAIRS + 1u;
     CHECK(pn_arena_size(NULL, &bytes) == PN_E_INVALID_ARG);
-    CHECK(pn_arena_size(&l0, NULL) == PN_E_INVALID_ARG);
-    CHECK(pn_arena_size(&l0, &bytes) == PN_E_LIMIT);
-    CHECK(pn_arena_size(&l1, &bytes) == PN_E_LIMIT);
-    CHECK(pn_arena_size(&l2, &bytes) == PN_E_LIMIT);
-    CHECK(pn_arena_size(&l3, &bytes) == PN_E_LIMIT);
-    CHECK(pn_arena_size(&l4, &bytes) == PN_E_LIMIT);
-    CHECK(pn_arena_size(&l5, &bytes) == PN_E_LIMIT);
-    CHECK(pn_arena_size(&l6, &bytes) == PN_E_LIMIT);
-    CHECK(pn_arena_size(&l7, &bytes) == PN_E_LIMIT);
-    CHECK(pn_arena_size(&l8, &bytes) == PN_E_LIMIT);
+    CHECK(pn_arena_size(&l[0], NULL) == PN_E_INVALID_ARG);
+    for (i = 0; i < 9; i++) CHECK_MSG(pn_arena_size(&l[i], &bytes) == PN_E_LIMIT, "limits %d", i);
     CHECK(bytes == 12345); /* out-parameter untouched on failure */
 }
 
@@ -140,7 +233,7 @@ static void test_too_small_and_guard(void)
 static uint8_t static_arena[PN_ARENA_BYTES_MAX(64, 16, 16)];
 static void test_static_arena(void)
 {
-    pn_limits lim = {64, 16, 16, 0, 0, 0, 0, 0, 0, 0};
+    pn_limits lim = lim3(64, 16, 16);
     pn_context *ctx;
     size_t bytes;
     CHECK(pn_arena_size(&lim, &bytes) == PN_OK);
@@ -151,7 +244,7 @@ static void test_static_arena(void)
 /* Two contexts in one process are independent (no hidden global state). */
 static void test_two_contexts(void)
 {
-    pn_limits lim = {16, 8, 8, 0, 0, 0, 0, 0, 0, 0};
+    pn_limits lim = lim3(16, 8, 8);
     size_t bytes;
     uint8_t *a, *b;
     pn_context *ca, *cb;
@@ -173,6 +266,8 @@ static void test_two_contexts(void)
 int main(void)
 {
     RUN(test_size_equals_carve);
+    RUN(test_bytes_max_tight);
+    RUN(test_algos);
     RUN(test_bad_limits);
     RUN(test_too_small_and_guard);
     RUN(test_static_arena);

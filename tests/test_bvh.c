@@ -391,7 +391,9 @@ static pn_context *open_ctx(pn_test_host *h, uint32_t tris, uint32_t refs)
     lim.max_triangles = tris;
     lim.max_width = FRAME_W;
     lim.max_height = FRAME_H;
-    lim.bvh_refs = refs;
+    /* 0: the largest reserve, tris + PN_BVH_SPLIT_EXTRA (the library's own default is no
+     * split reference at all: test_limits). */
+    lim.bvh_refs = refs ? refs : tris + (uint32_t)PN_BVH_SPLIT_EXTRA(tris);
     if (pn_test_open_limits(h, &lim) != 0) {
         CHECK_MSG(0, "context for %u triangles, %u references", tris, refs);
         return NULL;
@@ -636,14 +638,22 @@ static void test_limits(void)
     CHECK(pn_arena_size(&lim, &bytes) == PN_E_LIMIT);
     lim.bvh_refs = (1u << 26) + 1u;
     CHECK(pn_arena_size(&lim, &bytes) == PN_E_LIMIT);
-    /* at most the default reserve (100 + min(PN_BVH_SPLIT_REFS, 15 x 100) by default), so
-     * that PN_ARENA_BYTES_MAX bounds every context */
+    /* at most 100 + min(PN_BVH_SPLIT_REFS, 15 x 100); PN_ARENA_BYTES_MAX plus
+     * PN_BVH_SPLIT_REF_BYTES a split reference bounds every context */
     lim.bvh_refs = 101u + (uint32_t)PN_BVH_SPLIT_EXTRA(100u);
     CHECK(pn_arena_size(&lim, &bytes) == PN_E_LIMIT);
     lim.bvh_refs -= 1u;
-    CHECK(pn_arena_size(&lim, &bytes) == PN_OK && bytes <= PN_ARENA_BYTES_MAX(100, 8, 8));
+    CHECK(pn_arena_size(&lim, &bytes) == PN_OK &&
+          bytes <= PN_ARENA_BYTES_MAX(100, 8, 8) + PN_BVH_SPLIT_EXTRA(100u) * PN_BVH_SPLIT_REF_BYTES);
     lim.bvh_refs = 100;
     CHECK(pn_arena_size(&lim, &bytes_none) == PN_OK);
+    {
+        /* The default (0) reserves no split reference: the same arena as 100. */
+        size_t bytes_default;
+        lim.bvh_refs = 0;
+        CHECK(pn_arena_size(&lim, &bytes_default) == PN_OK && bytes_default == bytes_none);
+        lim.bvh_refs = 100;
+    }
     lim.bvh_refs = PN_BVH_SPLIT_REFS >= 1000u && PN_BVH_SPLIT_DEPTH >= 4u ? 1100u : 100u;
     CHECK(pn_arena_size(&lim, &bytes_split) == PN_OK);
     /* 1000 references more: two nodes and an index entry each (less what the pools'

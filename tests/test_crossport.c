@@ -558,7 +558,7 @@ static void test_api(void)
     /* Validation and statuses as pn_render's: no scene yet on a fresh context. */
     {
         pn_xrig fresh;
-        pn_limits lim = {64, 16, 16, 0, 0, 0, 0, 0, 0, 0};
+        pn_limits lim = {64, 16, 16, 0, 0, 0, 0, 0, 0, 0, 0};
         pn_camera cam = {{0, 1, 3}, {0, 0, 0}, {0, 1, 0}, 45.0f};
         pn_light light = {{0, 3, 0}, {0.5f, 0, 0}, {0, 0, 0.5f}};
         static const float quad[12] = {-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};

@@ -174,6 +174,12 @@ int pn_host_open(pn_host *h, uint32_t max_triangles, uint32_t max_w, uint32_t ma
     lim.max_triangles = max_triangles;
     lim.max_width = max_w;
     lim.max_height = max_h;
+    {
+        /* A host has the memory: reserve the split references (the library reserves them
+         * only on request), with which the exact algorithms trace slivers faster. */
+        uint64_t refs = (uint64_t)max_triangles + PN_BVH_SPLIT_EXTRA(max_triangles), most = 1u << 26;
+        lim.bvh_refs = (uint32_t)(refs <= most ? refs : max_triangles > most ? max_triangles : most);
+    }
     return pn_host_open_limits(h, &lim, threads, err, err_size);
 }
 

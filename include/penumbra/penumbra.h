@@ -37,7 +37,7 @@
  *   one call at a time per context.
  *
  * USAGE
- *   pn_limits lim = { 100000, 512, 512, 0, 0, 0, 0, 0, 0, 0 };  // max triangles, width, height; 0: default
+ *   pn_limits lim = { 100000, 512, 512, 0, 0, 0, 0, 0, 0, 0, 0 };  // max triangles, width, height; 0: default
  *   size_t bytes; pn_arena_size(&lim, &bytes);
  *   void *mem = my_alloc(bytes);             // or static uint8_t mem[PN_ARENA_BYTES_MAX(...)]
  *   pn_context *ctx; pn_init(&ctx, mem, bytes, &lim);
@@ -125,11 +125,16 @@ typedef struct pn_limits {
                                 PN_WEDGES_PAIRS; 0: PN_WEDGES_PAIRS. A frame needing more
                                 fails PN_E_POOL_EXHAUSTED with the count it needed */
     uint32_t bvh_refs;       /* BVH references (196 bytes of arena each); beyond one a
-                                triangle, split slivers (config.h PN_BVH_SPLIT_DEPTH;
-                                frames are the same bits with or without). 0: the default,
-                                max_triangles plus PN_BVH_SPLIT_REFS, at most (2^depth - 1)
-                                a triangle and 2^26 in all; else max_triangles (no
-                                splitting) .. the default */
+                                triangle, split slivers (config.h PN_BVH_SPLIT_DEPTH; frames
+                                are the same bits with or without; a scene of long thin
+                                triangles traces faster with them). 0: max_triangles, no
+                                splitting; at most max_triangles + PN_BVH_SPLIT_EXTRA
+                                (PN_BVH_SPLIT_REFS, at most 2^depth - 1 a triangle, 2^26
+                                in all) */
+    uint32_t algos;          /* the algorithms the context will run, PN_BUILD_<ALGO> flags:
+                                the frame region is sized for these alone, and a frame of
+                                another fails PN_E_LIMIT. 0: every algorithm compiled in.
+                                A flag of one not compiled in: PN_E_UNSUPPORTED */
 } pn_limits;
 
 /* Limits equal to the compile-time maxima. */
@@ -137,80 +142,131 @@ void pn_limits_max(pn_limits *limits);
 
 /* Bytes of arena that pn_init needs for `limits` (the same carve routine pn_init runs,
  * against a NULL base; plus PN_ARENA_ALIGN - 1 bytes so that any base address works).
- * Returns PN_OK, PN_E_INVALID_ARG (NULL) or PN_E_LIMIT (a limit out of range, or the
- * total does not fit size_t). *out_bytes is written only on PN_OK. */
+ * Returns PN_OK, PN_E_INVALID_ARG (NULL), PN_E_LIMIT (a limit out of range, or the total
+ * does not fit size_t) or PN_E_UNSUPPORTED (limits.algos names an algorithm not compiled
+ * in). *out_bytes is written only on PN_OK. */
 pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
 
-/* Upper bound of pn_arena_size() for limits (t, w, h) as a constant expression, for
- * static declaration: static uint8_t arena[PN_ARENA_BYTES_MAX(PN_MAX_TRIANGLES,
- * PN_MAX_WIDTH, PN_MAX_HEIGHT)]. A test checks it never falls below pn_arena_size. */
-#define PN_ARENA_BYTES_MAX(t, w, h)                                                         \
-    ((size_t)(17u * 1024u) + (size_t)(t) * 112u + (size_t)(w) * (size_t)(h) * 40u +          \
-     (size_t)(h) * 64u + 32u * (size_t)PN_ARENA_ALIGN + PN_GEARS_BYTES_MAX(t, w, h) +      \
-     PN_SRT_BYTES_MAX(t, w, h) + PN_OCCTEX_BYTES_MAX(t, w, h) + PN_MCSM_BYTES_MAX(t, w, h) +     \
-     PN_WEDGES_BYTES_MAX(t, w, h) + PN_BVH_BYTES_MAX(t))
-/* The split BVH references a context of t triangles reserves by default (limits.bvh_refs
- * 0; a context may reserve fewer): PN_BVH_SPLIT_REFS, at most 2^PN_BVH_SPLIT_DEPTH - 1 a
- * triangle (and t plus them at most 2^26, which only lowers it). */
-#define PN_BVH_SPLIT_EXTRA(t)                                                               \
-    ((size_t)((unsigned long long)PN_BVH_SPLIT_REFS <                                        \
-                      ((1ull << PN_BVH_SPLIT_DEPTH) - 1ull) * (unsigned long long)(t)        \
-                  ? (unsigned long long)PN_BVH_SPLIT_REFS                                    \
+/* Upper bound of pn_arena_size() for limits (t, w, h) with every other field 0 (the
+ * defaults: every algorithm compiled in, no split BVH references) as a constant expression,
+ * for static declaration: static uint8_t arena[PN_ARENA_BYTES_MAX(1000, 160, 120)]. It is
+ * the carve written as arithmetic, pool by pool (each rounded up to PN_ARENA_ALIGN): the
+ * persistent pools, then a frame region holding the largest of the frame's own pools plus
+ * one algorithm's set and the scene-time scratch (BVH build, wedge connectivity).
+ * test_arena checks pn_arena_size <= it <= 1.25 pn_arena_size over a grid of limits, in
+ * every single-algorithm build. Split references (limits.bvh_refs above t) cost
+ * PN_BVH_SPLIT_REF_BYTES more each. */
+#define PN_ARENA_BYTES_MAX(t, w, h)                                                          \
+    (PN_PERSIST_BYTES_MAX(t) +                                                                \
+     PN_MAX_(PN_FRAME_BYTES_MAX(t, w, h) +                                                    \
+                 PN_MAX_(PN_MAX_(PN_GEARS_BYTES_MAX(t, w, h), PN_SRT_BYTES_MAX(t, w, h)),     \
+                         PN_MAX_(PN_MAX_(PN_OCCTEX_BYTES_MAX(t, w, h), PN_MCSM_BYTES_MAX(t, w, h)), \
+                                 PN_WEDGES_BYTES_MAX(t, w, h))),                              \
+             PN_MAX_(PN_POOL_((size_t)(t) * 40u + ((size_t)(t) / 32u + 1u) * 4u),               \
+                     PN_ENABLE_WEDGES ? PN_POOL_((size_t)(t) * 24u) : 0u)) +                     \
+     (size_t)PN_ARENA_ALIGN - 1u)
+/* The split BVH references a context of t triangles may reserve (limits.bvh_refs up to t
+ * plus these): PN_BVH_SPLIT_REFS, at most 2^PN_BVH_SPLIT_DEPTH - 1 a triangle (and t plus
+ * them at most 2^26, which only lowers it). Each costs PN_BVH_SPLIT_REF_BYTES beyond
+ * PN_ARENA_BYTES_MAX: two binary nodes, a four-wide node and an index entry (196), and its
+ * build scratch (40). */
+#define PN_BVH_SPLIT_EXTRA(t)                                                                \
+    ((size_t)((unsigned long long)PN_BVH_SPLIT_REFS <                                         \
+                      ((1ull << PN_BVH_SPLIT_DEPTH) - 1ull) * (unsigned long long)(t)         \
+                  ? (unsigned long long)PN_BVH_SPLIT_REFS                                     \
                   : ((1ull << PN_BVH_SPLIT_DEPTH) - 1ull) * (unsigned long long)(t)))
-/* BVH references beyond the triangle copy: per reference a four-wide node (128), per
- * triangle the raster order (4) and the build's scratch in the frame region (40 a
- * reference, a bit a triangle); per split reference two nodes, a four-wide node and an index entry (196) and
- * its scratch (40). */
-#define PN_BVH_BYTES_MAX(t) ((size_t)(t) * 173u + 72u + PN_BVH_SPLIT_EXTRA(t) * 236u)
+#define PN_BVH_SPLIT_REF_BYTES 236u
+/* Helpers of the bounds: largest, smallest, a pool of n bytes as carved. */
+#define PN_MAX_(a, b) ((a) > (b) ? (a) : (b))
+#define PN_MIN_(a, b) ((a) < (b) ? (a) : (b))
+#define PN_POOL_(n) (((size_t)(n) + PN_ARENA_ALIGN - 1u) / PN_ARENA_ALIGN * PN_ARENA_ALIGN)
+/* Persistent pools, no split references: the context (at most 1152 bytes, checked in
+ * src/pn_arena.c), per triangle its copy (36), flags (1), two binary BVH nodes (64), a
+ * four-wide node (128), its leaf-order and raster-order entries (4 + 4), port scratch
+ * (1 KB); with the wedges their connectivity (12 + 12 + 4). */
+#define PN_PERSIST_BYTES_MAX(t)                                                               \
+    (PN_POOL_(1152u) + PN_POOL_((size_t)(t) * 36u) + PN_POOL_(t) + PN_POOL_((size_t)(t) * 64u) +  \
+     PN_POOL_((size_t)(t) * 128u) + 2u * PN_POOL_((size_t)(t) * 4u) + PN_POOL_(1024u) +           \
+     (PN_ENABLE_WEDGES ? PN_POOL_((size_t)(t) * 12u) + PN_POOL_((size_t)(t) * 12u + 4u) +          \
+                             PN_POOL_((size_t)(t) * 4u)                                          \
+                       : 0u))
+/* The frame's own pools: per pixel depth, triangle (4 + 4), position, normal (12 + 12),
+ * visibility, RGBA (4 + 4); per triangle its raster rows (4), a chunk per 32 (4); per row
+ * the shadow counters (64). */
+#define PN_PX_(w, h) ((size_t)(w) * (size_t)(h))
+#define PN_FRAME_BYTES_MAX(t, w, h)                                                           \
+    (4u * PN_POOL_(PN_PX_(w, h) * 4u) + 2u * PN_POOL_(PN_PX_(w, h) * 12u) +                    \
+     PN_POOL_((size_t)(t) * 4u) + PN_POOL_(((size_t)(t) + 31u) / 32u * 4u) + PN_POOL_((size_t)(h) * 64u))
+/* floor(log2 r) + 1: the levels of an r^2 N-buffer or mipmap (8 <= r <= 8192). */
+#define PN_LEVELS_(r)                                                                         \
+    ((r) >= 8192u ? 14u : (r) >= 4096u ? 13u : (r) >= 2048u ? 12u : (r) >= 1024u ? 11u :           \
+     (r) >= 512u ? 10u : (r) >= 256u ? 9u : (r) >= 128u ? 8u : (r) >= 64u ? 7u : (r) >= 32u ? 6u :  \
+     (r) >= 16u ? 5u : 4u)
 #if PN_ENABLE_WEDGES
-/* Penumbra-wedge pools: persistent per triangle 28 (+ 3 x 64 alignment); the frame per
- * triangle 4 + 12 + 4 (casting, slots) or 24 (welding at pn_scene_set), counted both; per
- * silhouette 84, per pair 12, per tile 8 (tiles <= pixels); the rest 64. */
-#define PN_WEDGES_BYTES_MAX(t, w, h)                                                        \
-    ((size_t)(t) * 68u + 256u + (size_t)PN_WEDGES_SIL_MAX * 84u + (size_t)PN_WEDGES_PAIRS * 12u + \
-     (size_t)(w) * (size_t)(h) * 8u + 64u)
+/* Penumbra-wedge frame pools: per triangle its casting (4) and silhouette slots (12); per
+ * silhouette (at most 3 a triangle and PN_WEDGES_SIL_MAX) 80 + 4; per (16 x 16 tile,
+ * silhouette) pair, at most PN_WEDGES_PAIRS, 8 + 4; per tile 4 + 4. */
+#define PN_WG_SIL_(t) PN_MIN_((size_t)(t) * 3u, (size_t)PN_WEDGES_SIL_MAX)
+#define PN_WG_TILES_(w, h) ((((size_t)(w) + 15u) / 16u) * (((size_t)(h) + 15u) / 16u))
+#define PN_WG_PAIRS_(t, w, h) PN_MIN_(PN_WG_TILES_(w, h) * PN_WG_SIL_(t), (size_t)PN_WEDGES_PAIRS)
+#define PN_WEDGES_BYTES_MAX(t, w, h)                                                          \
+    (PN_POOL_((size_t)(t) * 4u) + PN_POOL_((size_t)(t) * 12u + 4u) + PN_POOL_(PN_WG_SIL_(t) * 80u) + \
+     PN_POOL_(PN_WG_SIL_(t) * 4u + 4u) + PN_POOL_(PN_WG_PAIRS_(t, w, h) * 8u) +                 \
+     PN_POOL_(PN_WG_PAIRS_(t, w, h) * 4u) + PN_POOL_(PN_WG_TILES_(w, h) * 4u + 4u) +              \
+     PN_POOL_(PN_WG_TILES_(w, h) * 4u))
 #else
 #define PN_WEDGES_BYTES_MAX(t, w, h) ((size_t)0)
 #endif
 #if PN_ENABLE_MCSM
-/* Monte Carlo shadow-map frame pools at the default map maximum: per texel 12 per N-buffer
- * level (12 bound floor(log2 2048) + 1 = 12); per pixel 4; per row 32 + 64; the rest 64. */
-#define PN_MCSM_BYTES_MAX(t, w, h)                                                          \
-    ((size_t)PN_MCSM_MAP_MAX * (size_t)PN_MCSM_MAP_MAX * 144u + (size_t)(w) * (size_t)(h) * 4u + \
-     (size_t)(h) * 96u + 64u)
+/* Monte Carlo shadow-map frame pools at the default map maximum r: per row its bounds
+ * (32) and counters (64); 12 bytes a texel per N-buffer level; per pixel the blur's
+ * buffer (4). */
+#define PN_MCSM_BYTES_MAX(t, w, h)                                                            \
+    (PN_POOL_((size_t)(h) * 32u) +                                                             \
+     PN_POOL_((size_t)PN_MCSM_MAP_MAX * (size_t)PN_MCSM_MAP_MAX * 12u * PN_LEVELS_(PN_MCSM_MAP_MAX)) + \
+     PN_POOL_(PN_PX_(w, h) * 4u) + PN_POOL_((size_t)(h) * 64u))
 #else
 #define PN_MCSM_BYTES_MAX(t, w, h) ((size_t)0)
 #endif
 #if PN_ENABLE_OCCTEX
-/* Occlusion-texture frame pools at the default map maximum: per texel 4 (slice bits) and
- * 4 per filter level (14 bound floor(log2 4096) + 1 = 13); per row 32; the rest 64. */
-#define PN_OCCTEX_BYTES_MAX(t, w, h)                                                        \
-    ((size_t)(PN_OCCTEX_MAP_MAX + 1u) * (size_t)(PN_OCCTEX_MAP_MAX + 1u) * 60u +             \
-     (size_t)(h) * 32u + 64u)
+/* Occlusion-texture frame pools at the default map maximum r: per row its bounds (32);
+ * per texel the slice bits (4); one filter of 4 bytes a texel per N-buffer level (or
+ * (r + 1)^2 words for a tiny map's summed-area table); 128 bytes of counters. */
+#define PN_OCCTEX_BYTES_MAX(t, w, h)                                                          \
+    (PN_POOL_((size_t)(h) * 32u) + PN_POOL_((size_t)PN_OCCTEX_MAP_MAX * (size_t)PN_OCCTEX_MAP_MAX * 4u) + \
+     PN_POOL_(PN_MAX_((size_t)PN_OCCTEX_MAP_MAX * (size_t)PN_OCCTEX_MAP_MAX * PN_LEVELS_(PN_OCCTEX_MAP_MAX), \
+                      ((size_t)PN_OCCTEX_MAP_MAX + 1u) * ((size_t)PN_OCCTEX_MAP_MAX + 1u)) * 4u) + \
+     PN_POOL_(128u))
 #else
 #define PN_OCCTEX_BYTES_MAX(t, w, h) ((size_t)0)
 #endif
 #if PN_ENABLE_SRT
-/* SRT frame pools at the default map maximum: per texel 12; per 8x8 tile 12; per pixel 8
- * (+4); per row 32; the rest 64. */
-#define PN_SRT_BYTES_MAX(t, w, h)                                                           \
-    ((size_t)PN_SRT_MAP_MAX * (size_t)PN_SRT_MAP_MAX * 12u +                                 \
-     ((size_t)PN_SRT_MAP_MAX / 8u + 1u) * ((size_t)PN_SRT_MAP_MAX / 8u + 1u) * 12u +          \
-     (size_t)(w) * (size_t)(h) * 8u + 4u + (size_t)(h) * 32u + 64u)
+/* SRT frame pools at the default map maximum r: per row its bounds (32); per texel depth,
+ * triangle and thin mark (3 x 4); per 8 x 8 tile three words; 16 bytes of counters; per
+ * pixel its PIP flag and list entry (4 + 4, and one more word). */
+#define PN_SRT_TL_ (((size_t)PN_SRT_MAP_MAX + 7u) / 8u * (((size_t)PN_SRT_MAP_MAX + 7u) / 8u))
+#define PN_SRT_BYTES_MAX(t, w, h)                                                             \
+    (PN_POOL_((size_t)(h) * 32u) + 3u * PN_POOL_((size_t)PN_SRT_MAP_MAX * (size_t)PN_SRT_MAP_MAX * 4u) + \
+     3u * PN_POOL_(PN_SRT_TL_ * 4u) + PN_POOL_(16u) + PN_POOL_(PN_PX_(w, h) * 4u + 4u) +         \
+     PN_POOL_(PN_PX_(w, h) * 4u))
 #else
 #define PN_SRT_BYTES_MAX(t, w, h) ((size_t)0)
 #endif
 #if PN_ENABLE_GEARS
-/* GEARS frame pools at the default pair pool and grid maximum: the grid cameras (1 KB);
- * per triangle 6 cell rectangles (48) and a pair offset (4); per pixel its cell (4); per
- * row an origin box (32); per cell (6 faces) offsets, counts, cursors and a row prefix
- * entry (16); per grid row its pair count (8) and prefix end (4); per pair 12, a 24-byte
- * box per 8 pairs and per 64 (src/pn_gears.c's chunk and superchunk boxes), plus one of
- * each. */
-#define PN_GEARS_BYTES_MAX(t, w, h)                                                         \
-    (1024u + (size_t)(t) * 52u + 4u + (size_t)(w) * (size_t)(h) * 4u + (size_t)(h) * 32u +           \
-     6u * (size_t)PN_GEARS_GRID_MAX * (size_t)PN_GEARS_GRID_MAX * 16u + 4u +                  \
-     6u * (size_t)PN_GEARS_GRID_MAX * 12u + (size_t)PN_GEARS_PAIRS * 15u + (size_t)PN_GEARS_PAIRS / 64u * 24u + 48u)
+/* GEARS frame pools at the default pair pool p and grid maximum g: the grid cameras (at
+ * most 576 bytes); per triangle 6 cell rectangles (48) and a pair offset (4); per pixel its
+ * cell (4); per row an origin box (32); per cell (6 g^2) offsets, counts and cursors (12)
+ * and per (grid row, column + 1) a prefix (4); per grid row its pair count (8); per pair
+ * 8 + 4, a 24-byte box per 8 pairs and per 64 (src/pn_gears.c's chunk and superchunk
+ * boxes), plus one of each. */
+#define PN_GEARS_C_ (6u * (size_t)PN_GEARS_GRID_MAX * (size_t)PN_GEARS_GRID_MAX)
+#define PN_GEARS_BYTES_MAX(t, w, h)                                                           \
+    (PN_POOL_(576u) + PN_POOL_((size_t)(t) * 48u) + PN_POOL_((size_t)(t) * 4u + 4u) +              \
+     PN_POOL_(PN_PX_(w, h) * 4u) + PN_POOL_((size_t)(h) * 32u) + PN_POOL_(PN_GEARS_C_ * 4u + 4u) +  \
+     2u * PN_POOL_(PN_GEARS_C_ * 4u) + PN_POOL_(6u * (size_t)PN_GEARS_GRID_MAX * ((size_t)PN_GEARS_GRID_MAX + 1u) * 4u) + \
+     PN_POOL_(6u * (size_t)PN_GEARS_GRID_MAX * 8u) + PN_POOL_((size_t)PN_GEARS_PAIRS * 8u) +         \
+     PN_POOL_((size_t)PN_GEARS_PAIRS * 4u) + PN_POOL_(((size_t)PN_GEARS_PAIRS / 8u + 1u) * 24u) +     \
+     PN_POOL_(((size_t)PN_GEARS_PAIRS / 64u + 1u) * 24u))
 #else
 #define PN_GEARS_BYTES_MAX(t, w, h) ((size_t)0)
 #endif
@@ -218,7 +274,7 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
 /* Wraps `memory` (bytes long, any alignment, caller-owned, must outlive the context) and
  * carves every pool. On PN_OK *out_ctx points into `memory`. On failure nothing in
  * `memory` is written and *out_ctx is untouched. Statuses: PN_E_INVALID_ARG,
- * PN_E_LIMIT, PN_E_ARENA_TOO_SMALL. There is no global state: contexts are independent. */
+ * PN_E_LIMIT, PN_E_UNSUPPORTED (as pn_arena_size), PN_E_ARENA_TOO_SMALL. There is no global state: contexts are independent. */
 pn_status pn_init(pn_context **out_ctx, void *memory, size_t bytes, const pn_limits *limits);
 
 /* The message of the most recent call on this context that failed ("" before any call has

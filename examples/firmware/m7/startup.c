@@ -1,5 +1,7 @@
 /* startup.c - a minimal Cortex-M7 start-up for QEMU's mps2-an500 board: vector table,
- * reset handler (FPU on, .data copied, .bss zeroed), semihosting output and exit.
+ * reset handler (FPU on, stack painted, .data copied, .bss and the arena zeroed),
+ * semihosting output and exit; after the frames, the stack's high-water mark and what
+ * the RAM holds.
  *
  * Run:  qemu-system-arm -M mps2-an500 -nographic -semihosting -kernel fw.elf
  *
@@ -15,6 +17,12 @@
  * address is all that is used. */
 extern void fw_stack_top(void);
 extern uint32_t fw_data_load[], fw_data_start[], fw_data_end[], fw_bss_start[], fw_bss_end[];
+extern uint32_t fw_arena_start[], fw_arena_end[], fw_stack_bottom[];
+extern uint8_t fw_ram_start[], fw_ram_end[], fw_psram_start[], fw_psram_end[];
+
+/* What the reset handler writes over the whole stack before anything runs on it: the
+ * lowest word that no longer holds it is as deep as the stack went. */
+#define FW_STACK_PAINT 0xDEADBEEFu
 
 void fw_reset(void) __attribute__((naked, noreturn));
 void fw_start(void) __attribute__((noreturn, used));
@@ -70,7 +78,10 @@ __attribute__((section(".vectors"), used)) static const fw_vector vectors[16] = 
 
 /* CPACR (0xE000ED88) |= CP10 and CP11 full access (0xF << 20); DSB so the write has
  * completed, ISB so that the following instructions are fetched with the FPU enabled.
- * movw/movt instead of a literal pool: nothing here may depend on section layout. */
+ * Then the whole stack, fw_stack_bottom .. fw_stack_top, is painted with FW_STACK_PAINT
+ * (nothing has used it yet: SP is still the vector table's initial value, and this code
+ * touches registers only). movw/movt instead of a literal pool: nothing here may depend
+ * on section layout. */
 void fw_reset(void)
 {
     __asm__ volatile("movw r0, #0xED88\n\t"
@@ -80,6 +91,18 @@ void fw_reset(void)
                      "str r1, [r0]\n\t"
                      "dsb\n\t"
                      "isb\n\t"
+                     "movw r0, #:lower16:fw_stack_bottom\n\t"
+                     "movt r0, #:upper16:fw_stack_bottom\n\t"
+                     "movw r1, #:lower16:fw_stack_top\n\t"
+                     "movt r1, #:upper16:fw_stack_top\n\t"
+                     "movw r2, #0xBEEF\n\t" /* FW_STACK_PAINT */
+                     "movt r2, #0xDEAD\n\t"
+                     "1:\n\t"
+                     "cmp r0, r1\n\t"
+                     "bhs 2f\n\t"
+                     "str r2, [r0], #4\n\t"
+                     "b 1b\n\t"
+                     "2:\n\t"
                      "b fw_start\n\t");
 }
 
@@ -98,14 +121,50 @@ static void put_hex_line(const char *label, uint32_t x)
     write_semihost(buf);
 }
 
+static uint32_t bytes_between(const void *lo, const void *hi)
+{
+    return (uint32_t)((uintptr_t)hi - (uintptr_t)lo);
+}
+
+/* How deep the stack went (the bytes from the lowest word that lost FW_STACK_PAINT to
+ * the top), and what the two RAMs hold. Lines not compared with the host's, which prints
+ * "n/a" for the stack: a hosted stack is not ours to paint. */
+static void put_memory(void)
+{
+    const uint32_t *p = fw_stack_bottom, *top = (const uint32_t *)(uintptr_t)fw_stack_top;
+    while (p < top && *p == FW_STACK_PAINT)
+        p++;
+    fw_line_str("stack high water ");
+    fw_line_u32(bytes_between(p, top));
+    fw_line_str(" of ");
+    fw_line_u32(bytes_between(fw_stack_bottom, top));
+    fw_line_str(" bytes (painted at reset)");
+    fw_line_end();
+    fw_line_str("ram: ssram23 .data+.bss ");
+    fw_line_u32(bytes_between(fw_data_start, fw_bss_end));
+    fw_line_str(" + stack ");
+    fw_line_u32(bytes_between(fw_stack_bottom, top));
+    fw_line_str(" of ");
+    fw_line_u32(bytes_between(fw_ram_start, fw_ram_end));
+    fw_line_str(" bytes; psram arena ");
+    fw_line_u32(bytes_between(fw_arena_start, fw_arena_end));
+    fw_line_str(" of ");
+    fw_line_u32(bytes_between(fw_psram_start, fw_psram_end));
+    fw_line_str(" bytes");
+    fw_line_end();
+}
+
 void fw_start(void)
 {
     uint32_t *src = fw_data_load, *dst = fw_data_start;
     uint32_t fpscr;
+    int rc;
 
     while (dst < fw_data_end)
         *dst++ = *src++;
     for (dst = fw_bss_start; dst < fw_bss_end; dst++)
+        *dst = 0u;
+    for (dst = fw_arena_start; dst < fw_arena_end; dst++)
         *dst = 0u;
 
     /* The float environment the host has (IEEE 754: round to nearest, subnormals kept,
@@ -117,7 +176,9 @@ void fw_start(void)
     fpscr &= ~((3u << 22) | (1u << 24) | (1u << 25));
     __asm__ volatile("vmsr fpscr, %0" : : "r"(fpscr));
 
-    exit_semihost(fw_run(write_semihost) != 0);
+    rc = fw_run(write_semihost);
+    put_memory();
+    exit_semihost(rc != 0);
 }
 
 static void fw_fault(void)

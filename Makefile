@@ -46,7 +46,7 @@ test: build
 bench-build:
 	@sh tools/install-deps.sh bench
 	@cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS=-g -DCMAKE_CXX_FLAGS=-g -DPN_BUILD_TESTS=OFF -DPN_TARGET_ARCH=$(BENCH_ARCH) >/dev/null
-	@cmake --build $(BENCH_BUILD) -j $(JOBS) --target penumbra_bench penumbra_cli
+	@cmake --build $(BENCH_BUILD) -j $(JOBS) --target penumbra_bench penumbra_cli penumbra_memory
 
 bench-profile-build: bench-build
 	@cmake -S . -B $(BENCH_PROFILE_BUILD) -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS=-g -DCMAKE_CXX_FLAGS=-g -DPN_BUILD_TESTS=OFF -DPN_TARGET_ARCH= >/dev/null

@@ -49,7 +49,8 @@
 #define FILL 0xCD
 #define BIT(s) (1u << (s))
 
-static uint8_t block[GUARD + 64u + PN_ARENA_BYTES_MAX(MAX_T, MAX_W, MAX_H) + GUARD];
+static uint8_t block[GUARD + 64u + PN_ARENA_BYTES_MAX(MAX_T, MAX_W, MAX_H) +
+                     PN_BVH_SPLIT_EXTRA(MAX_T) * PN_BVH_SPLIT_REF_BYTES + GUARD];
 
 typedef struct reader { const uint8_t *p; size_t n; } reader;
 static void take(reader *r, void *dst, size_t n)
@@ -145,7 +146,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     opt.algo = (pn_algo)(h[7] < 0xF0u ? h[7] & 7u : h[7]);
 #ifdef PN_BUILD_GEARS
     lim.gears_pairs = (uint32_t)h[12] | (uint32_t)h[13] << 8;
-    lim.gears_grid_max = h[14];
+    lim.gears_grid_max = h[14] % (PN_GEARS_GRID_MAX + 1u); /* at most the default: the block's bound */
     opt.gears.grid = h[11];
     opt.exact_stats = h[15] & 1u;
 #endif
@@ -187,11 +188,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 
     /* Arena: exactly the queried size, at a chosen misalignment, fenced by FILL bytes. */
     FUZZ_CHECK(pn_arena_size(&lim, &bytes) == PN_OK, "pn_arena_size failed");
-    /* The bound of limits (t, w, h), plus each split reference the limits reserve. */
+    /* The bound of limits (t, w, h), plus each split reference the limits reserve (every
+     * other pool at most its default), and what the static block holds. */
     FUZZ_CHECK(bytes <= PN_ARENA_BYTES_MAX(lim.max_triangles, lim.max_width, lim.max_height) +
                             (lim.bvh_refs > lim.max_triangles ? (size_t)(lim.bvh_refs - lim.max_triangles) : 0u) *
                                 PN_BVH_SPLIT_REF_BYTES,
                "pn_arena_size %zu above PN_ARENA_BYTES_MAX", bytes);
+    FUZZ_CHECK(bytes <= sizeof(block) - 2u * GUARD - 64u, "pn_arena_size %zu beyond the fuzz block", bytes);
     mem = block + GUARD + (h[5] & 63u);
     end = mem + bytes;
     fill = (size_t)(mem - block) + ((h[6] & 8u) ? (bytes < SHORT_CHECK ? bytes : SHORT_CHECK) : 0u);

@@ -168,7 +168,17 @@ void pn_limits_max(pn_limits *limits)
     limits->algos = 0;
 }
 
-uint32_t pn_gears_pairs_max(const pn_limits *l) { return l->gears_pairs ? l->gears_pairs : PN_GEARS_PAIRS; }
+uint32_t pn_gears_pairs_max(const pn_limits *l)
+{
+    /* The default: 16 pairs a pixel of the largest frame, and no fewer than the triangles
+     * (one cell's pairs, which no tiling splits, are at most one a triangle) or 2^16; at
+     * most the cap. */
+    uint64_t n = 16u * (uint64_t)l->max_width * l->max_height;
+    if (l->gears_pairs) return l->gears_pairs;
+    if (n < l->max_triangles) n = l->max_triangles;
+    if (n < 65536u) n = 65536u;
+    return (uint32_t)(n > PN_GEARS_PAIRS ? PN_GEARS_PAIRS : n);
+}
 uint32_t pn_srt_map_max(const pn_limits *l) { return l->srt_map_max ? l->srt_map_max : PN_SRT_MAP_MAX; }
 uint32_t pn_occ_map_max(const pn_limits *l) { return l->occ_map_max ? l->occ_map_max : PN_OCCTEX_MAP_MAX; }
 uint32_t pn_mc_map_max(const pn_limits *l) { return l->mc_map_max ? l->mc_map_max : PN_MCSM_MAP_MAX; }

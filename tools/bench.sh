@@ -37,6 +37,12 @@ else
   echo "bench: gnuplot not found: no plots or gallery (apt install gnuplot-nox)" >&2
 fi
 rm -rf "$out/work"
+# What a context costs, per algorithm (the library's carve: no timing, the same on any machine).
+mem="$(dirname "$bin")/penumbra_memory"
+if [ -x "$mem" ]; then
+  echo >> "$out/RESULTS.md"
+  "$mem" >> "$out/RESULTS.md"
+fi
 if [ "$mode" = full ]; then
   # Where the time goes: callgrind instruction counts of every shadow pass (valgrind). Valgrind
   # cannot run AVX-512, so make bench hands a build for the compiler's default target in

@@ -180,6 +180,10 @@ int pn_host_open(pn_host *h, uint32_t max_triangles, uint32_t max_w, uint32_t ma
         uint64_t refs = (uint64_t)max_triangles + PN_BVH_SPLIT_EXTRA(max_triangles), most = 1u << 26;
         lim.bvh_refs = (uint32_t)(refs <= most ? refs : max_triangles > most ? max_triangles : most);
     }
+    /* ...GEARS grids up to 256 (the benchmark's grid sweep, the CLI's --grid), and GEARS'
+     * largest pair pool (frames in one pass where the default would tile them). */
+    lim.gears_grid_max = 256;
+    lim.gears_pairs = PN_GEARS_PAIRS;
     return pn_host_open_limits(h, &lim, threads, err, err_size);
 }
 

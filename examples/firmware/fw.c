@@ -44,23 +44,23 @@ extern const uint32_t pn_fw_spot_indices[];
 #define FW_SPOT_WIDTH 160u
 #define FW_SPOT_HEIGHT 120u
 #define FW_SPOT_K 8u
-#define FW_SPOT_MC_MAP 128u /* the Monte Carlo depth layers' limit (PN_MCSM_MAP_MAX) */
+#define FW_SPOT_MC_MAP 64u /* the Monte Carlo depth layers' limit (PN_MCSM_MAP_MAX) */
 #endif
 
 /* Everything penumbra carves (context, scene copy, BVH, G-buffer, outputs, each
  * algorithm's pools) lives here, for one context at a time: the small scene's, then
  * spot's on the same bytes. The size is a constant expression of the limits in
  * fw_config.h: with spot, PN_ARENA_BYTES_MAX at fw_config.h's maxima (6144 triangles,
- * 160 x 120), a bound on what pn_arena_size asks for (3.83 MiB for spot's limits;
- * open_context checks it against the array anyway and prints both). Neither leaves room
- * in the board's 4 MiB SSRAM 2&3 beside .data, .bss and the stack: m7/mps2_an500.ld puts
- * the arena in the 16 MiB PSRAM. Without spot, the bound for the small scene alone. */
+ * 160 x 120), a bound on what pn_arena_size asks for (open_context checks it against the
+ * array anyway and prints both). It sits in the board's 4 MiB SSRAM 2&3 beside .data,
+ * .bss and the stack (m7/mps2_an500.ld). Without spot, the bound for the small scene
+ * alone. */
 #if FW_SPOT
 #define FW_ARENA_BYTES PN_ARENA_BYTES_MAX(PN_MAX_TRIANGLES, PN_MAX_WIDTH, PN_MAX_HEIGHT)
 #else
 #define FW_ARENA_BYTES PN_ARENA_BYTES_MAX(FW_TRIS, FW_WIDTH, FW_HEIGHT)
 #endif
-/* Its own section: on the Cortex-M7 the linker script puts it in PSRAM (m7/mps2_an500.ld).
+/* Its own section, placed by the linker script (m7/mps2_an500.ld).
  * A ".bss." name keeps it zero-initialized and out of the image (NOBITS) with GCC and
  * Clang on ELF targets, the host included; elsewhere it is a plain static array. */
 #if defined(__GNUC__) && defined(__ELF__)
@@ -310,7 +310,7 @@ static int run_small(void)
 
     /* Field by field: pn_limits may grow, and 0 is every other field's default (the
      * maxima of fw_config.h). The Monte Carlo layers stay at 32 x 32 texels, the map these
-     * frames were first checked with (fw_config.h's maximum is spot's 128). */
+     * frames were first checked with (fw_config.h's maximum is spot's 64). */
     memset(&lim, 0, sizeof lim);
     lim.max_triangles = FW_TRIS;
     lim.max_width = FW_WIDTH;
@@ -356,9 +356,9 @@ static int run_small(void)
 
 #if FW_SPOT
 /* spot at 160 x 120, k = 8, its area light: the reference (exact) and Monte Carlo shadow
- * maps (approximate, 128 x 128 depth layers), each only if compiled in. The same frames
+ * maps (approximate, 64 x 64 depth layers), each only if compiled in. The same frames
  * as `penumbra render spot.glb --size 160x120 --k 8 --algo reference` and `--algo mcsm
- * --mc-map 128`. A new context on the same arena: the small scene's is not used again. */
+ * --mc-map 64`. A new context on the same arena: the small scene's is not used again. */
 static int run_spot(void)
 {
     static const pn_algo algos[] = {PN_ALGO_REFERENCE, PN_ALGO_MCSM};

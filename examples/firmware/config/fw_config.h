@@ -7,7 +7,7 @@
  * The defaults are sized for desktop scenes (GEARS alone reserves 4.5 MiB of grid and
  * 48 MiB of pairs in PN_ARENA_BYTES_MAX). A firmware build states what it renders. Here:
  * spot (5,856 triangles and the CLI's two ground triangles, 2,934 vertices) at 160 x 120
- * with the reference and 128 x 128 Monte Carlo depth layers, and a 46-triangle scene at
+ * with the reference and 64 x 64 Monte Carlo depth layers, and a 46-triangle scene at
  * 32 x 32 with every algorithm (fw.c); masks up to k = 8. The maxima below bound what a
  * context may ask for; each context's pn_limits asks for what its scene needs (fw.c), and
  * pn_arena_size sizes it. For the small scene's algorithms: a GEARS grid of at most 16
@@ -30,7 +30,7 @@
 #define PN_GEARS_PAIRS 4096u
 #define PN_SRT_MAP_MAX 64u
 #define PN_OCCTEX_MAP_MAX 64u
-#define PN_MCSM_MAP_MAX 128u
+#define PN_MCSM_MAP_MAX 64u
 #define PN_WEDGES_SIL_MAX 192u
 #define PN_WEDGES_PAIRS 1024u
 #define PN_BVH_SPLIT_REFS 0u

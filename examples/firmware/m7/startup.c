@@ -18,7 +18,7 @@
 extern void fw_stack_top(void);
 extern uint32_t fw_data_load[], fw_data_start[], fw_data_end[], fw_bss_start[], fw_bss_end[];
 extern uint32_t fw_arena_start[], fw_arena_end[], fw_stack_bottom[];
-extern uint8_t fw_ram_start[], fw_ram_end[], fw_psram_start[], fw_psram_end[];
+extern uint8_t fw_ram_start[], fw_ram_end[];
 
 /* What the reset handler writes over the whole stack before anything runs on it: the
  * lowest word that no longer holds it is as deep as the stack went. */
@@ -140,16 +140,14 @@ static void put_memory(void)
     fw_line_u32(bytes_between(fw_stack_bottom, top));
     fw_line_str(" bytes (painted at reset)");
     fw_line_end();
-    fw_line_str("ram: ssram23 .data+.bss ");
-    fw_line_u32(bytes_between(fw_data_start, fw_bss_end));
+    fw_line_str("ram: ssram23 arena ");
+    fw_line_u32(bytes_between(fw_arena_start, fw_arena_end));
+    fw_line_str(" + .data+.bss ");
+    fw_line_u32(bytes_between(fw_data_start, fw_data_end) + bytes_between(fw_bss_start, fw_bss_end));
     fw_line_str(" + stack ");
     fw_line_u32(bytes_between(fw_stack_bottom, top));
     fw_line_str(" of ");
     fw_line_u32(bytes_between(fw_ram_start, fw_ram_end));
-    fw_line_str(" bytes; psram arena ");
-    fw_line_u32(bytes_between(fw_arena_start, fw_arena_end));
-    fw_line_str(" of ");
-    fw_line_u32(bytes_between(fw_psram_start, fw_psram_end));
     fw_line_str(" bytes");
     fw_line_end();
 }

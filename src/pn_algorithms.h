@@ -10,6 +10,8 @@
  *   pn_<name>_prepare(fs, opt)  checks the algorithm's own options (pn_fail naming the
  *                               option) and derives the frame's parameters from them (fs
  *                               and fs->K; 0 means the default), before any pool is carved;
+ *   pn_<name>_limits_ok(l)      whether its own pn_limits fields are in range (1) or not
+ *                               (0: pn_arena_size and pn_init fail PN_E_LIMIT);
  *   pn_<name>_query(c, l)       its frame pools' size query: the carve its frame runs
  *                               (pn_internal.h pn_carver), run at the limits' maxima;
  *                               pn_carve sizes the frame region for the largest set;
@@ -32,19 +34,25 @@
 
 #define PN_ALGO_DECLARE(ID, name)                                                              \
     pn_status pn_##name##_prepare(pn_frame_state *fs, const pn_frame_options *opt);             \
+    int pn_##name##_limits_ok(const pn_limits *l);                                              \
     void pn_##name##_query(pn_carver *c, const pn_limits *l);                                   \
     pn_status pn_##name##_frame(pn_frame_state *fs);
 PN_ALGORITHMS(PN_ALGO_DECLARE)
 #undef PN_ALGO_DECLARE
 
-/* The module of an algorithm that is not compiled in: its prepare refuses every frame, and
- * it has no pools. */
+/* The module of an algorithm that is not compiled in: its prepare refuses every frame; it
+ * has no pools and ignores its limits. */
 #define PN_ALGO_STUBS(ID, name)                                                                \
     pn_status pn_##name##_prepare(pn_frame_state *fs, const pn_frame_options *opt)             \
     {                                                                                          \
         (void)opt;                                                                             \
         return pn_fail(fs->ctx, PN_E_UNSUPPORTED,                                              \
                        "PN_ALGO_" #ID " is not compiled in (PN_ENABLE_" #ID " 0)");             \
+    }                                                                                          \
+    int pn_##name##_limits_ok(const pn_limits *l)                                              \
+    {                                                                                          \
+        (void)l;                                                                               \
+        return 1;                                                                              \
     }                                                                                          \
     void pn_##name##_query(pn_carver *c, const pn_limits *l)                                    \
     {                                                                                          \

@@ -62,13 +62,14 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
     int wedges;
     if (l->max_triangles < 1u || l->max_triangles > PN_MAX_TRIANGLES || l->max_width < 1u ||
         l->max_width > PN_MAX_WIDTH || l->max_height < 1u || l->max_height > PN_MAX_HEIGHT ||
-        l->gears_pairs > (1u << 28) || l->gears_grid_max > 1024u || l->srt_map_max > PN_SRT_MAP_MAX ||
-        (l->srt_map_max != 0u && l->srt_map_max < 8u) || l->occ_map_max > PN_OCCTEX_MAP_MAX ||
-        (l->occ_map_max != 0u && l->occ_map_max < 8u) || l->mc_map_max > PN_MCSM_MAP_MAX ||
-        (l->mc_map_max != 0u && l->mc_map_max < 8u) || l->wg_pairs > PN_WEDGES_PAIRS ||
         (l->bvh_refs != 0u && (l->bvh_refs < l->max_triangles || l->bvh_refs > pn_bvh_refs_cap(l))) ||
         (l->algos & ~PN_ALGO_FLAGS) != 0u)
         return PN_E_LIMIT;
+    /* Each algorithm's own fields (an algorithm not compiled in ignores its). */
+#define PN_ALGO_LIMITS(ID, name)                                                               \
+    if (!pn_##name##_limits_ok(l)) return PN_E_LIMIT;
+    PN_ALGORITHMS(PN_ALGO_LIMITS)
+#undef PN_ALGO_LIMITS
     if (l->algos & ~pn_build_info()) return PN_E_UNSUPPORTED;
     wedges = PN_ENABLE_WEDGES && (pn_limits_algos(l) & PN_BUILD_WEDGES);
     if (!pn_bump(&off, 1u, sizeof(pn_context), &lay.ctx) ||
@@ -155,33 +156,12 @@ void pn_frame_rewind(pn_context *ctx, size_t mark)
 void pn_limits_max(pn_limits *limits)
 {
     if (!limits) return;
+    memset(limits, 0, sizeof(*limits));
     limits->max_triangles = PN_MAX_TRIANGLES;
     limits->max_width = PN_MAX_WIDTH;
     limits->max_height = PN_MAX_HEIGHT;
-    limits->gears_pairs = 0;
-    limits->gears_grid_max = 0;
-    limits->srt_map_max = 0;
-    limits->occ_map_max = 0;
-    limits->mc_map_max = 0;
-    limits->wg_pairs = 0;
-    limits->bvh_refs = 0;
-    limits->algos = 0;
 }
 
-uint32_t pn_gears_pairs_max(const pn_limits *l)
-{
-    /* The default: 16 pairs a pixel of the largest frame, and no fewer than the triangles
-     * (one cell's pairs, which no tiling splits, are at most one a triangle) or 2^16; at
-     * most the cap. */
-    uint64_t n = 16u * (uint64_t)l->max_width * l->max_height;
-    if (l->gears_pairs) return l->gears_pairs;
-    if (n < l->max_triangles) n = l->max_triangles;
-    if (n < 65536u) n = 65536u;
-    return (uint32_t)(n > PN_GEARS_PAIRS ? PN_GEARS_PAIRS : n);
-}
-uint32_t pn_srt_map_max(const pn_limits *l) { return l->srt_map_max ? l->srt_map_max : PN_SRT_MAP_MAX; }
-uint32_t pn_occ_map_max(const pn_limits *l) { return l->occ_map_max ? l->occ_map_max : PN_OCCTEX_MAP_MAX; }
-uint32_t pn_mc_map_max(const pn_limits *l) { return l->mc_map_max ? l->mc_map_max : PN_MCSM_MAP_MAX; }
 uint32_t pn_limits_algos(const pn_limits *l) { return l->algos ? l->algos : pn_build_info() & PN_ALGO_FLAGS; }
 uint32_t pn_bvh_refs_cap(const pn_limits *l)
 {
@@ -194,33 +174,12 @@ uint64_t pn_bvh_scratch_bytes(const pn_limits *l)
 {
     return (uint64_t)pn_bvh_refs_max(l) * PN_BVH_REF_BYTES + ((uint64_t)l->max_triangles / 32u + 1u) * 4u;
 }
-uint32_t pn_wg_tiles_of(uint32_t width, uint32_t height)
-{
-    return PN_WG_TILES(width) * PN_WG_TILES(height);
-}
-uint32_t pn_wg_sil_max(const pn_limits *l)
-{
-    uint64_t edges = 3u * (uint64_t)l->max_triangles;
-    return edges < PN_WEDGES_SIL_MAX ? (uint32_t)edges : PN_WEDGES_SIL_MAX;
-}
-uint32_t pn_wg_pairs_max(const pn_limits *l)
-{
-    uint64_t most = (uint64_t)pn_wg_tiles_of(l->max_width, l->max_height) * pn_wg_sil_max(l);
-    uint32_t cap = l->wg_pairs ? l->wg_pairs : PN_WEDGES_PAIRS;
-    return most < cap ? (uint32_t)most : cap;
-}
-uint32_t pn_occ_levels(uint32_t res)
+uint32_t pn_nb_levels(uint32_t res)
 {
     uint32_t l = 1u;
     while ((2u << (l - 1u)) <= res) l++;
     return l;
 }
-uint64_t pn_occ_filter_words(uint32_t res)
-{
-    uint64_t nb = (uint64_t)pn_occ_levels(res) * res * res, sat = ((uint64_t)res + 1u) * (res + 1u);
-    return nb > sat ? nb : sat;
-}
-uint32_t pn_gears_grid_max(const pn_limits *l) { return l->gears_grid_max ? l->gears_grid_max : PN_GEARS_GRID_MAX; }
 
 pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes)
 {

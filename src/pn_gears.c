@@ -11,6 +11,21 @@
 
 #if PN_ENABLE_GEARS
 
+/* The context's GEARS limits: the largest grid (default PN_GEARS_GRID_MAX, at most 1024),
+ * and the pair pool: by default 16 pairs a pixel of the largest frame, and no fewer than
+ * the triangles (one cell's pairs, which no tiling splits, are at most one a triangle) or
+ * 2^16; at most PN_GEARS_PAIRS (a request up to 2^28). */
+int pn_gears_limits_ok(const pn_limits *l) { return l->gears_pairs <= (1u << 28) && l->gears_grid_max <= 1024u; }
+static uint32_t pn_gears_grid_max(const pn_limits *l) { return l->gears_grid_max ? l->gears_grid_max : PN_GEARS_GRID_MAX; }
+static uint32_t pn_gears_pairs_max(const pn_limits *l)
+{
+    uint64_t n = 16u * (uint64_t)l->max_width * l->max_height;
+    if (l->gears_pairs) return l->gears_pairs;
+    if (n < l->max_triangles) n = l->max_triangles;
+    if (n < 65536u) n = 65536u;
+    return (uint32_t)(n > PN_GEARS_PAIRS ? PN_GEARS_PAIRS : n);
+}
+
 /* PN_ALGO_GEARS's options (pn_algorithms.h): the grid; 0 is the default, 128 cells per axis
  * or the context's limit if smaller. */
 pn_status pn_gears_prepare(pn_frame_state *fs, const pn_frame_options *opt)

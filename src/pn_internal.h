@@ -117,11 +117,6 @@ struct pn_context {
 };
 
 /* pn_arena.c */
-uint32_t pn_gears_pairs_max(const pn_limits *l);
-uint32_t pn_gears_grid_max(const pn_limits *l);
-uint32_t pn_srt_map_max(const pn_limits *l);
-uint32_t pn_occ_map_max(const pn_limits *l);
-uint32_t pn_mc_map_max(const pn_limits *l);
 /* BVH references a context reserves: limits.bvh_refs, or max_triangles (no splitting);
  * at most the cap, max_triangles plus the split ones (config.h PN_BVH_SPLIT_REFS, at most
  * 2^PN_BVH_SPLIT_DEPTH - 1 a triangle), at most 2^26. */
@@ -131,15 +126,9 @@ uint32_t pn_bvh_refs_max(const pn_limits *l);
  * compiled in). */
 #define PN_ALGO_FLAGS ((1u << PN_ALGO_COUNT) - 1u)
 uint32_t pn_limits_algos(const pn_limits *l);
-/* Penumbra wedges: the silhouette and (tile, wedge) pair pools of a context, and the
- * screen tiles of a frame. */
-uint32_t pn_wg_sil_max(const pn_limits *l);
-uint32_t pn_wg_pairs_max(const pn_limits *l);
-uint32_t pn_wg_tiles_of(uint32_t width, uint32_t height);
-/* Occlusion textures: N-buffer / mipmap levels of a res^2 texture (floor(log2 res) + 1), and
- * the words of the one-slice filter pool (the largest of the three filters). */
-uint32_t pn_occ_levels(uint32_t res);
-uint64_t pn_occ_filter_words(uint32_t res);
+/* N-buffer / mipmap levels of a res^2 texture (floor(log2 res) + 1): the occlusion
+ * textures' filters and the Monte Carlo layers' N-buffer. */
+uint32_t pn_nb_levels(uint32_t res);
 /* Floats per row of the light view's bounds pool (kernels/pn_lview.h PN_LVIEW_BOX). */
 #define PN_LVIEW_BOX_FLOATS 8u
 /* The light view's frame (SRT, occlusion textures): eye at the light centre; an area light

@@ -10,6 +10,10 @@
 
 #if PN_ENABLE_MCSM
 
+/* The context's largest depth layer: 0 (PN_MCSM_MAP_MAX) or 8 .. PN_MCSM_MAP_MAX. */
+int pn_mcsm_limits_ok(const pn_limits *l) { return l->mc_map_max == 0u || (l->mc_map_max >= 8u && l->mc_map_max <= PN_MCSM_MAP_MAX); }
+static uint32_t pn_mc_map_max(const pn_limits *l) { return l->mc_map_max ? l->mc_map_max : PN_MCSM_MAP_MAX; }
+
 /* PN_ALGO_MCSM's options (pn_algorithms.h): checked, then the frame's parameters, 0 meaning
  * the default. */
 pn_status pn_mcsm_prepare(pn_frame_state *fs, const pn_frame_options *opt)
@@ -63,7 +67,7 @@ typedef struct pn_mc_pools {
 static void pn_mc_carve(pn_carver *c, uint32_t w, uint32_t h, uint32_t res, pn_mc_pools *s)
 {
     s->box = (float *)pn_pool(c, h, 4u * PN_LVIEW_BOX_FLOATS, "mcsm row bounds");
-    s->nb = (float *)pn_pool(c, (uint64_t)pn_occ_levels(res) * res * res, 4u * PN_NB_MM, "mcsm N-buffer");
+    s->nb = (float *)pn_pool(c, (uint64_t)pn_nb_levels(res) * res * res, 4u * PN_NB_MM, "mcsm N-buffer");
     s->tmp = (float *)pn_pool(c, (uint64_t)w * h, 4u, "mcsm blur buffer");
     s->words = (uint32_t *)pn_pool(c, h, 4u * PN_MC_ROW_WORDS, "mcsm counters");
 }
@@ -136,7 +140,7 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
     pn_light_view(ctx, &K->light, res, &K->lview);
     pn_light_halves(&K->light, &K->lview_ha, &K->lview_hb);
     mc->res = res;
-    mc->levels = pn_occ_levels(res);
+    mc->levels = pn_nb_levels(res);
     mc->blur_depth = 100.0f; /* 1% of the centre's depth away: half the weight */
     pn_mc_weights(mc);
     ctx->mc.map = res;

@@ -10,6 +10,20 @@
 
 #if PN_ENABLE_OCCTEX
 
+/* The context's largest texture: 0 (PN_OCCTEX_MAP_MAX) or 8 .. PN_OCCTEX_MAP_MAX. */
+int pn_occtex_limits_ok(const pn_limits *l)
+{
+    return l->occ_map_max == 0u || (l->occ_map_max >= 8u && l->occ_map_max <= PN_OCCTEX_MAP_MAX);
+}
+static uint32_t pn_occ_map_max(const pn_limits *l) { return l->occ_map_max ? l->occ_map_max : PN_OCCTEX_MAP_MAX; }
+/* Words of the one-slice filter pool: the largest of the three filters (N-buffer levels,
+ * summed-area table, mipmap). */
+static uint64_t pn_occ_filter_words(uint32_t res)
+{
+    uint64_t nb = (uint64_t)pn_nb_levels(res) * res * res, sat = ((uint64_t)res + 1u) * (res + 1u);
+    return nb > sat ? nb : sat;
+}
+
 /* PN_ALGO_OCCTEX's options (pn_algorithms.h): checked, then the frame's parameters, 0 meaning
  * the default. */
 pn_status pn_occtex_prepare(pn_frame_state *fs, const pn_frame_options *opt)
@@ -171,7 +185,7 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
     pn_light_view(ctx, &K->light, res, &K->lview);
     pn_light_halves(&K->light, &K->lview_ha, &K->lview_hb);
     o->res = res;
-    o->levels = pn_occ_levels(res);
+    o->levels = pn_nb_levels(res);
     ctx->occ.map = res;
     ctx->occ.slices = o->slices;
 

@@ -10,6 +10,10 @@
 
 #if PN_ENABLE_SRT
 
+/* The context's largest map: 0 (PN_SRT_MAP_MAX) or 8 .. PN_SRT_MAP_MAX. */
+int pn_srt_limits_ok(const pn_limits *l) { return l->srt_map_max == 0u || (l->srt_map_max >= 8u && l->srt_map_max <= PN_SRT_MAP_MAX); }
+static uint32_t pn_srt_map_max(const pn_limits *l) { return l->srt_map_max ? l->srt_map_max : PN_SRT_MAP_MAX; }
+
 /* PN_ALGO_SRT's options (pn_algorithms.h): checked, then the frame's parameters, 0 meaning
  * the default. */
 pn_status pn_srt_prepare(pn_frame_state *fs, const pn_frame_options *opt)

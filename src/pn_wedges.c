@@ -9,6 +9,24 @@
 
 #if PN_ENABLE_WEDGES
 
+/* The context's pair pool: 0 (PN_WEDGES_PAIRS) or at most it. */
+int pn_wedges_limits_ok(const pn_limits *l) { return l->wg_pairs <= PN_WEDGES_PAIRS; }
+/* Screen tiles of a frame; silhouettes a context holds (an edge per triangle side, at most
+ * PN_WEDGES_SIL_MAX); (tile, silhouette) pairs (every tile with every silhouette, at most
+ * limits.wg_pairs or PN_WEDGES_PAIRS). */
+static uint32_t pn_wg_tiles_of(uint32_t width, uint32_t height) { return PN_WG_TILES(width) * PN_WG_TILES(height); }
+static uint32_t pn_wg_sil_max(const pn_limits *l)
+{
+    uint64_t edges = 3u * (uint64_t)l->max_triangles;
+    return edges < PN_WEDGES_SIL_MAX ? (uint32_t)edges : PN_WEDGES_SIL_MAX;
+}
+static uint32_t pn_wg_pairs_max(const pn_limits *l)
+{
+    uint64_t most = (uint64_t)pn_wg_tiles_of(l->max_width, l->max_height) * pn_wg_sil_max(l);
+    uint32_t cap = l->wg_pairs ? l->wg_pairs : PN_WEDGES_PAIRS;
+    return most < cap ? (uint32_t)most : cap;
+}
+
 /* PN_ALGO_WEDGES's options (pn_algorithms.h): checked, then the frame's parameters, 0 meaning
  * the default. */
 pn_status pn_wedges_prepare(pn_frame_state *fs, const pn_frame_options *opt)

@@ -159,9 +159,20 @@ static void test_bad_limits(void)
     l[6].mc_map_max = PN_MCSM_MAP_MAX + 1u;
     l[7].mc_map_max = 7;
     l[8].wg_pairs = PN_WEDGES_PAIRS + 1u;
+    static const uint32_t owner[9] = {0, 0, 0, 0, PN_BUILD_GEARS, PN_BUILD_GEARS, PN_BUILD_MCSM, PN_BUILD_MCSM,
+                                      PN_BUILD_WEDGES};
     CHECK(pn_arena_size(NULL, &bytes) == PN_E_INVALID_ARG);
     CHECK(pn_arena_size(&l[0], NULL) == PN_E_INVALID_ARG);
-    for (i = 0; i < 9; i++) CHECK_MSG(pn_arena_size(&l[i], &bytes) == PN_E_LIMIT, "limits %d", i);
+    for (i = 0; i < 9; i++) {
+        /* An algorithm's own field is checked by its module, and ignored in a build
+         * without it. */
+        if (owner[i] && !(pn_build_info() & owner[i])) {
+            size_t ignored = 0;
+            CHECK_MSG(pn_arena_size(&l[i], &ignored) == PN_OK, "limits %d, its algorithm not built", i);
+            continue;
+        }
+        CHECK_MSG(pn_arena_size(&l[i], &bytes) == PN_E_LIMIT, "limits %d", i);
+    }
     CHECK(bytes == 12345); /* out-parameter untouched on failure */
 }
 

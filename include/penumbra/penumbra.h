@@ -111,7 +111,9 @@ const char *pn_status_str(pn_status status);
 
 typedef struct pn_context pn_context;
 
-/* The run-time limits a context is sized for. Each must be >= 1 and <= its PN_MAX_*. */
+/* The run-time limits a context is sized for. Each must be >= 1 and <= its PN_MAX_*. An
+ * algorithm's own fields (gears_*, srt_*, occ_*, mc_*, wg_*) are ignored in a build
+ * without it. */
 typedef struct pn_limits {
     uint32_t max_triangles;
     uint32_t max_width;

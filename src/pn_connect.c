@@ -152,8 +152,8 @@ void pn_connect_build(pn_context *ctx)
 
     /* Runs, and which objects are open (parent reused as a flag per object). */
     for (i = 0; i < ncomp; i++) parent[i] = 0u;
-    ctx->wg.stats.open_edges = 0;
-    ctx->wg.stats.nonmanifold_edges = 0;
+    ctx->stats.wedges.open_edges = 0;
+    ctx->stats.wedges.nonmanifold_edges = 0;
     i = 0;
     while (i < nh) {
         uint32_t j = i + 1u, h = hedge[i], lo = pn_cn_key(&c, 4u, h), hi = pn_cn_key(&c, 3u, h), s = tcomp[h / 3u];
@@ -162,13 +162,13 @@ void pn_connect_build(pn_context *ctx)
             j++;
         run[nr++] = i;
         if (j - i == 1u) {
-            ctx->wg.stats.open_edges++;
+            ctx->stats.wedges.open_edges++;
             parent[s] = 1u;
         } else {
             uint32_t x0 = canon[hedge[i]], x1 = canon[hedge[i + 1u]];
             /* two windings the opposite way: the half-edges start at different vertices */
             if (j - i != 2u || x0 == x1) {
-                ctx->wg.stats.nonmanifold_edges++;
+                ctx->stats.wedges.nonmanifold_edges++;
                 parent[s] = 1u;
             }
         }
@@ -180,14 +180,14 @@ void pn_connect_build(pn_context *ctx)
         uint32_t h = hedge[i];
         if (pn_cn_key(&c, 4u, h) != canon[h]) hedge[i] = h | PN_WG_REV;
     }
-    ctx->wg.stats.closed_objects = 0;
-    for (i = 0; i < ncomp; i++) ctx->wg.stats.closed_objects += parent[i] == 0u;
+    ctx->stats.wedges.closed_objects = 0;
+    for (i = 0; i < ncomp; i++) ctx->stats.wedges.closed_objects += parent[i] == 0u;
     for (t = 0; t < T; t++)
         if (parent[tcomp[t]] == 0u) tcomp[t] |= PN_WG_CLOSED;
-    ctx->wg.hedges = nh;
-    ctx->wg.stats.edges = nr;
-    ctx->wg.stats.objects = ncomp;
-    ctx->wg.stats.vertices = nv;
+    ctx->wg_hedges = nh;
+    ctx->stats.wedges.edges = nr;
+    ctx->stats.wedges.objects = ncomp;
+    ctx->stats.wedges.vertices = nv;
 }
 
 #endif

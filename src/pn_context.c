@@ -121,7 +121,7 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out)
     pn_stats s;
     uint32_t i;
     if (!ctx || !out) return PN_E_INVALID_ARG;
-    memset(&s, 0, sizeof(s));
+    s = ctx->stats; /* each algorithm's sub-struct, as its module left it */
     s.arena_bytes = ctx->bytes;
     s.arena_carved = ctx->layout.end;
     s.arena_persistent = ctx->layout.frame;
@@ -139,11 +139,6 @@ pn_status pn_get_stats(const pn_context *ctx, pn_stats *out)
     s.shadow_nodes = ctx->shadow_nodes;
     s.lit_pixels = ctx->lit_pixels;
     s.cull_tol = ctx->cull_tol;
-    s.gears = ctx->gears;
-    s.srt = ctx->srt;
-    s.occtex = ctx->occ;
-    s.mcsm = ctx->mc;
-    s.wedges = ctx->wg.stats;
     *out = s;
     return PN_OK;
 }

@@ -220,8 +220,8 @@ static pn_status pn_scene_to_device(pn_frame_state *fs)
         return st;
 #if PN_ENABLE_WEDGES
     if (ctx->wg_hedge &&
-        ((st = pn_dev_to_device(fs, ctx->wg_hedge, (size_t)ctx->wg.hedges * sizeof(uint32_t))) != PN_OK ||
-         (st = pn_dev_to_device(fs, ctx->wg_run, ((size_t)ctx->wg.stats.edges + 1u) * sizeof(uint32_t))) != PN_OK ||
+        ((st = pn_dev_to_device(fs, ctx->wg_hedge, (size_t)ctx->wg_hedges * sizeof(uint32_t))) != PN_OK ||
+         (st = pn_dev_to_device(fs, ctx->wg_run, ((size_t)ctx->stats.wedges.edges + 1u) * sizeof(uint32_t))) != PN_OK ||
          (st = pn_dev_to_device(fs, ctx->wg_tcomp, (size_t)ctx->tri_count * sizeof(uint32_t))) != PN_OK))
         return st;
 #endif

@@ -227,7 +227,7 @@ static pn_status pn_gears_begin(pn_frame_state *fs, pn_gears_frame_pools *g)
     P->sorted = pn_dev_off(ctx, g->sorted);
     P->chunk_box = pn_dev_off(ctx, g->chunk_box);
     P->super_box = pn_dev_off(ctx, g->super_box);
-    memset(&ctx->gears, 0, sizeof(ctx->gears));
+    memset(&ctx->stats.gears, 0, sizeof(ctx->stats.gears));
     return PN_OK;
 }
 
@@ -370,16 +370,16 @@ static void pn_gears_end(pn_context *ctx, const pn_gears_frame_pools *g)
             used++;
             if (g->cell_pix[c] > max_pix) max_pix = g->cell_pix[c];
         }
-    ctx->gears.pairs = g->total_pairs;
-    ctx->gears.assignments = g->assignments;
-    ctx->gears.tiles = g->tiles;
-    ctx->gears.faces = g->faces->n;
-    ctx->gears.cells_used = used;
-    ctx->gears.max_tris_per_cell = g->max_tris_cell;
-    ctx->gears.max_pixels_per_cell = max_pix;
-    ctx->gears.mean_tris_per_cell = used ? pn_u64_to_f32(g->sum_tris_cell) / (float)used : 0.0f;
-    ctx->gears.mean_pixels_per_cell = used ? pn_u64_to_f32(g->lit) / (float)used : 0.0f;
-    ctx->gears.pairs_high_water = g->pairs_high;
+    ctx->stats.gears.pairs = g->total_pairs;
+    ctx->stats.gears.assignments = g->assignments;
+    ctx->stats.gears.tiles = g->tiles;
+    ctx->stats.gears.faces = g->faces->n;
+    ctx->stats.gears.cells_used = used;
+    ctx->stats.gears.max_tris_per_cell = g->max_tris_cell;
+    ctx->stats.gears.max_pixels_per_cell = max_pix;
+    ctx->stats.gears.mean_tris_per_cell = used ? pn_u64_to_f32(g->sum_tris_cell) / (float)used : 0.0f;
+    ctx->stats.gears.mean_pixels_per_cell = used ? pn_u64_to_f32(g->lit) / (float)used : 0.0f;
+    ctx->stats.gears.pairs_high_water = g->pairs_high;
 }
 
 /* One tile: count -> exclusive prefix sum -> scatter -> sort by cell -> chunk and

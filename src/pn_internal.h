@@ -104,15 +104,10 @@ struct pn_context {
     uint64_t shadow_candidates, shadow_blocking, shadow_nodes;
     uint32_t lit_pixels;
     float cull_tol;
-    /* each algorithm's public statistics (pn_stats' sub-structs) */
-    pn_gears_stats gears;
-    pn_srt_stats srt;
-    pn_occtex_stats occ;
-    pn_mcsm_stats mc;
-    struct {
-        pn_wedges_stats stats; /* connectivity (pn_connect.c) and the last frame */
-        uint32_t hedges;       /* connectivity: half-edges (pn_connect.c) */
-    } wg;
+    /* each algorithm's public statistics: the sub-structs of pn_stats, written by its
+     * module (the other fields of this copy are unused: pn_get_stats fills them) */
+    pn_stats stats;
+    uint32_t wg_hedges; /* the wedges' connectivity: half-edges (pn_connect.c) */
     char message[256];
 };
 

@@ -90,7 +90,7 @@ static pn_status pn_mc_begin(pn_frame_state *fs, pn_mc_pools *s, uint32_t res)
     P->mc_nb = pn_dev_off(ctx, s->nb);
     P->mc_tmp = pn_dev_off(ctx, s->tmp);
     P->mc_words = pn_dev_off(ctx, s->words);
-    memset(&ctx->mc, 0, sizeof(ctx->mc));
+    memset(&ctx->stats.mcsm, 0, sizeof(ctx->stats.mcsm));
     return PN_OK;
 }
 
@@ -143,7 +143,7 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
     mc->levels = pn_nb_levels(res);
     mc->blur_depth = 100.0f; /* 1% of the centre's depth away: half the weight */
     pn_mc_weights(mc);
-    ctx->mc.map = res;
+    ctx->stats.mcsm.map = res;
 
     if ((st = pn_dev_fill(fs, s.words, fs->height * PN_MC_ROW_WORDS, 0u)) != PN_OK ||
         (st = pn_dev_run(fs, PN_K_LVIEW_BOUNDS, fs->height)) != PN_OK ||
@@ -163,7 +163,7 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
             (st = pn_dev_run(fs, PN_K_MC_BAND, (res + PN_RASTER_BAND - 1u) / PN_RASTER_BAND)) != PN_OK)
             return st;
         t1 = pn_dev_timestamp(fs);
-        ctx->mc.ns_layers = t1 - t0;
+        ctx->stats.mcsm.ns_layers = t1 - t0;
         t0 = t1;
         for (l = 1; l < mc->levels; l++) {
             mc->level = l;
@@ -171,20 +171,20 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
         }
         if ((st = pn_mc_whole(fs, s.nb, mc)) != PN_OK) return st;
         t1 = pn_dev_timestamp(fs);
-        ctx->mc.ns_nbuffer = t1 - t0;
+        ctx->stats.mcsm.ns_nbuffer = t1 - t0;
         t0 = t1;
     }
     /* Without an origin in front of the light no pixel reads the layers: every pixel is
      * background (1) or unlit (0). */
     if ((st = pn_dev_run(fs, PN_K_MC_PIXEL, fs->height)) != PN_OK) return st;
     t1 = pn_dev_timestamp(fs);
-    ctx->mc.ns_rays = t1 - t0;
+    ctx->stats.mcsm.ns_rays = t1 - t0;
     t0 = t1;
     if (front && mc->blur > 0u) {
         if ((st = pn_dev_run(fs, PN_K_MC_BLUR_H, fs->height)) != PN_OK ||
             (st = pn_dev_run(fs, PN_K_MC_BLUR_V, fs->height)) != PN_OK)
             return st;
-        ctx->mc.ns_blur = pn_dev_timestamp(fs) - t0;
+        ctx->stats.mcsm.ns_blur = pn_dev_timestamp(fs) - t0;
     }
     if ((st = pn_dev_to_host(fs, s.words, (size_t)fs->height * 4u * PN_MC_ROW_WORDS)) != PN_OK ||
         (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_row_counters))) != PN_OK)
@@ -192,14 +192,14 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
     for (y = 0; y < fs->height; y++) {
         const uint32_t *wd = s.words + (size_t)y * PN_MC_ROW_WORDS;
         const pn_shadow_counters *c = &((const pn_row_counters *)fs->counters)[y].c;
-        ctx->mc.lit += wd[PN_MC_WORD_LIT];
-        ctx->mc.umbra += wd[PN_MC_WORD_UMBRA];
-        ctx->mc.penumbra += wd[PN_MC_WORD_PENUMBRA] + wd[PN_MC_WORD_PENUMBRA_OPEN] + wd[PN_MC_WORD_PENUMBRA_SHUT];
-        ctx->mc.penumbra_open += wd[PN_MC_WORD_PENUMBRA_OPEN];
-        ctx->mc.penumbra_shut += wd[PN_MC_WORD_PENUMBRA_SHUT];
-        ctx->mc.capped += wd[PN_MC_WORD_CAPPED];
-        ctx->mc.rays += c->candidates;
-        ctx->mc.steps += c->nodes;
+        ctx->stats.mcsm.lit += wd[PN_MC_WORD_LIT];
+        ctx->stats.mcsm.umbra += wd[PN_MC_WORD_UMBRA];
+        ctx->stats.mcsm.penumbra += wd[PN_MC_WORD_PENUMBRA] + wd[PN_MC_WORD_PENUMBRA_OPEN] + wd[PN_MC_WORD_PENUMBRA_SHUT];
+        ctx->stats.mcsm.penumbra_open += wd[PN_MC_WORD_PENUMBRA_OPEN];
+        ctx->stats.mcsm.penumbra_shut += wd[PN_MC_WORD_PENUMBRA_SHUT];
+        ctx->stats.mcsm.capped += wd[PN_MC_WORD_CAPPED];
+        ctx->stats.mcsm.rays += c->candidates;
+        ctx->stats.mcsm.steps += c->nodes;
     }
     return PN_OK;
 }

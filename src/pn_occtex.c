@@ -97,7 +97,7 @@ static pn_status pn_occ_begin(pn_frame_state *fs, pn_occ_pools *s, uint32_t res)
     P->occ_bits = pn_dev_off(ctx, s->bits);
     P->occ_filt = pn_dev_off(ctx, s->filt);
     P->occ_words = pn_dev_off(ctx, s->words);
-    memset(&ctx->occ, 0, sizeof(ctx->occ));
+    memset(&ctx->stats.occtex, 0, sizeof(ctx->stats.occtex));
     return PN_OK;
 }
 
@@ -186,8 +186,8 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
     pn_light_halves(&K->light, &K->lview_ha, &K->lview_hb);
     o->res = res;
     o->levels = pn_nb_levels(res);
-    ctx->occ.map = res;
-    ctx->occ.slices = o->slices;
+    ctx->stats.occtex.map = res;
+    ctx->stats.occtex.slices = o->slices;
 
     if ((st = pn_dev_run(fs, PN_K_OCC_INIT, npix)) != PN_OK) return st;
     if ((st = pn_dev_run(fs, PN_K_LVIEW_BOUNDS, fs->height)) != PN_OK ||
@@ -195,7 +195,7 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
         return st;
     if (!pn_occ_window(fs, &s, res, &zmax)) {
         /* No origin in front of the light: nothing to slice, nothing lit to finish. */
-        ctx->occ.ns_slice = pn_dev_timestamp(fs) - t0;
+        ctx->stats.occtex.ns_slice = pn_dev_timestamp(fs) - t0;
         return PN_OK;
     }
 
@@ -206,8 +206,8 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
         (st = pn_dev_to_host(fs, s.words, PN_OCC_WORDS * 4u)) != PN_OK)
         return st;
     t1 = pn_dev_timestamp(fs);
-    ctx->occ.ns_slice = t1 - t0;
-    ctx->occ.texels_set = s.words[PN_OCC_WORD_TEXELS];
+    ctx->stats.occtex.ns_slice = t1 - t0;
+    ctx->stats.occtex.texels_set = s.words[PN_OCC_WORD_TEXELS];
 
     /* Per slice: its filter, then its lookups. The deepest slice holds receivers only. */
     for (k = 0; k + 1u < o->slices; k++) {
@@ -229,17 +229,17 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
             }
         }
         t2 = pn_dev_timestamp(fs);
-        ctx->occ.ns_filter += t2 - t1;
+        ctx->stats.occtex.ns_filter += t2 - t1;
         if ((st = pn_dev_run(fs, PN_K_OCC_LOOKUP, npix)) != PN_OK) return st;
         t1 = pn_dev_timestamp(fs);
-        ctx->occ.ns_lookup += t1 - t2;
+        ctx->stats.occtex.ns_lookup += t1 - t2;
     }
     if ((st = pn_dev_run(fs, PN_K_OCC_FINISH, npix)) != PN_OK ||
         (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_row_counters))) != PN_OK)
         return st;
-    ctx->occ.ns_lookup += pn_dev_timestamp(fs) - t1;
+    ctx->stats.occtex.ns_lookup += pn_dev_timestamp(fs) - t1;
     for (y = 0; y < fs->height; y++) lookups += ((const pn_row_counters *)fs->counters)[y].c.candidates;
-    ctx->occ.lookups = lookups;
+    ctx->stats.occtex.lookups = lookups;
     return PN_OK;
 }
 

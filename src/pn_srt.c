@@ -93,7 +93,7 @@ static pn_status pn_srt_begin(pn_frame_state *fs, pn_srt_pools *s, uint32_t res)
     P->srt_words = pn_dev_off(ctx, s->words);
     P->pip_off = pn_dev_off(ctx, s->pip_off);
     P->pip_list = pn_dev_off(ctx, s->pip_list);
-    memset(&ctx->srt, 0, sizeof(ctx->srt));
+    memset(&ctx->stats.srt, 0, sizeof(ctx->stats.srt));
     return PN_OK;
 }
 
@@ -177,14 +177,14 @@ pn_status pn_srt_frame(pn_frame_state *fs)
     t2 = pn_dev_timestamp(fs);
     if ((st = pn_dev_run(fs, PN_K_SRT_EXACT, npip)) != PN_OK || (st = pn_dev_to_host(fs, s.words, 16u)) != PN_OK)
         return st;
-    ctx->srt.ns_map = t1 - t0;
-    ctx->srt.ns_classify = t2 - t1;
-    ctx->srt.ns_exact = pn_dev_timestamp(fs) - t2;
-    ctx->srt.map = res;
-    ctx->srt.pip = npip;
-    ctx->srt.thin = s.words[PN_SRT_WORD_THIN];
-    ctx->srt.tiles_masked = s.words[PN_SRT_WORD_TILES];
-    ctx->srt.cons_texels = s.words[PN_SRT_WORD_CONS];
+    ctx->stats.srt.ns_map = t1 - t0;
+    ctx->stats.srt.ns_classify = t2 - t1;
+    ctx->stats.srt.ns_exact = pn_dev_timestamp(fs) - t2;
+    ctx->stats.srt.map = res;
+    ctx->stats.srt.pip = npip;
+    ctx->stats.srt.thin = s.words[PN_SRT_WORD_THIN];
+    ctx->stats.srt.tiles_masked = s.words[PN_SRT_WORD_TILES];
+    ctx->stats.srt.cons_texels = s.words[PN_SRT_WORD_CONS];
     return PN_OK;
 }
 

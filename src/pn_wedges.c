@@ -79,7 +79,7 @@ static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
     pn_kpools *P = &fs->P;
     pn_carver c;
     pn_carver_frame(&c, ctx);
-    pn_wg_carve(&c, &ctx->limits, fs->width, fs->height, ctx->tri_count, ctx->wg.stats.edges, s);
+    pn_wg_carve(&c, &ctx->limits, fs->width, fs->height, ctx->tri_count, ctx->stats.wedges.edges, s);
     if (!c.ok) return PN_E_POOL_EXHAUSTED;
     P->wg_tcast = pn_dev_off(ctx, s->tcast);
     P->wg_soff = pn_dev_off(ctx, s->soff);
@@ -88,15 +88,15 @@ static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
     P->wg_pairs = pn_dev_off(ctx, s->pairs);
     P->wg_sorted = pn_dev_off(ctx, s->sorted);
     P->wg_toff = pn_dev_off(ctx, s->toff);
-    ctx->wg.stats.silhouettes = 0;
-    ctx->wg.stats.pairs = 0;
-    ctx->wg.stats.touched = 0;
-    ctx->wg.stats.evaluated = 0;
-    ctx->wg.stats.hard_blockers = 0;
-    ctx->wg.stats.hard_overflow = 0;
-    ctx->wg.stats.ns_silhouettes = 0;
-    ctx->wg.stats.ns_binning = 0;
-    ctx->wg.stats.ns_pixels = 0;
+    ctx->stats.wedges.silhouettes = 0;
+    ctx->stats.wedges.pairs = 0;
+    ctx->stats.wedges.touched = 0;
+    ctx->stats.wedges.evaluated = 0;
+    ctx->stats.wedges.hard_blockers = 0;
+    ctx->stats.wedges.hard_overflow = 0;
+    ctx->stats.wedges.ns_silhouettes = 0;
+    ctx->stats.wedges.ns_binning = 0;
+    ctx->stats.wedges.ns_pixels = 0;
     return PN_OK;
 }
 
@@ -105,7 +105,7 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
     pn_context *ctx = fs->ctx;
     pn_kparams *K = &fs->K;
     pn_wg_pools s;
-    uint32_t T = ctx->tri_count, R = ctx->wg.stats.edges, npix = fs->width * fs->height, y, nsil = 0, npairs = 0;
+    uint32_t T = ctx->tri_count, R = ctx->stats.wedges.edges, npix = fs->width * fs->height, y, nsil = 0, npairs = 0;
     uint32_t tiles = pn_wg_tiles_of(fs->width, fs->height);
     uint64_t t0 = pn_dev_timestamp(fs), t1;
     pn_status st;
@@ -138,7 +138,7 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
             return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
                            "wedges: %u silhouette edges; the silhouette pool holds %u (PN_WEDGES_SIL_MAX)", nsil,
                            pn_wg_sil_max(&ctx->limits));
-        ctx->wg.stats.silhouettes = nsil;
+        ctx->stats.wedges.silhouettes = nsil;
         if (nsil > 0u) {
             if ((st = pn_dev_run(fs, PN_K_WG_SIL_MAKE, R)) != PN_OK || (st = pn_dev_scan(fs, s.poff, nsil)) != PN_OK ||
                 (st = pn_dev_to_host(fs, s.poff + nsil, 4u)) != PN_OK)
@@ -147,14 +147,14 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
         }
     }
     t1 = pn_dev_timestamp(fs);
-    ctx->wg.stats.ns_silhouettes = t1 - t0;
+    ctx->stats.wedges.ns_silhouettes = t1 - t0;
     t0 = t1;
     if (npairs > pn_wg_pairs_max(&ctx->limits))
         return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
                        "wedges: the frame needs %u (tile, wedge) pairs; the pair pool holds %u "
                        "(pn_limits.wg_pairs, PN_WEDGES_PAIRS)", npairs,
                        pn_wg_pairs_max(&ctx->limits));
-    ctx->wg.stats.pairs = npairs;
+    ctx->stats.wedges.pairs = npairs;
     K->wg.sils = nsil;
     if (npairs > 0u) {
         /* Pairs are scattered in silhouette order, so each tile's silhouettes ascend: the
@@ -166,18 +166,18 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
         return st;
     }
     t1 = pn_dev_timestamp(fs);
-    ctx->wg.stats.ns_binning = t1 - t0;
+    ctx->stats.wedges.ns_binning = t1 - t0;
     t0 = t1;
     if ((st = pn_dev_run(fs, PN_K_WG_PIXEL, npix)) != PN_OK ||
         (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_row_counters))) != PN_OK)
         return st;
-    ctx->wg.stats.ns_pixels = pn_dev_timestamp(fs) - t0;
+    ctx->stats.wedges.ns_pixels = pn_dev_timestamp(fs) - t0;
     for (y = 0; y < fs->height; y++) {
         const pn_shadow_counters *c = &((const pn_row_counters *)fs->counters)[y].c;
-        ctx->wg.stats.evaluated += c->candidates;
-        ctx->wg.stats.touched += c->blocking;
-        ctx->wg.stats.hard_blockers += c->nodes;
-        ctx->wg.stats.hard_overflow += c->capped;
+        ctx->stats.wedges.evaluated += c->candidates;
+        ctx->stats.wedges.touched += c->blocking;
+        ctx->stats.wedges.hard_blockers += c->nodes;
+        ctx->stats.wedges.hard_overflow += c->capped;
     }
     return PN_OK;
 }

@@ -184,12 +184,12 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
 #define PN_MAX_(a, b) ((a) > (b) ? (a) : (b))
 #define PN_MIN_(a, b) ((a) < (b) ? (a) : (b))
 #define PN_POOL_(n) (((size_t)(n) + PN_ARENA_ALIGN - 1u) / PN_ARENA_ALIGN * PN_ARENA_ALIGN)
-/* Persistent pools, no split references: the context (at most 1152 bytes, checked in
+/* Persistent pools, no split references: the context (at most 1280 bytes, checked in
  * src/pn_arena.c), per triangle its copy (36), flags (1), two binary BVH nodes (64), a
  * four-wide node (128), its leaf-order and raster-order entries (4 + 4), port scratch
  * (1 KB); with the wedges their connectivity (12 + 12 + 4). */
 #define PN_PERSIST_BYTES_MAX(t)                                                               \
-    (PN_POOL_(1152u) + PN_POOL_((size_t)(t) * 36u) + PN_POOL_(t) + PN_POOL_((size_t)(t) * 64u) +  \
+    (PN_POOL_(1280u) + PN_POOL_((size_t)(t) * 36u) + PN_POOL_(t) + PN_POOL_((size_t)(t) * 64u) +  \
      PN_POOL_((size_t)(t) * 128u) + 2u * PN_POOL_((size_t)(t) * 4u) + PN_POOL_(1024u) +           \
      (PN_ENABLE_WEDGES ? PN_POOL_((size_t)(t) * 12u) + PN_POOL_((size_t)(t) * 12u + 4u) +          \
                              PN_POOL_((size_t)(t) * 4u)                                          \

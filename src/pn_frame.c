@@ -26,7 +26,6 @@ void pn_frame_options_default(pn_frame_options *opt)
     opt->background[1] = 24;
     opt->background[2] = 40;
     opt->background[3] = 255;
-    opt->gears.grid = 0; /* the default: 128, at most limits.gears_grid_max */
     opt->exact_stats = 0;
 }
 

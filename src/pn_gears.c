@@ -35,7 +35,7 @@ pn_status pn_gears_prepare(pn_frame_state *fs, const pn_frame_options *opt)
     if (opt->gears.grid > gmax)
         return pn_fail(ctx, PN_E_INVALID_ARG, "gears.grid = %u; it must be 0 or in 1 .. %u (pn_limits.gears_grid_max)",
                        opt->gears.grid, gmax);
-    fs->gears_grid = opt->gears.grid ? opt->gears.grid : gmax < 128u ? gmax : 128u;
+    fs->res = opt->gears.grid ? opt->gears.grid : gmax < 128u ? gmax : 128u;
     return PN_OK;
 }
 
@@ -212,7 +212,7 @@ static pn_status pn_gears_begin(pn_frame_state *fs, pn_gears_frame_pools *g)
     pn_gears_carve(&c, &ctx->limits, fs->width, fs->height, g);
     if (!c.ok) return PN_E_POOL_EXHAUSTED;
     memset(g->faces, 0, sizeof(*g->faces));
-    g->faces->res = fs->gears_grid;
+    g->faces->res = fs->res;
     P->faces = pn_dev_off(ctx, g->faces);
     P->rects = pn_dev_off(ctx, g->rects);
     P->tri_off = pn_dev_off(ctx, g->tri_off);

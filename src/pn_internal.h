@@ -43,10 +43,7 @@ typedef struct pn_frame_state {
     pn_kparams K;       /* K.view, K.light, K.shade: the frame's; K.tile per launch */
     uint32_t algo;
     uint32_t width, height;
-    uint32_t gears_grid;
-    uint32_t srt_map;
-    uint32_t occ_map;
-    uint32_t mc_map;
+    uint32_t res;       /* the algorithm's grid or map per axis (its prepare sets it) */
     float *depth;
     uint32_t *tri_id;
     float *pos;

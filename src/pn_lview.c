@@ -6,7 +6,6 @@
 #include "pn_kmath.h"
 #include "pn_lview.h"
 
-#if PN_ENABLE_SRT || PN_ENABLE_OCCTEX || PN_ENABLE_MCSM
 typedef char pn_lview_box_agrees[PN_LVIEW_BOX_FLOATS == 8u ? 1 : -1];
 
 static void pn_set3(float *d, pn_v3 v)
@@ -46,7 +45,6 @@ void pn_light_view(const pn_context *ctx, const pn_klight *L, uint32_t res, pn_k
     lv->height = res;
 }
 
-#if PN_ENABLE_OCCTEX || PN_ENABLE_MCSM
 void pn_light_halves(const pn_klight *L, float *ha, float *hb)
 {
     pn_v3 U = pn_v3_make(L->U[0], L->U[1], L->U[2]), V = pn_v3_make(L->V[0], L->V[1], L->V[2]);
@@ -134,5 +132,3 @@ void pn_lview_fit_occluders(const pn_context *ctx, uint32_t res, const pn_klight
     lv->tan_half = w->ty;
     lv->aspect = w->tx / w->ty;
 }
-#endif
-#endif

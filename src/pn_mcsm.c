@@ -34,8 +34,8 @@ pn_status pn_mcsm_prepare(pn_frame_state *fs, const pn_frame_options *opt)
         return pn_fail(ctx, PN_E_INVALID_ARG, "mcsm.flags = %u has unknown bits", opt->mcsm.flags);
     /* Defaults: the configuration docs/bench/RESULTS.md recommends ("Monte Carlo shadow
      * maps"): two layers, hierarchical search, 3 x 3 rays, blur radius 1, 512^2 layers. */
-    fs->mc_map = opt->mcsm.map ? opt->mcsm.map : pn_mc_map_max(&ctx->limits);
-    if (!opt->mcsm.map && fs->mc_map > 512u) fs->mc_map = 512u;
+    fs->res = opt->mcsm.map ? opt->mcsm.map : pn_mc_map_max(&ctx->limits);
+    if (!opt->mcsm.map && fs->res > 512u) fs->res = 512u;
     fs->K.mc.layers = opt->mcsm.layers ? opt->mcsm.layers : 2u;
     fs->K.mc.search = opt->mcsm.search ? opt->mcsm.search : PN_MC_SEARCH_HIER;
     fs->K.mc.rays = opt->mcsm.rays ? opt->mcsm.rays : 3u;
@@ -131,7 +131,7 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
     pn_kmc *mc = &K->mc;
     pn_mc_pools s;
     pn_lwin w;
-    uint32_t res = fs->mc_map, l, y;
+    uint32_t res = fs->res, l, y;
     uint64_t t0 = pn_dev_timestamp(fs), t1;
     int front;
     pn_status st;

@@ -43,8 +43,8 @@ pn_status pn_occtex_prepare(pn_frame_state *fs, const pn_frame_options *opt)
     if (opt->occtex.flags & ~PN_OCC_LEAK_FIX)
         return pn_fail(ctx, PN_E_INVALID_ARG, "occtex.flags = %u has unknown bits", opt->occtex.flags);
     /* Defaults: the configuration docs/bench/RESULTS.md recommends ("Occlusion textures"). */
-    fs->occ_map = opt->occtex.map ? opt->occtex.map : pn_occ_map_max(&ctx->limits);
-    if (!opt->occtex.map && fs->occ_map > 512u) fs->occ_map = 512u;
+    fs->res = opt->occtex.map ? opt->occtex.map : pn_occ_map_max(&ctx->limits);
+    if (!opt->occtex.map && fs->res > 512u) fs->res = 512u;
     fs->K.occ.slices = opt->occtex.slices ? opt->occtex.slices : 16u;
     fs->K.occ.filter = opt->occtex.filter ? opt->occtex.filter : PN_OCC_FILTER_SAT;
     fs->K.occ.combine = opt->occtex.combine ? opt->occtex.combine : PN_OCC_COMBINE_PRODUCT;
@@ -176,7 +176,7 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
     pn_kparams *K = &fs->K;
     pn_kocc *o = &K->occ;
     pn_occ_pools s;
-    uint32_t res = fs->occ_map, npix = fs->width * fs->height, k, l, y;
+    uint32_t res = fs->res, npix = fs->width * fs->height, k, l, y;
     uint64_t t0 = pn_dev_timestamp(fs), t1, t2, lookups = 0u;
     float zmax = 0.0f;
     pn_status st;

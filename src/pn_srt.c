@@ -28,8 +28,8 @@ pn_status pn_srt_prepare(pn_frame_state *fs, const pn_frame_options *opt)
         return pn_fail(ctx, PN_E_INVALID_ARG, "srt.delta must be in [0, 1] (0: the default 1e-3)");
     /* Default map: the paper's 2048^2, at most the limit (a coarser map marks far more
      * pixels: test_srt at 256^2 marks 61-100% of the lit pixels, at 2048^2 7-72%). */
-    fs->srt_map = opt->srt.map ? opt->srt.map : pn_srt_map_max(&ctx->limits);
-    if (!opt->srt.map && fs->srt_map > 2048u) fs->srt_map = 2048u;
+    fs->res = opt->srt.map ? opt->srt.map : pn_srt_map_max(&ctx->limits);
+    if (!opt->srt.map && fs->res > 2048u) fs->res = 2048u;
     fs->K.srt_flags = opt->srt.flags;
     fs->K.srt_delta = (opt->srt.delta > 0.0f ? opt->srt.delta : 1e-3f) * ctx->scene_diag;
     return PN_OK;
@@ -127,7 +127,7 @@ pn_status pn_srt_frame(pn_frame_state *fs)
     pn_context *ctx = fs->ctx;
     pn_kparams *K = &fs->K;
     pn_srt_pools s;
-    uint32_t res = fs->srt_map, tiles = (res + PN_SRT_TILE - 1u) / PN_SRT_TILE, T = ctx->tri_count;
+    uint32_t res = fs->res, tiles = (res + PN_SRT_TILE - 1u) / PN_SRT_TILE, T = ctx->tri_count;
     uint32_t npix = fs->width * fs->height, npip;
     uint64_t t0 = pn_dev_timestamp(fs), t1, t2;
     pn_status st;

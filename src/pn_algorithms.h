@@ -15,6 +15,15 @@
  *   pn_<name>_query(c, l)       its frame pools' size query: the carve its frame runs
  *                               (pn_internal.h pn_carver), run at the limits' maxima;
  *                               pn_carve sizes the frame region for the largest set;
+ *   pn_<name>_persist(c, l)     its persistent pools (carved after the scene's for a context
+ *                               that runs it; c a query or the arena, pn_carver_at at
+ *                               ctx->layout.algo[ID]);
+ *   pn_<name>_scene_scratch(l)  bytes of the frame region its pn_scene_set work uses;
+ *   pn_<name>_scene(ctx)        its work at pn_scene_set, after the BVH (a context that
+ *                               runs it);
+ *   pn_<name>_upload(fs)        its persistent pools to the frame's port when the scene
+ *                               changed (a context that runs it);
+ *   PN_ALGO_NO_SCENE(name) defines the last four for a module with no scene state;
  *   pn_<name>_frame(fs)         its shadow pass: the visibility buffer and one
  *                               pn_row_counters per row, through the port commands of
  *                               src/pn_device.h. Not internal to this header. */
@@ -36,9 +45,36 @@
     pn_status pn_##name##_prepare(pn_frame_state *fs, const pn_frame_options *opt);             \
     int pn_##name##_limits_ok(const pn_limits *l);                                              \
     void pn_##name##_query(pn_carver *c, const pn_limits *l);                                   \
+    void pn_##name##_persist(pn_carver *c, const pn_limits *l);                                 \
+    uint64_t pn_##name##_scene_scratch(const pn_limits *l);                                     \
+    pn_status pn_##name##_scene(pn_context *ctx);                                               \
+    pn_status pn_##name##_upload(pn_frame_state *fs);                                           \
     pn_status pn_##name##_frame(pn_frame_state *fs);
 PN_ALGORITHMS(PN_ALGO_DECLARE)
 #undef PN_ALGO_DECLARE
+
+/* The scene hooks of a module that keeps nothing of the scene. */
+#define PN_ALGO_NO_SCENE(name)                                                                 \
+    void pn_##name##_persist(pn_carver *c, const pn_limits *l)                                  \
+    {                                                                                          \
+        (void)c;                                                                               \
+        (void)l;                                                                               \
+    }                                                                                          \
+    uint64_t pn_##name##_scene_scratch(const pn_limits *l)                                      \
+    {                                                                                          \
+        (void)l;                                                                               \
+        return 0u;                                                                             \
+    }                                                                                          \
+    pn_status pn_##name##_scene(pn_context *ctx)                                               \
+    {                                                                                          \
+        (void)ctx;                                                                             \
+        return PN_OK;                                                                          \
+    }                                                                                          \
+    pn_status pn_##name##_upload(pn_frame_state *fs)                                           \
+    {                                                                                          \
+        (void)fs;                                                                              \
+        return PN_OK;                                                                          \
+    }
 
 /* The module of an algorithm that is not compiled in: its prepare refuses every frame; it
  * has no pools and ignores its limits. */
@@ -59,6 +95,7 @@ PN_ALGORITHMS(PN_ALGO_DECLARE)
         (void)c;                                                                               \
         (void)l;                                                                               \
     }                                                                                          \
+    PN_ALGO_NO_SCENE(name)                                                                     \
     pn_status pn_##name##_frame(pn_frame_state *fs)                                            \
     {                                                                                          \
         (void)fs;                                                                              \

@@ -30,6 +30,15 @@ typedef char pn_row_counters_is_64[sizeof(pn_row_counters) == 64u ? 1 : -1];
 void pn_carver_query(pn_carver *c, uint64_t start)
 {
     c->ctx = NULL;
+    c->base = NULL;
+    c->top = start;
+    c->ok = 1;
+}
+
+void pn_carver_at(pn_carver *c, uint8_t *base, uint64_t start)
+{
+    c->ctx = NULL;
+    c->base = base;
     c->top = start;
     c->ok = 1;
 }
@@ -37,6 +46,7 @@ void pn_carver_query(pn_carver *c, uint64_t start)
 void pn_carver_frame(pn_carver *c, pn_context *ctx)
 {
     c->ctx = ctx;
+    c->base = NULL;
     c->top = 0;
     c->ok = 1;
 }
@@ -47,8 +57,11 @@ void *pn_pool(pn_carver *c, uint64_t count, uint64_t elem, const char *name)
     void *p;
     if (!c->ok) return NULL;
     if (!c->ctx) {
-        if (!pn_bump(&c->top, count, elem, &start)) c->ok = 0;
-        return NULL;
+        if (!pn_bump(&c->top, count, elem, &start)) {
+            c->ok = 0;
+            return NULL;
+        }
+        return c->base ? c->base + start : NULL;
     }
     p = pn_frame_alloc(c->ctx, count, elem, name);
     if (!p) c->ok = 0;
@@ -59,7 +72,7 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
 {
     uint64_t off = 0, frame_start;
     pn_layout lay;
-    int wedges;
+    pn_carver c;
     if (l->max_triangles < 1u || l->max_triangles > PN_MAX_TRIANGLES || l->max_width < 1u ||
         l->max_width > PN_MAX_WIDTH || l->max_height < 1u || l->max_height > PN_MAX_HEIGHT ||
         (l->bvh_refs != 0u && (l->bvh_refs < l->max_triangles || l->bvh_refs > pn_bvh_refs_cap(l))) ||
@@ -71,7 +84,6 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
     PN_ALGORITHMS(PN_ALGO_LIMITS)
 #undef PN_ALGO_LIMITS
     if (l->algos & ~pn_build_info()) return PN_E_UNSUPPORTED;
-    wedges = PN_ENABLE_WEDGES && (pn_limits_algos(l) & PN_BUILD_WEDGES);
     if (!pn_bump(&off, 1u, sizeof(pn_context), &lay.ctx) ||
         !pn_bump(&off, l->max_triangles, 9u * sizeof(float), &lay.tris) ||
         !pn_bump(&off, l->max_triangles, 1u, &lay.flags) ||
@@ -79,17 +91,24 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
         !pn_bump(&off, pn_bvh_refs_max(l), sizeof(pn_kbvh4), &lay.wnodes) ||
         !pn_bump(&off, pn_bvh_refs_max(l), sizeof(uint32_t), &lay.index) ||
         !pn_bump(&off, l->max_triangles, sizeof(uint32_t), &lay.rindex) ||
-        !pn_bump(&off, PN_PORT_SCRATCH_WORDS, sizeof(uint32_t), &lay.scratch) ||
-        !pn_bump(&off, wedges ? 3u * (uint64_t)l->max_triangles : 0u, sizeof(uint32_t), &lay.wg_hedge) ||
-        !pn_bump(&off, wedges ? 3u * (uint64_t)l->max_triangles + 1u : 0u, sizeof(uint32_t), &lay.wg_run) ||
-        !pn_bump(&off, wedges ? (uint64_t)l->max_triangles : 0u, sizeof(uint32_t), &lay.wg_tcomp) ||
-        !pn_bump(&off, 0u, 1u, &lay.frame))
+        !pn_bump(&off, PN_PORT_SCRATCH_WORDS, sizeof(uint32_t), &lay.scratch))
         return PN_E_LIMIT;
+    /* Each algorithm's persistent pools, for the algorithms the context runs. */
+#define PN_ALGO_PERSIST(ID, name)                                                              \
+    lay.algo[PN_ALGO_##ID] = (size_t)off;                                                      \
+    if (pn_limits_algos(l) & (1u << PN_ALGO_##ID)) {                                           \
+        pn_carver_query(&c, off);                                                              \
+        pn_##name##_persist(&c, l);                                                            \
+        if (!c.ok) return PN_E_LIMIT;                                                          \
+        off = c.top;                                                                           \
+    }
+    PN_ALGORITHMS(PN_ALGO_PERSIST)
+#undef PN_ALGO_PERSIST
+    if (!pn_bump(&off, 0u, 1u, &lay.frame)) return PN_E_LIMIT;
     frame_start = off;
     {
         /* The frame's own pools, then the largest of the algorithms' sets (one algorithm a
          * frame): each set's carve run at the limits' maxima. */
-        pn_carver c;
         pn_frame_state fs;
         uint64_t common;
         pn_carver_query(&c, off);
@@ -107,9 +126,12 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
 #undef PN_ALGO_QUERY
         /* pn_scene_set's BVH build uses the region as scratch too. */
         if (pn_bvh_scratch_bytes(l) > off - frame_start) off = frame_start + pn_bvh_scratch_bytes(l);
-        /* ...and so does the wedges' connectivity (pn_connect_build): 6 words a triangle. */
-        if (wedges && 24u * (uint64_t)l->max_triangles > off - frame_start)
-            off = frame_start + 24u * (uint64_t)l->max_triangles;
+        /* ...and so may an algorithm's own work at pn_scene_set. */
+#define PN_ALGO_SCENE_SCRATCH(ID, name)                                                        \
+        if ((pn_limits_algos(l) & (1u << PN_ALGO_##ID)) && pn_##name##_scene_scratch(l) > off - frame_start) \
+            off = frame_start + pn_##name##_scene_scratch(l);
+        PN_ALGORITHMS(PN_ALGO_SCENE_SCRATCH)
+#undef PN_ALGO_SCENE_SCRATCH
     }
     /* Round the end so the last pool's alignment padding is inside the region. */
     if (!pn_bump(&off, 0u, 1u, &lay.end)) return PN_E_LIMIT;
@@ -222,11 +244,6 @@ pn_status pn_init(pn_context **out_ctx, void *memory, size_t bytes, const pn_lim
     ctx->tri_index = (uint32_t *)(void *)(base + lay.index);
     ctx->raster_index = (uint32_t *)(void *)(base + lay.rindex);
     ctx->scratch = (uint32_t *)(void *)(base + lay.scratch);
-    if (PN_ENABLE_WEDGES && (pn_limits_algos(limits) & PN_BUILD_WEDGES)) {
-        ctx->wg_hedge = (uint32_t *)(void *)(base + lay.wg_hedge);
-        ctx->wg_run = (uint32_t *)(void *)(base + lay.wg_run);
-        ctx->wg_tcomp = (uint32_t *)(void *)(base + lay.wg_tcomp);
-    }
     ctx->frame = base + lay.frame;
     *out_ctx = ctx;
     return PN_OK;

@@ -93,10 +93,9 @@ static void pn_cn_union(uint32_t *parent, uint32_t x, uint32_t y)
         parent[x] = y;
 }
 
-void pn_connect_build(pn_context *ctx)
+void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t *tcomp)
 {
     uint32_t T = ctx->tri_count, n = 3u * T, i, t, nv = 0, ncomp = 0, nh = 0, nr = 0;
-    uint32_t *hedge = ctx->wg_hedge, *run = ctx->wg_run, *tcomp = ctx->wg_tcomp;
     uint32_t *canon = (uint32_t *)(void *)ctx->frame, *parent = canon + n, *a, *b;
     pn_cn c;
     c.tris = ctx->tris;
@@ -184,7 +183,6 @@ void pn_connect_build(pn_context *ctx)
     for (i = 0; i < ncomp; i++) ctx->stats.wedges.closed_objects += parent[i] == 0u;
     for (t = 0; t < T; t++)
         if (parent[tcomp[t]] == 0u) tcomp[t] |= PN_WG_CLOSED;
-    ctx->wg_hedges = nh;
     ctx->stats.wedges.edges = nr;
     ctx->stats.wedges.objects = ncomp;
     ctx->stats.wedges.vertices = nv;

@@ -217,13 +217,10 @@ static pn_status pn_scene_to_device(pn_frame_state *fs)
         (st = pn_dev_to_device(fs, ctx->tri_index, (size_t)ctx->bvh_refs * sizeof(uint32_t))) != PN_OK ||
         (st = pn_dev_to_device(fs, ctx->raster_index, (size_t)ctx->bvh_tris * sizeof(uint32_t))) != PN_OK)
         return st;
-#if PN_ENABLE_WEDGES
-    if (ctx->wg_hedge &&
-        ((st = pn_dev_to_device(fs, ctx->wg_hedge, (size_t)ctx->wg_hedges * sizeof(uint32_t))) != PN_OK ||
-         (st = pn_dev_to_device(fs, ctx->wg_run, ((size_t)ctx->stats.wedges.edges + 1u) * sizeof(uint32_t))) != PN_OK ||
-         (st = pn_dev_to_device(fs, ctx->wg_tcomp, (size_t)ctx->tri_count * sizeof(uint32_t))) != PN_OK))
-        return st;
-#endif
+#define PN_ALGO_UPLOAD(ID, name)                                                               \
+    if ((pn_limits_algos(&ctx->limits) & (1u << PN_ALGO_##ID)) && (st = pn_##name##_upload(fs)) != PN_OK) return st;
+    PN_ALGORITHMS(PN_ALGO_UPLOAD)
+#undef PN_ALGO_UPLOAD
     sc->version = ctx->scene_version;
     sc->valid = 1;
     sc->uploads++;
@@ -304,13 +301,6 @@ static void pn_frame_pool_offsets(pn_frame_state *fs)
     P->wnodes = pn_dev_off(ctx, ctx->wnodes);
     P->index = pn_dev_off(ctx, ctx->tri_index);
     P->rindex = pn_dev_off(ctx, ctx->raster_index);
-#if PN_ENABLE_WEDGES
-    if (ctx->wg_hedge) {
-        P->wg_hedge = pn_dev_off(ctx, ctx->wg_hedge);
-        P->wg_run = pn_dev_off(ctx, ctx->wg_run);
-        P->wg_tcomp = pn_dev_off(ctx, ctx->wg_tcomp);
-    }
-#endif
     P->depth = pn_dev_off(ctx, fs->depth);
     P->tri_id = pn_dev_off(ctx, fs->tri_id);
     P->pos = pn_dev_off(ctx, fs->pos);

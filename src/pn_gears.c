@@ -460,6 +460,7 @@ pn_status pn_gears_frame(pn_frame_state *fs)
     return PN_OK;
 }
 
+PN_ALGO_NO_SCENE(gears)
 #else
 PN_ALGO_STUBS(GEARS, gears)
 #endif

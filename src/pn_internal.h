@@ -24,9 +24,8 @@ typedef struct pn_layout {
                          a split triangle's repeated) */
     size_t rindex;    /* max_triangles uint32: raster order (each triangle once, leaf order) */
     size_t scratch;   /* PN_PORT_SCRATCH_WORDS uint32: port scratch */
-    size_t wg_hedge;  /* 3 max_triangles uint32: half-edges by edge (penumbra wedges) */
-    size_t wg_run;    /* 3 max_triangles + 1 uint32: first half-edge of each edge */
-    size_t wg_tcomp;  /* max_triangles uint32: object of each triangle */
+    size_t algo[PN_ALGO_COUNT]; /* each algorithm's persistent pools start here (its module
+                                   carves them: pn_<name>_persist), in pn_algo order */
     size_t frame;     /* start of the per-frame region */
     size_t frame_cap; /* its size: the sum of the largest frame pools */
     size_t end;       /* frame + frame_cap */
@@ -74,7 +73,6 @@ struct pn_context {
     uint32_t *tri_index;    /* BVH leaf order: bvh_refs entries */
     uint32_t *raster_index; /* raster order: bvh_tris entries */
     uint32_t *scratch;
-    uint32_t *wg_hedge, *wg_run, *wg_tcomp; /* NULL without PN_ENABLE_WEDGES */
     /* frame region: a bump allocator rewound at every frame */
     uint8_t *frame;
     size_t frame_top;
@@ -104,7 +102,6 @@ struct pn_context {
     /* each algorithm's public statistics: the sub-structs of pn_stats, written by its
      * module (the other fields of this copy are unused: pn_get_stats fills them) */
     pn_stats stats;
-    uint32_t wg_hedges; /* the wedges' connectivity: half-edges (pn_connect.c) */
     char message[256];
 };
 
@@ -159,11 +156,14 @@ void *pn_frame_alloc(pn_context *ctx, uint64_t count, uint64_t elem, const char 
  * (the region exhausted: pn_fail names the pool; or a size past SIZE_MAX) every pool is
  * NULL and ok is 0, so a carve is a list of pn_pool calls and one test of ok. */
 typedef struct pn_carver {
-    pn_context *ctx; /* the frame's context; NULL: the size query */
-    uint64_t top;    /* the query's offset */
+    pn_context *ctx; /* the frame's context; NULL: the size query, or a persistent set */
+    uint8_t *base;   /* a persistent set's: the arena's aligned base (NULL: the query) */
+    uint64_t top;    /* the query's or the persistent set's offset from the base */
     int ok;
 } pn_carver;
 void pn_carver_query(pn_carver *c, uint64_t start);
+/* A persistent set at offset `start` of the aligned base: the same offsets the query gave. */
+void pn_carver_at(pn_carver *c, uint8_t *base, uint64_t start);
 void pn_carver_frame(pn_carver *c, pn_context *ctx);
 void *pn_pool(pn_carver *c, uint64_t count, uint64_t elem, const char *name);
 /* The frame's own pools (G-buffer, visibility, RGBA, the rasterizer's set-up, the shadow
@@ -178,9 +178,9 @@ pn_status pn_fail(pn_context *ctx, pn_status status, const char *fmt, ...);
 uint64_t pn_now(const pn_context *ctx);
 void pn_run(pn_context *ctx, uint32_t count, pn_task_fn fn, void *task);
 
-/* pn_connect.c: the scene's welded vertices, objects and edges (the frame region is its
- * scratch: call outside a frame). */
-void pn_connect_build(pn_context *ctx);
+/* pn_connect.c: the scene's welded vertices, objects and edges into the wedges' persistent
+ * pools (the frame region is its scratch: call outside a frame). */
+void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t *tcomp);
 
 /* pn_bvh_build.c. The build's scratch sits in the frame region (call outside a frame):
  * PN_BVH_REF_BYTES per reference of pn_bvh_refs_max, then a bit per triangle. */

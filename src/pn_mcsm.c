@@ -204,6 +204,7 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
     return PN_OK;
 }
 
+PN_ALGO_NO_SCENE(mcsm)
 #else
 PN_ALGO_STUBS(MCSM, mcsm)
 #endif

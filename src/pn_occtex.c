@@ -243,6 +243,7 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
     return PN_OK;
 }
 
+PN_ALGO_NO_SCENE(occtex)
 #else
 PN_ALGO_STUBS(OCCTEX, occtex)
 #endif

@@ -27,6 +27,7 @@ void pn_raytrace_query(pn_carver *c, const pn_limits *l)
 }
 
 pn_status pn_raytrace_frame(pn_frame_state *fs) { return pn_dev_run(fs, PN_K_RAYTRACE, fs->width * fs->height); }
+PN_ALGO_NO_SCENE(raytrace)
 #else
 PN_ALGO_STUBS(RAYTRACE, raytrace)
 #endif

@@ -27,6 +27,7 @@ void pn_reference_query(pn_carver *c, const pn_limits *l)
 }
 
 pn_status pn_reference_frame(pn_frame_state *fs) { return pn_dev_run(fs, PN_K_REFERENCE, fs->width * fs->height); }
+PN_ALGO_NO_SCENE(reference)
 #else
 PN_ALGO_STUBS(REFERENCE, reference)
 #endif

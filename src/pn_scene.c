@@ -3,7 +3,7 @@
  * when the new one is rejected. */
 #include <string.h>
 
-#include "pn_internal.h"
+#include "pn_algorithms.h"
 #include "pn_kmath.h"
 #include "pn_raster.h"
 
@@ -117,9 +117,12 @@ pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_
     st = pn_bvh_build(ctx);
     ctx->pass_ns[PN_PASS_BVH_BUILD] = pn_now(ctx) - t0;
     if (st != PN_OK) return st;
-#if PN_ENABLE_WEDGES
-    if (ctx->wg_hedge) pn_connect_build(ctx); /* a context that runs the wedges */
-#endif
+    /* Each algorithm's own work on the scene (the wedges' connectivity), for those the
+     * context runs. */
+#define PN_ALGO_SCENE(ID, name)                                                                \
+    if ((pn_limits_algos(&ctx->limits) & (1u << PN_ALGO_##ID)) && (st = pn_##name##_scene(ctx)) != PN_OK) return st;
+    PN_ALGORITHMS(PN_ALGO_SCENE)
+#undef PN_ALGO_SCENE
     ctx->has_scene = 1;
     return PN_OK;
 }

@@ -188,6 +188,7 @@ pn_status pn_srt_frame(pn_frame_state *fs)
     return PN_OK;
 }
 
+PN_ALGO_NO_SCENE(srt)
 #else
 PN_ALGO_STUBS(SRT, srt)
 #endif

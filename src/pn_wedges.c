@@ -9,6 +9,59 @@
 
 #if PN_ENABLE_WEDGES
 
+/* The scene's connectivity (pn_connect.c builds it at pn_scene_set, kernels/pn_wedges.h
+ * reads it every frame): half-edges by edge, the first half-edge of each edge, each
+ * triangle's object. Persistent, in the module's block of the arena. */
+typedef struct pn_wg_conn {
+    uint32_t *hedge; /* [3 T] */
+    uint32_t *run;   /* [3 T + 1] */
+    uint32_t *tcomp; /* [T] */
+} pn_wg_conn;
+
+static void pn_wg_conn_carve(pn_carver *c, uint32_t tris, pn_wg_conn *w)
+{
+    w->hedge = (uint32_t *)pn_pool(c, 3u * (uint64_t)tris, 4u, "wedges half-edges");
+    w->run = (uint32_t *)pn_pool(c, 3u * (uint64_t)tris + 1u, 4u, "wedges edges");
+    w->tcomp = (uint32_t *)pn_pool(c, tris, 4u, "wedges triangle objects");
+}
+
+void pn_wedges_persist(pn_carver *c, const pn_limits *l)
+{
+    pn_wg_conn w;
+    pn_wg_conn_carve(c, l->max_triangles, &w);
+}
+
+/* The connectivity's pools in the context's arena (the offsets pn_carve gave). */
+static void pn_wg_conn_at(const pn_context *ctx, pn_wg_conn *w)
+{
+    pn_carver c;
+    pn_carver_at(&c, ctx->base, ctx->layout.algo[PN_ALGO_WEDGES]);
+    pn_wg_conn_carve(&c, ctx->limits.max_triangles, w);
+}
+
+/* pn_connect_build's vertex ids and union-find: 6 words a triangle of the frame region. */
+uint64_t pn_wedges_scene_scratch(const pn_limits *l) { return 24u * (uint64_t)l->max_triangles; }
+
+pn_status pn_wedges_scene(pn_context *ctx)
+{
+    pn_wg_conn w;
+    pn_wg_conn_at(ctx, &w);
+    pn_connect_build(ctx, w.hedge, w.run, w.tcomp);
+    return PN_OK;
+}
+
+pn_status pn_wedges_upload(pn_frame_state *fs)
+{
+    const pn_context *ctx = fs->ctx;
+    pn_wg_conn w;
+    pn_status st;
+    pn_wg_conn_at(ctx, &w);
+    if ((st = pn_dev_to_device(fs, w.hedge, (size_t)w.run[ctx->stats.wedges.edges] * sizeof(uint32_t))) != PN_OK ||
+        (st = pn_dev_to_device(fs, w.run, ((size_t)ctx->stats.wedges.edges + 1u) * sizeof(uint32_t))) != PN_OK)
+        return st;
+    return pn_dev_to_device(fs, w.tcomp, (size_t)ctx->tri_count * sizeof(uint32_t));
+}
+
 /* The context's pair pool: 0 (PN_WEDGES_PAIRS) or at most it. */
 int pn_wedges_limits_ok(const pn_limits *l) { return l->wg_pairs <= PN_WEDGES_PAIRS; }
 /* Screen tiles of a frame; silhouettes a context holds (an edge per triangle side, at most
@@ -78,9 +131,14 @@ static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
     pn_context *ctx = fs->ctx;
     pn_kpools *P = &fs->P;
     pn_carver c;
+    pn_wg_conn w;
     pn_carver_frame(&c, ctx);
     pn_wg_carve(&c, &ctx->limits, fs->width, fs->height, ctx->tri_count, ctx->stats.wedges.edges, s);
     if (!c.ok) return PN_E_POOL_EXHAUSTED;
+    pn_wg_conn_at(ctx, &w);
+    P->wg_hedge = pn_dev_off(ctx, w.hedge);
+    P->wg_run = pn_dev_off(ctx, w.run);
+    P->wg_tcomp = pn_dev_off(ctx, w.tcomp);
     P->wg_tcast = pn_dev_off(ctx, s->tcast);
     P->wg_soff = pn_dev_off(ctx, s->soff);
     P->wg_sil = pn_dev_off(ctx, s->sil);

@@ -20,8 +20,8 @@ static int pn_bump(uint64_t *off, uint64_t count, uint64_t elem, size_t *out)
     return 1;
 }
 
-/* PN_ARENA_BYTES_MAX (include/penumbra/penumbra.h) counts at most 1280 bytes for the context
- * and 576 for GEARS' grid cameras. */
+/* PN_ARENA_BYTES_MAX (include/penumbra/penumbra.h) counts at most 1280 bytes for the
+ * context. */
 typedef char pn_context_fits_bound[sizeof(pn_context) <= 1280u ? 1 : -1];
 
 /* A row's counters fill one cache line (kernels/pn_reference.h). */

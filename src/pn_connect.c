@@ -14,7 +14,7 @@
  * union-find, 24 bytes a triangle, which pn_carve reserves. No recursion, no allocation. */
 #include <string.h>
 
-#include "pn_internal.h"
+#include "pn_wedges_frame.h"
 
 #if PN_ENABLE_WEDGES
 #include "pn_wedges.h"

@@ -178,9 +178,6 @@ pn_status pn_fail(pn_context *ctx, pn_status status, const char *fmt, ...);
 uint64_t pn_now(const pn_context *ctx);
 void pn_run(pn_context *ctx, uint32_t count, pn_task_fn fn, void *task);
 
-/* pn_connect.c: the scene's welded vertices, objects and edges into the wedges' persistent
- * pools (the frame region is its scratch: call outside a frame). */
-void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t *tcomp);
 
 /* pn_bvh_build.c. The build's scratch sits in the frame region (call outside a frame):
  * PN_BVH_REF_BYTES per reference of pn_bvh_refs_max, then a bit per triangle. */

@@ -1,7 +1,9 @@
 /* pn_algorithms.h - the registry: every algorithm once, in pn_algo order. From this list
- * come the frame's dispatch and option checks (src/pn_frame.c), pn_build_info() and
- * pn_algo_name() (src/pn_context.c). Adding an algorithm is its module and one line here
- * (docs/architecture.md, "Adding an algorithm").
+ * come the frame's dispatch and option checks and the scene upload (src/pn_frame.c), the
+ * limit checks, the size query and the persistent carve (src/pn_arena.c), the scene work
+ * (src/pn_scene.c), pn_build_info() and pn_algo_name() (src/pn_context.c), and CMake's
+ * PN_ALGORITHMS names (CMakeLists.txt reads the X lines). Adding an algorithm is its
+ * module and one line here (docs/architecture.md, "Adding an algorithm").
  *
  *   X(ID, name)   ID: as in PN_ALGO_<ID>, PN_ENABLE_<ID> and PN_BUILD_<ID>;
  *                 name: its module src/pn_<name>.c, and what pn_algo_name() returns

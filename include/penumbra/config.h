@@ -183,13 +183,13 @@
  * shrinks the boxes' surface area to under 5/8 of the parent's. Only the boxes change: a
  * leaf still names whole triangles and every walk still tests the whole triangle, so the
  * bits of every frame are the same; a ray just meets fewer boxes it then misses.
- * PN_BVH_SPLIT_REFS references beyond one per triangle are reserved (at most
- * (2^depth - 1) per triangle of max_triangles, and the total at most 2^26), 196 bytes each
- * of persistent arena (two binary BVH nodes, a four-wide node, an index entry; pn_scene_set's build also borrows
- * 40 bytes a reference of the frame region); when a scene wants more, every
- * triangle is split one level less until it fits. 0 for either: no splitting, no cost.
- * A context's limits.bvh_refs lowers the reserve at run time. Depth 0 .. 6; references
- * 0 .. 2^26. */
+ * A context reserves split references only on request: pn_limits.bvh_refs above
+ * max_triangles, at most PN_BVH_SPLIT_REFS beyond one per triangle (and at most
+ * (2^depth - 1) per triangle, the total at most 2^26), 196 bytes each of persistent arena
+ * (two binary BVH nodes, a four-wide node, an index entry; pn_scene_set's build also
+ * borrows 40 bytes a reference of the frame region); when a scene wants more than the
+ * context holds, every triangle is split one level less until it fits. 0 for either: no
+ * splitting. Depth 0 .. 6; references 0 .. 2^26. */
 #ifndef PN_BVH_SPLIT_DEPTH
 #define PN_BVH_SPLIT_DEPTH 4u
 #endif

@@ -20,8 +20,8 @@ static inline int pn_test_uv_sphere(pn_test_mesh *m, double cx, double cy, doubl
     m->positions = (float *)malloc(sizeof(float) * 3u * (size_t)nv);
     m->indices = (uint32_t *)malloc(sizeof(uint32_t) * 3u * (size_t)nt);
     if (!m->positions || !m->indices) return 1;
-    m->vertex_count = m->cap_v = (uint32_t)nv;
-    m->triangle_count = m->cap_t = (uint32_t)nt;
+    m->vertex_count = (uint32_t)nv;
+    m->triangle_count = (uint32_t)nt;
     m->positions[0] = (float)cx; m->positions[1] = (float)(cy + r); m->positions[2] = (float)cz;
     m->positions[3] = (float)cx; m->positions[4] = (float)(cy - r); m->positions[5] = (float)cz;
     for (j = 1; j < stacks; j++)
@@ -64,8 +64,8 @@ static inline int pn_test_append(pn_test_mesh *a, const pn_test_mesh *b)
     a->indices = x;
     memcpy(p + 3u * a->vertex_count, b->positions, sizeof(float) * 3u * b->vertex_count);
     for (t = 0; t < 3u * b->triangle_count; t++) x[3u * a->triangle_count + t] = b->indices[t] + a->vertex_count;
-    a->vertex_count = a->cap_v = nv;
-    a->triangle_count = a->cap_t = nt;
+    a->vertex_count = nv;
+    a->triangle_count = nt;
     pn_test_mesh_update_bbox(a);
     return 0;
 }

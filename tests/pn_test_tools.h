@@ -21,14 +21,7 @@ static inline int pn_test_scene_load_tools(pn_test_scene *t, const char *source,
         fprintf(stderr, "%s: %s\n", source, err);
         return 1;
     }
-    t->mesh.positions = s.mesh.positions;
-    t->mesh.indices = s.mesh.indices;
-    t->mesh.vertex_count = t->mesh.cap_v = s.mesh.vertex_count;
-    t->mesh.triangle_count = t->mesh.cap_t = s.mesh.triangle_count;
-    memcpy(t->mesh.bbox_min, s.mesh.bbox_min, sizeof(t->mesh.bbox_min));
-    memcpy(t->mesh.bbox_max, s.mesh.bbox_max, sizeof(t->mesh.bbox_max));
-    t->mesh.receiver_first = s.mesh.receiver_first;
-    t->mesh.receiver_count = s.mesh.receiver_count;
+    t->mesh = s.mesh; /* the same pn_mesh */
     t->camera = s.camera;
     t->light = s.light;
     t->diag = s.diag;

@@ -203,3 +203,14 @@ double pn_square_min_edge_distance(const pn_square_params *p, double x, double z
     }
     return best;
 }
+
+void pn_scene_view_apply(const pn_scene_view *v, pn_camera *camera, pn_light *light)
+{
+    memcpy(camera->eye, v->eye, sizeof(v->eye));
+    memcpy(camera->target, v->target, sizeof(v->target));
+    memcpy(camera->up, v->up, sizeof(v->up));
+    camera->fov_deg = v->fov_deg;
+    memcpy(light->center, v->light_center, sizeof(v->light_center));
+    memcpy(light->u, v->light_u, sizeof(v->light_u));
+    memcpy(light->v, v->light_v, sizeof(v->light_v));
+}

@@ -64,6 +64,7 @@
 
 #include <stddef.h>
 
+#include "penumbra/penumbra.h"
 #include "pn_mesh.h"
 
 #ifdef __cplusplus
@@ -82,6 +83,9 @@ typedef struct pn_scene_view {
                                                       points toward the scene (the light
                                                       emits toward +N) */
 } pn_scene_view;
+
+/* The view's camera and light as the library takes them. */
+void pn_scene_view_apply(const pn_scene_view *v, pn_camera *camera, pn_light *light);
 
 /* Builds built-in scene `name` into *out (malloc'd arrays, free with pn_mesh_free);
  * fills *view if view != NULL. out and name must not be NULL; err may be NULL.

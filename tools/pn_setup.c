@@ -60,13 +60,7 @@ int pn_setup_load(pn_setup *s, const char *source, int builtin, int ground, char
     if (builtin) {
         pn_scene_view view;
         if (pn_builtin_scene(source, &s->mesh, &view, err, err_size) != 0) return 1;
-        memcpy(s->camera.eye, view.eye, sizeof(view.eye));
-        memcpy(s->camera.target, view.target, sizeof(view.target));
-        memcpy(s->camera.up, view.up, sizeof(view.up));
-        s->camera.fov_deg = view.fov_deg;
-        memcpy(s->light.center, view.light_center, sizeof(view.light_center));
-        memcpy(s->light.u, view.light_u, sizeof(view.light_u));
-        memcpy(s->light.v, view.light_v, sizeof(view.light_v));
+        pn_scene_view_apply(&view, &s->camera, &s->light);
         snprintf(s->name, sizeof(s->name), "%s", source);
         snprintf(s->view_source, sizeof(s->view_source), "builtin");
         snprintf(s->light_source, sizeof(s->light_source), "builtin");

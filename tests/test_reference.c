@@ -1,7 +1,8 @@
 /* PN_ALGO_REFERENCE: the closed form of the square scene, culling against brute force,
  * watertightness of the shared predicate, point and one-sided lights, determinism.
  *
- * Built twice (tests/CMakeLists.txt): test_reference links the library alone and renders
+ * Built twice (tests/CMakeLists.txt): test_reference links the library and the built-in
+ * scenes (pn_scenes) alone and renders
  * the scenes of tests/pn_test_scene.h, its determinism check running the work items in
  * other orders on one thread; test_reference_models (PN_TEST_MODELS=1) links the tools and
  * runs the culling and watertightness checks on spot.glb and the determinism check on the

@@ -7,7 +7,7 @@
  *   upload       pn_setup_upload: NULL arguments; the scene, then its receiver range (the
  *                reference's bytes as with pn_scene_set alone); the range's status when only
  *                it fails (the scene set by then), pn_scene_set's when the scene fails
- *                (moved here from test_validation, which links the library alone) */
+ *                (moved here from test_validation, which links no tools) */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

@@ -25,7 +25,8 @@
  *                               runs it);
  *   pn_<name>_upload(fs)        its persistent pools to the frame's port when the scene
  *                               changed (a context that runs it);
- *   PN_ALGO_NO_SCENE(name) defines the last four for a module with no scene state;
+ *   PN_ALGO_NO_SCENE(name) defines the last four for a module with no scene state, and
+ *   PN_ALGO_NO_POOLS(name) limits_ok and query for one with no limits and no frame pools;
  *   pn_<name>_frame(fs)         its shadow pass: the visibility buffer and one
  *                               pn_row_counters per row, through the port commands of
  *                               src/pn_device.h. Not internal to this header. */
@@ -54,6 +55,19 @@
     pn_status pn_##name##_frame(pn_frame_state *fs);
 PN_ALGORITHMS(PN_ALGO_DECLARE)
 #undef PN_ALGO_DECLARE
+
+/* The limit check and size query of a module with no limits and no frame pools. */
+#define PN_ALGO_NO_POOLS(name)                                                                 \
+    int pn_##name##_limits_ok(const pn_limits *l)                                              \
+    {                                                                                          \
+        (void)l;                                                                               \
+        return 1;                                                                              \
+    }                                                                                          \
+    void pn_##name##_query(pn_carver *c, const pn_limits *l)                                    \
+    {                                                                                          \
+        (void)c;                                                                               \
+        (void)l;                                                                               \
+    }
 
 /* The scene hooks of a module that keeps nothing of the scene. */
 #define PN_ALGO_NO_SCENE(name)                                                                 \
@@ -87,16 +101,7 @@ PN_ALGORITHMS(PN_ALGO_DECLARE)
         return pn_fail(fs->ctx, PN_E_UNSUPPORTED,                                              \
                        "PN_ALGO_" #ID " is not compiled in (PN_ENABLE_" #ID " 0)");             \
     }                                                                                          \
-    int pn_##name##_limits_ok(const pn_limits *l)                                              \
-    {                                                                                          \
-        (void)l;                                                                               \
-        return 1;                                                                              \
-    }                                                                                          \
-    void pn_##name##_query(pn_carver *c, const pn_limits *l)                                    \
-    {                                                                                          \
-        (void)c;                                                                               \
-        (void)l;                                                                               \
-    }                                                                                          \
+    PN_ALGO_NO_POOLS(name)                                                                     \
     PN_ALGO_NO_SCENE(name)                                                                     \
     pn_status pn_##name##_frame(pn_frame_state *fs)                                            \
     {                                                                                          \

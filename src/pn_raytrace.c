@@ -6,12 +6,6 @@
 
 #if PN_ENABLE_RAYTRACE
 
-/* No limits of its own. */
-int pn_raytrace_limits_ok(const pn_limits *l)
-{
-    (void)l;
-    return 1;
-}
 pn_status pn_raytrace_prepare(pn_frame_state *fs, const pn_frame_options *opt)
 {
     (void)fs;
@@ -19,12 +13,7 @@ pn_status pn_raytrace_prepare(pn_frame_state *fs, const pn_frame_options *opt)
     return PN_OK;
 }
 
-/* No pools of its own. */
-void pn_raytrace_query(pn_carver *c, const pn_limits *l)
-{
-    (void)c;
-    (void)l;
-}
+PN_ALGO_NO_POOLS(raytrace)
 
 pn_status pn_raytrace_frame(pn_frame_state *fs) { return pn_dev_run(fs, PN_K_RAYTRACE, fs->width * fs->height); }
 PN_ALGO_NO_SCENE(raytrace)

@@ -6,12 +6,6 @@
 
 #if PN_ENABLE_REFERENCE
 
-/* No limits of its own. */
-int pn_reference_limits_ok(const pn_limits *l)
-{
-    (void)l;
-    return 1;
-}
 pn_status pn_reference_prepare(pn_frame_state *fs, const pn_frame_options *opt)
 {
     (void)fs;
@@ -19,12 +13,7 @@ pn_status pn_reference_prepare(pn_frame_state *fs, const pn_frame_options *opt)
     return PN_OK;
 }
 
-/* No pools of its own. */
-void pn_reference_query(pn_carver *c, const pn_limits *l)
-{
-    (void)c;
-    (void)l;
-}
+PN_ALGO_NO_POOLS(reference)
 
 pn_status pn_reference_frame(pn_frame_state *fs) { return pn_dev_run(fs, PN_K_REFERENCE, fs->width * fs->height); }
 PN_ALGO_NO_SCENE(reference)

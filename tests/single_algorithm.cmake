@@ -6,8 +6,8 @@
 #   cmake -DSOURCE_DIR=<repo> -DWORK_DIR=<binary dir> -DALGO=<name> -DBUILD_TYPE=<type>
 #         -DSCENES=<shared scenes> -DGENERATOR=<generator> -P tests/single_algorithm.cmake
 #
-# A reduced configure + build of the library, the tools and these five tests (about 10
-# seconds of two cores), then ctest on them in the reduced tree.
+# A reduced configure + build of the library, the tools and these five tests, then ctest
+# on them in the reduced tree: 25-60 seconds of two cores each.
 cmake_minimum_required(VERSION 3.25)
 foreach(v SOURCE_DIR WORK_DIR ALGO SCENES GENERATOR)
   if(NOT ${v})

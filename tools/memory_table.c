@@ -50,6 +50,17 @@ static int carve(const pn_limits *l, double *persistent, double *carved)
     return 1;
 }
 
+/* One table cell: the arena in MiB for limits (t, w, h) of algorithm algo (-1: all). */
+static void print_arena_mib(uint32_t t, uint32_t w, uint32_t h, int algo)
+{
+    pn_limits l = limits(t, w, h, algo);
+    size_t bytes;
+    if (pn_arena_size(&l, &bytes) == PN_OK)
+        printf(" %.1f |", (double)bytes / 1048576.0);
+    else
+        printf(" - |");
+}
+
 static const char *name_of(int a) { return a < 0 ? "all (default)" : pn_algo_name((pn_algo)a); }
 
 int main(void)
@@ -83,12 +94,7 @@ int main(void)
         for (i = 0; i < 4; i++) {
             /* The arena at four workloads, as the README's table shows them. */
             static const uint32_t at[4][3] = {{1000, 320, 240}, {10000, 512, 512}, {100000, 512, 512}, {1000000, 1920, 1080}};
-            pn_limits l = limits(at[i][0], at[i][1], at[i][2], algo);
-            size_t bytes;
-            if (pn_arena_size(&l, &bytes) == PN_OK)
-                printf(" %.1f |", (double)bytes / 1048576.0);
-            else
-                printf(" - |");
+            print_arena_mib(at[i][0], at[i][1], at[i][2], algo);
         }
         printf("\n");
     }
@@ -102,14 +108,7 @@ int main(void)
         if (algo >= 0 && !(pn_build_info() & (1u << algo))) continue;
         for (i = 0; i < 4; i++) {
             printf("| %s | %u |", name_of(algo), tris[i]);
-            for (j = 0; j < 3; j++) {
-                pn_limits l = limits(tris[i], res[j][0], res[j][1], algo);
-                size_t bytes;
-                if (pn_arena_size(&l, &bytes) == PN_OK)
-                    printf(" %.1f |", (double)bytes / 1048576.0);
-                else
-                    printf(" - |");
-            }
+            for (j = 0; j < 3; j++) print_arena_mib(tris[i], res[j][0], res[j][1], algo);
             printf("\n");
         }
     }

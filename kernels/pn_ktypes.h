@@ -114,8 +114,13 @@ typedef struct pn_kwg {
     uint32_t tiles_x; /* screen tiles per row */
     float hmax;       /* the greatest height above the light plane, (X - c).N, of any point a
                          pixel's shadow origin may take: the scene box's, widened */
-    float pad0, pad1, pad2;
+    uint32_t bx0, by0, bx1, by1; /* the band of tiles a binning pass fills: [bx0, bx1) x [by0, by1) */
+    uint32_t pix0;    /* the pixel pass: its first pixel (item i is pixel pix0 + i) */
+    uint32_t pad0, pad1;
 } pn_kwg;
+
+/* The G-buffer's triangle id of a pixel that sees no triangle. */
+#define PN_NO_PIXEL_TRIANGLE 0xFFFFFFFFu
 
 /* Triangle flags (one byte each). */
 #define PN_TRI_DEGENERATE 1u

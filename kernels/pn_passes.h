@@ -53,8 +53,6 @@
 #include "pn_wedges.h"
 #endif
 
-#define PN_NO_PIXEL_TRIANGLE 0xFFFFFFFFu
-
 /* A work item's counters into its row's: integer atomic adds, the same sums in any order. */
 PN_KFN void pn_counters_add(PN_GLOBAL pn_shadow_counters *row, const pn_shadow_counters *c)
 {

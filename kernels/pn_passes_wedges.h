@@ -23,32 +23,64 @@ PN_KFN void pn_e_wg_sil_flag(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
                                                       PN_POOL(const uint32_t, wg_tcast), r) != 0;
 }
 
-/* Edge run that is a silhouette: its record, wedge tiles and pair count at its slot. */
+/* Edge run that is a silhouette: its record and wedge tiles at its slot. */
 PN_KFN void pn_e_wg_sil_make(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
 {
     PN_CONST uint32_t *off = PN_POOL(const uint32_t, wg_soff);
     if (off[r + 1u] == off[r]) return;
     pn_wg_sil_make(&K->view, &K->light, K->wg.hmax, PN_POOL(const float, tris), PN_POOL(const uint32_t, wg_hedge),
                    PN_POOL(const uint32_t, wg_run), PN_POOL(const uint32_t, wg_tcast), PN_POOL(const uint32_t, wg_tcomp), r,
-                   off[r], PN_POOL(pn_wsil, wg_sil), PN_POOL(uint32_t, wg_poff));
+                   off[r], PN_POOL(pn_wsil, wg_sil));
 }
 
-/* Silhouette: its (tile, silhouette) pairs from its prefix-summed offset. */
+/* Silhouette: its object's box, written by the object's first silhouette. */
+PN_KFN void pn_e_wg_obj_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t s)
+{
+    pn_wg_obj_box(PN_POOL(pn_wsil, wg_sil), K->wg.sils, s);
+}
+
+/* Screen tile: the light-space box of its pixels' shadow origins. */
+PN_KFN void pn_e_wg_tile_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+{
+    pn_wg_tile_box(&K->view, &K->light, t % K->wg.tiles_x, t / K->wg.tiles_x, PN_POOL(const uint32_t, tri_id),
+                   PN_POOL(const float, pos), PN_POOL(const float, nrm), PN_POOL(float, wg_tbox) + (size_t)t * PN_WG_BOX);
+}
+
+/* Silhouette: the count of its (tile, silhouette) pairs in the band. */
+PN_KFN void pn_e_wg_count(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t s)
+{
+    PN_POOL(uint32_t, wg_poff)[s] = pn_wg_bin(&K->view, &K->light, &K->wg, PN_POOL(const float, tris), PN_POOL(const pn_wsil, wg_sil),
+                                              PN_POOL(const float, wg_tbox), s, 0u, 0, PN_POOL(uint32_t, wg_pairs));
+}
+
+/* Silhouette: its (tile, silhouette) pairs in the band from its prefix-summed offset. */
 PN_KFN void pn_e_wg_scatter(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t s)
 {
-    pn_wg_scatter(&K->view, &K->light, K->wg.hmax, PN_POOL(const float, tris), PN_POOL(const pn_wsil, wg_sil), s,
-                  PN_POOL(const uint32_t, wg_poff)[s], PN_POOL(uint32_t, wg_pairs));
+    (void)pn_wg_bin(&K->view, &K->light, &K->wg, PN_POOL(const float, tris), PN_POOL(const pn_wsil, wg_sil),
+                    PN_POOL(const float, wg_tbox), s, PN_POOL(const uint32_t, wg_poff)[s], 1, PN_POOL(uint32_t, wg_pairs));
 }
 
-/* Pixel: its centre ray and its tile's wedges, blended object by object; times its
- * horizon's fraction. */
-PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+/* Screen tile: the ends of its list's object runs (into the pair pool, free after the
+ * sort). */
+PN_KFN void pn_e_wg_runs(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
+{
+    PN_CONST uint32_t *toff = PN_POOL(const uint32_t, wg_toff);
+    (void)K;
+    pn_wg_runs(PN_POOL(const pn_wsil, wg_sil), PN_POOL(const uint32_t, wg_sorted), toff[t], toff[t + 1u],
+               PN_POOL(uint32_t, wg_pairs));
+}
+
+/* Pixel pix0 + i (of the band's rows; the band's columns only): its centre ray and its
+ * tile's wedges, blended object by object; times its horizon's fraction. */
+PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
 {
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
-    uint32_t id = PN_POOL(const uint32_t, tri_id)[pix], W = K->view.width, tile;
+    uint32_t pix = K->wg.pix0 + i, W = K->view.width, tx = (pix % W) / PN_WG_TILE, tile, id;
     PN_CONST uint32_t *toff = PN_POOL(const uint32_t, wg_toff);
     pn_v3 pos, nrm, O;
     float v;
+    if (tx < K->wg.bx0 || tx >= K->wg.bx1) return; /* another band's */
+    id = PN_POOL(const uint32_t, tri_id)[pix];
     if (id == PN_NO_PIXEL_TRIANGLE) {
         PN_POOL(float, vis)[pix] = 1.0f;
         return;
@@ -59,10 +91,10 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
         PN_POOL(float, vis)[pix] = 0.0f;
         return;
     }
-    tile = (pix / W / PN_WG_TILE) * K->wg.tiles_x + (pix % W) / PN_WG_TILE;
+    tile = (pix / W / PN_WG_TILE) * K->wg.tiles_x + tx;
     v = pn_wg_pixel(O, id, &K->light, K->wg.mode, PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
                     PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), PN_POOL(const uint32_t, wg_tcomp), PN_POOL(const pn_wsil, wg_sil),
-                    PN_POOL(const uint32_t, wg_sorted), toff[tile], toff[tile + 1u], &c);
+                    PN_POOL(const uint32_t, wg_sorted), PN_POOL(const uint32_t, wg_pairs), toff[tile], toff[tile + 1u], &c);
     if (v > 0.0f) {
         uint32_t m[PN_MASK_WORDS_MAX];
         pn_horizon H;
@@ -83,7 +115,11 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     X(WG_CAST, wg_cast, 64, 4096)                         \
     X(WG_SIL_FLAG, wg_sil_flag, 64, 4096)                 \
     X(WG_SIL_MAKE, wg_sil_make, 64, 1024)                 \
+    X(WG_OBJ_BOX, wg_obj_box, 64, 1024)                   \
+    X(WG_TILE_BOX, wg_tile_box, 64, 16)                   \
+    X(WG_COUNT, wg_count, 64, 1024)                       \
     X(WG_SCATTER, wg_scatter, 64, 1024)                   \
+    X(WG_RUNS, wg_runs, 64, 16)                           \
     X(WG_PIXEL, wg_pixel, 16, 1024)
 #else
 #define PN_PASSES_WEDGES(X)

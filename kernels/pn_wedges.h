@@ -59,11 +59,14 @@
 /* A silhouette edge a -> b: half-edge h (triangle h / 3, its edge h % 3 from vertex h % 3
  * to the next) | PN_WG_REV when the silhouette runs the other way; weight; object; its
  * wedge's screen tiles [x0, x1] x [y0, y1] (x0 > x1: none); and what every pixel needs of
- * it, computed once: a and b in light coordinates (u, v, h: pn_wg_light) and the normal
- * (a - c) x (b - c) of the plane through the light centre and the edge. */
+ * it, computed once: a and b in light coordinates (u, v, h: pn_wg_light), the normal
+ * (a - c) x (b - c) of the plane through the light centre and the edge, and the box in
+ * light coordinates of its object's silhouette end points (ob: u0, u1, v0, v1, h0, h1;
+ * the same in every silhouette of the object). */
 typedef struct pn_wsil {
     uint32_t h, w, comp, pad, x0, y0, x1, y1;
-    float ua, va, ha, ub, vb, hb, nx, ny, nz, pad1, pad2, pad3;
+    float ua, va, ha, ub, vb, hb, nx, ny, nz;
+    float ob[6], pad1;
 } pn_wsil;
 
 /* Light coordinates of X: u = (X - c).U / |U|^2, v = (X - c).V / |V|^2, h = (X - c).N. */
@@ -292,29 +295,18 @@ PN_KFN void pn_wg_row(const pn_kview *v, const pn_wreach *R, uint32_t ty, uint32
     if (*x1 > R->x1) *x1 = R->x1;
 }
 
-/* The number of tiles reach R covers. */
-PN_KFN uint32_t pn_wg_reach_tiles(const pn_kview *v, const pn_wreach *R)
-{
-    uint32_t y, n = 0u, x0, x1;
-    if (R->x0 > R->x1) return 0u;
-    for (y = R->y0; y <= R->y1; y++) {
-        pn_wg_row(v, R, y, &x0, &x1);
-        if (x0 <= x1) n += x1 - x0 + 1u;
-    }
-    return n;
-}
-
-/* Edge run r: its silhouette record at slot (when its winding is non-zero) and the count
- * of its (tile, edge) pairs into npairs[slot]. */
+/* Edge run r: its silhouette record at slot (when its winding is non-zero), with its
+ * wedge's tile box (the reach's). */
 PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN_CONST float *tris, PN_CONST uint32_t *hedge,
                            PN_CONST uint32_t *run, PN_CONST uint32_t *tcast, PN_CONST uint32_t *tcomp, uint32_t r,
-                           uint32_t slot, PN_GLOBAL pn_wsil *sil, PN_GLOBAL uint32_t *npairs)
+                           uint32_t slot, PN_GLOBAL pn_wsil *sil)
 {
     int32_t m = pn_wg_run_winding(hedge, run, tcast, r);
     uint32_t h0 = hedge[run[r]], rev0 = (h0 & PN_WG_REV) != 0u;
     PN_GLOBAL pn_wsil *s = sil + slot;
     pn_wreach R;
     pn_v3 a, b;
+    uint32_t i;
     if (m == 0) return;
     /* The silhouette runs along the canonical direction iff m > 0; the half-edge does iff
      * it is not reversed. */
@@ -339,35 +331,151 @@ PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN
         s->ny = n.y;
         s->nz = n.z;
         s->pad1 = 0.0f;
-        s->pad2 = 0.0f;
-        s->pad3 = 0.0f;
+        for (i = 0; i < 6u; i++) s->ob[i] = 0.0f; /* pn_wg_obj_box's */
     }
     s->x0 = R.x0;
     s->y0 = R.y0;
     s->x1 = R.x1;
     s->y1 = R.y1;
-    npairs[slot] = pn_wg_reach_tiles(v, &R);
 }
 
-/* Silhouette s: its (tile, s) pairs from `at` on, tiles in ascending order (its reach,
- * built again: the same arithmetic gives the same tiles pn_wg_sil_make counted). */
-PN_KFN void pn_wg_scatter(const pn_kview *v, const pn_klight *L, float hmax, PN_CONST float *tris, PN_CONST pn_wsil *sil,
-                          uint32_t s, uint32_t at, PN_GLOBAL uint32_t *pairs)
+/* Silhouette s, the first of its object's (silhouettes are numbered object by object):
+ * the object's box (pn_wsil.ob) into each of its silhouettes. */
+PN_KFN void pn_wg_obj_box(PN_GLOBAL pn_wsil *sil, uint32_t nsil, uint32_t s)
 {
-    uint32_t tw = PN_WG_TILES(v->width), x, y, x0, x1;
+    uint32_t c = sil[s].comp, j, i;
+    float b[6];
+    if (s > 0u && sil[s - 1u].comp == c) return;
+    b[0] = b[2] = b[4] = PN_KINF;
+    b[1] = b[3] = b[5] = -PN_KINF;
+    for (j = s; j < nsil && sil[j].comp == c; j++) {
+        PN_CONST pn_wsil *e = sil + j;
+        b[0] = pn_kminf(b[0], pn_kminf(e->ua, e->ub));
+        b[1] = pn_kmaxf(b[1], pn_kmaxf(e->ua, e->ub));
+        b[2] = pn_kminf(b[2], pn_kminf(e->va, e->vb));
+        b[3] = pn_kmaxf(b[3], pn_kmaxf(e->va, e->vb));
+        b[4] = pn_kminf(b[4], pn_kminf(e->ha, e->hb));
+        b[5] = pn_kmaxf(b[5], pn_kmaxf(e->ha, e->hb));
+    }
+    for (j = s; j < nsil && sil[j].comp == c; j++)
+        for (i = 0; i < 6u; i++) sil[j].ob[i] = b[i];
+}
+
+/* ---- Tiles in depth: the light-space box of a tile's shadow origins ---------------------- */
+
+/* A tile's box (PN_WG_BOX floats): the least and greatest u, v and h (pn_wg_light) of the
+ * shadow origins O of its pixels that have one, the very values pn_wg_pixel computes; u0 > u1
+ * when no pixel of the tile has one. */
+#define PN_WG_BOX 6u
+
+PN_KFN void pn_wg_tile_box(const pn_kview *v, const pn_klight *L, uint32_t tx, uint32_t ty, PN_CONST uint32_t *tri_id,
+                           PN_CONST float *pos, PN_CONST float *nrm, PN_GLOBAL float *box)
+{
+    float b[PN_WG_BOX];
+    uint32_t x, y, x1 = (tx + 1u) * PN_WG_TILE, y1 = (ty + 1u) * PN_WG_TILE, i;
+    b[0] = b[2] = b[4] = PN_KINF;
+    b[1] = b[3] = b[5] = -PN_KINF;
+    if (x1 > v->width) x1 = v->width;
+    if (y1 > v->height) y1 = v->height;
+    for (y = ty * PN_WG_TILE; y < y1; y++)
+        for (x = tx * PN_WG_TILE; x < x1; x++) {
+            size_t pix = (size_t)y * v->width + x;
+            pn_v3 O;
+            float u, vv, h;
+            if (tri_id[pix] == PN_NO_PIXEL_TRIANGLE ||
+                !pn_shadow_origin(pn_v3_load(pos + pix * 3u), pn_v3_load(nrm + pix * 3u), L, &O))
+                continue;
+            pn_wg_light(L, O, &u, &vv, &h);
+            b[0] = pn_kminf(b[0], u);
+            b[1] = pn_kmaxf(b[1], u);
+            b[2] = pn_kminf(b[2], vv);
+            b[3] = pn_kmaxf(b[3], vv);
+            b[4] = pn_kminf(b[4], h);
+            b[5] = pn_kmaxf(b[5], h);
+        }
+    for (i = 0; i < PN_WG_BOX; i++) box[i] = b[i];
+}
+
+/* Whether silhouette e is nothing to every shadow origin in box B: pn_wg_project returns 0
+ * for each (so the tile need not list it; the same bytes as when it does).
+ * - No origin: nothing to evaluate.
+ * - The edge wholly below every origin's local near plane (h_e >= (1 - PN_WG_TNEAR) h_O at
+ *   both ends): clipped away.
+ * - The edge wholly between the light plane and every origin's near plane (0 <= h_e <=
+ *   (1 - PN_WG_TNEAR) h_O: no clipping) and both ends projecting beyond one side of the
+ *   light from every origin. For side x = sg (x: u or v; sg = +-1) the pixel's test of end
+ *   e, (x_e - x_O) sg >= (1 - x_O sg) t_e with t_e = 1 - h_e / h_O, is, times h_O > 0,
+ *       g = (sg x_e - 1) h_O + (1 - sg x_O) h_e >= 0,
+ *   affine in (x_O, h_O); its least value over the box is at one corner.
+ * Each comparison keeps a margin of 1e-3 of its terms' magnitudes, far above the rounding
+ * of either side (a few float operations), so the pixel reaches the same decision. */
+PN_KFN int pn_wg_box_misses(PN_CONST float *B, PN_CONST pn_wsil *e)
+{
+    const float near = 1.0f - PN_WG_TNEAR;
+    float h0 = B[4], h1 = B[5], hlo = pn_kminf(e->ha, e->hb), hhi = pn_kmaxf(e->ha, e->hb);
+    uint32_t q;
+    if (!(B[0] <= B[1])) return 1;
+    if (!(h0 > 0.0f)) return 0;
+    if (hlo >= near * h1 * 1.001f) return 1;
+    if (!(hlo >= 0.0f && hhi <= near * h0 * 0.999f)) return 0;
+    for (q = 0; q < 4u; q++) {
+        float sg = (q & 1u) ? 1.0f : -1.0f, x0 = B[(q >> 1) * 2u], x1 = B[(q >> 1) * 2u + 1u];
+        float xo = sg > 0.0f ? x1 : x0, xm = pn_kmaxf(pn_kfabs(x0), pn_kfabs(x1));
+        float xa = q < 2u ? e->ua : e->va, xb = q < 2u ? e->ub : e->vb;
+        float ca = sg * xa - 1.0f, cb = sg * xb - 1.0f;
+        float ga = ca * (ca >= 0.0f ? h0 : h1) + (1.0f - sg * xo) * e->ha;
+        float gb = cb * (cb >= 0.0f ? h0 : h1) + (1.0f - sg * xo) * e->hb;
+        if (ga > 1e-3f * (pn_kfabs(xa) + xm + 1.0f) * h1 && gb > 1e-3f * (pn_kfabs(xb) + xm + 1.0f) * h1) return 1;
+    }
+    return 0;
+}
+
+/* ---- Binning ------------------------------------------------------------------------------ */
+
+/* Silhouette s's (tile, s) pairs in the band [K->wg.bx0, bx1) x [by0, by1) of tiles: those
+ * its reach covers and whose box (pn_wg_box_misses) it does not miss, in ascending tile
+ * order. Counted (pairs 0: returns the count) or written from `at` on; both build the same
+ * reach with the same arithmetic, so they agree. */
+PN_KFN uint32_t pn_wg_bin(const pn_kview *v, const pn_klight *L, const pn_kwg *G, PN_CONST float *tris, PN_CONST pn_wsil *sil,
+                          PN_CONST float *tbox, uint32_t s, uint32_t at, int write, PN_GLOBAL uint32_t *pairs)
+{
+    uint32_t tw = PN_WG_TILES(v->width), x, y, x0, x1, ya, yb, n = 0u;
     PN_CONST pn_wsil *e = sil + s;
     pn_wreach R;
     pn_v3 a, b;
-    if (e->x0 > e->x1) return;
+    if (e->x0 > e->x1) return 0u;
+    ya = e->y0 > G->by0 ? e->y0 : G->by0;
+    yb = e->y1 + 1u < G->by1 ? e->y1 + 1u : G->by1;
+    if (ya >= yb || e->x0 >= G->bx1 || e->x1 < G->bx0) return 0u;
     pn_wg_ends(tris, e->h, &a, &b);
-    pn_wg_reach(v, L, hmax, a, b, &R);
-    for (y = R.y0; y <= R.y1; y++) {
+    pn_wg_reach(v, L, G->hmax, a, b, &R);
+    for (y = ya; y < yb; y++) {
         pn_wg_row(v, &R, y, &x0, &x1);
+        if (x0 < G->bx0) x0 = G->bx0;
+        if (x1 + 1u > G->bx1) x1 = G->bx1 - 1u;
         for (x = x0; x <= x1 && x0 <= x1; x++) {
-            pairs[2u * at] = y * tw + x;
-            pairs[2u * at + 1u] = s;
-            at++;
+            if (pn_wg_box_misses(tbox + (size_t)(y * tw + x) * PN_WG_BOX, e)) continue;
+            if (write) {
+                pairs[2u * (at + n)] = y * tw + x;
+                pairs[2u * (at + n) + 1u] = s;
+            }
+            n++;
         }
+    }
+    return n;
+}
+
+/* Tile list[lo, hi) (ascending silhouettes, so grouped by object): next[i] = the end of
+ * the object's run that starts at i, for each run start. */
+PN_KFN void pn_wg_runs(PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t lo, uint32_t hi, PN_GLOBAL uint32_t *next)
+{
+    uint32_t i = lo, j;
+    while (i < hi) {
+        uint32_t c = sil[list[i]].comp;
+        for (j = i + 1u; j < hi && sil[list[j]].comp == c; j++) {
+        }
+        next[i] = j;
+        i = j;
     }
 }
 
@@ -588,7 +696,7 @@ PN_KFN void pn_wg_blend(uint32_t mode, float as, pn_wbox bs, float *af, pn_wbox 
 
 /* Per-pixel light frame: O in light coordinates, 1 / its height, O - c. */
 typedef struct pn_wframe {
-    float uo, vo, iho;
+    float uo, vo, ho, iho;
     pn_v3 oc;
 } pn_wframe;
 
@@ -656,6 +764,27 @@ PN_KFN int pn_wg_project(const pn_wframe *F, PN_CONST pn_wsil *e, float *p, floa
     return 1;
 }
 
+/* Whether pn_wg_project returns 0 from F for every silhouette of an object whose end
+ * points lie in box ob (pn_wsil.ob): every end below F's local near plane, or every end
+ * between the light plane and it and beyond one side of the light, the test of
+ * pn_wg_box_misses with the box on the edges' side (g is affine in (x_e, h_e) too), with
+ * the same margins. */
+PN_KFN int pn_wg_obj_misses(const pn_wframe *F, PN_CONST float *ob)
+{
+    const float near = 1.0f - PN_WG_TNEAR;
+    float ho = F->ho;
+    uint32_t q;
+    if (ob[4] >= near * ho * 1.001f) return 1;
+    if (!(ob[4] >= 0.0f && ob[5] <= near * ho * 0.999f)) return 0;
+    for (q = 0; q < 4u; q++) {
+        float sg = (q & 1u) ? 1.0f : -1.0f, xo = q < 2u ? F->uo : F->vo, x0 = ob[(q >> 1) * 2u], x1 = ob[(q >> 1) * 2u + 1u];
+        float co = 1.0f - sg * xo, xe = sg > 0.0f ? x0 : x1, he = co >= 0.0f ? ob[4] : ob[5];
+        float g = (sg * xe - 1.0f) * ho + co * he;
+        if (g > 1e-3f * (pn_kmaxf(pn_kfabs(x0), pn_kfabs(x1)) + pn_kfabs(xo) + 1.0f) * ho) return 1;
+    }
+    return 0;
+}
+
 /* A projected edge (pn_wg_project) of weight w into the object's four parts. Returns 1
  * when it covers some of the light. */
 PN_KFN int pn_wg_edge_parts(const float *p, float sg, float w, pn_wpart *parts)
@@ -664,6 +793,9 @@ PN_KFN int pn_wg_edge_parts(const float *p, float sg, float w, pn_wpart *parts)
     uint32_t q;
     for (q = 0; q < 4u; q++) {
         float sx = (q == 0u || q == 3u) ? 1.0f : -1.0f, sy = q < 2u ? 1.0f : -1.0f;
+        /* Both ends beside the quadrant on one axis: the clip would leave nothing, or a
+         * piece on that axis, seen edge-on from the centre (pn_wg_part_edge returns 0). */
+        if ((sx * p[0] < 0.0f && sx * p[2] < 0.0f) || (sy * p[1] < 0.0f && sy * p[3] < 0.0f)) continue;
         any |= pn_wg_part_edge(parts + q, sx * p[0], sy * p[1], sx * p[2], sy * p[3], sg, w);
     }
     return any;
@@ -697,7 +829,8 @@ PN_KFN int pn_wg_listed(PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t
     return 0;
 }
 
-/* Visibility of one lit pixel (shadow origin O, own triangle own, tile edges list[lo, hi)).
+/* Visibility of one lit pixel (shadow origin O, own triangle own, tile edges list[lo, hi),
+ * their objects' runs next: pn_wg_runs).
  * Counters: candidates = edges evaluated, blocking = edges covering some of the light,
  * nodes = blockers of the centre ray, capped = more than PN_WG_HARD_MAX objects listed in
  * the tile block the centre (taken as umbra; reported as pn_stats.wedges.hard_overflow, not
@@ -706,7 +839,7 @@ PN_KFN int pn_wg_listed(PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t
 PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mode, PN_CONST float *tris,
                          PN_CONST pn_kbvh_node *nodes, PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index,
                          PN_CONST uint32_t *tcomp,
-                         PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t lo, uint32_t hi,
+                         PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, PN_CONST uint32_t *next, uint32_t lo, uint32_t hi,
                          pn_shadow_counters *cnt)
 {
     uint32_t hard[PN_WG_HARD_MAX], nhard = 0u, t, i, q;
@@ -751,9 +884,8 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
     if (L->is_point) return 1.0f;
 
     {
-        float ho;
-        pn_wg_light(L, O, &F.uo, &F.vo, &ho);
-        F.iho = 1.0f / ho;
+        pn_wg_light(L, O, &F.uo, &F.vo, &F.ho);
+        F.iho = 1.0f / F.ho;
         F.oc = pn_v3_sub(O, pn_light_c(L));
     }
     for (q = 0; q < 4u; q++) {
@@ -763,25 +895,32 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
     i = lo;
     while (i < hi) {
         uint32_t s = sil[list[i]].comp, j;
-        int h = 0, started;
+        int h = 0, started = 0;
         pn_wpart parts[4];
         for (j = 0; j < nhard; j++) h |= hard[j] == s;
-        started = h;
-        if (h) pn_wg_parts_init(parts, 1);
+        if (!h && pn_wg_obj_misses(&F, sil[list[i]].ob)) { /* none of its edges reaches the light */
+            i = next[i];
+            continue;
+        }
         for (; i < hi && sil[list[i]].comp == s; i++) {
             PN_CONST pn_wsil *e = sil + list[i];
             float p[4], sg;
             cnt->candidates++;
             if (!pn_wg_project(&F, e, p, &sg)) continue;
             if (!started) {
-                pn_wg_parts_init(parts, 0);
+                pn_wg_parts_init(parts, h);
                 started = 1;
             }
             if (pn_wg_edge_parts(p, sg, (float)e->w, parts)) cnt->blocking++;
         }
-        /* An object none of whose edges reaches the light from here, its centre seen:
-         * nothing to add. */
-        if (!started) continue;
+        /* An object none of whose edges reaches the light from here: nothing to add when
+         * its centre is seen, all of the light when it is blocked (as for an object whose
+         * wedges no tile lists; so a tile need not list an edge that reaches no pixel of
+         * it: pn_wg_box_misses). */
+        if (!started) {
+            if (h) return 0.0f;
+            continue;
+        }
         for (q = 0; q < 4u; q++) {
             pn_wbox bs;
             float as = pn_wg_part_end(parts + q, h, &bs);

@@ -92,13 +92,17 @@ pn_status pn_wedges_prepare(pn_frame_state *fs, const pn_frame_options *opt)
 }
 
 typedef char pn_wg_consts_agree[PN_WG_M_BLEND == PN_WG_MODE_BLEND && PN_WG_M_ADD == PN_WG_MODE_ADDITIVE ? 1 : -1];
+/* PN_WEDGES_BYTES_MAX (penumbra.h) counts these sizes. */
+typedef char pn_wg_sizes_agree[sizeof(pn_wsil) == 96u && PN_WG_BOX == 6u && PN_WG_TILE == 16u ? 1 : -1];
 
 typedef struct pn_wg_pools {
     uint32_t *tcast;  /* [T] how each triangle casts */
     uint32_t *soff;   /* [runs + 1] silhouette flags -> slots */
     pn_wsil *sil;     /* [sil_cap] */
+    float *tbox;      /* [tiles * PN_WG_BOX] the tiles' boxes in depth */
     uint32_t *poff;   /* [sil_cap + 1] pair counts -> offsets */
-    uint32_t *pairs;  /* [pair_cap * 2] (tile, silhouette) */
+    uint32_t *pairs;  /* [pair_cap * 2] (tile, silhouette); after the sort, the tile lists'
+                         object runs (pn_wg_runs) */
     uint32_t *sorted; /* [pair_cap] silhouettes by tile */
     uint32_t *toff;   /* [tiles + 1] */
     uint32_t *tscr;   /* [tiles] sort scratch */
@@ -113,6 +117,7 @@ static void pn_wg_carve(pn_carver *c, const pn_limits *l, uint32_t w, uint32_t h
     s->tcast = (uint32_t *)pn_pool(c, tris, 4u, "wedges triangle casting");
     s->soff = (uint32_t *)pn_pool(c, edges + 1u, 4u, "wedges silhouette slots");
     s->sil = (pn_wsil *)pn_pool(c, pn_wg_sil_max(l), sizeof(pn_wsil), "wedges silhouettes");
+    s->tbox = (float *)pn_pool(c, tiles, PN_WG_BOX * sizeof(float), "wedges tile boxes");
     s->poff = (uint32_t *)pn_pool(c, (uint64_t)pn_wg_sil_max(l) + 1u, 4u, "wedges pair offsets");
     s->pairs = (uint32_t *)pn_pool(c, pn_wg_pairs_max(l), 8u, "wedges tile pairs");
     s->sorted = (uint32_t *)pn_pool(c, pn_wg_pairs_max(l), 4u, "wedges tile lists");
@@ -142,12 +147,14 @@ static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
     P->wg_tcast = pn_dev_off(ctx, s->tcast);
     P->wg_soff = pn_dev_off(ctx, s->soff);
     P->wg_sil = pn_dev_off(ctx, s->sil);
+    P->wg_tbox = pn_dev_off(ctx, s->tbox);
     P->wg_poff = pn_dev_off(ctx, s->poff);
     P->wg_pairs = pn_dev_off(ctx, s->pairs);
     P->wg_sorted = pn_dev_off(ctx, s->sorted);
     P->wg_toff = pn_dev_off(ctx, s->toff);
     ctx->stats.wedges.silhouettes = 0;
     ctx->stats.wedges.pairs = 0;
+    ctx->stats.wedges.bands = 0;
     ctx->stats.wedges.touched = 0;
     ctx->stats.wedges.evaluated = 0;
     ctx->stats.wedges.hard_blockers = 0;
@@ -158,13 +165,63 @@ static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
     return PN_OK;
 }
 
+/* A band's pixels: the rows of tile rows [by0, by1), the pass skipping columns outside
+ * [bx0, bx1). */
+static pn_status pn_wg_pixels(pn_frame_state *fs)
+{
+    const pn_kwg *G = &fs->K.wg;
+    uint32_t y0 = G->by0 * PN_WG_TILE, y1 = G->by1 * PN_WG_TILE;
+    if (y1 > fs->height) y1 = fs->height;
+    fs->K.wg.pix0 = y0 * fs->width;
+    return pn_dev_run(fs, PN_K_WG_PIXEL, (y1 - y0) * fs->width);
+}
+
+/* Bins the silhouettes to the tiles of band K->wg.b* and shades its pixels; *need: the
+ * band's pairs, and nothing else done when they exceed the pool. */
+static pn_status pn_wg_band(pn_frame_state *fs, const pn_wg_pools *s, uint32_t tiles, uint32_t *need)
+{
+    pn_context *ctx = fs->ctx;
+    uint32_t nsil = fs->K.wg.sils, npairs;
+    uint64_t t0 = pn_dev_timestamp(fs), t1;
+    pn_status st;
+    if (nsil > 0u && ((st = pn_dev_run(fs, PN_K_WG_COUNT, nsil)) != PN_OK || (st = pn_dev_scan(fs, s->poff, nsil)) != PN_OK ||
+                      (st = pn_dev_to_host(fs, s->poff + nsil, 4u)) != PN_OK))
+        return st;
+    *need = npairs = nsil > 0u ? s->poff[nsil] : 0u;
+    if (npairs > pn_wg_pairs_max(&ctx->limits)) return PN_OK;
+    /* Pairs are scattered in silhouette order, so each tile's silhouettes ascend: the sort
+     * by tile is the one stable order on every port. */
+    if (npairs > 0u && ((st = pn_dev_run(fs, PN_K_WG_SCATTER, nsil)) != PN_OK ||
+                        (st = pn_dev_sort_pairs(fs, s->pairs, npairs, tiles, s->sorted, s->toff, s->tscr)) != PN_OK ||
+                        (st = pn_dev_run(fs, PN_K_WG_RUNS, tiles)) != PN_OK))
+        return st;
+    if (npairs == 0u && (st = pn_dev_fill(fs, s->toff, tiles + 1u, 0u)) != PN_OK) return st;
+    ctx->stats.wedges.pairs += npairs;
+    ctx->stats.wedges.bands++;
+    t1 = pn_dev_timestamp(fs);
+    ctx->stats.wedges.ns_binning += t1 - t0;
+    st = pn_wg_pixels(fs);
+    ctx->stats.wedges.ns_pixels += pn_dev_timestamp(fs) - t1;
+    return st;
+}
+
+/* n tiles of a band that needed `need` > cap pairs, cut to fit a pool of `cap`: divided by
+ * the ratio rounded up, and at least one fewer (32-bit arithmetic: no division helper on
+ * a bare-metal target). */
+static uint32_t pn_wg_shrink(uint32_t n, uint32_t need, uint32_t cap)
+{
+    uint32_t m = n / ((need - 1u) / cap + 1u);
+    return m < 1u ? 1u : (m >= n ? n - 1u : m);
+}
+
 pn_status pn_wedges_frame(pn_frame_state *fs)
 {
     pn_context *ctx = fs->ctx;
     pn_kparams *K = &fs->K;
     pn_wg_pools s;
-    uint32_t T = ctx->tri_count, R = ctx->stats.wedges.edges, npix = fs->width * fs->height, y, nsil = 0, npairs = 0;
-    uint32_t tiles = pn_wg_tiles_of(fs->width, fs->height);
+    uint32_t T = ctx->tri_count, R = ctx->stats.wedges.edges, y, nsil = 0;
+    uint32_t tiles = pn_wg_tiles_of(fs->width, fs->height), tw = PN_WG_TILES(fs->width), th = PN_WG_TILES(fs->height);
+    uint32_t cap = pn_wg_pairs_max(&ctx->limits);
     uint64_t t0 = pn_dev_timestamp(fs), t1;
     pn_status st;
 
@@ -186,7 +243,11 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
         }
         K->wg.hmax = hm + 2.0f * K->light.eps + 1e-5f * (hm + e);
     }
-    K->wg.tiles_x = PN_WG_TILES(fs->width);
+    K->wg.tiles_x = tw;
+    K->wg.bx0 = 0u;
+    K->wg.by0 = 0u;
+    K->wg.bx1 = tw;
+    K->wg.by1 = th;
     if (!K->light.is_point && R > 0u) {
         if ((st = pn_dev_run(fs, PN_K_WG_CAST, T)) != PN_OK || (st = pn_dev_run(fs, PN_K_WG_SIL_FLAG, R)) != PN_OK ||
             (st = pn_dev_scan(fs, s.soff, R)) != PN_OK || (st = pn_dev_to_host(fs, s.soff + R, 4u)) != PN_OK)
@@ -197,39 +258,48 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
                            "wedges: %u silhouette edges; the silhouette pool holds %u (PN_WEDGES_SIL_MAX)", nsil,
                            pn_wg_sil_max(&ctx->limits));
         ctx->stats.wedges.silhouettes = nsil;
-        if (nsil > 0u) {
-            if ((st = pn_dev_run(fs, PN_K_WG_SIL_MAKE, R)) != PN_OK || (st = pn_dev_scan(fs, s.poff, nsil)) != PN_OK ||
-                (st = pn_dev_to_host(fs, s.poff + nsil, 4u)) != PN_OK)
-                return st;
-            npairs = s.poff[nsil];
-        }
+        K->wg.sils = nsil;
+        if (nsil > 0u && ((st = pn_dev_run(fs, PN_K_WG_SIL_MAKE, R)) != PN_OK ||
+                          (st = pn_dev_run(fs, PN_K_WG_OBJ_BOX, nsil)) != PN_OK ||
+                          (st = pn_dev_run(fs, PN_K_WG_TILE_BOX, tiles)) != PN_OK))
+            return st;
     }
+    K->wg.sils = nsil;
     t1 = pn_dev_timestamp(fs);
     ctx->stats.wedges.ns_silhouettes = t1 - t0;
-    t0 = t1;
-    if (npairs > pn_wg_pairs_max(&ctx->limits))
-        return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
-                       "wedges: the frame needs %u (tile, wedge) pairs; the pair pool holds %u "
-                       "(pn_limits.wg_pairs, PN_WEDGES_PAIRS)", npairs,
-                       pn_wg_pairs_max(&ctx->limits));
-    ctx->stats.wedges.pairs = npairs;
-    K->wg.sils = nsil;
-    if (npairs > 0u) {
-        /* Pairs are scattered in silhouette order, so each tile's silhouettes ascend: the
-         * sort by tile is the one stable order on every port. */
-        if ((st = pn_dev_run(fs, PN_K_WG_SCATTER, nsil)) != PN_OK ||
-            (st = pn_dev_sort_pairs(fs, s.pairs, npairs, tiles, s.sorted, s.toff, s.tscr)) != PN_OK)
-            return st;
-    } else if ((st = pn_dev_fill(fs, s.toff, tiles + 1u, 0u)) != PN_OK) {
-        return st;
+    {
+        /* Bands of whole tile rows (of tiles of one row when a row alone needs more pairs
+         * than the pool holds) whose pairs fit the pool, in order; a band that does not
+         * fit is cut and binned again. Each pixel takes its tile's silhouettes in the same
+         * order whatever the bands, so the bands change no byte. */
+        uint32_t rows = th, cols = tw, need;
+        while (K->wg.by0 < th) {
+            K->wg.by1 = K->wg.by0 + rows < th ? K->wg.by0 + rows : th;
+            K->wg.bx1 = K->wg.bx0 + cols < tw ? K->wg.bx0 + cols : tw;
+            if ((st = pn_wg_band(fs, &s, tiles, &need)) != PN_OK) return st;
+            if (need > cap) {
+                if (rows > 1u) {
+                    rows = pn_wg_shrink(rows, need, cap);
+                } else if (cols > 1u) {
+                    cols = pn_wg_shrink(cols, need, cap);
+                } else {
+                    return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
+                                   "wedges: one screen tile needs %u (tile, wedge) pairs; the pair pool holds %u "
+                                   "(pn_limits.wg_pairs, PN_WEDGES_PAIRS)", need, cap);
+                }
+                continue;
+            }
+            if (K->wg.bx1 < tw) { /* the rest of this row of tiles next */
+                K->wg.bx0 = K->wg.bx1;
+                continue;
+            }
+            K->wg.bx0 = 0u;
+            cols = tw;
+            K->wg.by0 = K->wg.by1;
+            if (need <= cap / 2u && rows < th) rows *= 2u; /* sparser rows: try more at once */
+        }
     }
-    t1 = pn_dev_timestamp(fs);
-    ctx->stats.wedges.ns_binning = t1 - t0;
-    t0 = t1;
-    if ((st = pn_dev_run(fs, PN_K_WG_PIXEL, npix)) != PN_OK ||
-        (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_row_counters))) != PN_OK)
-        return st;
-    ctx->stats.wedges.ns_pixels = pn_dev_timestamp(fs) - t0;
+    if ((st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_row_counters))) != PN_OK) return st;
     for (y = 0; y < fs->height; y++) {
         const pn_shadow_counters *c = &((const pn_row_counters *)fs->counters)[y].c;
         ctx->stats.wedges.evaluated += c->candidates;

@@ -136,6 +136,7 @@ static int same_frame(const char *what, const pn_xframe *a, const pn_xframe *b)
     SAME_STAT(mcsm.capped);
     SAME_STAT(wedges.silhouettes);
     SAME_STAT(wedges.pairs);
+    SAME_STAT(wedges.bands);
     SAME_STAT(wedges.evaluated);
     SAME_STAT(wedges.touched);
     SAME_STAT(wedges.hard_blockers);

@@ -396,61 +396,92 @@ static void test_many_blockers(void)
     pn_setup_free(&s);
 }
 
-/* A pair pool too small for the frame: PN_E_POOL_EXHAUSTED naming the pool and the count
- * the frame needed, nothing written outside the arena, the previous frame's buffers as
- * they were; a smaller pool shrinks the arena. */
-static void test_short_pool(void)
+/* One wedges frame in a fresh arena of limits lim with GUARD bytes after it that must stay
+ * untouched; its status, visibility into vis (on PN_OK) and statistics. */
+static pn_status short_pool_frame(const pn_setup *s, const pn_limits *lim, float *vis, pn_stats *st, size_t *bytes,
+                                  char *err, size_t errlen)
 {
     enum { GUARD = 4096 };
-    pn_setup s;
-    pn_limits lim, big;
     pn_context *ctx;
     pn_frame_options o;
     pn_frame fr, fr2;
-    pn_stats st;
-    size_t bytes, bytes_big, i;
+    pn_status r;
     uint8_t *raw;
-    char err[256];
+    size_t i;
     int guard_ok = 1;
+    if (pn_arena_size(lim, bytes) != PN_OK || !(raw = (uint8_t *)malloc(*bytes + GUARD))) return PN_E_INTERNAL;
+    memset(raw, 0x5A, *bytes + GUARD);
+    if (pn_init(&ctx, raw, *bytes, lim) != PN_OK ||
+        pn_scene_set(ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices, s->mesh.triangle_count) != PN_OK) {
+        free(raw);
+        return PN_E_INTERNAL;
+    }
+    wg_opts(&o, 0u);
+    o.eps = s->eps;
+    /* A frame of another algorithm first: a failing frame must leave its buffers alone. */
+    o.algo = PN_ALGO_REFERENCE;
+    o.k = 4;
+    if (pn_render(ctx, &s->camera, &s->light, &o, &fr) != PN_OK) {
+        free(raw);
+        return PN_E_INTERNAL;
+    }
+    memcpy(g_b, fr.visibility, sizeof(g_b));
+    o.algo = PN_ALGO_WEDGES;
+    o.k = 16;
+    fr2 = fr;
+    r = pn_render(ctx, &s->camera, &s->light, &o, &fr2);
+    if (r == PN_OK) {
+        memcpy(vis, fr2.visibility, sizeof(float) * W * H);
+    } else {
+        CHECK_MSG(memcmp(&fr2, &fr, sizeof(fr)) == 0, "the frame out-parameter was written on failure");
+        CHECK_MSG(memcmp(g_b, fr.visibility, sizeof(g_b)) == 0, "the previous frame's visibility changed on failure");
+    }
+    snprintf(err, errlen, "%s", pn_last_error(ctx));
+    CHECK(pn_get_stats(ctx, st) == PN_OK && st->arena_high_water <= st->arena_carved);
+    for (i = 0; i < GUARD; i++) guard_ok &= raw[*bytes + i] == 0x5A;
+    CHECK_MSG(guard_ok, "bytes after the arena were written");
+    free(raw);
+    return r;
+}
+
+/* A pair pool smaller than the frame's pairs: the frame bins and shades the screen in bands
+ * of tiles whose pairs fit, with the same bytes as in one band, in a smaller arena. Only a
+ * pool smaller than one tile's pairs fails: PN_E_POOL_EXHAUSTED naming the pool, nothing
+ * written outside the arena, the previous frame's buffers as they were. */
+static void test_short_pool(void)
+{
+    pn_setup s;
+    pn_limits big, lim;
+    pn_stats st_big, st;
+    size_t bytes_big, bytes;
+    char err[256];
     if (pn_setup_load(&s, "spheres", 1, -1, err, sizeof(err)) != 0) {
         CHECK_MSG(0, "loading spheres: %s", err);
         return;
     }
-    pn_limits_max(&lim);
-    lim.max_triangles = s.mesh.triangle_count;
-    lim.max_width = W;
-    lim.max_height = H;
-    lim.gears_pairs = 4096u;
-    lim.gears_grid_max = 16u;
-    lim.srt_map_max = 64u;
-    lim.occ_map_max = 64u;
-    lim.mc_map_max = 64u;
-    big = lim;
-    lim.wg_pairs = 2000u;
-    REQUIRE(pn_arena_size(&lim, &bytes) == PN_OK && pn_arena_size(&big, &bytes_big) == PN_OK);
-    CHECK_MSG(bytes < bytes_big, "wg_pairs 2000: arena %zu, not below the default's %zu", bytes, bytes_big);
-    raw = (uint8_t *)malloc(bytes + GUARD);
-    REQUIRE(raw != NULL);
-    memset(raw, 0x5A, bytes + GUARD);
-    REQUIRE(pn_init(&ctx, raw, bytes, &lim) == PN_OK);
-    REQUIRE(pn_scene_set(ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
-    wg_opts(&o, 0u);
-    o.eps = s.eps;
-    /* A frame that fits (another algorithm), then the one that does not. */
-    o.algo = PN_ALGO_REFERENCE;
-    o.k = 4;
-    REQUIRE(pn_render(ctx, &s.camera, &s.light, &o, &fr) == PN_OK);
-    memcpy(g_a, fr.visibility, sizeof(g_a));
-    o.algo = PN_ALGO_WEDGES;
-    fr2 = fr;
-    CHECK(pn_render(ctx, &s.camera, &s.light, &o, &fr2) == PN_E_POOL_EXHAUSTED);
-    fprintf(stderr, "short pair pool: %s\n", pn_last_error(ctx));
-    CHECK(strstr(pn_last_error(ctx), "pair pool") != NULL && strstr(pn_last_error(ctx), "wg_pairs") != NULL);
-    CHECK_MSG(memcmp(&fr2, &fr, sizeof(fr)) == 0, "the frame out-parameter was written on failure");
-    for (i = 0; i < GUARD; i++) guard_ok &= raw[bytes + i] == 0x5A;
-    CHECK_MSG(guard_ok, "bytes after the arena were written");
-    CHECK(pn_get_stats(ctx, &st) == PN_OK && st.arena_high_water <= st.arena_carved);
-    free(raw);
+    pn_limits_max(&big);
+    big.max_triangles = s.mesh.triangle_count;
+    big.max_width = W;
+    big.max_height = H;
+    big.gears_pairs = 4096u;
+    big.gears_grid_max = 16u;
+    big.srt_map_max = 64u;
+    big.occ_map_max = 64u;
+    big.mc_map_max = 64u;
+    REQUIRE(short_pool_frame(&s, &big, g_ref, &st_big, &bytes_big, err, sizeof(err)) == PN_OK);
+    CHECK(st_big.wedges.bands == 1u && st_big.wedges.pairs > 1000u);
+    lim = big;
+    lim.wg_pairs = (uint32_t)(st_big.wedges.pairs / 5u);
+    CHECK_MSG(short_pool_frame(&s, &lim, g_a, &st, &bytes, err, sizeof(err)) == PN_OK, "a fifth of the pairs: %s", err);
+    fprintf(stderr, "short pair pool: %llu pairs in %u bands of at most %u (one band: %u); arena %zu, default %zu\n",
+            (unsigned long long)st.wedges.pairs, st.wedges.bands, lim.wg_pairs, st_big.wedges.bands, bytes, bytes_big);
+    CHECK(st.wedges.bands >= 5u && st.wedges.pairs == st_big.wedges.pairs);
+    CHECK_MSG(memcmp(g_a, g_ref, sizeof(g_ref)) == 0, "bands changed the frame's bytes");
+    CHECK_MSG(bytes < bytes_big, "wg_pairs %u: arena %zu, not below the default's %zu", lim.wg_pairs, bytes, bytes_big);
+    lim.wg_pairs = 2u;
+    CHECK(short_pool_frame(&s, &lim, g_a, &st, &bytes, err, sizeof(err)) == PN_E_POOL_EXHAUSTED);
+    fprintf(stderr, "pair pool of 2: %s\n", err);
+    CHECK(strstr(err, "one screen tile") != NULL && strstr(err, "wg_pairs") != NULL);
     pn_setup_free(&s);
 }
 
@@ -464,6 +495,32 @@ static float frand(uint32_t *st, float lo, float hi)
 
 static pn_v3 unit(pn_v3 a) { return pn_v3_scale(a, 1.0f / sqrtf(pn_v3_dot(a, a))); }
 
+/* A random light: a rectangle 5 above the ground plane y = 0, facing down (N = U x V),
+ * half-sizes 0.1 .. 1.5; its centre. */
+static pn_v3 random_light(uint32_t *st, pn_klight *L)
+{
+    pn_v3 c = pn_v3_make(frand(st, -1.0f, 1.0f), 5.0f, frand(st, -1.0f, 1.0f));
+    memset(L, 0, sizeof(*L));
+    L->c[0] = c.x, L->c[1] = c.y, L->c[2] = c.z;
+    L->U[0] = frand(st, 0.1f, 1.5f);
+    L->V[2] = frand(st, 0.1f, 1.5f);
+    L->N[1] = -1.0f;
+    L->k = 16u;
+    return c;
+}
+
+/* The tiles reach R covers, row by row as the binning takes them. */
+static uint32_t reach_tiles_of(const pn_kview *v, const pn_wreach *R)
+{
+    uint32_t y, n = 0u, x0, x1;
+    if (R->x0 > R->x1) return 0u;
+    for (y = R->y0; y <= R->y1; y++) {
+        pn_wg_row(v, R, y, &x0, &x1);
+        if (x0 <= x1) n += x1 - x0 + 1u;
+    }
+    return n;
+}
+
 static void test_reach(void)
 {
     enum { RW = 200, RH = 136, CASES = 300 };
@@ -474,19 +531,10 @@ static void test_reach(void)
         pn_wsil e;
         pn_wreach R;
         pn_v3 eye, f, r, u, a, b, c, n;
-        float hmax, ground, tanh_, lu, lv, h;
+        float hmax, ground, tanh_, h;
         memset(&v, 0, sizeof(v));
-        memset(&L, 0, sizeof(L));
         memset(&e, 0, sizeof(e));
-        /* Light: a rectangle 5 above the ground plane y = 0, facing down (N = U x V). */
-        c = pn_v3_make(frand(&st, -1.0f, 1.0f), 5.0f, frand(&st, -1.0f, 1.0f));
-        lu = frand(&st, 0.1f, 1.5f);
-        lv = frand(&st, 0.1f, 1.5f);
-        L.c[0] = c.x, L.c[1] = c.y, L.c[2] = c.z;
-        L.U[0] = lu;
-        L.V[2] = lv;
-        L.N[1] = -1.0f;
-        L.k = 16u;
+        c = random_light(&st, &L);
         hmax = 5.0f;
         a = pn_v3_make(frand(&st, -2.0f, 2.0f), frand(&st, 0.2f, 4.0f), frand(&st, -2.0f, 2.0f));
         b = pn_v3_add(a, pn_v3_make(frand(&st, -1.5f, 1.5f), frand(&st, -1.0f, 1.0f), frand(&st, -1.5f, 1.5f)));
@@ -516,7 +564,7 @@ static void test_reach(void)
         ground = (cs & 1u) ? 0.0f : frand(&st, 0.0f, 0.9f) * (a.y < b.y ? a.y : b.y);
         if (R.x0 <= R.x1) {
             box_tiles += (R.x1 - R.x0 + 1u) * (R.y1 - R.y0 + 1u);
-            reach_tiles += pn_wg_reach_tiles(&v, &R);
+            reach_tiles += reach_tiles_of(&v, &R);
         }
         for (y = 0; y < RH; y++)
             for (x = 0; x < RW; x++) {
@@ -553,6 +601,84 @@ static void test_reach(void)
     CHECK(reach_tiles < box_tiles);
 }
 
+/* ---- 9. Tiles in depth and objects: the culls lose nothing ----------------------------- */
+
+/* Random edges and objects against random clusters of shadow origins: where the tile box
+ * (pn_wg_box_misses) or the object box (pn_wg_obj_misses) says an edge reaches the light
+ * from none of them, pn_wg_project returns 0 for every one; and the culls do cull. */
+static void test_culls(void)
+{
+    enum { CASES = 4000, PTS = 24, EDGES = 4 };
+    uint32_t st = 777u, cs, i, j, box_culls = 0u, obj_culls = 0u, box_wrong = 0u, obj_wrong = 0u, reach = 0u;
+    for (cs = 0; cs < CASES; cs++) {
+        pn_klight L;
+        pn_wsil e[EDGES];
+        pn_v3 c, O[PTS], cen;
+        float B[PN_WG_BOX], ob[6], spread = frand(&st, 0.01f, 3.0f);
+        memset(e, 0, sizeof(e));
+        c = random_light(&st, &L);
+        /* An object: a few edges around one point (some crossing the origins' heights). */
+        cen = pn_v3_make(frand(&st, -4.0f, 4.0f), frand(&st, 0.05f, 4.9f), frand(&st, -4.0f, 4.0f));
+        for (j = 0; j < 6u; j += 2u) ob[j] = PN_KINF, ob[j + 1u] = -PN_KINF;
+        for (i = 0; i < EDGES; i++) {
+            pn_v3 a = pn_v3_add(cen, pn_v3_make(frand(&st, -0.4f, 0.4f), frand(&st, -0.3f, 0.3f), frand(&st, -0.4f, 0.4f)));
+            pn_v3 b = pn_v3_add(cen, pn_v3_make(frand(&st, -0.4f, 0.4f), frand(&st, -0.3f, 0.3f), frand(&st, -0.4f, 0.4f)));
+            pn_v3 n = pn_v3_cross(pn_v3_sub(a, c), pn_v3_sub(b, c));
+            pn_wg_light(&L, a, &e[i].ua, &e[i].va, &e[i].ha);
+            pn_wg_light(&L, b, &e[i].ub, &e[i].vb, &e[i].hb);
+            e[i].nx = n.x, e[i].ny = n.y, e[i].nz = n.z;
+            e[i].w = 1u;
+            ob[0] = fminf(ob[0], fminf(e[i].ua, e[i].ub)), ob[1] = fmaxf(ob[1], fmaxf(e[i].ua, e[i].ub));
+            ob[2] = fminf(ob[2], fminf(e[i].va, e[i].vb)), ob[3] = fmaxf(ob[3], fmaxf(e[i].va, e[i].vb));
+            ob[4] = fminf(ob[4], fminf(e[i].ha, e[i].hb)), ob[5] = fmaxf(ob[5], fmaxf(e[i].ha, e[i].hb));
+        }
+        for (i = 0; i < EDGES; i++)
+            for (j = 0; j < 6u; j++) e[i].ob[j] = ob[j];
+        /* Origins: a cluster (a tile's points), some on the edges' own heights. */
+        {
+            /* Half of the clusters below the object as seen from the light, half anywhere. */
+            pn_v3 oc = (cs & 1u) ? pn_v3_add(cen, pn_v3_scale(pn_v3_sub(cen, c), frand(&st, 0.0f, 1.2f)))
+                                 : pn_v3_make(frand(&st, -5.0f, 5.0f), frand(&st, 0.0f, 4.5f), frand(&st, -5.0f, 5.0f));
+            if (oc.y < 0.0f) oc.y = 0.0f;
+            for (j = 0; j < 6u; j += 2u) B[j] = PN_KINF, B[j + 1u] = -PN_KINF;
+            for (i = 0; i < PTS; i++) {
+                float u, v, h;
+                O[i] = pn_v3_add(oc, pn_v3_make(frand(&st, -spread, spread), frand(&st, -spread, spread) * 0.3f,
+                                                frand(&st, -spread, spread)));
+                if (O[i].y > 4.99f) O[i].y = 4.99f;
+                pn_wg_light(&L, O[i], &u, &v, &h);
+                B[0] = fminf(B[0], u), B[1] = fmaxf(B[1], u);
+                B[2] = fminf(B[2], v), B[3] = fmaxf(B[3], v);
+                B[4] = fminf(B[4], h), B[5] = fmaxf(B[5], h);
+            }
+        }
+        for (i = 0; i < PTS; i++) {
+            pn_wframe F;
+            int any = 0, om;
+            pn_wg_light(&L, O[i], &F.uo, &F.vo, &F.ho);
+            F.iho = 1.0f / F.ho;
+            F.oc = pn_v3_sub(O[i], c);
+            om = pn_wg_obj_misses(&F, ob);
+            obj_culls += (uint32_t)om;
+            for (j = 0; j < EDGES; j++) {
+                float p[4], sg;
+                int r = pn_wg_project(&F, e + j, p, &sg);
+                any |= r;
+                reach += (uint32_t)r;
+                box_wrong += (uint32_t)(r && pn_wg_box_misses(B, e + j));
+            }
+            obj_wrong += (uint32_t)(om && any);
+        }
+        for (j = 0; j < EDGES; j++) box_culls += (uint32_t)pn_wg_box_misses(B, e + j);
+    }
+    fprintf(stderr, "culls: %u of %u (box, edge) culled, %u of %u (origin, object); %u (origin, edge) reach the light\n",
+            box_culls, CASES * EDGES, obj_culls, CASES * PTS, reach);
+    CHECK_MSG(box_wrong == 0u, "%u (origin, edge) pairs reach the light through a box said to miss", box_wrong);
+    CHECK_MSG(obj_wrong == 0u, "%u origins see an edge of an object said to miss", obj_wrong);
+    CHECK(box_culls > CASES * EDGES / 10u && box_culls < CASES * EDGES * 9u / 10u);
+    CHECK(obj_culls > CASES * PTS / 10u && reach > CASES);
+}
+
 int main(void)
 {
     if (!(pn_build_info() & PN_BUILD_WEDGES)) {
@@ -567,5 +693,6 @@ int main(void)
     RUN(test_many_blockers);
     RUN(test_short_pool);
     RUN(test_reach);
+    RUN(test_culls);
     return pn_test_summary();
 }

@@ -102,8 +102,9 @@
 #define PN_WEDGES_SIL_MAX (1u << 18)
 #endif
 
-/* Largest (screen tile, wedge) pair count of a frame (12 bytes each; a context holds at
- * most tiles x silhouettes, tiles being 16 x 16 pixels). A frame with more fails
+/* Largest (screen tile, wedge) pair count of one binning pass (12 bytes each; a context
+ * holds at most tiles x silhouettes, tiles being 16 x 16 pixels). A frame with more is
+ * binned and shaded in bands of tiles, the same bytes; only a tile needing more fails
  * PN_E_POOL_EXHAUSTED, naming it. Range 1024 .. 2^28. */
 #ifndef PN_WEDGES_PAIRS
 #define PN_WEDGES_PAIRS (1u << 22)

@@ -127,7 +127,8 @@ typedef struct pn_limits {
     uint32_t mc_map_max;     /* largest Monte Carlo depth layer per axis; 0: PN_MCSM_MAP_MAX */
     uint32_t wg_pairs;       /* penumbra wedges' (screen tile, wedge) pair pool, at most
                                 PN_WEDGES_PAIRS; 0: PN_WEDGES_PAIRS. A frame needing more
-                                fails PN_E_POOL_EXHAUSTED with the count it needed */
+                                is binned in bands of tiles (the same bytes); one tile
+                                needing more fails PN_E_POOL_EXHAUSTED with its count */
     uint32_t bvh_refs;       /* BVH references (196 bytes of arena each); beyond one a
                                 triangle, split slivers (config.h PN_BVH_SPLIT_DEPTH; frames
                                 are the same bits with or without; a scene of long thin
@@ -208,16 +209,16 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
      (r) >= 16u ? 5u : 4u)
 #if PN_ENABLE_WEDGES
 /* Penumbra-wedge frame pools: per triangle its casting (4) and silhouette slots (12); per
- * silhouette (at most 3 a triangle and PN_WEDGES_SIL_MAX) 80 + 4; per (16 x 16 tile,
- * silhouette) pair, at most PN_WEDGES_PAIRS, 8 + 4; per tile 4 + 4. */
+ * silhouette (at most 3 a triangle and PN_WEDGES_SIL_MAX) 96 + 4; per (16 x 16 tile,
+ * silhouette) pair, at most PN_WEDGES_PAIRS, 8 + 4; per tile 4 + 4 and its box, 24. */
 #define PN_WG_SIL_(t) PN_MIN_((size_t)(t) * 3u, (size_t)PN_WEDGES_SIL_MAX)
 #define PN_WG_TILES_(w, h) ((((size_t)(w) + 15u) / 16u) * (((size_t)(h) + 15u) / 16u))
 #define PN_WG_PAIRS_(t, w, h) PN_MIN_(PN_WG_TILES_(w, h) * PN_WG_SIL_(t), (size_t)PN_WEDGES_PAIRS)
 #define PN_WEDGES_BYTES_MAX(t, w, h)                                                          \
-    (PN_POOL_((size_t)(t) * 4u) + PN_POOL_((size_t)(t) * 12u + 4u) + PN_POOL_(PN_WG_SIL_(t) * 80u) + \
+    (PN_POOL_((size_t)(t) * 4u) + PN_POOL_((size_t)(t) * 12u + 4u) + PN_POOL_(PN_WG_SIL_(t) * 96u) + \
      PN_POOL_(PN_WG_SIL_(t) * 4u + 4u) + PN_POOL_(PN_WG_PAIRS_(t, w, h) * 8u) +                 \
      PN_POOL_(PN_WG_PAIRS_(t, w, h) * 4u) + PN_POOL_(PN_WG_TILES_(w, h) * 4u + 4u) +              \
-     PN_POOL_(PN_WG_TILES_(w, h) * 4u))
+     PN_POOL_(PN_WG_TILES_(w, h) * 4u) + PN_POOL_(PN_WG_TILES_(w, h) * 24u))
 #else
 #define PN_WEDGES_BYTES_MAX(t, w, h) ((size_t)0)
 #endif
@@ -543,6 +544,8 @@ typedef struct pn_wedges_stats { /* Penumbra wedges: the scene's connectivity (a
     /* ...and the last frame */
     uint32_t silhouettes;        /* silhouette edges seen from the light centre (= wedges) */
     uint64_t pairs;              /* (screen tile, wedge) pairs binned */
+    uint32_t bands;              /* binning passes: bands of tiles whose pairs fit the pair
+                                    pool (1 when the whole screen's do) */
     uint64_t evaluated;          /* (pixel, wedge) pairs evaluated */
     uint64_t touched;            /* ...of which the edge covered some of the light: the pixels
                                     touched per wedge are touched / silhouettes */

@@ -62,6 +62,7 @@ PN_KFN void pn_counters_add(PN_GLOBAL pn_shadow_counters *row, const pn_shadow_c
     if (c->overflow) pn_katomic_add(&row->overflow, c->overflow);
     if (c->nodes) pn_katomic_add(&row->nodes, c->nodes);
     if (c->capped) pn_katomic_add(&row->capped, c->capped);
+    if (c->exact) pn_katomic_add(&row->exact, c->exact);
 }
 
 /* ---- G-buffer (pn_raster.h) ------------------------------------------------------------ */

@@ -11,7 +11,7 @@
  * rays (pn_raytrace.h); its counters into its row's. */
 PN_KFN void pn_pixel_shadow(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix, int rays)
 {
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
     uint32_t id = PN_POOL(const uint32_t, tri_id)[pix];
     pn_v3 pos, nrm;
     float v;

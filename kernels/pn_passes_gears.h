@@ -93,7 +93,7 @@ PN_KFN void pn_e_gears_chunks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn
 /* Pixel whose cell is in the tile: the mask of the cell's triangles. */
 PN_KFN void pn_e_gears_masks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
     float v;
     if (!pn_gears_pixel_mask(&K->light, K->exact_stats, &K->tile, PN_POOL(const pn_kfaces, faces)->res,
                              PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos), PN_POOL(const float, nrm),

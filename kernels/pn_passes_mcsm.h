@@ -43,7 +43,7 @@ PN_KFN void pn_e_mc_nbuf(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
  * (pn_mc_run: their origins once, and one lookup that may find the whole run lit). */
 PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
 {
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
     uint32_t W = K->view.width, x0, i, k, n[PN_MC_WORDS] = {0u, 0u, 0u, 0u, 0u, 0u};
     PN_GLOBAL uint32_t *words = PN_POOL(uint32_t, mc_words) + (size_t)y * PN_MC_ROW_WORDS;
     pn_mc_ctx m;

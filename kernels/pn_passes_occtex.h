@@ -47,7 +47,7 @@ PN_KFN void pn_e_occ_sat_cols(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn
 /* Pixel: visibility 1 (lit or background) or 0 (facing away, behind the light), counted. */
 PN_KFN void pn_e_occ_init(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
     pn_v3 O;
     uint32_t id = PN_POOL(const uint32_t, tri_id)[pix];
     int lit = id != PN_NO_PIXEL_TRIANGLE &&
@@ -76,7 +76,7 @@ PN_KFN void pn_e_occ_lookup(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
 PN_KFN void pn_e_occ_finish(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
     uint32_t m[PN_MASK_WORDS_MAX], id = PN_POOL(const uint32_t, tri_id)[pix];
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
     pn_v3 pos, nrm, O;
     pn_horizon H;
     if (id == PN_NO_PIXEL_TRIANGLE) return;

@@ -61,7 +61,7 @@ PN_KFN void pn_e_srt_tile_cols(PN_GLOBAL uint8_t *A, const pn_kpools *P, const p
 PN_KFN void pn_e_srt_classify(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
     pn_srt_args a;
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
     float v;
     uint32_t lit;
     a.delta = K->srt_delta;
@@ -93,7 +93,7 @@ PN_KFN void pn_e_srt_pip_list(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn
 PN_KFN void pn_e_srt_exact(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
 {
     uint32_t pix = PN_POOL(const uint32_t, pip_list)[i];
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
     PN_POOL(float, vis)[pix] = pn_reference_pixel(
         pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u), pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u),
         PN_POOL(const uint32_t, tri_id)[pix], PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),

@@ -71,10 +71,12 @@ PN_KFN void pn_e_wg_runs(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
 }
 
 /* Pixel pix0 + i (of the band's rows; the band's columns only): its centre ray and its
- * tile's wedges, blended object by object; times its horizon's fraction. */
+ * tile's wedges, blended object by object, times its horizon's fraction; or, in its own
+ * object's self-shadow penumbra (PN_WG_EXACT), the reference's visibility over the
+ * PN_WG_EXACT_K^2 samples (fewer when k is smaller). */
 PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
 {
-    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u};
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
     uint32_t pix = K->wg.pix0 + i, W = K->view.width, tx = (pix % W) / PN_WG_TILE, tile, id;
     PN_CONST uint32_t *toff = PN_POOL(const uint32_t, wg_toff);
     pn_v3 pos, nrm, O;
@@ -93,9 +95,16 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     }
     tile = (pix / W / PN_WG_TILE) * K->wg.tiles_x + tx;
     v = pn_wg_pixel(O, id, &K->light, K->wg.mode, PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
-                    PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), PN_POOL(const uint32_t, wg_tcomp), PN_POOL(const pn_wsil, wg_sil),
+                    PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), PN_POOL(const uint32_t, wg_tcomp), PN_POOL(const uint32_t, wg_tcast), PN_POOL(const pn_wsil, wg_sil),
                     PN_POOL(const uint32_t, wg_sorted), PN_POOL(const uint32_t, wg_pairs), toff[tile], toff[tile + 1u], &c);
-    if (v > 0.0f) {
+    if (v == PN_WG_EXACT) {
+        pn_shadow_counters ce = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
+        pn_klight Lk = K->light;
+        if (Lk.k > PN_WG_EXACT_K) Lk.k = PN_WG_EXACT_K;
+        v = pn_reference_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
+                               PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), &Lk, &ce);
+        c.exact = 1u;
+    } else if (v > 0.0f) {
         uint32_t m[PN_MASK_WORDS_MAX];
         pn_horizon H;
         pn_mask_clear(m);

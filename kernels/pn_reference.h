@@ -217,13 +217,15 @@ typedef struct pn_shadow_counters {
     uint32_t capped;     /* pixels a pass decided at one of its documented caps (the wedges'
                             PN_WG_HARD_MAX objects on the centre ray): a statistic in
                             pn_stats, never an error */
+    uint32_t exact;      /* pixels an approximation resolved with the exact predicate (the
+                            wedges' self-shadow penumbrae) */
 } pn_shadow_counters;
 
 /* One row's counters in the counters pool: pn_shadow_counters padded to 64 bytes, a cache
  * line, so that threads adding into neighbouring rows do not share one. Measured with
  * MCSM's per-row words padded alike (PN_MC_ROW_WORDS): its rays stage on spot, 512x512, 2
  * threads, medians of alternating runs 46.7 -> 42.2 .. 43.5 ms. */
-#define PN_ROW_COUNTERS_PAD 10
+#define PN_ROW_COUNTERS_PAD 9
 typedef struct pn_row_counters {
     pn_shadow_counters c;
     uint32_t pad[PN_ROW_COUNTERS_PAD];

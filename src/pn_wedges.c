@@ -159,6 +159,7 @@ static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
     ctx->stats.wedges.evaluated = 0;
     ctx->stats.wedges.hard_blockers = 0;
     ctx->stats.wedges.hard_overflow = 0;
+    ctx->stats.wedges.exact_pixels = 0;
     ctx->stats.wedges.ns_silhouettes = 0;
     ctx->stats.wedges.ns_binning = 0;
     ctx->stats.wedges.ns_pixels = 0;
@@ -306,6 +307,7 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
         ctx->stats.wedges.touched += c->blocking;
         ctx->stats.wedges.hard_blockers += c->nodes;
         ctx->stats.wedges.hard_overflow += c->capped;
+        ctx->stats.wedges.exact_pixels += c->exact;
     }
     return PN_OK;
 }

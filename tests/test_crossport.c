@@ -141,6 +141,7 @@ static int same_frame(const char *what, const pn_xframe *a, const pn_xframe *b)
     SAME_STAT(wedges.touched);
     SAME_STAT(wedges.hard_blockers);
     SAME_STAT(wedges.hard_overflow);
+    SAME_STAT(wedges.exact_pixels);
 #undef SAME_STAT
     CHECK_MSG(memcmp(&a->st.gears.mean_tris_per_cell, &b->st.gears.mean_tris_per_cell, sizeof(float)) == 0 &&
                   memcmp(&a->st.gears.mean_pixels_per_cell, &b->st.gears.mean_pixels_per_cell, sizeof(float)) == 0,

@@ -552,6 +552,8 @@ typedef struct pn_wedges_stats { /* Penumbra wedges: the scene's connectivity (a
     uint64_t hard_blockers;      /* triangles found blocking the pixels' centre rays */
     uint32_t hard_overflow;      /* pixels with more than 16 objects blocking the centre
                                     whose wedges reach them (taken as umbra) */
+    uint32_t exact_pixels;       /* pixels in their own object's self-shadow penumbra,
+                                    resolved with the reference's exact predicate */
     /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: silhouettes, binning, pixels */
     uint64_t ns_silhouettes, ns_binning, ns_pixels;
 } pn_wedges_stats;

@@ -567,11 +567,15 @@ PN_KFN void pn_wg_bpoint(float s, float *x, float *y)
     *y = s <= 1.0f ? s : 1.0f;
 }
 
-/* Clips segment p q to Q = [0, 1]^2 (Liang and Barsky); 0 when nothing is left. */
+/* Clips segment p q to Q = [0, 1]^2 (Liang and Barsky); 0 when nothing is left. An end
+ * the clip does not move is kept as it is (most projected edges lie inside Q: no division). */
 PN_KFN int pn_wg_clip(float *px, float *py, float *qx, float *qy)
 {
     float t0 = 0.0f, t1 = 1.0f, dx = *qx - *px, dy = *qy - *py, pk[4], qk[4], x0, y0;
     uint32_t i;
+    if (*px >= 0.0f && *px <= 1.0f && *py >= 0.0f && *py <= 1.0f && *qx >= 0.0f && *qx <= 1.0f && *qy >= 0.0f &&
+        *qy <= 1.0f)
+        return 1;
     pk[0] = -dx;
     qk[0] = *px;
     pk[1] = dx;
@@ -596,10 +600,14 @@ PN_KFN int pn_wg_clip(float *px, float *py, float *qx, float *qy)
     if (!(t0 <= t1)) return 0;
     x0 = *px;
     y0 = *py;
-    *px = pn_kminf(pn_kmaxf(x0 + t0 * dx, 0.0f), 1.0f);
-    *py = pn_kminf(pn_kmaxf(y0 + t0 * dy, 0.0f), 1.0f);
-    *qx = pn_kminf(pn_kmaxf(x0 + t1 * dx, 0.0f), 1.0f);
-    *qy = pn_kminf(pn_kmaxf(y0 + t1 * dy, 0.0f), 1.0f);
+    if (t0 > 0.0f) {
+        *px = pn_kminf(pn_kmaxf(x0 + t0 * dx, 0.0f), 1.0f);
+        *py = pn_kminf(pn_kmaxf(y0 + t0 * dy, 0.0f), 1.0f);
+    }
+    if (t1 < 1.0f) {
+        *qx = pn_kminf(pn_kmaxf(x0 + t1 * dx, 0.0f), 1.0f);
+        *qy = pn_kminf(pn_kmaxf(y0 + t1 * dy, 0.0f), 1.0f);
+    }
     return 1;
 }
 

@@ -51,6 +51,8 @@
 
 #define PN_WG_REV 0x80000000u    /* half-edge: traverses its edge from the higher vertex id */
 #define PN_WG_CLOSED 0x80000000u /* triangle's object: closed (every edge two opposite windings) */
+#define PN_WG_DUP 0x40000000u    /* triangle: on the vertices of an earlier one (casts nothing) */
+#define PN_WG_OBJ 0x3FFFFFFFu    /* triangle's object id */
 #define PN_WG_HARD_MAX 16u       /* objects blocking the centre a pixel keeps track of */
 #define PN_WG_TNEAR (1.0f / 1024.0f) /* the local near plane: a tenth of a percent of O's height */
 #define PN_WG_EXACT (-1.0f) /* pn_wg_pixel: resolve this pixel with the exact predicate */
@@ -98,7 +100,7 @@ PN_KFN uint32_t pn_wg_facing(const pn_klight *L, PN_CONST float *tris, PN_CONST 
     PN_CONST float *p = tris + (size_t)t * 9u;
     pn_v3 A = pn_v3_make(p[0], p[1], p[2]), B = pn_v3_make(p[3], p[4], p[5]), C = pn_v3_make(p[6], p[7], p[8]);
     float s;
-    if (flags[t] & PN_TRI_DEGENERATE) return PN_WG_CAST_NONE;
+    if ((flags[t] & PN_TRI_DEGENERATE) || (tcomp[t] & PN_WG_DUP)) return PN_WG_CAST_NONE;
     s = pn_v3_dot(pn_tri_cross(A, B, C), pn_v3_sub(pn_light_c(L), A));
     if (s > 0.0f) return PN_WG_CAST_AS_IS;
     if (s < 0.0f && !(tcomp[t] & PN_WG_CLOSED)) return PN_WG_CAST_FLIPPED;
@@ -322,7 +324,7 @@ PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN
      * it is not reversed. */
     s->h = (h0 & ~PN_WG_REV) | (((m > 0) == (rev0 != 0u)) ? PN_WG_REV : 0u);
     s->w = (uint32_t)(m > 0 ? m : -m);
-    s->comp = tcomp[(h0 & ~PN_WG_REV) / 3u] & ~PN_WG_CLOSED;
+    s->comp = tcomp[(h0 & ~PN_WG_REV) / 3u] & PN_WG_OBJ;
     s->pad = 0u;
     pn_wg_ends(tris, s->h, &a, &b);
     pn_wg_reach(v, L, hmax, a, b, &R);
@@ -889,7 +891,7 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
         cnt->overflow += rc.overflow;
         if (t == PN_RAY_NONE) break;
         cnt->nodes++;
-        s = tcomp[t] & ~PN_WG_CLOSED;
+        s = tcomp[t] & PN_WG_OBJ;
         /* An object whose wedges do not reach this tile covers the whole light. */
         if (L->is_point || !pn_wg_listed(sil, list, lo, hi, s)) return 0.0f;
         for (j = 0; j < nhard && hard[j] != s; j++) {
@@ -965,7 +967,7 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
          * self-shadow's penumbra, where the centre's silhouettes stand least for what the
          * receiver sees (they face the centre, and many are seen edge-on or from behind
          * from a point on the surface): the frame resolves it exactly. */
-        if (h && s == (tcomp[own] & ~PN_WG_CLOSED)) return PN_WG_EXACT;
+        if (h && s == (tcomp[own] & PN_WG_OBJ)) return PN_WG_EXACT;
         for (q = 0; q < 4u; q++) {
             pn_wbox bs;
             float as = pn_wg_part_end(parts + q, h, &bs);

@@ -93,9 +93,26 @@ static void pn_cn_union(uint32_t *parent, uint32_t x, uint32_t y)
         parent[x] = y;
 }
 
+/* Whether triangles a and b have the same three welded vertices (in any order). */
+static int pn_cn_same_tri(const uint32_t *canon, uint32_t a, uint32_t b)
+{
+    const uint32_t *p = canon + 3u * a, *q = canon + 3u * b;
+    uint32_t i, j, used = 0u;
+    for (i = 0; i < 3u; i++) {
+        for (j = 0; j < 3u && (((used >> j) & 1u) || q[j] != p[i]); j++) {
+        }
+        if (j == 3u) return 0;
+        used |= 1u << j;
+    }
+    return 1;
+}
+
+/* The longest edge run searched for duplicate triangles (pairs within it: quadratic). */
+#define PN_CN_DUP_RUN 8u
+
 void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t *tcomp)
 {
-    uint32_t T = ctx->tri_count, n = 3u * T, i, t, nv = 0, ncomp = 0, nh = 0, nr = 0;
+    uint32_t T = ctx->tri_count, n = 3u * T, i, t, r, nv = 0, ncomp = 0, nh = 0, nr = 0;
     uint32_t *canon = (uint32_t *)(void *)ctx->frame, *parent = canon + n, *a, *b;
     pn_cn c;
     c.tris = ctx->tris;
@@ -129,9 +146,9 @@ void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t 
     }
     for (i = 0; i < nv; i++) hedge[i] = 0xFFFFFFFFu; /* label per root */
     for (t = 0; t < T; t++) {
-        uint32_t r = pn_cn_find(parent, canon[3u * t]);
-        if (hedge[r] == 0xFFFFFFFFu) hedge[r] = ncomp++;
-        tcomp[t] = hedge[r];
+        uint32_t root = pn_cn_find(parent, canon[3u * t]);
+        if (hedge[root] == 0xFFFFFFFFu) hedge[root] = ncomp++;
+        tcomp[t] = hedge[root];
     }
 
     /* Edges: the half-edges of non-degenerate triangles with two distinct vertices, by
@@ -174,6 +191,22 @@ void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t 
         i = j;
     }
     run[nr] = nh;
+    /* Duplicates: a triangle on the same three vertices as an earlier one of its edges' runs
+     * (a double-sided sheet's back, a face given twice) casts nothing, so that a sheet casts
+     * once (runs of more than PN_CN_DUP_RUN half-edges are left alone). */
+    ctx->stats.wedges.duplicates = 0;
+    for (r = 0; r < nr; r++) {
+        uint32_t lo = run[r], hi = run[r + 1u], x, y;
+        if (hi - lo < 2u || hi - lo > PN_CN_DUP_RUN) continue;
+        for (x = lo; x < hi; x++)
+            for (y = x + 1u; y < hi; y++) {
+                uint32_t ta = hedge[x] / 3u, tb = hedge[y] / 3u, th = ta < tb ? tb : ta;
+                if (ta != tb && !(tcomp[th] & PN_WG_DUP) && pn_cn_same_tri(canon, ta, tb)) {
+                    tcomp[th] |= PN_WG_DUP;
+                    ctx->stats.wedges.duplicates++;
+                }
+            }
+    }
     /* Direction flags, now that the keys are no longer needed. */
     for (i = 0; i < nh; i++) {
         uint32_t h = hedge[i];
@@ -182,7 +215,7 @@ void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t 
     ctx->stats.wedges.closed_objects = 0;
     for (i = 0; i < ncomp; i++) ctx->stats.wedges.closed_objects += parent[i] == 0u;
     for (t = 0; t < T; t++)
-        if (parent[tcomp[t]] == 0u) tcomp[t] |= PN_WG_CLOSED;
+        if (parent[tcomp[t] & PN_WG_OBJ] == 0u) tcomp[t] |= PN_WG_CLOSED;
     ctx->stats.wedges.edges = nr;
     ctx->stats.wedges.objects = ncomp;
     ctx->stats.wedges.vertices = nv;

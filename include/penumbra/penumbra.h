@@ -541,6 +541,8 @@ typedef struct pn_wedges_stats { /* Penumbra wedges: the scene's connectivity (a
     uint32_t nonmanifold_edges;  /* edges with three or more triangles, or two winding
                                     the same way */
     uint32_t objects, closed_objects; /* triangles joined by shared vertices */
+    uint32_t duplicates;         /* triangles on the vertices of another (a double-sided
+                                    sheet's back): they cast nothing */
     /* ...and the last frame */
     uint32_t silhouettes;        /* silhouette edges seen from the light centre (= wedges) */
     uint64_t pairs;              /* (screen tile, wedge) pairs binned */

@@ -178,8 +178,8 @@ static pn_status pn_wg_pixels(pn_frame_state *fs)
 }
 
 /* Bins the silhouettes to the tiles of band K->wg.b* and shades its pixels; *need: the
- * band's pairs, and nothing else done when they exceed the pool. */
-static pn_status pn_wg_band(pn_frame_state *fs, const pn_wg_pools *s, uint32_t tiles, uint32_t *need)
+ * band's pairs, and nothing else done when they exceed the pool's cap. */
+static pn_status pn_wg_band(pn_frame_state *fs, const pn_wg_pools *s, uint32_t tiles, uint32_t cap, uint32_t *need)
 {
     pn_context *ctx = fs->ctx;
     uint32_t nsil = fs->K.wg.sils, npairs;
@@ -189,7 +189,7 @@ static pn_status pn_wg_band(pn_frame_state *fs, const pn_wg_pools *s, uint32_t t
                       (st = pn_dev_to_host(fs, s->poff + nsil, 4u)) != PN_OK))
         return st;
     *need = npairs = nsil > 0u ? s->poff[nsil] : 0u;
-    if (npairs > pn_wg_pairs_max(&ctx->limits)) return PN_OK;
+    if (npairs > cap) return PN_OK;
     /* Pairs are scattered in silhouette order, so each tile's silhouettes ascend: the sort
      * by tile is the one stable order on every port. */
     if (npairs > 0u && ((st = pn_dev_run(fs, PN_K_WG_SCATTER, nsil)) != PN_OK ||
@@ -245,6 +245,7 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
         K->wg.hmax = hm + 2.0f * K->light.eps + 1e-5f * (hm + e);
     }
     K->wg.tiles_x = tw;
+    K->wg.sils = 0u;
     K->wg.bx0 = 0u;
     K->wg.by0 = 0u;
     K->wg.bx1 = tw;
@@ -265,7 +266,6 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
                           (st = pn_dev_run(fs, PN_K_WG_TILE_BOX, tiles)) != PN_OK))
             return st;
     }
-    K->wg.sils = nsil;
     t1 = pn_dev_timestamp(fs);
     ctx->stats.wedges.ns_silhouettes = t1 - t0;
     {
@@ -277,7 +277,7 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
         while (K->wg.by0 < th) {
             K->wg.by1 = K->wg.by0 + rows < th ? K->wg.by0 + rows : th;
             K->wg.bx1 = K->wg.bx0 + cols < tw ? K->wg.bx0 + cols : tw;
-            if ((st = pn_wg_band(fs, &s, tiles, &need)) != PN_OK) return st;
+            if ((st = pn_wg_band(fs, &s, tiles, cap, &need)) != PN_OK) return st;
             if (need > cap) {
                 if (rows > 1u) {
                     rows = pn_wg_shrink(rows, need, cap);

@@ -20,9 +20,9 @@
  * bright ring inside the shadow).
  *
  * Silhouettes are those seen from the light centre (the method's approximation): an edge
- * whose adjacent "casting" triangles do not cancel. A closed object casts with its
- * triangles facing the centre; an open one (an edge with one triangle, or more than two, or
- * two of the same winding) with all of them, each turned to face the centre. An edge's
+ * whose adjacent "casting" triangles do not cancel. A solid object (closed, or but for
+ * small holes and seams: src/pn_connect.c) casts with its triangles facing the centre; a
+ * sheet with all of them, each turned to face the centre. An edge's
  * weight is the net count of casting triangles winding along it (1 on a closed mesh).
  *
  * Blending (the paper's section 3): the light is cut radially into its four quadrants; per
@@ -50,7 +50,7 @@
 #include "pn_raytrace.h"
 
 #define PN_WG_REV 0x80000000u    /* half-edge: traverses its edge from the higher vertex id */
-#define PN_WG_CLOSED 0x80000000u /* triangle's object: closed (every edge two opposite windings) */
+#define PN_WG_CLOSED 0x80000000u /* triangle's object: a solid (pn_connect.c's pn_cn_solids) */
 #define PN_WG_DUP 0x40000000u    /* triangle: on the vertices of an earlier one (casts nothing) */
 #define PN_WG_OBJ 0x3FFFFFFFu    /* triangle's object id */
 #define PN_WG_HARD_MAX 16u       /* objects blocking the centre a pixel keeps track of */

@@ -540,7 +540,9 @@ typedef struct pn_wedges_stats { /* Penumbra wedges: the scene's connectivity (a
     uint32_t open_edges;         /* edges with one triangle: silhouettes from every view */
     uint32_t nonmanifold_edges;  /* edges with three or more triangles, or two winding
                                     the same way */
-    uint32_t objects, closed_objects; /* triangles joined by shared vertices */
+    uint32_t objects;            /* triangles joined by shared vertices */
+    uint32_t closed_objects;     /* objects cast as solids: closed, or but for small holes
+                                    and seams (the others are sheets) */
     uint32_t duplicates;         /* triangles on the vertices of another (a double-sided
                                     sheet's back): they cast nothing */
     /* ...and the last frame */

@@ -39,6 +39,12 @@ PN_KFN void pn_e_wg_obj_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
     pn_wg_obj_box(PN_POOL(pn_wsil, wg_sil), K->wg.sils, s);
 }
 
+/* Block of PN_WG_BLOCK silhouettes: the light-space box of their end points. */
+PN_KFN void pn_e_wg_block_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t k)
+{
+    pn_wg_block_box(PN_POOL(const pn_wsil, wg_sil), K->wg.sils, k, PN_POOL(float, wg_bbox));
+}
+
 /* Screen tile: the light-space box of its pixels' shadow origins. */
 PN_KFN void pn_e_wg_tile_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
 {
@@ -60,7 +66,7 @@ PN_KFN void pn_e_wg_scatter(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
                     PN_POOL(const float, wg_tbox), s, PN_POOL(const uint32_t, wg_poff)[s], 1, PN_POOL(uint32_t, wg_pairs));
 }
 
-/* Screen tile: the ends of its list's object runs (into the pair pool, free after the
+/* Screen tile: the ends of its list's runs and objects (into the pair pool, free after the
  * sort). */
 PN_KFN void pn_e_wg_runs(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
 {
@@ -96,7 +102,7 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     tile = (pix / W / PN_WG_TILE) * K->wg.tiles_x + tx;
     v = pn_wg_pixel(O, id, &K->light, K->wg.mode, PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
                     PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), PN_POOL(const uint32_t, wg_tcomp), PN_POOL(const uint32_t, wg_tcast), PN_POOL(const pn_wsil, wg_sil),
-                    PN_POOL(const uint32_t, wg_sorted), PN_POOL(const uint32_t, wg_pairs), toff[tile], toff[tile + 1u], &c);
+                    PN_POOL(const float, wg_bbox), PN_POOL(const uint32_t, wg_sorted), PN_POOL(const uint32_t, wg_pairs), toff[tile], toff[tile + 1u], &c);
     if (v == PN_WG_EXACT) {
         pn_shadow_counters ce = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
         pn_klight Lk = K->light;
@@ -125,6 +131,7 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     X(WG_SIL_FLAG, wg_sil_flag, 64, 4096)                 \
     X(WG_SIL_MAKE, wg_sil_make, 64, 1024)                 \
     X(WG_OBJ_BOX, wg_obj_box, 64, 1024)                   \
+    X(WG_BLOCK_BOX, wg_block_box, 64, 1024)               \
     X(WG_TILE_BOX, wg_tile_box, 64, 16)                   \
     X(WG_COUNT, wg_count, 64, 1024)                       \
     X(WG_SCATTER, wg_scatter, 64, 1024)                   \

@@ -373,6 +373,33 @@ PN_KFN void pn_wg_obj_box(PN_GLOBAL pn_wsil *sil, uint32_t nsil, uint32_t s)
         for (i = 0; i < 6u; i++) sil[j].ob[i] = b[i];
 }
 
+/* Block k of silhouettes (PN_WG_BLOCK of them from k PN_WG_BLOCK on, of any objects): the
+ * box in light coordinates of their end points (bb[6 k ..]: u0, u1, v0, v1, h0, h1, as
+ * pn_wsil.ob). Edges are numbered by their vertices, welded in the Morton order of their
+ * positions (src/pn_connect.c), so a block's edges lie near one another: a pixel skips the
+ * run of its tile's list in a block whose box no edge of which can project onto the light
+ * (pn_wg_obj_misses), most of a list where wedges are thin beside the light's size. */
+#define PN_WG_BLOCK 16u
+#define PN_WG_BLOCK_RUN 2u /* the least run a pixel tests its block's box for */
+
+PN_KFN void pn_wg_block_box(PN_CONST pn_wsil *sil, uint32_t nsil, uint32_t k, PN_GLOBAL float *bb)
+{
+    uint32_t j, end = (k + 1u) * PN_WG_BLOCK < nsil ? (k + 1u) * PN_WG_BLOCK : nsil;
+    float b[6];
+    b[0] = b[2] = b[4] = PN_KINF;
+    b[1] = b[3] = b[5] = -PN_KINF;
+    for (j = k * PN_WG_BLOCK; j < end; j++) {
+        PN_CONST pn_wsil *e = sil + j;
+        b[0] = pn_kminf(b[0], pn_kminf(e->ua, e->ub));
+        b[1] = pn_kmaxf(b[1], pn_kmaxf(e->ua, e->ub));
+        b[2] = pn_kminf(b[2], pn_kminf(e->va, e->vb));
+        b[3] = pn_kmaxf(b[3], pn_kmaxf(e->va, e->vb));
+        b[4] = pn_kminf(b[4], pn_kminf(e->ha, e->hb));
+        b[5] = pn_kmaxf(b[5], pn_kmaxf(e->ha, e->hb));
+    }
+    for (j = 0; j < 6u; j++) bb[(size_t)k * 6u + j] = b[j];
+}
+
 /* ---- Tiles in depth: the light-space box of a tile's shadow origins ---------------------- */
 
 /* A tile's box (PN_WG_BOX floats): the least and greatest u, v and h (pn_wg_light) of the
@@ -477,16 +504,21 @@ PN_KFN uint32_t pn_wg_bin(const pn_kview *v, const pn_klight *L, const pn_kwg *G
     return n;
 }
 
-/* Tile list[lo, hi) (ascending silhouettes, so grouped by object): next[i] = the end of
- * the object's run that starts at i, for each run start. */
+/* Tile list[lo, hi) (ascending silhouettes, so grouped by object): for each run start i,
+ * next[2 i] = the end of its run (silhouettes of one object and one block, PN_WG_BLOCK)
+ * and, where an object's run starts, next[2 i + 1] = the end of the object's. */
 PN_KFN void pn_wg_runs(PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t lo, uint32_t hi, PN_GLOBAL uint32_t *next)
 {
-    uint32_t i = lo, j;
+    uint32_t i = lo, j, o = lo;
     while (i < hi) {
-        uint32_t c = sil[list[i]].comp;
-        for (j = i + 1u; j < hi && sil[list[j]].comp == c; j++) {
+        uint32_t c = sil[list[i]].comp, k = list[i] / PN_WG_BLOCK;
+        for (j = i + 1u; j < hi && sil[list[j]].comp == c && list[j] / PN_WG_BLOCK == k; j++) {
         }
-        next[i] = j;
+        next[2u * (size_t)i] = j;
+        if (j == hi || sil[list[j]].comp != c) {
+            next[2u * (size_t)o + 1u] = j;
+            o = j;
+        }
         i = j;
     }
 }
@@ -861,8 +893,8 @@ PN_KFN int pn_wg_listed(PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t
 PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mode, PN_CONST float *tris,
                          PN_CONST pn_kbvh_node *nodes, PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index,
                          PN_CONST uint32_t *tcomp, PN_CONST uint32_t *tcast,
-                         PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, PN_CONST uint32_t *next, uint32_t lo, uint32_t hi,
-                         pn_shadow_counters *cnt)
+                         PN_CONST pn_wsil *sil, PN_CONST float *bbox, PN_CONST uint32_t *list, PN_CONST uint32_t *next,
+                         uint32_t lo, uint32_t hi, pn_shadow_counters *cnt)
 {
     uint32_t hard[PN_WG_HARD_MAX], hn[PN_WG_HARD_MAX], htri[PN_WG_HARD_MAX], nhard = 0u, ntri = 0u, t, i, q;
     float af[4];
@@ -931,7 +963,7 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
     }
     i = lo;
     while (i < hi) {
-        uint32_t s = sil[list[i]].comp, j;
+        uint32_t s = sil[list[i]].comp, o0, oend, j;
         int h = 0, started = 0;
         float a0 = 0.0f;
         pn_wpart parts[4];
@@ -941,19 +973,29 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
                 a0 = hn[j] > 1u ? (float)hn[j] : 1.0f;
             }
         if (!h && pn_wg_obj_misses(&F, sil[list[i]].ob)) { /* none of its edges reaches the light */
-            i = next[i];
+            i = next[2u * (size_t)i + 1u];
             continue;
         }
-        for (; i < hi && sil[list[i]].comp == s; i++) {
-            PN_CONST pn_wsil *e = sil + list[i];
-            float p[4], sg;
-            cnt->candidates++;
-            if (!pn_wg_project(&F, e, p, &sg)) continue;
-            if (!started) {
-                pn_wg_parts_init(parts, a0);
-                started = 1;
+        for (o0 = i, oend = next[2u * (size_t)i + 1u]; i < oend;) {
+            uint32_t end = next[2u * (size_t)i];
+            /* A run of a block none of whose edges reaches the light: nothing to add (not
+             * asked of an object that is one run and passed its own box's test). */
+            if (end - i >= PN_WG_BLOCK_RUN && (h || i != o0 || end != oend) &&
+                pn_wg_obj_misses(&F, bbox + (size_t)(list[i] / PN_WG_BLOCK) * 6u)) {
+                i = end;
+                continue;
             }
-            if (pn_wg_edge_parts(p, sg, (float)e->w, parts)) cnt->blocking++;
+            for (; i < end; i++) {
+                PN_CONST pn_wsil *e = sil + list[i];
+                float p[4], sg;
+                cnt->candidates++;
+                if (!pn_wg_project(&F, e, p, &sg)) continue;
+                if (!started) {
+                    pn_wg_parts_init(parts, a0);
+                    started = 1;
+                }
+                if (pn_wg_edge_parts(p, sg, (float)e->w, parts)) cnt->blocking++;
+            }
         }
         /* An object none of whose edges reaches the light from here: nothing to add when
          * its centre is seen, all of the light when it is blocked (as for an object whose

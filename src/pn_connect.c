@@ -25,6 +25,7 @@ typedef struct pn_cn {
     const float *tris;
     const uint32_t *canon; /* corner -> vertex id */
     const uint32_t *comp;  /* triangle -> object */
+    const uint32_t *morton; /* corner -> its position's Morton code (while welding) */
 } pn_cn;
 
 static uint32_t pn_cn_fbits(float v)
@@ -35,11 +36,12 @@ static uint32_t pn_cn_fbits(float v)
 }
 
 /* Key word `which` of an item: 0..2 a corner's z, y, x; 3..5 a half-edge's higher vertex,
- * lower vertex, object. */
+ * lower vertex, object; 6 a corner's Morton code. */
 static uint32_t pn_cn_key(const pn_cn *c, uint32_t which, uint32_t item)
 {
     uint32_t t, e, x, y;
     if (which < 3u) return pn_cn_fbits(c->tris[(size_t)item * 3u + (2u - which)]);
+    if (which == 6u) return c->morton[item];
     t = item / 3u;
     e = item % 3u;
     if (which == 5u) return c->comp[t];
@@ -74,6 +76,15 @@ static void pn_cn_radix(const pn_cn *c, uint32_t which, uint32_t **a, uint32_t *
         *a = *b;
         *b = t;
     }
+}
+
+/* 10 bits of p's place in [lo, hi] spread to every third bit. */
+static uint32_t pn_cn_spread(float p, float lo, float hi)
+{
+    float f = hi > lo ? (p - lo) / (hi - lo) * 1024.0f : 0.0f;
+    uint32_t q = f >= 1023.0f ? 1023u : (f > 0.0f ? (uint32_t)f : 0u), r = 0u, b;
+    for (b = 0; b < 10u; b++) r |= ((q >> b) & 1u) << (3u * b);
+    return r;
 }
 
 static uint32_t pn_cn_find(uint32_t *parent, uint32_t x)
@@ -175,14 +186,27 @@ void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t 
     c.tris = ctx->tris;
     c.canon = canon;
     c.comp = tcomp;
+    c.morton = NULL;
 
-    /* Weld: corners sorted by position, one id per distinct position. */
-    for (i = 0; i < n; i++) hedge[i] = i;
+    /* Weld: corners sorted by position, one id per distinct position, in the Morton order
+     * of the positions in the scene's box (ties: by the position's bits), so that edges,
+     * numbered by their vertices, are numbered near their neighbours in space: a pixel's
+     * list of silhouettes comes in blocks of nearby edges (kernels/pn_wedges.h). The codes
+     * are kept in canon's place until the ids overwrite them. */
+    for (i = 0; i < n; i++) {
+        const float *p = ctx->tris + (size_t)i * 3u;
+        canon[i] = pn_cn_spread(p[0], ctx->scene_min[0], ctx->scene_max[0]) |
+                   (pn_cn_spread(p[1], ctx->scene_min[1], ctx->scene_max[1]) << 1) |
+                   (pn_cn_spread(p[2], ctx->scene_min[2], ctx->scene_max[2]) << 2);
+        hedge[i] = i;
+    }
+    c.morton = canon;
     a = hedge;
     b = run;
     pn_cn_radix(&c, 0u, &a, &b, n);
     pn_cn_radix(&c, 1u, &a, &b, n);
     pn_cn_radix(&c, 2u, &a, &b, n);
+    pn_cn_radix(&c, 6u, &a, &b, n);
     for (i = 0; i < n; i++) {
         if (i > 0u) {
             const float *p = ctx->tris + (size_t)a[i] * 3u, *q = ctx->tris + (size_t)a[i - 1u] * 3u;

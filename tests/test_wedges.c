@@ -792,7 +792,7 @@ static void test_reach(void)
 static void test_culls(void)
 {
     enum { CASES = 4000, PTS = 24, EDGES = 4 };
-    uint32_t st = 777u, cs, i, j, box_culls = 0u, obj_culls = 0u, box_wrong = 0u, obj_wrong = 0u, reach = 0u;
+    uint32_t st = 777u, cs, i, j, box_culls = 0u, obj_culls = 0u, box_wrong = 0u, obj_wrong = 0u, reach = 0u, block_wrong = 0u;
     for (cs = 0; cs < CASES; cs++) {
         pn_klight L;
         pn_wsil e[EDGES];
@@ -817,6 +817,12 @@ static void test_culls(void)
         }
         for (i = 0; i < EDGES; i++)
             for (j = 0; j < 6u; j++) e[i].ob[j] = ob[j];
+        /* A block of these edges has the object's box (the pixel's run cull tests it). */
+        {
+            float bb[6];
+            pn_wg_block_box(e, EDGES, 0u, bb);
+            block_wrong += (uint32_t)(memcmp(bb, ob, sizeof(bb)) != 0);
+        }
         /* Origins: a cluster (a tile's points), some on the edges' own heights. */
         {
             /* Half of the clusters below the object as seen from the light, half anywhere. */
@@ -858,6 +864,7 @@ static void test_culls(void)
             box_culls, CASES * EDGES, obj_culls, CASES * PTS, reach);
     CHECK_MSG(box_wrong == 0u, "%u (origin, edge) pairs reach the light through a box said to miss", box_wrong);
     CHECK_MSG(obj_wrong == 0u, "%u origins see an edge of an object said to miss", obj_wrong);
+    CHECK_MSG(block_wrong == 0u, "%u blocks' boxes differ from their edges' box", block_wrong);
     CHECK(box_culls > CASES * EDGES / 10u && box_culls < CASES * EDGES * 9u / 10u);
     CHECK(obj_culls > CASES * PTS / 10u && reach > CASES);
 }

@@ -351,6 +351,25 @@ PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN
     s->y1 = R.y1;
 }
 
+/* The box in light coordinates (u0, u1, v0, v1, h0, h1) of the end points of silhouettes
+ * [j0, j1) that are of object c (any object: c = PN_WG_ANY), from j0 on. */
+#define PN_WG_ANY 0xFFFFFFFFu
+PN_KFN void pn_wg_sil_box(PN_CONST pn_wsil *sil, uint32_t j0, uint32_t j1, uint32_t c, float *b)
+{
+    uint32_t j;
+    b[0] = b[2] = b[4] = PN_KINF;
+    b[1] = b[3] = b[5] = -PN_KINF;
+    for (j = j0; j < j1 && (c == PN_WG_ANY || sil[j].comp == c); j++) {
+        PN_CONST pn_wsil *e = sil + j;
+        b[0] = pn_kminf(b[0], pn_kminf(e->ua, e->ub));
+        b[1] = pn_kmaxf(b[1], pn_kmaxf(e->ua, e->ub));
+        b[2] = pn_kminf(b[2], pn_kminf(e->va, e->vb));
+        b[3] = pn_kmaxf(b[3], pn_kmaxf(e->va, e->vb));
+        b[4] = pn_kminf(b[4], pn_kminf(e->ha, e->hb));
+        b[5] = pn_kmaxf(b[5], pn_kmaxf(e->ha, e->hb));
+    }
+}
+
 /* Silhouette s, the first of its object's (silhouettes are numbered object by object):
  * the object's box (pn_wsil.ob) into each of its silhouettes. */
 PN_KFN void pn_wg_obj_box(PN_GLOBAL pn_wsil *sil, uint32_t nsil, uint32_t s)
@@ -358,27 +377,17 @@ PN_KFN void pn_wg_obj_box(PN_GLOBAL pn_wsil *sil, uint32_t nsil, uint32_t s)
     uint32_t c = sil[s].comp, j, i;
     float b[6];
     if (s > 0u && sil[s - 1u].comp == c) return;
-    b[0] = b[2] = b[4] = PN_KINF;
-    b[1] = b[3] = b[5] = -PN_KINF;
-    for (j = s; j < nsil && sil[j].comp == c; j++) {
-        PN_CONST pn_wsil *e = sil + j;
-        b[0] = pn_kminf(b[0], pn_kminf(e->ua, e->ub));
-        b[1] = pn_kmaxf(b[1], pn_kmaxf(e->ua, e->ub));
-        b[2] = pn_kminf(b[2], pn_kminf(e->va, e->vb));
-        b[3] = pn_kmaxf(b[3], pn_kmaxf(e->va, e->vb));
-        b[4] = pn_kminf(b[4], pn_kminf(e->ha, e->hb));
-        b[5] = pn_kmaxf(b[5], pn_kmaxf(e->ha, e->hb));
-    }
+    pn_wg_sil_box(sil, s, nsil, c, b);
     for (j = s; j < nsil && sil[j].comp == c; j++)
         for (i = 0; i < 6u; i++) sil[j].ob[i] = b[i];
 }
 
 /* Block k of silhouettes (PN_WG_BLOCK of them from k PN_WG_BLOCK on, of any objects): the
- * box in light coordinates of their end points (bb[6 k ..]: u0, u1, v0, v1, h0, h1, as
- * pn_wsil.ob). Edges are numbered by their vertices, welded in the Morton order of their
- * positions (src/pn_connect.c), so a block's edges lie near one another: a pixel skips the
- * run of its tile's list in a block whose box no edge of which can project onto the light
- * (pn_wg_obj_misses), most of a list where wedges are thin beside the light's size. */
+ * box of their end points (bb[6 k ..], as pn_wsil.ob). Edges are numbered by their
+ * vertices, welded in the Morton order of their positions (src/pn_connect.c), so a block's
+ * edges lie near one another: a pixel skips the run of its tile's list in a block whose
+ * box no edge of which can project onto the light (pn_wg_obj_misses), most of a list
+ * where wedges are thin beside the light's size. */
 #define PN_WG_BLOCK 16u
 #define PN_WG_BLOCK_RUN 2u /* the least run a pixel tests its block's box for */
 
@@ -386,17 +395,7 @@ PN_KFN void pn_wg_block_box(PN_CONST pn_wsil *sil, uint32_t nsil, uint32_t k, PN
 {
     uint32_t j, end = (k + 1u) * PN_WG_BLOCK < nsil ? (k + 1u) * PN_WG_BLOCK : nsil;
     float b[6];
-    b[0] = b[2] = b[4] = PN_KINF;
-    b[1] = b[3] = b[5] = -PN_KINF;
-    for (j = k * PN_WG_BLOCK; j < end; j++) {
-        PN_CONST pn_wsil *e = sil + j;
-        b[0] = pn_kminf(b[0], pn_kminf(e->ua, e->ub));
-        b[1] = pn_kmaxf(b[1], pn_kmaxf(e->ua, e->ub));
-        b[2] = pn_kminf(b[2], pn_kminf(e->va, e->vb));
-        b[3] = pn_kmaxf(b[3], pn_kmaxf(e->va, e->vb));
-        b[4] = pn_kminf(b[4], pn_kminf(e->ha, e->hb));
-        b[5] = pn_kmaxf(b[5], pn_kmaxf(e->ha, e->hb));
-    }
+    pn_wg_sil_box(sil, k * PN_WG_BLOCK, end, PN_WG_ANY, b);
     for (j = 0; j < 6u; j++) bb[(size_t)k * 6u + j] = b[j];
 }
 

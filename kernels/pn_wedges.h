@@ -230,7 +230,9 @@ PN_KFN void pn_wg_reach(const pn_kview *v, const pn_klight *L, float hmax, pn_v3
     R->y1 = pn_wg_tile(hi_y, th);
     for (i = 0; i < PN_WG_REACH_PTS; i++)
         hull &= pn_kfabs(sx[i]) <= PN_WG_REACH_MAX && pn_kfabs(sy[i]) <= PN_WG_REACH_MAX;
-    if (!hull) return;
+    /* A box one tile wide or high, or two by two, has no tile the hull could leave out
+     * that matters: every tile of the box (n = 0). */
+    if (!hull || R->x0 == R->x1 || R->y0 == R->y1 || (R->x1 - R->x0 < 2u && R->y1 - R->y0 < 2u)) return;
     /* Andrew's monotone chain: points by x then y (insertion sort), lower chain then upper. */
     for (i = 1; i < PN_WG_REACH_PTS; i++) {
         float x = sx[i], y = sy[i];
@@ -787,20 +789,24 @@ PN_KFN int pn_wg_project(const pn_wframe *F, PN_CONST pn_wsil *e, float *p, floa
  * between the light plane and it and beyond one side of the light, the test of
  * pn_wg_box_misses with the box on the edges' side (g is affine in (x_e, h_e) too), with
  * the same margins. */
+/* Side x = sg of the light (x: u or v, xo the origin's, [x0, x1] the box's): every end
+ * in the box projects beyond it. Written for a constant sg, called with each (the
+ * compiler folds it: this is the hottest test of a frame of small objects). */
+PN_KFN int pn_wg_side_misses(float sg, float xo, float x0, float x1, float h0, float h1, float ho)
+{
+    float co = 1.0f - sg * xo, xe = sg > 0.0f ? x0 : x1, he = co >= 0.0f ? h0 : h1;
+    float g = (sg * xe - 1.0f) * ho + co * he;
+    return g > 1e-3f * (pn_kmaxf(pn_kfabs(x0), pn_kfabs(x1)) + pn_kfabs(xo) + 1.0f) * ho;
+}
+
 PN_KFN int pn_wg_obj_misses(const pn_wframe *F, PN_CONST float *ob)
 {
     const float near = 1.0f - PN_WG_TNEAR;
-    float ho = F->ho;
-    uint32_t q;
-    if (ob[4] >= near * ho * 1.001f) return 1;
-    if (!(ob[4] >= 0.0f && ob[5] <= near * ho * 0.999f)) return 0;
-    for (q = 0; q < 4u; q++) {
-        float sg = (q & 1u) ? 1.0f : -1.0f, xo = q < 2u ? F->uo : F->vo, x0 = ob[(q >> 1) * 2u], x1 = ob[(q >> 1) * 2u + 1u];
-        float co = 1.0f - sg * xo, xe = sg > 0.0f ? x0 : x1, he = co >= 0.0f ? ob[4] : ob[5];
-        float g = (sg * xe - 1.0f) * ho + co * he;
-        if (g > 1e-3f * (pn_kmaxf(pn_kfabs(x0), pn_kfabs(x1)) + pn_kfabs(xo) + 1.0f) * ho) return 1;
-    }
-    return 0;
+    float ho = F->ho, h0 = ob[4], h1 = ob[5];
+    if (h0 >= near * ho * 1.001f) return 1;
+    if (!(h0 >= 0.0f && h1 <= near * ho * 0.999f)) return 0;
+    return pn_wg_side_misses(-1.0f, F->uo, ob[0], ob[1], h0, h1, ho) || pn_wg_side_misses(1.0f, F->uo, ob[0], ob[1], h0, h1, ho) ||
+           pn_wg_side_misses(-1.0f, F->vo, ob[2], ob[3], h0, h1, ho) || pn_wg_side_misses(1.0f, F->vo, ob[2], ob[3], h0, h1, ho);
 }
 
 /* A projected edge (pn_wg_project) of weight w into the object's four parts. Returns 1

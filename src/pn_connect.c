@@ -4,7 +4,7 @@
  *   weld     triangle corners with the same position (bits, -0 as +0) get one vertex id:
  *            glTF files split vertices by normal and texture coordinate;
  *   objects  triangles joined by shared vertices (union-find, by smaller id), numbered in
- *            the order of their first triangle;
+ *            the order of their least vertex id;
  *   edges    the half-edges of non-degenerate triangles sorted by (object, lower vertex id,
  *            higher vertex id), ties by half-edge id: an edge is a run of equal keys.
  *
@@ -225,12 +225,13 @@ void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t 
         pn_cn_union(parent, canon[3u * t], canon[3u * t + 1u]);
         pn_cn_union(parent, canon[3u * t], canon[3u * t + 2u]);
     }
-    for (i = 0; i < nv; i++) hedge[i] = 0xFFFFFFFFu; /* label per root */
-    for (t = 0; t < T; t++) {
-        uint32_t root = pn_cn_find(parent, canon[3u * t]);
-        if (hedge[root] == 0xFFFFFFFFu) hedge[root] = ncomp++;
-        tcomp[t] = hedge[root];
-    }
+    /* Labels in the order of the roots, each its object's least vertex id: objects are
+     * numbered in the Morton order of their least vertex, so neighbouring objects (a
+     * tree's leaves) have neighbouring numbers and their silhouettes share blocks. */
+    for (i = 0; i < nv; i++) hedge[i] = 0u;
+    for (t = 0; t < T; t++) hedge[pn_cn_find(parent, canon[3u * t])] = 1u;
+    for (i = 0; i < nv; i++) hedge[i] = hedge[i] ? ncomp++ : 0xFFFFFFFFu;
+    for (t = 0; t < T; t++) tcomp[t] = hedge[pn_cn_find(parent, canon[3u * t])];
 
     /* Edges: the half-edges of non-degenerate triangles with two distinct vertices, by
      * (object, lower, higher); ties keep half-edge order (the sort is stable). */

@@ -42,7 +42,13 @@ PN_KFN void pn_e_wg_obj_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
 /* Block of PN_WG_BLOCK silhouettes: the light-space box of their end points. */
 PN_KFN void pn_e_wg_block_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t k)
 {
-    pn_wg_block_box(PN_POOL(const pn_wsil, wg_sil), K->wg.sils, k, PN_POOL(float, wg_bbox));
+    pn_wg_block_box(PN_POOL(const pn_wsil, wg_sil), K->wg.sils, k, PN_WG_BLOCK, PN_POOL(float, wg_bbox));
+}
+
+/* Superblock of PN_WG_SBLOCK silhouettes: the same. */
+PN_KFN void pn_e_wg_sblock_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t k)
+{
+    pn_wg_block_box(PN_POOL(const pn_wsil, wg_sil), K->wg.sils, k, PN_WG_SBLOCK, PN_POOL(float, wg_sbox));
 }
 
 /* Screen tile: the light-space box of its pixels' shadow origins. */
@@ -102,7 +108,7 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     tile = (pix / W / PN_WG_TILE) * K->wg.tiles_x + tx;
     v = pn_wg_pixel(O, id, &K->light, K->wg.mode, PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
                     PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), PN_POOL(const uint32_t, wg_tcomp), PN_POOL(const uint32_t, wg_tcast), PN_POOL(const pn_wsil, wg_sil),
-                    PN_POOL(const float, wg_bbox), PN_POOL(const uint32_t, wg_sorted), PN_POOL(const uint32_t, wg_pairs), toff[tile], toff[tile + 1u], &c);
+                    K->wg.sils, PN_POOL(const float, wg_bbox), PN_POOL(const float, wg_sbox), PN_POOL(const uint32_t, wg_sorted), PN_POOL(const uint32_t, wg_pairs), toff[tile], toff[tile + 1u], &c);
     if (v == PN_WG_EXACT) {
         pn_shadow_counters ce = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
         pn_klight Lk = K->light;
@@ -132,6 +138,7 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     X(WG_SIL_MAKE, wg_sil_make, 64, 1024)                 \
     X(WG_OBJ_BOX, wg_obj_box, 64, 1024)                   \
     X(WG_BLOCK_BOX, wg_block_box, 64, 1024)               \
+    X(WG_SBLOCK_BOX, wg_sblock_box, 64, 64)               \
     X(WG_TILE_BOX, wg_tile_box, 64, 16)                   \
     X(WG_COUNT, wg_count, 64, 1024)                       \
     X(WG_SCATTER, wg_scatter, 64, 1024)                   \

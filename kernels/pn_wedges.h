@@ -395,12 +395,16 @@ PN_KFN void pn_wg_obj_box(PN_GLOBAL pn_wsil *sil, uint32_t nsil, uint32_t s)
  * where wedges are thin beside the light's size. */
 #define PN_WG_BLOCK 16u
 #define PN_WG_BLOCK_RUN 2u /* the least run a pixel tests its block's box for */
+/* A superblock: PN_WG_SBLOCK silhouettes (a tree's few dozen neighbouring leaves, objects
+ * numbered in Morton order too), whose box a pixel tests before its objects'. */
+#define PN_WG_SBLOCK 128u
 
-PN_KFN void pn_wg_block_box(PN_CONST pn_wsil *sil, uint32_t nsil, uint32_t k, PN_GLOBAL float *bb)
+/* Block k of n silhouettes each (PN_WG_BLOCK or PN_WG_SBLOCK): its box into bb[6 k ..]. */
+PN_KFN void pn_wg_block_box(PN_CONST pn_wsil *sil, uint32_t nsil, uint32_t k, uint32_t n, PN_GLOBAL float *bb)
 {
-    uint32_t j, end = (k + 1u) * PN_WG_BLOCK < nsil ? (k + 1u) * PN_WG_BLOCK : nsil;
+    uint32_t j, end = (k + 1u) * n < nsil ? (k + 1u) * n : nsil;
     float b[6];
-    pn_wg_sil_box(sil, k * PN_WG_BLOCK, end, PN_WG_ANY, b);
+    pn_wg_sil_box(sil, k * n, end, PN_WG_ANY, b);
     for (j = 0; j < 6u; j++) bb[(size_t)k * 6u + j] = b[j];
 }
 
@@ -508,23 +512,38 @@ PN_KFN uint32_t pn_wg_bin(const pn_kview *v, const pn_klight *L, const pn_kwg *G
     return n;
 }
 
-/* Tile list[lo, hi) (ascending silhouettes, so grouped by object): for each run start i,
- * next[2 i] = the end of its run (silhouettes of one object and one block, PN_WG_BLOCK)
- * and, where an object's run starts, next[2 i + 1] = the end of the object's. */
+/* Tile list[lo, hi) (ascending silhouettes, so grouped by object): for each run start i
+ * (a run: silhouettes of one object and one block, PN_WG_BLOCK), next[2 i] = the end of
+ * its run and next[2 i + 1] = the end of its object's. */
 PN_KFN void pn_wg_runs(PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t lo, uint32_t hi, PN_GLOBAL uint32_t *next)
 {
-    uint32_t i = lo, j, o = lo;
-    while (i < hi) {
-        uint32_t c = sil[list[i]].comp, k = list[i] / PN_WG_BLOCK;
-        for (j = i + 1u; j < hi && sil[list[j]].comp == c && list[j] / PN_WG_BLOCK == k; j++) {
+    uint32_t o = lo, i, j, oe;
+    while (o < hi) {
+        uint32_t c = sil[list[o]].comp;
+        for (oe = o + 1u; oe < hi && sil[list[oe]].comp == c; oe++) {
         }
-        next[2u * (size_t)i] = j;
-        if (j == hi || sil[list[j]].comp != c) {
-            next[2u * (size_t)o + 1u] = j;
-            o = j;
+        for (i = o; i < oe; i = j) {
+            uint32_t k = list[i] / PN_WG_BLOCK;
+            for (j = i + 1u; j < oe && list[j] / PN_WG_BLOCK == k; j++) {
+            }
+            next[2u * (size_t)i] = j;
+            next[2u * (size_t)i + 1u] = oe;
         }
-        i = j;
+        o = oe;
     }
+}
+
+/* The first i in [lo, hi) with list[i] >= v (list ascending), else hi. */
+PN_KFN uint32_t pn_wg_lower_bound(PN_CONST uint32_t *list, uint32_t lo, uint32_t hi, uint32_t v)
+{
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2u;
+        if (list[mid] < v)
+            lo = mid + 1u;
+        else
+            hi = mid;
+    }
+    return lo;
 }
 
 /* ---- Per pixel ----------------------------------------------------------------------------- */
@@ -663,10 +682,11 @@ PN_KFN int pn_wg_part_edge(pn_wpart *P, float px, float py, float qx, float qy, 
     mp = pn_kmaxf(px, py);
     mq = pn_kmaxf(qx, qy);
     if (!(mp > 0.0f && mq > 0.0f)) return 0;
-    Px = px / mp;
-    Py = py / mp;
-    Qx = qx / mq;
-    Qy = qy / mq;
+    /* The larger coordinate over itself is 1: one division a point (the same bits). */
+    Px = px >= py ? 1.0f : px / mp;
+    Py = py >= px ? 1.0f : py / mp;
+    Qx = qx >= qy ? 1.0f : qx / mq;
+    Qy = qy >= qx ? 1.0f : qy / mq;
     sp = pn_wg_bparam(Px, Py);
     sq = pn_wg_bparam(Qx, Qy);
     kin = sp < 1.0f && sq > 1.0f; /* the corner (1, 1) strictly inside the angle */
@@ -813,15 +833,15 @@ PN_KFN int pn_wg_obj_misses(const pn_wframe *F, PN_CONST float *ob)
  * when it covers some of the light. */
 PN_KFN int pn_wg_edge_parts(const float *p, float sg, float w, pn_wpart *parts)
 {
-    int any = 0;
-    uint32_t q;
-    for (q = 0; q < 4u; q++) {
-        float sx = (q == 0u || q == 3u) ? 1.0f : -1.0f, sy = q < 2u ? 1.0f : -1.0f;
-        /* Both ends beside the quadrant on one axis: the clip would leave nothing, or a
-         * piece on that axis, seen edge-on from the centre (pn_wg_part_edge returns 0). */
-        if ((sx * p[0] < 0.0f && sx * p[2] < 0.0f) || (sy * p[1] < 0.0f && sy * p[3] < 0.0f)) continue;
-        any |= pn_wg_part_edge(parts + q, sx * p[0], sy * p[1], sx * p[2], sy * p[3], sg, w);
-    }
+    /* Both ends beside a quadrant on one axis: the clip would leave nothing, or a piece on
+     * that axis, seen edge-on from the centre (pn_wg_part_edge returns 0). Quadrant q
+     * mirrors x when q is 1 or 2 and y when q is 2 or 3. */
+    int xn = p[0] < 0.0f && p[2] < 0.0f, xp = p[0] > 0.0f && p[2] > 0.0f;
+    int yn = p[1] < 0.0f && p[3] < 0.0f, yp = p[1] > 0.0f && p[3] > 0.0f, any = 0;
+    if (!xn && !yn) any |= pn_wg_part_edge(parts, p[0], p[1], p[2], p[3], sg, w);
+    if (!xp && !yn) any |= pn_wg_part_edge(parts + 1, -p[0], p[1], -p[2], p[3], sg, w);
+    if (!xp && !yp) any |= pn_wg_part_edge(parts + 2, -p[0], -p[1], -p[2], -p[3], sg, w);
+    if (!xn && !yp) any |= pn_wg_part_edge(parts + 3, p[0], -p[1], p[2], -p[3], sg, w);
     return any;
 }
 
@@ -864,10 +884,12 @@ PN_KFN int pn_wg_listed(PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t
 PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mode, PN_CONST float *tris,
                          PN_CONST pn_kbvh_node *nodes, PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index,
                          PN_CONST uint32_t *tcomp, PN_CONST uint32_t *tcast,
-                         PN_CONST pn_wsil *sil, PN_CONST float *bbox, PN_CONST uint32_t *list, PN_CONST uint32_t *next,
-                         uint32_t lo, uint32_t hi, pn_shadow_counters *cnt)
+                         PN_CONST pn_wsil *sil, uint32_t nsil, PN_CONST float *bbox, PN_CONST float *sbox,
+                         PN_CONST uint32_t *list, PN_CONST uint32_t *next, uint32_t lo, uint32_t hi, pn_shadow_counters *cnt)
 {
     uint32_t hard[PN_WG_HARD_MAX], hn[PN_WG_HARD_MAX], htri[PN_WG_HARD_MAX], nhard = 0u, ntri = 0u, t, i, q;
+    uint32_t kb = PN_WG_ANY;
+    int kmiss = 0;
     float af[4];
     pn_wbox bf[4];
     pn_klight Lc = *L;
@@ -934,10 +956,25 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
     }
     i = lo;
     while (i < hi) {
-        uint32_t s = sil[list[i]].comp, o0, oend, j;
+        uint32_t s = sil[list[i]].comp, o0, oend, j, k = list[i] / PN_WG_SBLOCK;
         int h = 0, started = 0;
         float a0 = 0.0f;
         pn_wpart parts[4];
+        /* Each superblock of the list once (they ascend with it), at an object's start: when
+         * none of its edges reaches the light and none of its objects hides the centre, its
+         * entries add nothing. The next entry past it starts a block, so a run: an object
+         * cut there goes on as one, whose skipped edges added nothing. */
+        if (k != kb) {
+            uint32_t c0 = sil[k * PN_WG_SBLOCK].comp;
+            uint32_t c1 = sil[((k + 1u) * PN_WG_SBLOCK < nsil ? (k + 1u) * PN_WG_SBLOCK : nsil) - 1u].comp;
+            kb = k;
+            kmiss = pn_wg_obj_misses(&F, sbox + (size_t)k * 6u);
+            for (j = 0; j < nhard && kmiss; j++) kmiss = hard[j] < c0 || hard[j] > c1;
+        }
+        if (kmiss) {
+            i = pn_wg_lower_bound(list, i, hi, (k + 1u) * PN_WG_SBLOCK);
+            continue;
+        }
         for (j = 0; j < nhard; j++)
             if (hard[j] == s) {
                 h = 1;

@@ -93,13 +93,15 @@ pn_status pn_wedges_prepare(pn_frame_state *fs, const pn_frame_options *opt)
 
 typedef char pn_wg_consts_agree[PN_WG_M_BLEND == PN_WG_MODE_BLEND && PN_WG_M_ADD == PN_WG_MODE_ADDITIVE ? 1 : -1];
 /* PN_WEDGES_BYTES_MAX (penumbra.h) counts these sizes. */
-typedef char pn_wg_sizes_agree[sizeof(pn_wsil) == 96u && PN_WG_BOX == 6u && PN_WG_TILE == 16u && PN_WG_BLOCK == 16u ? 1 : -1];
+typedef char pn_wg_sizes_agree[sizeof(pn_wsil) == 96u && PN_WG_BOX == 6u && PN_WG_TILE == 16u && PN_WG_BLOCK == 16u &&
+                                        PN_WG_SBLOCK == 128u ? 1 : -1];
 
 typedef struct pn_wg_pools {
     uint32_t *tcast;  /* [T] how each triangle casts */
     uint32_t *soff;   /* [runs + 1] silhouette flags -> slots */
     pn_wsil *sil;     /* [sil_cap] */
     float *bbox;      /* [(sil_cap / PN_WG_BLOCK + 1) * 6] the blocks' boxes */
+    float *sbox;      /* [(sil_cap / PN_WG_SBLOCK + 1) * 6] the superblocks' */
     float *tbox;      /* [tiles * PN_WG_BOX] the tiles' boxes in depth */
     uint32_t *poff;   /* [sil_cap + 1] pair counts -> offsets */
     uint32_t *pairs;  /* [pair_cap * 2] (tile, silhouette); after the sort, the tile lists'
@@ -119,6 +121,7 @@ static void pn_wg_carve(pn_carver *c, const pn_limits *l, uint32_t w, uint32_t h
     s->soff = (uint32_t *)pn_pool(c, edges + 1u, 4u, "wedges silhouette slots");
     s->sil = (pn_wsil *)pn_pool(c, pn_wg_sil_max(l), sizeof(pn_wsil), "wedges silhouettes");
     s->bbox = (float *)pn_pool(c, pn_wg_sil_max(l) / PN_WG_BLOCK + 1u, 6u * sizeof(float), "wedges silhouette blocks");
+    s->sbox = (float *)pn_pool(c, pn_wg_sil_max(l) / PN_WG_SBLOCK + 1u, 6u * sizeof(float), "wedges silhouette superblocks");
     s->tbox = (float *)pn_pool(c, tiles, PN_WG_BOX * sizeof(float), "wedges tile boxes");
     s->poff = (uint32_t *)pn_pool(c, (uint64_t)pn_wg_sil_max(l) + 1u, 4u, "wedges pair offsets");
     s->pairs = (uint32_t *)pn_pool(c, pn_wg_pairs_max(l), 8u, "wedges tile pairs");
@@ -150,6 +153,7 @@ static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
     P->wg_soff = pn_dev_off(ctx, s->soff);
     P->wg_sil = pn_dev_off(ctx, s->sil);
     P->wg_bbox = pn_dev_off(ctx, s->bbox);
+    P->wg_sbox = pn_dev_off(ctx, s->sbox);
     P->wg_tbox = pn_dev_off(ctx, s->tbox);
     P->wg_poff = pn_dev_off(ctx, s->poff);
     P->wg_pairs = pn_dev_off(ctx, s->pairs);
@@ -267,6 +271,7 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
         if (nsil > 0u && ((st = pn_dev_run(fs, PN_K_WG_SIL_MAKE, R)) != PN_OK ||
                           (st = pn_dev_run(fs, PN_K_WG_OBJ_BOX, nsil)) != PN_OK ||
                           (st = pn_dev_run(fs, PN_K_WG_BLOCK_BOX, (nsil - 1u) / PN_WG_BLOCK + 1u)) != PN_OK ||
+                          (st = pn_dev_run(fs, PN_K_WG_SBLOCK_BOX, (nsil - 1u) / PN_WG_SBLOCK + 1u)) != PN_OK ||
                           (st = pn_dev_run(fs, PN_K_WG_TILE_BOX, tiles)) != PN_OK))
             return st;
     }

@@ -849,7 +849,7 @@ static void test_culls(void)
         /* A block of these edges has the object's box (the pixel's run cull tests it). */
         {
             float bb[6];
-            pn_wg_block_box(e, EDGES, 0u, bb);
+            pn_wg_block_box(e, EDGES, 0u, PN_WG_BLOCK, bb);
             block_wrong += (uint32_t)(memcmp(bb, ob, sizeof(bb)) != 0);
         }
         /* Origins: a cluster (a tile's points), some on the edges' own heights. */

@@ -216,7 +216,7 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
 #define PN_WG_PAIRS_(t, w, h) PN_MIN_(PN_WG_TILES_(w, h) * PN_WG_SIL_(t), (size_t)PN_WEDGES_PAIRS)
 #define PN_WEDGES_BYTES_MAX(t, w, h)                                                          \
     (PN_POOL_((size_t)(t) * 4u) + PN_POOL_((size_t)(t) * 12u + 4u) + PN_POOL_(PN_WG_SIL_(t) * 96u) + \
-     PN_POOL_((PN_WG_SIL_(t) / 16u + 1u) * 24u) + \
+     PN_POOL_((PN_WG_SIL_(t) / 16u + 1u) * 24u) + PN_POOL_((PN_WG_SIL_(t) / 128u + 1u) * 24u) + \
      PN_POOL_(PN_WG_SIL_(t) * 4u + 4u) + PN_POOL_(PN_WG_PAIRS_(t, w, h) * 8u) +                 \
      PN_POOL_(PN_WG_PAIRS_(t, w, h) * 4u) + PN_POOL_(PN_WG_TILES_(w, h) * 4u + 4u) +              \
      PN_POOL_(PN_WG_TILES_(w, h) * 4u) + PN_POOL_(PN_WG_TILES_(w, h) * 24u))

@@ -180,7 +180,7 @@ PN_KFN float pn_wg_turn(float ax, float ay, float bx, float by, float cx, float 
     return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
 }
 
-PN_KFN void pn_wg_reach(const pn_kview *v, const pn_klight *L, float hmax, pn_v3 a, pn_v3 b, pn_wreach *R)
+PN_KFN void pn_wg_reach_of(const pn_kview *v, const pn_klight *L, float hmax, pn_v3 a, pn_v3 b, int want_hull, pn_wreach *R)
 {
     pn_v3 eye = pn_view_eye(v), c = pn_light_c(L), U = pn_light_U(L), V = pn_light_V(L), d[PN_WG_REACH_PTS];
     pn_v3 N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
@@ -232,7 +232,7 @@ PN_KFN void pn_wg_reach(const pn_kview *v, const pn_klight *L, float hmax, pn_v3
         hull &= pn_kfabs(sx[i]) <= PN_WG_REACH_MAX && pn_kfabs(sy[i]) <= PN_WG_REACH_MAX;
     /* A box one tile wide or high, or two by two, has no tile the hull could leave out
      * that matters: every tile of the box (n = 0). */
-    if (!hull || R->x0 == R->x1 || R->y0 == R->y1 || (R->x1 - R->x0 < 2u && R->y1 - R->y0 < 2u)) return;
+    if (!want_hull || !hull || R->x0 == R->x1 || R->y0 == R->y1 || (R->x1 - R->x0 < 2u && R->y1 - R->y0 < 2u)) return;
     /* Andrew's monotone chain: points by x then y (insertion sort), lower chain then upper. */
     for (i = 1; i < PN_WG_REACH_PTS; i++) {
         float x = sx[i], y = sy[i];
@@ -265,6 +265,11 @@ PN_KFN void pn_wg_reach(const pn_kview *v, const pn_klight *L, float hmax, pn_v3
         }
         R->n = m < PN_WG_REACH_PTS ? m : PN_WG_REACH_PTS;
     }
+}
+
+PN_KFN void pn_wg_reach(const pn_kview *v, const pn_klight *L, float hmax, pn_v3 a, pn_v3 b, pn_wreach *R)
+{
+    pn_wg_reach_of(v, L, hmax, a, b, 1, R);
 }
 
 /* The tile columns [*x0, *x1] of row ty the reach R covers (*x0 > *x1: none): those within
@@ -332,7 +337,7 @@ PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN
     s->comp = tcomp[(h0 & ~PN_WG_REV) / 3u] & PN_WG_OBJ;
     s->pad = 0u;
     pn_wg_ends(tris, s->h, &a, &b);
-    pn_wg_reach(v, L, hmax, a, b, &R);
+    pn_wg_reach_of(v, L, hmax, a, b, 0, &R); /* its box: the hull is built where it is binned */
     {
         pn_v3 c = pn_light_c(L), n = pn_v3_cross(pn_v3_sub(a, c), pn_v3_sub(b, c));
         float u, vv, h;

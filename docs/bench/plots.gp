@@ -7,39 +7,39 @@ set output 'gallery/square.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 14.8 ms"
+set title "reference, 16.2 ms"
 plot 'work/gallery/square/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/square/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 17.4 ms"
+set title "GEARS, 22.2 ms"
 plot 'work/gallery/square/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/square/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 208 ms"
+set title "raytrace, 242 ms"
 plot 'work/gallery/square/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/square/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 43.0 ms"
+set title "SRT, 45.2 ms"
 plot 'work/gallery/square/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/square/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 4.58 ms"
+set title "occtex, 5.53 ms"
 plot 'work/gallery/square/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/square/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 8.26 ms"
+set title "MCSM, 10.3 ms"
 plot 'work/gallery/square/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/square/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 5.10 ms"
+set title "wedges, 5.81 ms"
 plot 'work/gallery/square/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/square/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 273 ms"
+set title "Embree visibility, 282 ms"
 plot 'work/gallery/square/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.0000% px)"
 plot 'work/gallery/square/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 45.7 ms"
+set title "PCSS visibility, 58.8 ms"
 plot 'work/gallery/square/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/square/pcss_error.png' binary filetype=png with rgbimage
@@ -99,39 +99,39 @@ set output 'gallery/spheres.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 618 ms"
+set title "reference, 642 ms"
 plot 'work/gallery/spheres/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/spheres/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 770 ms"
+set title "GEARS, 782 ms"
 plot 'work/gallery/spheres/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/spheres/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1274 ms"
+set title "raytrace, 1284 ms"
 plot 'work/gallery/spheres/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/spheres/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 671 ms"
+set title "SRT, 682 ms"
 plot 'work/gallery/spheres/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/spheres/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 29.8 ms"
+set title "occtex, 30.7 ms"
 plot 'work/gallery/spheres/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/spheres/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 62.5 ms"
+set title "MCSM, 68.7 ms"
 plot 'work/gallery/spheres/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/spheres/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 63.5 ms"
+set title "wedges, 64.0 ms"
 plot 'work/gallery/spheres/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/spheres/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 902 ms"
+set title "Embree visibility, 900 ms"
 plot 'work/gallery/spheres/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (1.8013% px)"
 plot 'work/gallery/spheres/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 105 ms"
+set title "PCSS visibility, 111 ms"
 plot 'work/gallery/spheres/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/spheres/pcss_error.png' binary filetype=png with rgbimage
@@ -191,7 +191,7 @@ set output 'gallery/elongated-cube.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 11.5 ms"
+set title "reference, 11.6 ms"
 plot 'work/gallery/elongated-cube/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/elongated-cube/reference_vis.png' binary filetype=png with rgbimage
@@ -199,31 +199,31 @@ set title "GEARS, 13.9 ms"
 plot 'work/gallery/elongated-cube/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/elongated-cube/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 102 ms"
+set title "raytrace, 100 ms"
 plot 'work/gallery/elongated-cube/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/elongated-cube/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 41.5 ms"
+set title "SRT, 41.6 ms"
 plot 'work/gallery/elongated-cube/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/elongated-cube/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 23.2 ms"
+set title "occtex, 23.4 ms"
 plot 'work/gallery/elongated-cube/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/elongated-cube/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 13.2 ms"
+set title "MCSM, 13.6 ms"
 plot 'work/gallery/elongated-cube/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/elongated-cube/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 5.03 ms"
+set title "wedges, 5.00 ms"
 plot 'work/gallery/elongated-cube/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/elongated-cube/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 240 ms"
+set title "Embree visibility, 242 ms"
 plot 'work/gallery/elongated-cube/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.0000% px)"
 plot 'work/gallery/elongated-cube/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 41.4 ms"
+set title "PCSS visibility, 42.2 ms"
 plot 'work/gallery/elongated-cube/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/elongated-cube/pcss_error.png' binary filetype=png with rgbimage
@@ -291,7 +291,7 @@ set title "GEARS, 358 ms"
 plot 'work/gallery/thin/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/thin/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1924 ms"
+set title "raytrace, 1925 ms"
 plot 'work/gallery/thin/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/thin/raytrace error.png' binary filetype=png with rgbimage
@@ -299,19 +299,19 @@ set title "SRT, 510 ms"
 plot 'work/gallery/thin/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/thin/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 32.8 ms"
+set title "occtex, 32.1 ms"
 plot 'work/gallery/thin/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/thin/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 31.3 ms"
+set title "MCSM, 31.1 ms"
 plot 'work/gallery/thin/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/thin/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 183 ms"
+set title "wedges, 166 ms"
 plot 'work/gallery/thin/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/thin/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 2458 ms"
+set title "Embree visibility, 2459 ms"
 plot 'work/gallery/thin/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.0210% px)"
 plot 'work/gallery/thin/embree_error.png' binary filetype=png with rgbimage
@@ -375,39 +375,39 @@ set output 'gallery/room.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 437 ms"
+set title "reference, 445 ms"
 plot 'work/gallery/room/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/room/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 442 ms"
+set title "GEARS, 446 ms"
 plot 'work/gallery/room/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/room/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1441 ms"
+set title "raytrace, 1438 ms"
 plot 'work/gallery/room/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/room/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 600 ms"
+set title "SRT, 597 ms"
 plot 'work/gallery/room/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (differs)"
 plot 'work/gallery/room/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 65.1 ms"
+set title "occtex, 66.0 ms"
 plot 'work/gallery/room/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/room/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 76.4 ms"
+set title "MCSM, 77.0 ms"
 plot 'work/gallery/room/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/room/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 45.0 ms"
+set title "wedges, 44.1 ms"
 plot 'work/gallery/room/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/room/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1626 ms"
+set title "Embree visibility, 1628 ms"
 plot 'work/gallery/room/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.5516% px)"
 plot 'work/gallery/room/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 179 ms"
+set title "PCSS visibility, 182 ms"
 plot 'work/gallery/room/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/room/pcss_error.png' binary filetype=png with rgbimage
@@ -467,31 +467,31 @@ set output 'gallery/canopy.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 261 ms"
+set title "reference, 265 ms"
 plot 'work/gallery/canopy/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/canopy/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 307 ms"
+set title "GEARS, 303 ms"
 plot 'work/gallery/canopy/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/canopy/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 719 ms"
+set title "raytrace, 715 ms"
 plot 'work/gallery/canopy/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/canopy/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 308 ms"
+set title "SRT, 312 ms"
 plot 'work/gallery/canopy/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/canopy/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 30.0 ms"
+set title "occtex, 36.1 ms"
 plot 'work/gallery/canopy/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/canopy/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 29.3 ms"
+set title "MCSM, 34.6 ms"
 plot 'work/gallery/canopy/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/canopy/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 161 ms"
+set title "wedges, 136 ms"
 plot 'work/gallery/canopy/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/canopy/wedges error.png' binary filetype=png with rgbimage
@@ -499,7 +499,7 @@ set title "Embree visibility, 616 ms"
 plot 'work/gallery/canopy/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.2945% px)"
 plot 'work/gallery/canopy/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 75.2 ms"
+set title "PCSS visibility, 83.8 ms"
 plot 'work/gallery/canopy/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/canopy/pcss_error.png' binary filetype=png with rgbimage
@@ -559,39 +559,39 @@ set output 'gallery/colonnade.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 71.1 ms"
+set title "reference, 70.1 ms"
 plot 'work/gallery/colonnade/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/colonnade/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 70.1 ms"
+set title "GEARS, 70.0 ms"
 plot 'work/gallery/colonnade/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/colonnade/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 270 ms"
+set title "raytrace, 268 ms"
 plot 'work/gallery/colonnade/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/colonnade/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 99.1 ms"
+set title "SRT, 100 ms"
 plot 'work/gallery/colonnade/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/colonnade/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 40.0 ms"
+set title "occtex, 39.4 ms"
 plot 'work/gallery/colonnade/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/colonnade/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 11.3 ms"
+set title "MCSM, 11.1 ms"
 plot 'work/gallery/colonnade/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/colonnade/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 17.2 ms"
+set title "wedges, 16.4 ms"
 plot 'work/gallery/colonnade/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/colonnade/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 393 ms"
+set title "Embree visibility, 390 ms"
 plot 'work/gallery/colonnade/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.0484% px)"
 plot 'work/gallery/colonnade/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 66.9 ms"
+set title "PCSS visibility, 63.0 ms"
 plot 'work/gallery/colonnade/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/colonnade/pcss_error.png' binary filetype=png with rgbimage
@@ -651,39 +651,39 @@ set output 'gallery/cad_infineon_easypim2b.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 209 ms"
+set title "reference, 179 ms"
 plot 'work/gallery/cad_infineon_easypim2b/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/cad_infineon_easypim2b/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 221 ms"
+set title "GEARS, 209 ms"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 727 ms"
+set title "raytrace, 722 ms"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 229 ms"
+set title "SRT, 236 ms"
 plot 'work/gallery/cad_infineon_easypim2b/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 70.6 ms"
+set title "occtex, 79.1 ms"
 plot 'work/gallery/cad_infineon_easypim2b/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 18.1 ms"
+set title "MCSM, 19.3 ms"
 plot 'work/gallery/cad_infineon_easypim2b/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 65.8 ms"
+set title "wedges, 50.6 ms"
 plot 'work/gallery/cad_infineon_easypim2b/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 931 ms"
+set title "Embree visibility, 924 ms"
 plot 'work/gallery/cad_infineon_easypim2b/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.4425% px)"
 plot 'work/gallery/cad_infineon_easypim2b/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 92.4 ms"
+set title "PCSS visibility, 95.1 ms"
 plot 'work/gallery/cad_infineon_easypim2b/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/cad_infineon_easypim2b/pcss_error.png' binary filetype=png with rgbimage
@@ -743,39 +743,39 @@ set output 'gallery/chess_set.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 84.4 ms"
+set title "reference, 86.8 ms"
 plot 'work/gallery/chess_set/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/chess_set/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 101 ms"
+set title "GEARS, 104 ms"
 plot 'work/gallery/chess_set/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/chess_set/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 887 ms"
+set title "raytrace, 894 ms"
 plot 'work/gallery/chess_set/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/chess_set/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 123 ms"
+set title "SRT, 134 ms"
 plot 'work/gallery/chess_set/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/chess_set/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 72.5 ms"
+set title "occtex, 73.3 ms"
 plot 'work/gallery/chess_set/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/chess_set/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 14.5 ms"
+set title "MCSM, 14.8 ms"
 plot 'work/gallery/chess_set/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/chess_set/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 55.4 ms"
+set title "wedges, 44.1 ms"
 plot 'work/gallery/chess_set/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/chess_set/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 989 ms"
+set title "Embree visibility, 991 ms"
 plot 'work/gallery/chess_set/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.2148% px)"
 plot 'work/gallery/chess_set/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 72.8 ms"
+set title "PCSS visibility, 75.0 ms"
 plot 'work/gallery/chess_set/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/chess_set/pcss_error.png' binary filetype=png with rgbimage
@@ -835,39 +835,39 @@ set output 'gallery/copper_beech.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 2263 ms"
+set title "reference, 2191 ms"
 plot 'work/gallery/copper_beech/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/copper_beech/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 3361 ms"
+set title "GEARS, 3356 ms"
 plot 'work/gallery/copper_beech/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/copper_beech/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 3167 ms"
+set title "raytrace, 3140 ms"
 plot 'work/gallery/copper_beech/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/copper_beech/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 2299 ms"
+set title "SRT, 2281 ms"
 plot 'work/gallery/copper_beech/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/copper_beech/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 55.1 ms"
+set title "occtex, 49.5 ms"
 plot 'work/gallery/copper_beech/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/copper_beech/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 60.6 ms"
+set title "MCSM, 53.5 ms"
 plot 'work/gallery/copper_beech/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/copper_beech/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 1406 ms"
+set title "wedges, 1214 ms"
 plot 'work/gallery/copper_beech/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/copper_beech/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1961 ms"
+set title "Embree visibility, 1931 ms"
 plot 'work/gallery/copper_beech/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.0671% px)"
 plot 'work/gallery/copper_beech/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 122 ms"
+set title "PCSS visibility, 117 ms"
 plot 'work/gallery/copper_beech/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/copper_beech/pcss_error.png' binary filetype=png with rgbimage
@@ -927,39 +927,39 @@ set output 'gallery/grey_white_room.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 379 ms"
+set title "reference, 415 ms"
 plot 'work/gallery/grey_white_room/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/grey_white_room/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 458 ms"
+set title "GEARS, 482 ms"
 plot 'work/gallery/grey_white_room/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/grey_white_room/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2018 ms"
+set title "raytrace, 2028 ms"
 plot 'work/gallery/grey_white_room/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/grey_white_room/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 605 ms"
+set title "SRT, 603 ms"
 plot 'work/gallery/grey_white_room/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (differs)"
 plot 'work/gallery/grey_white_room/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 73.8 ms"
+set title "occtex, 75.4 ms"
 plot 'work/gallery/grey_white_room/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/grey_white_room/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 65.6 ms"
+set title "MCSM, 66.8 ms"
 plot 'work/gallery/grey_white_room/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/grey_white_room/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 109 ms"
+set title "wedges, 106 ms"
 plot 'work/gallery/grey_white_room/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/grey_white_room/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1804 ms"
+set title "Embree visibility, 1819 ms"
 plot 'work/gallery/grey_white_room/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.4261% px)"
 plot 'work/gallery/grey_white_room/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 191 ms"
+set title "PCSS visibility, 189 ms"
 plot 'work/gallery/grey_white_room/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/grey_white_room/pcss_error.png' binary filetype=png with rgbimage
@@ -1019,39 +1019,39 @@ set output 'gallery/happy_buddha_100k.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 757 ms"
+set title "reference, 776 ms"
 plot 'work/gallery/happy_buddha_100k/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/happy_buddha_100k/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 1014 ms"
+set title "GEARS, 1030 ms"
 plot 'work/gallery/happy_buddha_100k/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2077 ms"
+set title "raytrace, 2151 ms"
 plot 'work/gallery/happy_buddha_100k/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 809 ms"
+set title "SRT, 860 ms"
 plot 'work/gallery/happy_buddha_100k/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 71.5 ms"
+set title "occtex, 83.4 ms"
 plot 'work/gallery/happy_buddha_100k/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 36.2 ms"
+set title "MCSM, 42.0 ms"
 plot 'work/gallery/happy_buddha_100k/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 371 ms"
+set title "wedges, 313 ms"
 plot 'work/gallery/happy_buddha_100k/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1375 ms"
+set title "Embree visibility, 1412 ms"
 plot 'work/gallery/happy_buddha_100k/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8091% px)"
 plot 'work/gallery/happy_buddha_100k/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 113 ms"
+set title "PCSS visibility, 125 ms"
 plot 'work/gallery/happy_buddha_100k/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/happy_buddha_100k/pcss_error.png' binary filetype=png with rgbimage
@@ -1111,39 +1111,39 @@ set output 'gallery/spot.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 221 ms"
+set title "reference, 215 ms"
 plot 'work/gallery/spot/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/spot/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 213 ms"
+set title "GEARS, 227 ms"
 plot 'work/gallery/spot/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/spot/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1127 ms"
+set title "raytrace, 1129 ms"
 plot 'work/gallery/spot/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/spot/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 245 ms"
+set title "SRT, 253 ms"
 plot 'work/gallery/spot/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/spot/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 72.3 ms"
+set title "occtex, 65.0 ms"
 plot 'work/gallery/spot/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/spot/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 28.1 ms"
+set title "MCSM, 26.3 ms"
 plot 'work/gallery/spot/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/spot/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 38.3 ms"
+set title "wedges, 37.2 ms"
 plot 'work/gallery/spot/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/spot/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1071 ms"
+set title "Embree visibility, 1081 ms"
 plot 'work/gallery/spot/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (1.2997% px)"
 plot 'work/gallery/spot/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 85.0 ms"
+set title "PCSS visibility, 81.3 ms"
 plot 'work/gallery/spot/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/spot/pcss_error.png' binary filetype=png with rgbimage
@@ -1203,39 +1203,39 @@ set output 'gallery/stanford_bunny.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 454 ms"
+set title "reference, 462 ms"
 plot 'work/gallery/stanford_bunny/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_bunny/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 506 ms"
+set title "GEARS, 521 ms"
 plot 'work/gallery/stanford_bunny/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1759 ms"
+set title "raytrace, 1845 ms"
 plot 'work/gallery/stanford_bunny/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 502 ms"
+set title "SRT, 516 ms"
 plot 'work/gallery/stanford_bunny/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 75.9 ms"
+set title "occtex, 75.5 ms"
 plot 'work/gallery/stanford_bunny/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 33.4 ms"
+set title "MCSM, 33.7 ms"
 plot 'work/gallery/stanford_bunny/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 101 ms"
+set title "wedges, 96.7 ms"
 plot 'work/gallery/stanford_bunny/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1351 ms"
+set title "Embree visibility, 1362 ms"
 plot 'work/gallery/stanford_bunny/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.7610% px)"
 plot 'work/gallery/stanford_bunny/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 102 ms"
+set title "PCSS visibility, 107 ms"
 plot 'work/gallery/stanford_bunny/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/stanford_bunny/pcss_error.png' binary filetype=png with rgbimage
@@ -1295,39 +1295,39 @@ set output 'gallery/stanford_dragon.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 790 ms"
+set title "reference, 802 ms"
 plot 'work/gallery/stanford_dragon/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_dragon/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 1382 ms"
+set title "GEARS, 1363 ms"
 plot 'work/gallery/stanford_dragon/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2497 ms"
+set title "raytrace, 2412 ms"
 plot 'work/gallery/stanford_dragon/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 955 ms"
+set title "SRT, 865 ms"
 plot 'work/gallery/stanford_dragon/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 91.0 ms"
+set title "occtex, 81.2 ms"
 plot 'work/gallery/stanford_dragon/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 41.1 ms"
+set title "MCSM, 35.6 ms"
 plot 'work/gallery/stanford_dragon/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 397 ms"
+set title "wedges, 248 ms"
 plot 'work/gallery/stanford_dragon/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1537 ms"
+set title "Embree visibility, 1514 ms"
 plot 'work/gallery/stanford_dragon/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8690% px)"
 plot 'work/gallery/stanford_dragon/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 194 ms"
+set title "PCSS visibility, 176 ms"
 plot 'work/gallery/stanford_dragon/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/stanford_dragon/pcss_error.png' binary filetype=png with rgbimage
@@ -1394,7 +1394,7 @@ unset xlabel
 set xtics rotate by -30
 set grid ytics
 set key inside top right
-set yrange [0.308581:30]
+set yrange [0.30787:30]
 set arrow 1 from graph 0, first 1 to graph 1, first 1 nohead dt 2
 set arrow 2 from graph 0, first 10 to graph 1, first 10 nohead dt 3 lc rgb 'red'
 set label 1 'goal 10x' at graph 0.01, first 10 offset 0,0.6 tc rgb 'red'

@@ -157,8 +157,8 @@ PN_KFN int pn_wg_screen(const pn_kview *v, pn_v3 d, float *px, float *py)
  * perspective keeps convex sets convex in front of the eye), when all ten are in front of
  * the eye (else the whole screen, as for an edge not wholly in front of the light).
  *
- * The reach keeps that hull (counter-clockwise, n vertices; n = 0: no hull, every tile of
- * the box) and its tile box [x0, x1] x [y0, y1] (x0 > x1: none), both widened by two
+ * The reach keeps that hull when want_hull (counter-clockwise, n vertices; n = 0: no hull,
+ * every tile of the box) and its tile box [x0, x1] x [y0, y1] (x0 > x1: none), both widened by two
  * pixels. The widening covers rounding: the hull is built only while every point is within
  * 2^20 pixels of the screen (else n = 0), where a float carries a sixteenth of a pixel, so
  * an orientation or an edge's crossing of a row (pn_wg_row) is off by under a pixel,
@@ -180,7 +180,7 @@ PN_KFN float pn_wg_turn(float ax, float ay, float bx, float by, float cx, float 
     return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
 }
 
-PN_KFN void pn_wg_reach_of(const pn_kview *v, const pn_klight *L, float hmax, pn_v3 a, pn_v3 b, int want_hull, pn_wreach *R)
+PN_KFN void pn_wg_reach(const pn_kview *v, const pn_klight *L, float hmax, pn_v3 a, pn_v3 b, int want_hull, pn_wreach *R)
 {
     pn_v3 eye = pn_view_eye(v), c = pn_light_c(L), U = pn_light_U(L), V = pn_light_V(L), d[PN_WG_REACH_PTS];
     pn_v3 N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
@@ -267,11 +267,6 @@ PN_KFN void pn_wg_reach_of(const pn_kview *v, const pn_klight *L, float hmax, pn
     }
 }
 
-PN_KFN void pn_wg_reach(const pn_kview *v, const pn_klight *L, float hmax, pn_v3 a, pn_v3 b, pn_wreach *R)
-{
-    pn_wg_reach_of(v, L, hmax, a, b, 1, R);
-}
-
 /* The tile columns [*x0, *x1] of row ty the reach R covers (*x0 > *x1: none): those within
  * two pixels of the hull's part in the row's band (two pixels beyond the row each way),
  * whose extent in x is reached at a hull vertex in the band or where a hull edge crosses
@@ -337,7 +332,7 @@ PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN
     s->comp = tcomp[(h0 & ~PN_WG_REV) / 3u] & PN_WG_OBJ;
     s->pad = 0u;
     pn_wg_ends(tris, s->h, &a, &b);
-    pn_wg_reach_of(v, L, hmax, a, b, 0, &R); /* its box: the hull is built where it is binned */
+    pn_wg_reach(v, L, hmax, a, b, 0, &R); /* its box: the hull is built where it is binned */
     {
         pn_v3 c = pn_light_c(L), n = pn_v3_cross(pn_v3_sub(a, c), pn_v3_sub(b, c));
         float u, vv, h;
@@ -500,7 +495,7 @@ PN_KFN uint32_t pn_wg_bin(const pn_kview *v, const pn_klight *L, const pn_kwg *G
     yb = e->y1 + 1u < G->by1 ? e->y1 + 1u : G->by1;
     if (ya >= yb || e->x0 >= G->bx1 || e->x1 < G->bx0) return 0u;
     pn_wg_ends(tris, e->h, &a, &b);
-    pn_wg_reach(v, L, G->hmax, a, b, &R);
+    pn_wg_reach(v, L, G->hmax, a, b, 1, &R);
     for (y = ya; y < yb; y++) {
         pn_wg_row(v, &R, y, &x0, &x1);
         if (x0 < G->bx0) x0 = G->bx0;

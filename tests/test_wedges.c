@@ -771,7 +771,7 @@ static void test_reach(void)
         n = pn_v3_cross(pn_v3_sub(a, c), pn_v3_sub(b, c));
         e.nx = n.x, e.ny = n.y, e.nz = n.z;
         e.w = 1u;
-        pn_wg_reach(&v, &L, hmax, a, b, &R);
+        pn_wg_reach(&v, &L, hmax, a, b, 1, &R);
         /* Receivers: the ground, or a plane below the edge's lower end. */
         ground = (cs & 1u) ? 0.0f : frand(&st, 0.0f, 0.9f) * (a.y < b.y ? a.y : b.y);
         if (R.x0 <= R.x1) {

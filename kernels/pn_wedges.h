@@ -556,10 +556,10 @@ typedef struct pn_wbox {
 PN_KFN pn_wbox pn_wbox_empty(void)
 {
     pn_wbox b;
-    b.x0 = 1.0f;
-    b.y0 = 1.0f;
-    b.x1 = 0.0f;
-    b.y1 = 0.0f;
+    b.x0 = 2.0f;
+    b.y0 = 2.0f;
+    b.x1 = -1.0f;
+    b.y1 = -1.0f;
     return b;
 }
 
@@ -575,13 +575,6 @@ PN_KFN pn_wbox pn_wbox_full(void)
 
 PN_KFN void pn_wbox_add(pn_wbox *b, float x, float y)
 {
-    if (b->x0 > b->x1) {
-        b->x0 = x;
-        b->x1 = x;
-        b->y0 = y;
-        b->y1 = y;
-        return;
-    }
     b->x0 = pn_kminf(b->x0, x);
     b->y0 = pn_kminf(b->y0, y);
     b->x1 = pn_kmaxf(b->x1, x);
@@ -624,8 +617,8 @@ PN_KFN int pn_wg_clip(float *px, float *py, float *qx, float *qy)
 {
     float t0 = 0.0f, t1 = 1.0f, dx = *qx - *px, dy = *qy - *py, pk[4], qk[4], x0, y0;
     uint32_t i;
-    if (*px >= 0.0f && *px <= 1.0f && *py >= 0.0f && *py <= 1.0f && *qx >= 0.0f && *qx <= 1.0f && *qy >= 0.0f &&
-        *qy <= 1.0f)
+    if ((*px >= 0.0f) & (*px <= 1.0f) & (*py >= 0.0f) & (*py <= 1.0f) & (*qx >= 0.0f) & (*qx <= 1.0f) & (*qy >= 0.0f) &
+        (*qy <= 1.0f))
         return 1;
     pk[0] = -dx;
     qk[0] = *px;
@@ -738,7 +731,21 @@ PN_KFN void pn_wg_blend(uint32_t mode, float as, pn_wbox bs, float *af, pn_wbox 
 typedef struct pn_wframe {
     float uo, vo, ho, iho;
     pn_v3 oc;
+    float cu[2], cv[2], au, av; /* pn_wg_obj_misses': 1 -+ uo, 1 -+ vo, |uo| + 1, |vo| + 1 */
 } pn_wframe;
+
+PN_KFN void pn_wg_frame(const pn_klight *L, pn_v3 O, pn_wframe *F)
+{
+    pn_wg_light(L, O, &F->uo, &F->vo, &F->ho);
+    F->iho = 1.0f / F->ho;
+    F->oc = pn_v3_sub(O, pn_light_c(L));
+    F->cu[0] = 1.0f + F->uo;
+    F->cu[1] = 1.0f - F->uo;
+    F->cv[0] = 1.0f + F->vo;
+    F->cv[1] = 1.0f - F->vo;
+    F->au = pn_kfabs(F->uo) + 1.0f;
+    F->av = pn_kfabs(F->vo) + 1.0f;
+}
 
 /* Silhouette e seen from O: its projection p q onto the light (p[0..3] = pu, pv, qu, qv)
  * and sign (+1 outer, -1 inner); 0 when it misses the light. */
@@ -812,21 +819,23 @@ PN_KFN int pn_wg_project(const pn_wframe *F, PN_CONST pn_wsil *e, float *p, floa
 /* Side x = sg of the light (x: u or v, xo the origin's, [x0, x1] the box's): every end
  * in the box projects beyond it. Written for a constant sg, called with each (the
  * compiler folds it: this is the hottest test of a frame of small objects). */
-PN_KFN int pn_wg_side_misses(float sg, float xo, float x0, float x1, float h0, float h1, float ho)
+PN_KFN int pn_wg_side_misses(float sg, float co, float ao, float x0, float x1, float h0, float h1, float ho)
 {
-    float co = 1.0f - sg * xo, xe = sg > 0.0f ? x0 : x1, he = co >= 0.0f ? h0 : h1;
+    float xe = sg > 0.0f ? x0 : x1, he = co >= 0.0f ? h0 : h1;
     float g = (sg * xe - 1.0f) * ho + co * he;
-    return g > 1e-3f * (pn_kmaxf(pn_kfabs(x0), pn_kfabs(x1)) + pn_kfabs(xo) + 1.0f) * ho;
+    return g > 1e-3f * (pn_kmaxf(pn_kfabs(x0), pn_kfabs(x1)) + ao) * ho;
 }
 
-PN_KFN int pn_wg_obj_misses(const pn_wframe *F, PN_CONST float *ob)
+PN_KFN_HOT int pn_wg_obj_misses(const pn_wframe *F, PN_CONST float *ob)
 {
     const float near = 1.0f - PN_WG_TNEAR;
     float ho = F->ho, h0 = ob[4], h1 = ob[5];
     if (h0 >= near * ho * 1.001f) return 1;
     if (!(h0 >= 0.0f && h1 <= near * ho * 0.999f)) return 0;
-    return pn_wg_side_misses(-1.0f, F->uo, ob[0], ob[1], h0, h1, ho) || pn_wg_side_misses(1.0f, F->uo, ob[0], ob[1], h0, h1, ho) ||
-           pn_wg_side_misses(-1.0f, F->vo, ob[2], ob[3], h0, h1, ho) || pn_wg_side_misses(1.0f, F->vo, ob[2], ob[3], h0, h1, ho);
+    return pn_wg_side_misses(-1.0f, F->cu[0], F->au, ob[0], ob[1], h0, h1, ho) ||
+           pn_wg_side_misses(1.0f, F->cu[1], F->au, ob[0], ob[1], h0, h1, ho) ||
+           pn_wg_side_misses(-1.0f, F->cv[0], F->av, ob[2], ob[3], h0, h1, ho) ||
+           pn_wg_side_misses(1.0f, F->cv[1], F->av, ob[2], ob[3], h0, h1, ho);
 }
 
 /* A projected edge (pn_wg_project) of weight w into the object's four parts. Returns 1
@@ -945,11 +954,7 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
     }
     if (L->is_point) return 1.0f;
 
-    {
-        pn_wg_light(L, O, &F.uo, &F.vo, &F.ho);
-        F.iho = 1.0f / F.ho;
-        F.oc = pn_v3_sub(O, pn_light_c(L));
-    }
+    pn_wg_frame(L, O, &F);
     for (q = 0; q < 4u; q++) {
         af[q] = 0.0f;
         bf[q] = pn_wbox_empty();
@@ -965,11 +970,13 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
          * entries add nothing. The next entry past it starts a block, so a run: an object
          * cut there goes on as one, whose skipped edges added nothing. */
         if (k != kb) {
-            uint32_t c0 = sil[k * PN_WG_SBLOCK].comp;
-            uint32_t c1 = sil[((k + 1u) * PN_WG_SBLOCK < nsil ? (k + 1u) * PN_WG_SBLOCK : nsil) - 1u].comp;
             kb = k;
             kmiss = pn_wg_obj_misses(&F, sbox + (size_t)k * 6u);
-            for (j = 0; j < nhard && kmiss; j++) kmiss = hard[j] < c0 || hard[j] > c1;
+            if (kmiss && nhard > 0u) {
+                uint32_t c0 = sil[k * PN_WG_SBLOCK].comp;
+                uint32_t c1 = sil[((k + 1u) * PN_WG_SBLOCK < nsil ? (k + 1u) * PN_WG_SBLOCK : nsil) - 1u].comp;
+                for (j = 0; j < nhard && kmiss; j++) kmiss = hard[j] < c0 || hard[j] > c1;
+            }
         }
         if (kmiss) {
             i = pn_wg_lower_bound(list, i, hi, (k + 1u) * PN_WG_SBLOCK);

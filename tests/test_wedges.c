@@ -790,10 +790,9 @@ static void test_reach(void)
                 if (!(d.y < 0.0f)) continue;
                 t = (ground - eye.y) / d.y;
                 O = pn_v3_add(eye, pn_v3_scale(d, t));
-                pn_wg_light(&L, O, &F.uo, &F.vo, &h);
+                pn_wg_frame(&L, O, &F);
+                h = F.ho;
                 if (!(h > 0.0f && h <= hmax)) continue;
-                F.iho = 1.0f / h;
-                F.oc = pn_v3_sub(O, c);
                 if (!pn_wg_project(&F, &e, p, &sg)) continue;
                 pn_wg_parts_init(parts, 0.0f);
                 if (!pn_wg_edge_parts(p, sg, 1.0f, parts)) continue;
@@ -873,9 +872,7 @@ static void test_culls(void)
         for (i = 0; i < PTS; i++) {
             pn_wframe F;
             int any = 0, om;
-            pn_wg_light(&L, O[i], &F.uo, &F.vo, &F.ho);
-            F.iho = 1.0f / F.ho;
-            F.oc = pn_v3_sub(O[i], c);
+            pn_wg_frame(&L, O[i], &F);
             om = pn_wg_obj_misses(&F, ob);
             obj_culls += (uint32_t)om;
             for (j = 0; j < EDGES; j++) {

@@ -633,6 +633,9 @@ PN_KFN int pn_wg_clip(float *px, float *py, float *qx, float *qy)
             if (qk[i] < 0.0f) return 0;
             continue;
         }
+        /* p inside this side, entering it (r <= 0), or q inside it, leaving (r >= 1): the
+         * bound would not move; no division. */
+        if (pk[i] < 0.0f ? qk[i] >= 0.0f : qk[i] >= pk[i]) continue;
         {
             float r = qk[i] / pk[i];
             if (pk[i] < 0.0f)

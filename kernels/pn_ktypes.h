@@ -127,6 +127,11 @@ typedef struct pn_kwg {
 /* Receiver only (pn_scene_set_receivers): casts no shadow into the Monte Carlo shadow
  * maps' depth layers; every other algorithm treats it like any triangle. */
 #define PN_TRI_RECEIVER 2u
+/* Of an object that is not a solid (src/pn_connect.c pn_cn_solids: open, a sheet, a leaf
+ * card): its surface has no inside, so the Monte Carlo shadow maps light whichever side
+ * faces the light; a solid's face turned away from the light by its winding is in its own
+ * shadow. Set at pn_scene_set for a context that runs MCSM or the wedges. */
+#define PN_TRI_SHEET 4u
 
 /* Rows of pixels per rasterizer work item. */
 #define PN_RASTER_BAND 8u

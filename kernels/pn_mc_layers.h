@@ -48,15 +48,16 @@ PN_KFN void pn_mc_rows(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris
             if (!(z > 0.0f)) continue;
             T = (PN_GLOBAL int32_t *)(nb + ((size_t)y * v->width + x) * PN_NB_MM);
             pn_katomic_imin(T, (int32_t)pn_kfbits(z)); /* near: the layers hold z > 0 or +-inf */
-            pn_katomic_imax(T + 1, (int32_t)pn_kfbits(z));
+            if (nA > 0.0f) pn_katomic_imax(T + 1, (int32_t)pn_kfbits(z)); /* far: back faces */
         }
     }
 }
 
 /* Band `band` of PN_RASTER_BAND texel rows of level 0 (emptied, and holding the small
  * triangles' fragments, pn_mc_rows): every fragment of every other occluder (the band
- * walk's, pn_raster.h) in front of the light plane takes part in its texel's near and far;
- * then max near := near, and the texel is stored as the N-buffer's (near negated). */
+ * walk's, pn_raster.h) in front of the light plane takes part in its texel's near, and a
+ * back face's in its far; then far := max(far, near) where the texel is not empty, max
+ * near := near, and the texel is stored as the N-buffer's (near negated). */
 PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris, PN_CONST uint8_t *flags,
                        PN_CONST uint32_t *rows, PN_CONST uint32_t *chunks, PN_CONST uint32_t *index, uint32_t tri_n,
                        uint32_t band, PN_GLOBAL float *nb)
@@ -80,13 +81,14 @@ PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris
                 if (!(z > 0.0f)) continue;
                 T = nb + ((size_t)y * v->width + (uint32_t)xi) * PN_NB_MM;
                 T[0] = pn_kminf(T[0], z);
-                T[1] = pn_kmaxf(T[1], z);
+                if (rt.nA > 0.0f) T[1] = pn_kmaxf(T[1], z); /* a back face: n.(A - eye) > 0 */
             }
         }
     }
     for (y = y0; y <= y1; y++)
         for (x = 0; x < v->width; x++) {
             PN_GLOBAL float *T = nb + ((size_t)y * v->width + x) * PN_NB_MM;
+            if (T[0] < PN_KINF) T[1] = pn_kmaxf(T[1], T[0]); /* far at least near */
             T[2] = T[0];
             T[0] = -T[0]; /* stored as the N-buffer holds it (pn_nbuffer.h) */
         }

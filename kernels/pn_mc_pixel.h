@@ -84,9 +84,13 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, PN_CONST uint32_t *ids, PN_CONST float 
      * pixel with no surface has some point and normal in the G-buffer, whose results are
      * not read. */
     for (i = 0; i < count; i++) {
-        pn_v3 n = pn_v3_load(nrm + (pix + i) * 3u), O, E;
+        pn_v3 n = pn_v3_load(nrm + (pix + i) * 3u), P = pn_v3_load(pos + (pix + i) * 3u), O, E;
         float b[4], x, y;
-        sees[i] = pn_shadow_origin(pn_v3_load(pos + (pix + i) * 3u), n, L, &O);
+        uint32_t id = ids[pix + i];
+        /* A sheet's side toward the light centre is its front (PN_TRI_SHEET) */
+        int sheet = id != PN_NO_PIXEL_TRIANGLE && (m->flags[id] & PN_TRI_SHEET) != 0u;
+        n = pn_v3_scale(n, sheet && pn_v3_dot(n, pn_v3_sub(c, P)) < 0.0f ? -1.0f : 1.0f);
+        sees[i] = pn_shadow_origin(P, n, L, &O);
         E = pn_lview_frame(m->lv, L, O);
         faces[i] = E.z > 0.0f && !(pn_v3_dot(n, pn_v3_sub(c, O)) < 0.0f);
         front[i] = (pn_v3_dot(pn_v3_sub(m->corner[0], O), n) > 0.0f) + (pn_v3_dot(pn_v3_sub(m->corner[1], O), n) > 0.0f) +

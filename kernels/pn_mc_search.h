@@ -13,6 +13,7 @@ typedef struct pn_mc_ctx {
     const pn_kmc *mc;
     PN_CONST float *nb;    /* N-buffer levels */
     PN_CONST float *depth; /* G-buffer depth (third layer) */
+    PN_CONST uint8_t *flags; /* triangle flags (PN_TRI_SHEET) */
     float tx, ty;          /* the layers' window half-tans (pn_project_camera's factors) */
     float hw, hh;          /* half the layers' size in texels */
     pn_v3 corner[4];       /* the light's corners c -+ U -+ V (bit 0: +U, bit 1: +V) */
@@ -33,7 +34,7 @@ PN_KFN pn_v3 pn_mc_at(const pn_mc_ray *r, float t)
 /* The per-pixel context over view, light view lv, light L, parameters mc, the N-buffer nb
  * and the G-buffer's depth. */
 PN_KFN void pn_mc_ctx_init(pn_mc_ctx *m, const pn_kview *view, const pn_kview *lv, const pn_klight *L,
-                           const pn_kmc *mc, PN_CONST float *nb, PN_CONST float *depth)
+                           const pn_kmc *mc, PN_CONST float *nb, PN_CONST float *depth, PN_CONST uint8_t *flags)
 {
     uint32_t k;
     m->view = view;
@@ -42,6 +43,7 @@ PN_KFN void pn_mc_ctx_init(pn_mc_ctx *m, const pn_kview *view, const pn_kview *l
     m->mc = mc;
     m->nb = nb;
     m->depth = depth;
+    m->flags = flags;
     m->tx = lv->tan_half * lv->aspect;
     m->ty = lv->tan_half;
     m->hw = 0.5f * (float)lv->width;

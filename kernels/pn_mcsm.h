@@ -17,12 +17,16 @@
  *
  * Layers (§3.3). Over the fragments of every triangle not marked receiver-only
  * (pn_scene_set_receivers; §3.3 requires pure receivers to stay out), in front of the light
- * plane, each texel keeps the nearest depth (near layer) and the farthest (far layer).
- * The thesis renders the far layer from back faces with the depth test reversed; keeping
- * the farthest fragment of any facing is the same for closed meshes and keeps a single
- * open sheet (a quad occluder) an occluder of zero thickness instead of none. A texel's
- * occupied interval is [near, far]: the volume between the layers is taken as solid.
- * Empty texels: near = +inf, far = -inf.
+ * plane, each texel keeps the nearest depth (near layer) and the farthest of its back
+ * faces, those turned away from the centre of projection (far layer), and at least the near
+ * depth: the thesis renders the far layer from back faces with the depth test reversed. A
+ * texel's occupied interval is [near, far]: the volume between the layers is taken as
+ * solid, and a back face is where a solid ends. A surface facing the light with nothing
+ * behind it (a floor, a wall of the room the light is in) ends none: were it the far layer,
+ * the air between a table and the floor under it would be solid, and rays to the floor
+ * beside the table's shadow, whose images cross the table's, would be blocked (the living
+ * room's ring of darker penumbra; a room's furniture). A single open sheet stays an occluder
+ * of zero thickness (near = far). Empty texels: near = +inf, far = -inf.
  *
  * N-buffer (§3.5; kernels/pn_nbuffer.h). Three channels per texel and level: min near,
  * max far, max near (stored with min near negated, so that every channel is a max:

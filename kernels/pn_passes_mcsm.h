@@ -48,7 +48,8 @@ PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     PN_GLOBAL uint32_t *words = PN_POOL(uint32_t, mc_words) + (size_t)y * PN_MC_ROW_WORDS;
     pn_mc_ctx m;
     pn_mc_px px[PN_MC_RUN];
-    pn_mc_ctx_init(&m, &K->view, &K->lview, &K->light, &K->mc, PN_POOL(const float, mc_nb), PN_POOL(const float, depth));
+    pn_mc_ctx_init(&m, &K->view, &K->lview, &K->light, &K->mc, PN_POOL(const float, mc_nb), PN_POOL(const float, depth),
+                   PN_POOL(const uint8_t, flags));
     for (x0 = 0; x0 < W; x0 += PN_MC_RUN) {
         uint32_t count = pn_kminu(PN_MC_RUN, W - x0);
         size_t pix0 = (size_t)y * W + x0;

@@ -18,7 +18,7 @@
 
 #include "pn_wedges_frame.h"
 
-#if PN_ENABLE_WEDGES
+#if PN_ENABLE_WEDGES || PN_ENABLE_MCSM
 #include "pn_wedges.h"
 
 typedef struct pn_cn {
@@ -124,7 +124,8 @@ static int pn_cn_same_tri(const uint32_t *canon, uint32_t a, uint32_t b)
 #define PN_CN_DUP_RUN 8u
 
 /* Solid objects (PN_WG_CLOSED: they cast with the triangles facing the light centre; the
- * others, sheets, with all of theirs turned to face it). A scanned statue or an exported
+ * others, sheets, with all of theirs turned to face it, and are marked PN_TRI_SHEET in the
+ * triangle flags: the Monte Carlo shadow maps light a sheet on its side toward the light). A scanned statue or an exported
  * model is closed but for a few holes or seams (the Buddha: 4 open edges among 150,000):
  * cast as a sheet, every crossing of it counts twice, front and back, and its penumbrae
  * came out twice as dark (0.74 % of the Buddha's pixels darker than the reference by more
@@ -174,8 +175,13 @@ static void pn_cn_solids(pn_context *ctx, uint32_t *scratch, const uint32_t *hed
         acc[5u * i] = solid ? 1.0f : 0.0f;
         ctx->stats.wedges.closed_objects += (uint32_t)solid;
     }
-    for (t = 0; t < T; t++)
-        if (acc[5u * (tcomp[t] & PN_WG_OBJ)] != 0.0f) tcomp[t] |= PN_WG_CLOSED;
+    for (t = 0; t < T; t++) {
+        ctx->flags[t] = (uint8_t)(ctx->flags[t] & ~PN_TRI_SHEET);
+        if (acc[5u * (tcomp[t] & PN_WG_OBJ)] != 0.0f)
+            tcomp[t] |= PN_WG_CLOSED;
+        else
+            ctx->flags[t] = (uint8_t)(ctx->flags[t] | PN_TRI_SHEET);
+    }
 }
 
 void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t *tcomp)

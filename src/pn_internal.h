@@ -200,6 +200,15 @@ pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *
  * every triangle's rows, then the band walk's chunks (kernels/pn_raster.h). */
 pn_status pn_raster_setup(pn_frame_state *fs, uint32_t rows_pass);
 
+/* pn_connect.c (the wedges and MCSM): the scene's welded vertices, objects and edges into
+ * hedge [3 T], run [3 T + 1] and tcomp [T] (the wedges' persistent pools; for MCSM without
+ * the wedges, the frame region after the scratch), and PN_TRI_SHEET into the triangle
+ * flags. The first PN_CONNECT_SCRATCH bytes a triangle of the frame region are its
+ * scratch: call outside a frame. */
+#define PN_CONNECT_SCRATCH 24u
+#define PN_CONNECT_POOLS 28u /* hedge, run and tcomp: 7 words a triangle, and one */
+void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t *tcomp);
+
 /* pn_math.c */
 int pn_finite(float v);
 float pn_tan_half_deg(float fov_deg);

@@ -204,7 +204,34 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
     return PN_OK;
 }
 
-PN_ALGO_NO_SCENE(mcsm)
+/* The scene: which triangles are sheets (PN_TRI_SHEET, pn_connect.c; pn_mc_run reads it).
+ * A context that runs the wedges too has it from their connectivity; otherwise the
+ * connectivity is built in the frame region and dropped. */
+static int pn_mc_with_wedges(const pn_limits *l) { return PN_ENABLE_WEDGES && (pn_limits_algos(l) & (1u << PN_ALGO_WEDGES)); }
+
+void pn_mcsm_persist(pn_carver *c, const pn_limits *l)
+{
+    (void)c;
+    (void)l;
+}
+
+uint64_t pn_mcsm_scene_scratch(const pn_limits *l)
+{
+    return pn_mc_with_wedges(l) ? 0u : (PN_CONNECT_SCRATCH + PN_CONNECT_POOLS) * (uint64_t)l->max_triangles + 4u;
+}
+
+pn_status pn_mcsm_scene(pn_context *ctx)
+{
+    uint32_t T = ctx->tri_count, *pools = (uint32_t *)(void *)ctx->frame + (size_t)(PN_CONNECT_SCRATCH / 4u) * T;
+    if (!pn_mc_with_wedges(&ctx->limits)) pn_connect_build(ctx, pools, pools + 3u * (size_t)T, pools + 6u * (size_t)T + 1u);
+    return PN_OK;
+}
+
+pn_status pn_mcsm_upload(pn_frame_state *fs)
+{
+    (void)fs;
+    return PN_OK;
+}
 #else
 PN_ALGO_STUBS(MCSM, mcsm)
 #endif

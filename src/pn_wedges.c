@@ -40,7 +40,7 @@ static void pn_wg_conn_at(const pn_context *ctx, pn_wg_conn *w)
 }
 
 /* pn_connect_build's vertex ids and union-find: 6 words a triangle of the frame region. */
-uint64_t pn_wedges_scene_scratch(const pn_limits *l) { return 24u * (uint64_t)l->max_triangles; }
+uint64_t pn_wedges_scene_scratch(const pn_limits *l) { return PN_CONNECT_SCRATCH * (uint64_t)l->max_triangles; }
 
 pn_status pn_wedges_scene(pn_context *ctx)
 {

@@ -20,9 +20,7 @@
 #if PN_ENABLE_WEDGES
 /* The shadow pass of PN_ALGO_WEDGES on fs->port. */
 pn_status pn_wedges_frame(pn_frame_state *fs);
-/* pn_connect.c: the scene's welded vertices, objects and edges into the module's persistent
- * pools (the frame region is its scratch: call outside a frame). */
-void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t *tcomp);
 #endif
+
 
 #endif

@@ -21,6 +21,9 @@
  *    a context whose mc_map_max is 64 has a smaller arena and renders at that size; the
  *    stats add up (lit + umbra + penumbra = lit pixels, rays <= penumbra x n^2) and with a
  *    clock the stage times lie inside the shadow pass.
+ * 2b. Interiors and sheets: a table over a ground in the layers casts no ring of darker
+ *    penumbra (the far layer is the back faces'), and a sheet wound away from the light is
+ *    lit on its side toward it (PN_TRI_SHEET), as the reference has them.
  * 7. The layers hold the occluders and no more: over random lights and occluder boxes
  *    (some across the light plane), pn_lview_fit_occluders only narrows the window, and
  *    every point of the box in front of the light plane that projected inside it still
@@ -209,6 +212,76 @@ static void test_square(void)
     CHECK_MSG(e_def <= 0.05, "square RMSE %.4f above the goal 0.05", e_def);
     CHECK_MSG(e_def < e_norecv, "receivers marked: RMSE %.4f, not below %.4f without", e_def, e_norecv);
     CHECK_MSG(e8 <= 0.5 * e1, "64 rays RMSE %.4f, 1 ray %.4f: not halved", e8, e1);
+    pn_host_close(&h);
+    pn_setup_free(&s);
+}
+
+/* A box of half-extents (hx, hy, hz) about (x, y, z), wound outward (flip: inward), as six
+ * quads at vertices 4 q0 .. and triangles 2 q0 ..; or a horizontal square (hy = 0) facing up
+ * (flip: down), one quad. Returns the quads written. */
+static uint32_t mc_box(float *pos, uint32_t *idx, uint32_t q0, const float *c, const float *hf, int flip)
+{
+    static const int8_t f[6][4][3] = {{{-1, 1, -1}, {-1, 1, 1}, {1, 1, 1}, {1, 1, -1}},     /* +y */
+                                      {{-1, -1, -1}, {1, -1, -1}, {1, -1, 1}, {-1, -1, 1}}, /* -y */
+                                      {{1, -1, -1}, {1, 1, -1}, {1, 1, 1}, {1, -1, 1}},     /* +x */
+                                      {{-1, -1, -1}, {-1, -1, 1}, {-1, 1, 1}, {-1, 1, -1}}, /* -x */
+                                      {{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}},     /* +z */
+                                      {{-1, -1, -1}, {-1, 1, -1}, {1, 1, -1}, {1, -1, -1}}}; /* -z */
+    static const uint32_t q[6] = {0u, 1u, 2u, 0u, 2u, 3u}, qf[6] = {0u, 2u, 1u, 0u, 3u, 2u};
+    uint32_t n = hf[1] > 0.0f ? 6u : 1u, i, j, k;
+    for (i = 0; i < n; i++) {
+        for (j = 0; j < 4u; j++)
+            for (k = 0; k < 3u; k++) pos[12u * (q0 + i) + 3u * j + k] = c[k] + (float)f[i][j][k] * hf[k];
+        for (j = 0; j < 6u; j++) idx[6u * (q0 + i) + j] = 4u * (q0 + i) + (flip ? qf[j] : q[j]);
+    }
+    return n;
+}
+
+/* Interiors and sheets, on square's camera and light over its ground, which is not marked
+ * receiver-only (every surface of a room is both). (1) A table top, a closed slab: the far
+ * layer behind it was the ground, the air under the table solid, and rays to the ground
+ * beside its shadow, whose images cross the table's, were blocked: a ring of penumbra too
+ * dark (the living room's). The far layer is the back faces'. (2) A sheet (one quad) wound
+ * facing away from the light, its top seen by the camera: as a solid's back face it was
+ * umbra, where the exact algorithms light its side toward the light. Each: pixels darker
+ * than the reference by more than 0.25: before these two changes 42 and 81 of 12,288, now 0. */
+static void test_interior_and_sheets(void)
+{
+    static const float ground[3] = {0.0f, 0.0f, 0.0f}, gh[3] = {4.0f, 0.0f, 4.0f};
+    static const float table[3] = {0.0f, 2.0f, 0.0f}, th[3] = {0.5f, 0.05f, 0.5f};
+    static const float sheet[3] = {2.0f, 1.0f, 1.0f}, sh[3] = {0.5f, 0.0f, 0.5f};
+    float pos[7u * 12u];
+    uint32_t idx[7u * 6u], nq, p, dark[2], bright[2], c;
+    pn_setup s;
+    pn_host h;
+    pn_frame_options o;
+    char err[256];
+    if (pn_setup_load(&s, "square", 1, -1, err, sizeof(err)) != 0) {
+        CHECK_MSG(0, "loading square: %s", err);
+        return;
+    }
+    if (pn_host_open(&h, 14u, W, H, 2, err, sizeof(err)) != 0) {
+        CHECK_MSG(0, "context: %s", err);
+        pn_setup_free(&s);
+        return;
+    }
+    for (c = 0; c < 2u; c++) {
+        nq = mc_box(pos, idx, 0u, ground, gh, 0);
+        nq += c == 0u ? mc_box(pos, idx, nq, table, th, 0) : mc_box(pos, idx, nq, sheet, sh, 1);
+        REQUIRE(pn_scene_set(h.ctx, pos, 4u * nq, idx, 2u * nq) == PN_OK);
+        REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_REFERENCE, W, H, 32, 1, g_ref, NULL) == 0);
+        mc_opts(&o, 0u, 0u, 0u, 0u, 0u);
+        REQUIRE(render_opt(&h, &s, &s.light, &o, g_a, NULL, NULL) == 0);
+        dark[c] = bright[c] = 0u;
+        for (p = 0; p < W * H; p++) {
+            dark[c] += g_a[p] < g_ref[p] - 0.25f;
+            bright[c] += g_a[p] > g_ref[p] + 0.25f;
+        }
+    }
+    fprintf(stderr, "table over the ground: %u pixels darker than the reference by 0.25, %u brighter; sheet facing away: "
+            "%u, %u\n", dark[0], bright[0], dark[1], bright[1]);
+    CHECK_MSG(dark[0] <= 8u && bright[0] <= 8u, "table: %u darker, %u brighter", dark[0], bright[0]);
+    CHECK_MSG(dark[1] <= 8u && bright[1] <= 8u, "sheet: %u darker, %u brighter", dark[1], bright[1]);
     pn_host_close(&h);
     pn_setup_free(&s);
 }
@@ -648,6 +721,7 @@ int main(void)
     RUN(test_window_and_clip);
     RUN(test_nbuffer_boxes);
     RUN(test_square);
+    RUN(test_interior_and_sheets);
     RUN(test_classify_exact);
     RUN(test_classify_exact_512);
     RUN(test_determinism_and_stats);

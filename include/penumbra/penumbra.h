@@ -157,7 +157,8 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
  * for static declaration: static uint8_t arena[PN_ARENA_BYTES_MAX(1000, 160, 120)]. It is
  * the carve written as arithmetic, pool by pool (each rounded up to PN_ARENA_ALIGN): the
  * persistent pools, then a frame region holding the largest of the frame's own pools plus
- * one algorithm's set and the scene-time scratch (BVH build, wedge connectivity).
+ * one algorithm's set and the scene-time scratch (BVH build; the connectivity of the wedges
+ * and MCSM, with its pools when the wedges are not compiled in).
  * test_arena checks pn_arena_size <= it <= 1.25 pn_arena_size over a grid of limits, in
  * every single-algorithm build. Split references (limits.bvh_refs above t) cost
  * PN_BVH_SPLIT_REF_BYTES more each. */
@@ -168,7 +169,8 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
                          PN_MAX_(PN_MAX_(PN_OCCTEX_BYTES_MAX(t, w, h), PN_MCSM_BYTES_MAX(t, w, h)), \
                                  PN_WEDGES_BYTES_MAX(t, w, h))),                              \
              PN_MAX_(PN_POOL_((size_t)(t) * 40u + ((size_t)(t) / 32u + 1u) * 4u),               \
-                     PN_ENABLE_WEDGES ? PN_POOL_((size_t)(t) * 24u) : 0u)) +                     \
+                     PN_ENABLE_WEDGES ? PN_POOL_((size_t)(t) * 24u)                              \
+                     : PN_ENABLE_MCSM ? PN_POOL_((size_t)(t) * 52u + 4u) : 0u)) +                \
      (size_t)PN_ARENA_ALIGN - 1u)
 /* The split BVH references a context of t triangles may reserve (limits.bvh_refs up to t
  * plus these): PN_BVH_SPLIT_REFS, at most 2^PN_BVH_SPLIT_DEPTH - 1 a triangle (and t plus

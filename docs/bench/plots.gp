@@ -7,39 +7,39 @@ set output 'gallery/square.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 16.2 ms"
+set title "reference, 14.7 ms"
 plot 'work/gallery/square/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/square/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 22.2 ms"
+set title "GEARS, 17.9 ms"
 plot 'work/gallery/square/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/square/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 242 ms"
+set title "raytrace, 217 ms"
 plot 'work/gallery/square/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/square/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 45.2 ms"
+set title "SRT, 43.9 ms"
 plot 'work/gallery/square/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/square/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 5.53 ms"
+set title "occtex, 4.46 ms"
 plot 'work/gallery/square/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/square/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 10.3 ms"
+set title "MCSM, 10.1 ms"
 plot 'work/gallery/square/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/square/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 5.81 ms"
+set title "wedges, 4.94 ms"
 plot 'work/gallery/square/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/square/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 282 ms"
+set title "Embree visibility, 273 ms"
 plot 'work/gallery/square/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.0000% px)"
 plot 'work/gallery/square/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 58.8 ms"
+set title "PCSS visibility, 47.5 ms"
 plot 'work/gallery/square/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/square/pcss_error.png' binary filetype=png with rgbimage
@@ -99,19 +99,19 @@ set output 'gallery/spheres.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 642 ms"
+set title "reference, 624 ms"
 plot 'work/gallery/spheres/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/spheres/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 782 ms"
+set title "GEARS, 764 ms"
 plot 'work/gallery/spheres/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/spheres/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1284 ms"
+set title "raytrace, 1300 ms"
 plot 'work/gallery/spheres/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/spheres/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 682 ms"
+set title "SRT, 680 ms"
 plot 'work/gallery/spheres/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/spheres/SRT error.png' binary filetype=png with rgbimage
@@ -119,19 +119,19 @@ set title "occtex, 30.7 ms"
 plot 'work/gallery/spheres/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/spheres/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 68.7 ms"
+set title "MCSM, 65.9 ms"
 plot 'work/gallery/spheres/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/spheres/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 64.0 ms"
+set title "wedges, 62.6 ms"
 plot 'work/gallery/spheres/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/spheres/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 900 ms"
+set title "Embree visibility, 896 ms"
 plot 'work/gallery/spheres/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (1.8013% px)"
 plot 'work/gallery/spheres/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 111 ms"
+set title "PCSS visibility, 107 ms"
 plot 'work/gallery/spheres/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/spheres/pcss_error.png' binary filetype=png with rgbimage
@@ -191,39 +191,39 @@ set output 'gallery/elongated-cube.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 11.6 ms"
+set title "reference, 12.2 ms"
 plot 'work/gallery/elongated-cube/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/elongated-cube/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 13.9 ms"
+set title "GEARS, 14.6 ms"
 plot 'work/gallery/elongated-cube/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/elongated-cube/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 100 ms"
+set title "raytrace, 107 ms"
 plot 'work/gallery/elongated-cube/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/elongated-cube/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 41.6 ms"
+set title "SRT, 44.8 ms"
 plot 'work/gallery/elongated-cube/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/elongated-cube/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 23.4 ms"
+set title "occtex, 23.3 ms"
 plot 'work/gallery/elongated-cube/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/elongated-cube/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 13.6 ms"
+set title "MCSM, 15.8 ms"
 plot 'work/gallery/elongated-cube/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/elongated-cube/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 5.00 ms"
+set title "wedges, 4.84 ms"
 plot 'work/gallery/elongated-cube/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/elongated-cube/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 242 ms"
+set title "Embree visibility, 239 ms"
 plot 'work/gallery/elongated-cube/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.0000% px)"
 plot 'work/gallery/elongated-cube/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 42.2 ms"
+set title "PCSS visibility, 43.9 ms"
 plot 'work/gallery/elongated-cube/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/elongated-cube/pcss_error.png' binary filetype=png with rgbimage
@@ -283,35 +283,35 @@ set output 'gallery/thin.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 407 ms"
+set title "reference, 412 ms"
 plot 'work/gallery/thin/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/thin/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 358 ms"
+set title "GEARS, 361 ms"
 plot 'work/gallery/thin/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/thin/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1925 ms"
+set title "raytrace, 1937 ms"
 plot 'work/gallery/thin/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/thin/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 510 ms"
+set title "SRT, 513 ms"
 plot 'work/gallery/thin/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/thin/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 32.1 ms"
+set title "occtex, 32.9 ms"
 plot 'work/gallery/thin/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/thin/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 31.1 ms"
+set title "MCSM, 32.1 ms"
 plot 'work/gallery/thin/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/thin/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 166 ms"
+set title "wedges, 158 ms"
 plot 'work/gallery/thin/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/thin/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 2459 ms"
+set title "Embree visibility, 2475 ms"
 plot 'work/gallery/thin/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.0210% px)"
 plot 'work/gallery/thin/embree_error.png' binary filetype=png with rgbimage
@@ -375,39 +375,39 @@ set output 'gallery/room.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 445 ms"
+set title "reference, 444 ms"
 plot 'work/gallery/room/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/room/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 446 ms"
+set title "GEARS, 440 ms"
 plot 'work/gallery/room/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/room/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1438 ms"
+set title "raytrace, 1437 ms"
 plot 'work/gallery/room/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/room/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 597 ms"
+set title "SRT, 581 ms"
 plot 'work/gallery/room/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (differs)"
 plot 'work/gallery/room/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 66.0 ms"
+set title "occtex, 60.0 ms"
 plot 'work/gallery/room/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/room/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 77.0 ms"
+set title "MCSM, 85.3 ms"
 plot 'work/gallery/room/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/room/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 44.1 ms"
+set title "wedges, 42.5 ms"
 plot 'work/gallery/room/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/room/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1628 ms"
+set title "Embree visibility, 1634 ms"
 plot 'work/gallery/room/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.5516% px)"
 plot 'work/gallery/room/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 182 ms"
+set title "PCSS visibility, 174 ms"
 plot 'work/gallery/room/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/room/pcss_error.png' binary filetype=png with rgbimage
@@ -467,11 +467,11 @@ set output 'gallery/canopy.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 265 ms"
+set title "reference, 261 ms"
 plot 'work/gallery/canopy/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/canopy/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 303 ms"
+set title "GEARS, 304 ms"
 plot 'work/gallery/canopy/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/canopy/GEARS error.png' binary filetype=png with rgbimage
@@ -479,19 +479,19 @@ set title "raytrace, 715 ms"
 plot 'work/gallery/canopy/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/canopy/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 312 ms"
+set title "SRT, 310 ms"
 plot 'work/gallery/canopy/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/canopy/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 36.1 ms"
+set title "occtex, 36.3 ms"
 plot 'work/gallery/canopy/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/canopy/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 34.6 ms"
+set title "MCSM, 38.3 ms"
 plot 'work/gallery/canopy/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/canopy/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 136 ms"
+set title "wedges, 128 ms"
 plot 'work/gallery/canopy/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/canopy/wedges error.png' binary filetype=png with rgbimage
@@ -499,7 +499,7 @@ set title "Embree visibility, 616 ms"
 plot 'work/gallery/canopy/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.2945% px)"
 plot 'work/gallery/canopy/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 83.8 ms"
+set title "PCSS visibility, 84.3 ms"
 plot 'work/gallery/canopy/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/canopy/pcss_error.png' binary filetype=png with rgbimage
@@ -559,39 +559,39 @@ set output 'gallery/colonnade.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 70.1 ms"
+set title "reference, 71.9 ms"
 plot 'work/gallery/colonnade/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/colonnade/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 70.0 ms"
+set title "GEARS, 73.3 ms"
 plot 'work/gallery/colonnade/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/colonnade/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 268 ms"
+set title "raytrace, 288 ms"
 plot 'work/gallery/colonnade/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/colonnade/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 100 ms"
+set title "SRT, 111 ms"
 plot 'work/gallery/colonnade/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/colonnade/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 39.4 ms"
+set title "occtex, 40.2 ms"
 plot 'work/gallery/colonnade/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/colonnade/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 11.1 ms"
+set title "MCSM, 13.4 ms"
 plot 'work/gallery/colonnade/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/colonnade/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 16.4 ms"
+set title "wedges, 16.2 ms"
 plot 'work/gallery/colonnade/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/colonnade/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 390 ms"
+set title "Embree visibility, 401 ms"
 plot 'work/gallery/colonnade/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.0484% px)"
 plot 'work/gallery/colonnade/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 63.0 ms"
+set title "PCSS visibility, 67.9 ms"
 plot 'work/gallery/colonnade/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/colonnade/pcss_error.png' binary filetype=png with rgbimage
@@ -651,39 +651,39 @@ set output 'gallery/cad_infineon_easypim2b.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 179 ms"
+set title "reference, 181 ms"
 plot 'work/gallery/cad_infineon_easypim2b/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/cad_infineon_easypim2b/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 209 ms"
+set title "GEARS, 211 ms"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 722 ms"
+set title "raytrace, 735 ms"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 236 ms"
+set title "SRT, 239 ms"
 plot 'work/gallery/cad_infineon_easypim2b/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 79.1 ms"
+set title "occtex, 78.9 ms"
 plot 'work/gallery/cad_infineon_easypim2b/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 19.3 ms"
+set title "MCSM, 20.9 ms"
 plot 'work/gallery/cad_infineon_easypim2b/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 50.6 ms"
+set title "wedges, 50.1 ms"
 plot 'work/gallery/cad_infineon_easypim2b/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 924 ms"
+set title "Embree visibility, 927 ms"
 plot 'work/gallery/cad_infineon_easypim2b/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.4425% px)"
 plot 'work/gallery/cad_infineon_easypim2b/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 95.1 ms"
+set title "PCSS visibility, 96.5 ms"
 plot 'work/gallery/cad_infineon_easypim2b/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/cad_infineon_easypim2b/pcss_error.png' binary filetype=png with rgbimage
@@ -743,39 +743,39 @@ set output 'gallery/chess_set.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 86.8 ms"
+set title "reference, 86.2 ms"
 plot 'work/gallery/chess_set/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/chess_set/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 104 ms"
+set title "GEARS, 103 ms"
 plot 'work/gallery/chess_set/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/chess_set/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 894 ms"
+set title "raytrace, 888 ms"
 plot 'work/gallery/chess_set/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/chess_set/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 134 ms"
+set title "SRT, 131 ms"
 plot 'work/gallery/chess_set/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/chess_set/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 73.3 ms"
+set title "occtex, 81.7 ms"
 plot 'work/gallery/chess_set/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/chess_set/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 14.8 ms"
+set title "MCSM, 18.2 ms"
 plot 'work/gallery/chess_set/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/chess_set/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 44.1 ms"
+set title "wedges, 44.8 ms"
 plot 'work/gallery/chess_set/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/chess_set/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 991 ms"
+set title "Embree visibility, 989 ms"
 plot 'work/gallery/chess_set/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.2148% px)"
 plot 'work/gallery/chess_set/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 75.0 ms"
+set title "PCSS visibility, 77.0 ms"
 plot 'work/gallery/chess_set/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/chess_set/pcss_error.png' binary filetype=png with rgbimage
@@ -835,39 +835,39 @@ set output 'gallery/copper_beech.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 2191 ms"
+set title "reference, 2242 ms"
 plot 'work/gallery/copper_beech/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/copper_beech/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 3356 ms"
+set title "GEARS, 3413 ms"
 plot 'work/gallery/copper_beech/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/copper_beech/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 3140 ms"
+set title "raytrace, 3143 ms"
 plot 'work/gallery/copper_beech/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/copper_beech/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 2281 ms"
+set title "SRT, 2319 ms"
 plot 'work/gallery/copper_beech/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/copper_beech/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 49.5 ms"
+set title "occtex, 55.7 ms"
 plot 'work/gallery/copper_beech/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/copper_beech/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 53.5 ms"
+set title "MCSM, 58.4 ms"
 plot 'work/gallery/copper_beech/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/copper_beech/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 1214 ms"
+set title "wedges, 1210 ms"
 plot 'work/gallery/copper_beech/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/copper_beech/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1931 ms"
+set title "Embree visibility, 1939 ms"
 plot 'work/gallery/copper_beech/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.0671% px)"
 plot 'work/gallery/copper_beech/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 117 ms"
+set title "PCSS visibility, 119 ms"
 plot 'work/gallery/copper_beech/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/copper_beech/pcss_error.png' binary filetype=png with rgbimage
@@ -927,39 +927,39 @@ set output 'gallery/grey_white_room.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 415 ms"
+set title "reference, 384 ms"
 plot 'work/gallery/grey_white_room/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/grey_white_room/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 482 ms"
+set title "GEARS, 472 ms"
 plot 'work/gallery/grey_white_room/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/grey_white_room/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2028 ms"
+set title "raytrace, 2027 ms"
 plot 'work/gallery/grey_white_room/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/grey_white_room/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 603 ms"
+set title "SRT, 613 ms"
 plot 'work/gallery/grey_white_room/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (differs)"
 plot 'work/gallery/grey_white_room/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 75.4 ms"
+set title "occtex, 83.2 ms"
 plot 'work/gallery/grey_white_room/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/grey_white_room/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 66.8 ms"
+set title "MCSM, 72.9 ms"
 plot 'work/gallery/grey_white_room/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/grey_white_room/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 106 ms"
+set title "wedges, 110 ms"
 plot 'work/gallery/grey_white_room/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/grey_white_room/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1819 ms"
+set title "Embree visibility, 1813 ms"
 plot 'work/gallery/grey_white_room/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.4261% px)"
 plot 'work/gallery/grey_white_room/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 189 ms"
+set title "PCSS visibility, 198 ms"
 plot 'work/gallery/grey_white_room/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/grey_white_room/pcss_error.png' binary filetype=png with rgbimage
@@ -1019,27 +1019,27 @@ set output 'gallery/happy_buddha_100k.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 776 ms"
+set title "reference, 845 ms"
 plot 'work/gallery/happy_buddha_100k/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/happy_buddha_100k/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 1030 ms"
+set title "GEARS, 1118 ms"
 plot 'work/gallery/happy_buddha_100k/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2151 ms"
+set title "raytrace, 2230 ms"
 plot 'work/gallery/happy_buddha_100k/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 860 ms"
+set title "SRT, 875 ms"
 plot 'work/gallery/happy_buddha_100k/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 83.4 ms"
+set title "occtex, 82.6 ms"
 plot 'work/gallery/happy_buddha_100k/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 42.0 ms"
+set title "MCSM, 42.9 ms"
 plot 'work/gallery/happy_buddha_100k/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/MCSM error.png' binary filetype=png with rgbimage
@@ -1047,11 +1047,11 @@ set title "wedges, 313 ms"
 plot 'work/gallery/happy_buddha_100k/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1412 ms"
+set title "Embree visibility, 1406 ms"
 plot 'work/gallery/happy_buddha_100k/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8091% px)"
 plot 'work/gallery/happy_buddha_100k/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 125 ms"
+set title "PCSS visibility, 124 ms"
 plot 'work/gallery/happy_buddha_100k/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/happy_buddha_100k/pcss_error.png' binary filetype=png with rgbimage
@@ -1111,39 +1111,39 @@ set output 'gallery/spot.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 215 ms"
+set title "reference, 240 ms"
 plot 'work/gallery/spot/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/spot/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 227 ms"
+set title "GEARS, 231 ms"
 plot 'work/gallery/spot/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/spot/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1129 ms"
+set title "raytrace, 1214 ms"
 plot 'work/gallery/spot/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/spot/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 253 ms"
+set title "SRT, 270 ms"
 plot 'work/gallery/spot/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/spot/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 65.0 ms"
+set title "occtex, 68.0 ms"
 plot 'work/gallery/spot/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/spot/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 26.3 ms"
+set title "MCSM, 29.7 ms"
 plot 'work/gallery/spot/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/spot/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 37.2 ms"
+set title "wedges, 37.7 ms"
 plot 'work/gallery/spot/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/spot/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1081 ms"
+set title "Embree visibility, 1105 ms"
 plot 'work/gallery/spot/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (1.2997% px)"
 plot 'work/gallery/spot/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 81.3 ms"
+set title "PCSS visibility, 81.6 ms"
 plot 'work/gallery/spot/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/spot/pcss_error.png' binary filetype=png with rgbimage
@@ -1203,15 +1203,15 @@ set output 'gallery/stanford_bunny.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 462 ms"
+set title "reference, 459 ms"
 plot 'work/gallery/stanford_bunny/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_bunny/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 521 ms"
+set title "GEARS, 593 ms"
 plot 'work/gallery/stanford_bunny/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1845 ms"
+set title "raytrace, 1934 ms"
 plot 'work/gallery/stanford_bunny/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/raytrace error.png' binary filetype=png with rgbimage
@@ -1219,23 +1219,23 @@ set title "SRT, 516 ms"
 plot 'work/gallery/stanford_bunny/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 75.5 ms"
+set title "occtex, 75.9 ms"
 plot 'work/gallery/stanford_bunny/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 33.7 ms"
+set title "MCSM, 35.8 ms"
 plot 'work/gallery/stanford_bunny/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 96.7 ms"
+set title "wedges, 96.2 ms"
 plot 'work/gallery/stanford_bunny/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1362 ms"
+set title "Embree visibility, 1398 ms"
 plot 'work/gallery/stanford_bunny/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.7610% px)"
 plot 'work/gallery/stanford_bunny/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 107 ms"
+set title "PCSS visibility, 106 ms"
 plot 'work/gallery/stanford_bunny/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/stanford_bunny/pcss_error.png' binary filetype=png with rgbimage
@@ -1295,39 +1295,39 @@ set output 'gallery/stanford_dragon.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 802 ms"
+set title "reference, 838 ms"
 plot 'work/gallery/stanford_dragon/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_dragon/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 1363 ms"
+set title "GEARS, 1409 ms"
 plot 'work/gallery/stanford_dragon/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2412 ms"
+set title "raytrace, 2484 ms"
 plot 'work/gallery/stanford_dragon/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 865 ms"
+set title "SRT, 941 ms"
 plot 'work/gallery/stanford_dragon/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 81.2 ms"
+set title "occtex, 86.5 ms"
 plot 'work/gallery/stanford_dragon/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 35.6 ms"
+set title "MCSM, 39.5 ms"
 plot 'work/gallery/stanford_dragon/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 248 ms"
+set title "wedges, 279 ms"
 plot 'work/gallery/stanford_dragon/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1514 ms"
+set title "Embree visibility, 1541 ms"
 plot 'work/gallery/stanford_dragon/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8690% px)"
 plot 'work/gallery/stanford_dragon/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 176 ms"
+set title "PCSS visibility, 217 ms"
 plot 'work/gallery/stanford_dragon/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/stanford_dragon/pcss_error.png' binary filetype=png with rgbimage
@@ -1394,7 +1394,7 @@ unset xlabel
 set xtics rotate by -30
 set grid ytics
 set key inside top right
-set yrange [0.30787:30]
+set yrange [0.307606:30]
 set arrow 1 from graph 0, first 1 to graph 1, first 1 nohead dt 2
 set arrow 2 from graph 0, first 10 to graph 1, first 10 nohead dt 3 lc rgb 'red'
 set label 1 'goal 10x' at graph 0.01, first 10 offset 0,0.6 tc rgb 'red'
@@ -1431,7 +1431,7 @@ plot 'data/mc_convergence_square.dat' using 2:3 with linespoints lw 2 pt 7 lc 1 
      'data/mc_convergence_spot.dat' using 2:3 with linespoints lw 2 pt 7 lc 13 title 'spot', \
      'data/mc_convergence_stanford_bunny.dat' using 2:3 with linespoints lw 2 pt 7 lc 14 title 'stanford_bunny', \
      'data/mc_convergence_stanford_dragon.dat' using 2:3 with linespoints lw 2 pt 7 lc 15 title 'stanford_dragon', \
-     0.219512 * x**-0.5 with lines dt 2 lc rgb 'black' title 'slope -1/2', 0.219512 * x**-0.75 with lines dt 3 lc rgb 'gray40' title 'slope -3/4'
+     0.214662 * x**-0.5 with lines dt 2 lc rgb 'black' title 'slope -1/2', 0.214662 * x**-0.75 with lines dt 3 lc rgb 'gray40' title 'slope -3/4'
 unset logscale xy
 set xrange [*:*]
 reset

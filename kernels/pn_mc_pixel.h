@@ -75,7 +75,7 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, PN_CONST uint32_t *ids, PN_CONST float 
     float Ox[PN_MC_RUN], Oy[PN_MC_RUN], Oz[PN_MC_RUN], Ex[PN_MC_RUN], Ey[PN_MC_RUN], Ez[PN_MC_RUN];
     float Nx[PN_MC_RUN], Ny[PN_MC_RUN], Nz[PN_MC_RUN];
     float ex[PN_MC_RUN], ey[PN_MC_RUN], b0[PN_MC_RUN], b1[PN_MC_RUN], b2[PN_MC_RUN], b3[PN_MC_RUN];
-    int sees[PN_MC_RUN], faces[PN_MC_RUN], front[PN_MC_RUN], looks[PN_MC_RUN];
+    int sees[PN_MC_RUN], faces[PN_MC_RUN], front[PN_MC_RUN], looks[PN_MC_RUN], sheet[PN_MC_RUN];
     uint32_t i, any = 0u;
     int lit;
     int classify = !(mc->flags & PN_MC_F_NO_CLASSIFY) && !L->is_point;
@@ -83,13 +83,16 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, PN_CONST uint32_t *ids, PN_CONST float 
      * branch (the compilers vectorize it: seven divisions a pixel), whatever its kind; a
      * pixel with no surface has some point and normal in the G-buffer, whose results are
      * not read. */
+    /* A sheet's side toward the light centre is its front (PN_TRI_SHEET): which pixels see
+     * one, looked up apart so that the loop below stays free of loads by index. */
+    for (i = 0; i < count; i++) {
+        uint32_t id = ids[pix + i];
+        sheet[i] = id != PN_NO_PIXEL_TRIANGLE && (m->flags[id] & PN_TRI_SHEET) != 0u;
+    }
     for (i = 0; i < count; i++) {
         pn_v3 n = pn_v3_load(nrm + (pix + i) * 3u), P = pn_v3_load(pos + (pix + i) * 3u), O, E;
         float b[4], x, y;
-        uint32_t id = ids[pix + i];
-        /* A sheet's side toward the light centre is its front (PN_TRI_SHEET) */
-        int sheet = id != PN_NO_PIXEL_TRIANGLE && (m->flags[id] & PN_TRI_SHEET) != 0u;
-        n = pn_v3_scale(n, sheet && pn_v3_dot(n, pn_v3_sub(c, P)) < 0.0f ? -1.0f : 1.0f);
+        n = pn_v3_scale(n, sheet[i] && pn_v3_dot(n, pn_v3_sub(c, P)) < 0.0f ? -1.0f : 1.0f);
         sees[i] = pn_shadow_origin(P, n, L, &O);
         E = pn_lview_frame(m->lv, L, O);
         faces[i] = E.z > 0.0f && !(pn_v3_dot(n, pn_v3_sub(c, O)) < 0.0f);

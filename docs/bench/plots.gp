@@ -7,39 +7,39 @@ set output 'gallery/square.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 14.7 ms"
+set title "reference, 15.0 ms"
 plot 'work/gallery/square/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/square/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 17.9 ms"
+set title "GEARS, 17.4 ms"
 plot 'work/gallery/square/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/square/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 217 ms"
+set title "raytrace, 207 ms"
 plot 'work/gallery/square/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/square/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 43.9 ms"
+set title "SRT, 42.4 ms"
 plot 'work/gallery/square/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/square/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 4.46 ms"
+set title "occtex, 4.47 ms"
 plot 'work/gallery/square/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/square/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 10.1 ms"
+set title "MCSM, 8.19 ms"
 plot 'work/gallery/square/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/square/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 4.94 ms"
+set title "wedges, 4.91 ms"
 plot 'work/gallery/square/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/square/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 273 ms"
+set title "Embree visibility, 271 ms"
 plot 'work/gallery/square/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.0000% px)"
 plot 'work/gallery/square/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 47.5 ms"
+set title "PCSS visibility, 44.0 ms"
 plot 'work/gallery/square/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/square/pcss_error.png' binary filetype=png with rgbimage
@@ -99,39 +99,39 @@ set output 'gallery/spheres.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 624 ms"
+set title "reference, 617 ms"
 plot 'work/gallery/spheres/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/spheres/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 764 ms"
+set title "GEARS, 775 ms"
 plot 'work/gallery/spheres/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/spheres/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1300 ms"
+set title "raytrace, 1264 ms"
 plot 'work/gallery/spheres/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/spheres/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 680 ms"
+set title "SRT, 662 ms"
 plot 'work/gallery/spheres/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/spheres/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 30.7 ms"
+set title "occtex, 25.1 ms"
 plot 'work/gallery/spheres/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/spheres/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 65.9 ms"
+set title "MCSM, 53.8 ms"
 plot 'work/gallery/spheres/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/spheres/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 62.6 ms"
+set title "wedges, 58.9 ms"
 plot 'work/gallery/spheres/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/spheres/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 896 ms"
+set title "Embree visibility, 901 ms"
 plot 'work/gallery/spheres/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (1.8013% px)"
 plot 'work/gallery/spheres/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 107 ms"
+set title "PCSS visibility, 97.4 ms"
 plot 'work/gallery/spheres/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/spheres/pcss_error.png' binary filetype=png with rgbimage
@@ -191,39 +191,39 @@ set output 'gallery/elongated-cube.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 12.2 ms"
+set title "reference, 11.3 ms"
 plot 'work/gallery/elongated-cube/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/elongated-cube/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 14.6 ms"
+set title "GEARS, 13.4 ms"
 plot 'work/gallery/elongated-cube/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/elongated-cube/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 107 ms"
+set title "raytrace, 101 ms"
 plot 'work/gallery/elongated-cube/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/elongated-cube/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 44.8 ms"
+set title "SRT, 39.7 ms"
 plot 'work/gallery/elongated-cube/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/elongated-cube/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 23.3 ms"
+set title "occtex, 16.7 ms"
 plot 'work/gallery/elongated-cube/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/elongated-cube/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 15.8 ms"
+set title "MCSM, 11.4 ms"
 plot 'work/gallery/elongated-cube/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/elongated-cube/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 4.84 ms"
+set title "wedges, 4.23 ms"
 plot 'work/gallery/elongated-cube/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/elongated-cube/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 239 ms"
+set title "Embree visibility, 240 ms"
 plot 'work/gallery/elongated-cube/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.0000% px)"
 plot 'work/gallery/elongated-cube/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 43.9 ms"
+set title "PCSS visibility, 38.0 ms"
 plot 'work/gallery/elongated-cube/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/elongated-cube/pcss_error.png' binary filetype=png with rgbimage
@@ -283,39 +283,39 @@ set output 'gallery/thin.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 412 ms"
+set title "reference, 404 ms"
 plot 'work/gallery/thin/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/thin/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 361 ms"
+set title "GEARS, 359 ms"
 plot 'work/gallery/thin/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/thin/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1937 ms"
+set title "raytrace, 1911 ms"
 plot 'work/gallery/thin/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/thin/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 513 ms"
+set title "SRT, 504 ms"
 plot 'work/gallery/thin/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/thin/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 32.9 ms"
+set title "occtex, 27.1 ms"
 plot 'work/gallery/thin/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/thin/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 32.1 ms"
+set title "MCSM, 29.1 ms"
 plot 'work/gallery/thin/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/thin/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 158 ms"
+set title "wedges, 154 ms"
 plot 'work/gallery/thin/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/thin/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 2475 ms"
+set title "Embree visibility, 2453 ms"
 plot 'work/gallery/thin/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.0210% px)"
 plot 'work/gallery/thin/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 172 ms"
+set title "PCSS visibility, 170 ms"
 plot 'work/gallery/thin/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/thin/pcss_error.png' binary filetype=png with rgbimage
@@ -375,39 +375,39 @@ set output 'gallery/room.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 444 ms"
+set title "reference, 438 ms"
 plot 'work/gallery/room/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/room/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 440 ms"
+set title "GEARS, 438 ms"
 plot 'work/gallery/room/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/room/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1437 ms"
+set title "raytrace, 1442 ms"
 plot 'work/gallery/room/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/room/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 581 ms"
+set title "SRT, 593 ms"
 plot 'work/gallery/room/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (differs)"
 plot 'work/gallery/room/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 60.0 ms"
+set title "occtex, 58.7 ms"
 plot 'work/gallery/room/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/room/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 85.3 ms"
+set title "MCSM, 82.3 ms"
 plot 'work/gallery/room/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/room/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 42.5 ms"
+set title "wedges, 42.7 ms"
 plot 'work/gallery/room/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/room/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1634 ms"
+set title "Embree visibility, 1624 ms"
 plot 'work/gallery/room/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.5516% px)"
 plot 'work/gallery/room/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 174 ms"
+set title "PCSS visibility, 176 ms"
 plot 'work/gallery/room/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/room/pcss_error.png' binary filetype=png with rgbimage
@@ -467,11 +467,11 @@ set output 'gallery/canopy.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 261 ms"
+set title "reference, 262 ms"
 plot 'work/gallery/canopy/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/canopy/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 304 ms"
+set title "GEARS, 306 ms"
 plot 'work/gallery/canopy/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/canopy/GEARS error.png' binary filetype=png with rgbimage
@@ -479,15 +479,15 @@ set title "raytrace, 715 ms"
 plot 'work/gallery/canopy/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/canopy/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 310 ms"
+set title "SRT, 313 ms"
 plot 'work/gallery/canopy/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/canopy/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 36.3 ms"
+set title "occtex, 36.5 ms"
 plot 'work/gallery/canopy/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/canopy/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 38.3 ms"
+set title "MCSM, 39.5 ms"
 plot 'work/gallery/canopy/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/canopy/MCSM error.png' binary filetype=png with rgbimage
@@ -495,11 +495,11 @@ set title "wedges, 128 ms"
 plot 'work/gallery/canopy/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/canopy/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 616 ms"
+set title "Embree visibility, 615 ms"
 plot 'work/gallery/canopy/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.2945% px)"
 plot 'work/gallery/canopy/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 84.3 ms"
+set title "PCSS visibility, 83.7 ms"
 plot 'work/gallery/canopy/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/canopy/pcss_error.png' binary filetype=png with rgbimage
@@ -559,27 +559,27 @@ set output 'gallery/colonnade.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 71.9 ms"
+set title "reference, 77.1 ms"
 plot 'work/gallery/colonnade/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/colonnade/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 73.3 ms"
+set title "GEARS, 79.7 ms"
 plot 'work/gallery/colonnade/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/colonnade/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 288 ms"
+set title "raytrace, 270 ms"
 plot 'work/gallery/colonnade/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/colonnade/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 111 ms"
+set title "SRT, 100 ms"
 plot 'work/gallery/colonnade/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/colonnade/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 40.2 ms"
+set title "occtex, 41.9 ms"
 plot 'work/gallery/colonnade/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/colonnade/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 13.4 ms"
+set title "MCSM, 11.7 ms"
 plot 'work/gallery/colonnade/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/colonnade/MCSM error.png' binary filetype=png with rgbimage
@@ -587,11 +587,11 @@ set title "wedges, 16.2 ms"
 plot 'work/gallery/colonnade/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/colonnade/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 401 ms"
+set title "Embree visibility, 394 ms"
 plot 'work/gallery/colonnade/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.0484% px)"
 plot 'work/gallery/colonnade/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 67.9 ms"
+set title "PCSS visibility, 69.0 ms"
 plot 'work/gallery/colonnade/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/colonnade/pcss_error.png' binary filetype=png with rgbimage
@@ -651,39 +651,39 @@ set output 'gallery/cad_infineon_easypim2b.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 181 ms"
+set title "reference, 210 ms"
 plot 'work/gallery/cad_infineon_easypim2b/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/cad_infineon_easypim2b/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 211 ms"
+set title "GEARS, 244 ms"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 735 ms"
+set title "raytrace, 904 ms"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 239 ms"
+set title "SRT, 269 ms"
 plot 'work/gallery/cad_infineon_easypim2b/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/cad_infineon_easypim2b/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 78.9 ms"
+set title "occtex, 75.8 ms"
 plot 'work/gallery/cad_infineon_easypim2b/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 20.9 ms"
+set title "MCSM, 18.9 ms"
 plot 'work/gallery/cad_infineon_easypim2b/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 50.1 ms"
+set title "wedges, 56.3 ms"
 plot 'work/gallery/cad_infineon_easypim2b/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/cad_infineon_easypim2b/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 927 ms"
+set title "Embree visibility, 959 ms"
 plot 'work/gallery/cad_infineon_easypim2b/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.4425% px)"
 plot 'work/gallery/cad_infineon_easypim2b/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 96.5 ms"
+set title "PCSS visibility, 107 ms"
 plot 'work/gallery/cad_infineon_easypim2b/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/cad_infineon_easypim2b/pcss_error.png' binary filetype=png with rgbimage
@@ -743,7 +743,7 @@ set output 'gallery/chess_set.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 86.2 ms"
+set title "reference, 90.3 ms"
 plot 'work/gallery/chess_set/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/chess_set/reference_vis.png' binary filetype=png with rgbimage
@@ -751,31 +751,31 @@ set title "GEARS, 103 ms"
 plot 'work/gallery/chess_set/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/chess_set/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 888 ms"
+set title "raytrace, 948 ms"
 plot 'work/gallery/chess_set/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/chess_set/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 131 ms"
+set title "SRT, 132 ms"
 plot 'work/gallery/chess_set/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/chess_set/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 81.7 ms"
+set title "occtex, 72.4 ms"
 plot 'work/gallery/chess_set/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/chess_set/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 18.2 ms"
+set title "MCSM, 15.3 ms"
 plot 'work/gallery/chess_set/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/chess_set/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 44.8 ms"
+set title "wedges, 45.4 ms"
 plot 'work/gallery/chess_set/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/chess_set/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 989 ms"
+set title "Embree visibility, 1004 ms"
 plot 'work/gallery/chess_set/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.2148% px)"
 plot 'work/gallery/chess_set/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 77.0 ms"
+set title "PCSS visibility, 84.8 ms"
 plot 'work/gallery/chess_set/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/chess_set/pcss_error.png' binary filetype=png with rgbimage
@@ -835,39 +835,39 @@ set output 'gallery/copper_beech.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 2242 ms"
+set title "reference, 2246 ms"
 plot 'work/gallery/copper_beech/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/copper_beech/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 3413 ms"
+set title "GEARS, 3443 ms"
 plot 'work/gallery/copper_beech/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/copper_beech/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 3143 ms"
+set title "raytrace, 3189 ms"
 plot 'work/gallery/copper_beech/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/copper_beech/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 2319 ms"
+set title "SRT, 2466 ms"
 plot 'work/gallery/copper_beech/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/copper_beech/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 55.7 ms"
+set title "occtex, 50.2 ms"
 plot 'work/gallery/copper_beech/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/copper_beech/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 58.4 ms"
+set title "MCSM, 54.9 ms"
 plot 'work/gallery/copper_beech/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/copper_beech/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 1210 ms"
+set title "wedges, 1200 ms"
 plot 'work/gallery/copper_beech/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/copper_beech/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1939 ms"
+set title "Embree visibility, 1951 ms"
 plot 'work/gallery/copper_beech/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.0671% px)"
 plot 'work/gallery/copper_beech/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 119 ms"
+set title "PCSS visibility, 120 ms"
 plot 'work/gallery/copper_beech/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/copper_beech/pcss_error.png' binary filetype=png with rgbimage
@@ -927,39 +927,39 @@ set output 'gallery/grey_white_room.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 384 ms"
+set title "reference, 380 ms"
 plot 'work/gallery/grey_white_room/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/grey_white_room/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 472 ms"
+set title "GEARS, 464 ms"
 plot 'work/gallery/grey_white_room/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/grey_white_room/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2027 ms"
+set title "raytrace, 2029 ms"
 plot 'work/gallery/grey_white_room/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/grey_white_room/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 613 ms"
+set title "SRT, 622 ms"
 plot 'work/gallery/grey_white_room/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (differs)"
 plot 'work/gallery/grey_white_room/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 83.2 ms"
+set title "occtex, 81.9 ms"
 plot 'work/gallery/grey_white_room/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/grey_white_room/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 72.9 ms"
+set title "MCSM, 70.3 ms"
 plot 'work/gallery/grey_white_room/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/grey_white_room/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 110 ms"
+set title "wedges, 104 ms"
 plot 'work/gallery/grey_white_room/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/grey_white_room/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1813 ms"
+set title "Embree visibility, 1808 ms"
 plot 'work/gallery/grey_white_room/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.4261% px)"
 plot 'work/gallery/grey_white_room/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 198 ms"
+set title "PCSS visibility, 196 ms"
 plot 'work/gallery/grey_white_room/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/grey_white_room/pcss_error.png' binary filetype=png with rgbimage
@@ -1019,39 +1019,39 @@ set output 'gallery/happy_buddha_100k.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 845 ms"
+set title "reference, 766 ms"
 plot 'work/gallery/happy_buddha_100k/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/happy_buddha_100k/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 1118 ms"
+set title "GEARS, 1020 ms"
 plot 'work/gallery/happy_buddha_100k/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2230 ms"
+set title "raytrace, 2070 ms"
 plot 'work/gallery/happy_buddha_100k/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 875 ms"
+set title "SRT, 808 ms"
 plot 'work/gallery/happy_buddha_100k/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/happy_buddha_100k/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 82.6 ms"
+set title "occtex, 71.3 ms"
 plot 'work/gallery/happy_buddha_100k/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 42.9 ms"
+set title "MCSM, 35.5 ms"
 plot 'work/gallery/happy_buddha_100k/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 313 ms"
+set title "wedges, 292 ms"
 plot 'work/gallery/happy_buddha_100k/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/happy_buddha_100k/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1406 ms"
+set title "Embree visibility, 1377 ms"
 plot 'work/gallery/happy_buddha_100k/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8091% px)"
 plot 'work/gallery/happy_buddha_100k/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 124 ms"
+set title "PCSS visibility, 121 ms"
 plot 'work/gallery/happy_buddha_100k/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/happy_buddha_100k/pcss_error.png' binary filetype=png with rgbimage
@@ -1111,39 +1111,39 @@ set output 'gallery/spot.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 240 ms"
+set title "reference, 215 ms"
 plot 'work/gallery/spot/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/spot/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 231 ms"
+set title "GEARS, 212 ms"
 plot 'work/gallery/spot/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/spot/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1214 ms"
+set title "raytrace, 1146 ms"
 plot 'work/gallery/spot/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/spot/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 270 ms"
+set title "SRT, 248 ms"
 plot 'work/gallery/spot/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/spot/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 68.0 ms"
+set title "occtex, 64.6 ms"
 plot 'work/gallery/spot/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/spot/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 29.7 ms"
+set title "MCSM, 25.5 ms"
 plot 'work/gallery/spot/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/spot/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 37.7 ms"
+set title "wedges, 36.8 ms"
 plot 'work/gallery/spot/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/spot/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1105 ms"
+set title "Embree visibility, 1077 ms"
 plot 'work/gallery/spot/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (1.2997% px)"
 plot 'work/gallery/spot/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 81.6 ms"
+set title "PCSS visibility, 80.9 ms"
 plot 'work/gallery/spot/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/spot/pcss_error.png' binary filetype=png with rgbimage
@@ -1203,39 +1203,39 @@ set output 'gallery/stanford_bunny.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 459 ms"
+set title "reference, 452 ms"
 plot 'work/gallery/stanford_bunny/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_bunny/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 593 ms"
+set title "GEARS, 509 ms"
 plot 'work/gallery/stanford_bunny/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 1934 ms"
+set title "raytrace, 1820 ms"
 plot 'work/gallery/stanford_bunny/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 516 ms"
+set title "SRT, 505 ms"
 plot 'work/gallery/stanford_bunny/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_bunny/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 75.9 ms"
+set title "occtex, 75.5 ms"
 plot 'work/gallery/stanford_bunny/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 35.8 ms"
+set title "MCSM, 32.6 ms"
 plot 'work/gallery/stanford_bunny/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 96.2 ms"
+set title "wedges, 94.0 ms"
 plot 'work/gallery/stanford_bunny/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/stanford_bunny/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1398 ms"
+set title "Embree visibility, 1361 ms"
 plot 'work/gallery/stanford_bunny/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.7610% px)"
 plot 'work/gallery/stanford_bunny/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 106 ms"
+set title "PCSS visibility, 105 ms"
 plot 'work/gallery/stanford_bunny/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/stanford_bunny/pcss_error.png' binary filetype=png with rgbimage
@@ -1295,39 +1295,39 @@ set output 'gallery/stanford_dragon.png'
 set multiplot layout 1,18 margins 0.005,0.995,0.02,0.9 spacing 0.004,0
 unset border; unset tics; unset key; unset colorbox
 set size ratio -1
-set title "reference, 838 ms"
+set title "reference, 906 ms"
 plot 'work/gallery/stanford_dragon/reference.png' binary filetype=png with rgbimage
 set title "reference visibility"
 plot 'work/gallery/stanford_dragon/reference_vis.png' binary filetype=png with rgbimage
-set title "GEARS, 1409 ms"
+set title "GEARS, 1355 ms"
 plot 'work/gallery/stanford_dragon/GEARS.png' binary filetype=png with rgbimage
 set title "GEARS |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/GEARS error.png' binary filetype=png with rgbimage
-set title "raytrace, 2484 ms"
+set title "raytrace, 2536 ms"
 plot 'work/gallery/stanford_dragon/raytrace.png' binary filetype=png with rgbimage
 set title "raytrace |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/raytrace error.png' binary filetype=png with rgbimage
-set title "SRT, 941 ms"
+set title "SRT, 993 ms"
 plot 'work/gallery/stanford_dragon/SRT.png' binary filetype=png with rgbimage
 set title "SRT |error| x4 (identical)"
 plot 'work/gallery/stanford_dragon/SRT error.png' binary filetype=png with rgbimage
-set title "occtex, 86.5 ms"
+set title "occtex, 87.9 ms"
 plot 'work/gallery/stanford_dragon/occtex.png' binary filetype=png with rgbimage
 set title "occtex |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/occtex error.png' binary filetype=png with rgbimage
-set title "MCSM, 39.5 ms"
+set title "MCSM, 38.5 ms"
 plot 'work/gallery/stanford_dragon/MCSM.png' binary filetype=png with rgbimage
 set title "MCSM |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/MCSM error.png' binary filetype=png with rgbimage
-set title "wedges, 279 ms"
+set title "wedges, 264 ms"
 plot 'work/gallery/stanford_dragon/wedges.png' binary filetype=png with rgbimage
 set title "wedges |error| x4 (differs)"
 plot 'work/gallery/stanford_dragon/wedges error.png' binary filetype=png with rgbimage
-set title "Embree visibility, 1541 ms"
+set title "Embree visibility, 1512 ms"
 plot 'work/gallery/stanford_dragon/embree_vis.png' binary filetype=png with rgbimage
 set title "Embree |error| x4 (0.8690% px)"
 plot 'work/gallery/stanford_dragon/embree_error.png' binary filetype=png with rgbimage
-set title "PCSS visibility, 217 ms"
+set title "PCSS visibility, 179 ms"
 plot 'work/gallery/stanford_dragon/pcss_vis.png' binary filetype=png with rgbimage
 set title "PCSS |error| x4"
 plot 'work/gallery/stanford_dragon/pcss_error.png' binary filetype=png with rgbimage
@@ -1394,7 +1394,7 @@ unset xlabel
 set xtics rotate by -30
 set grid ytics
 set key inside top right
-set yrange [0.307606:30]
+set yrange [0.306168:30]
 set arrow 1 from graph 0, first 1 to graph 1, first 1 nohead dt 2
 set arrow 2 from graph 0, first 10 to graph 1, first 10 nohead dt 3 lc rgb 'red'
 set label 1 'goal 10x' at graph 0.01, first 10 offset 0,0.6 tc rgb 'red'

@@ -737,6 +737,7 @@ typedef struct pn_wframe {
     float cu[2], cv[2], au, av; /* pn_wg_obj_misses': 1 -+ uo, 1 -+ vo, |uo| + 1, |vo| + 1 */
 } pn_wframe;
 
+/* The frame of shadow origin O: what pn_wg_project and pn_wg_obj_misses read of it. */
 PN_KFN void pn_wg_frame(const pn_klight *L, pn_v3 O, pn_wframe *F)
 {
     pn_wg_light(L, O, &F->uo, &F->vo, &F->ho);

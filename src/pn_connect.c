@@ -1,5 +1,6 @@
 /* pn_connect.c - the scene's connectivity for the penumbra wedges, built once at
- * pn_scene_set (kernels/pn_wedges.h reads it every frame):
+ * pn_scene_set (kernels/pn_wedges.h reads it every frame), and which triangles belong to
+ * sheets (PN_TRI_SHEET, which the Monte Carlo shadow maps read):
  *
  *   weld     triangle corners with the same position (bits, -0 as +0) get one vertex id:
  *            glTF files split vertices by normal and texture coordinate;

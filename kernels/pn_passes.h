@@ -94,6 +94,16 @@ PN_KFN void pn_band(const pn_kview *v, PN_GLOBAL uint8_t *A, const pn_kpools *P,
                    PN_POOL(const uint32_t, rindex), K->raster_tris, y0, y1, depth, ids);
 }
 
+/* Row y of the G-buffer: positions and normals from its depths and ids (the rasterizer's
+ * resolve; alone, the pass of a G-buffer the caller drew, pn_frame_options.gbuffer). */
+PN_KFN void pn_e_gbuffer_resolve(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
+{
+    uint32_t x;
+    for (x = 0; x < K->view.width; x++)
+        pn_gbuffer_resolve(&K->view, PN_POOL(const float, tris), x, y, PN_POOL(const float, depth),
+                           PN_POOL(const uint32_t, tri_id), PN_POOL(float, pos), PN_POOL(float, nrm));
+}
+
 /* Band of the G-buffer: its rows cleared, rasterized, then resolved (position, normal),
  * in one item so that they stay in cache. */
 PN_KFN void pn_e_raster_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
@@ -108,10 +118,7 @@ PN_KFN void pn_e_raster_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
             ids[(size_t)y * W + x] = PN_NO_PIXEL_TRIANGLE;
         }
     pn_band(&K->view, A, P, K, band, depth, ids);
-    for (y = y0; y < y1; y++)
-        for (x = 0; x < W; x++)
-            pn_gbuffer_resolve(&K->view, PN_POOL(const float, tris), x, y, depth, ids, PN_POOL(float, pos),
-                               PN_POOL(float, nrm));
+    for (y = y0; y < y1; y++) pn_e_gbuffer_resolve(A, P, K, y);
 }
 
 /* Each algorithm's entries and its part of the list, in the list's order. */
@@ -144,6 +151,7 @@ PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparam
     X(RASTER_ROWS, raster_rows, 64, 512)           \
     X(RASTER_CHUNKS, raster_chunks, 64, 1024)       \
     X(RASTER_BAND, raster_band, 1, 1)               \
+    X(GBUFFER_RESOLVE, gbuffer_resolve, 16, 8)      \
     PN_PASSES_REFERENCE(X)                          \
     PN_PASSES_RAYTRACE(X)                           \
     PN_PASSES_GEARS(X)                              \

@@ -21,8 +21,8 @@
  *                               that runs it; c a query or the arena, pn_carver_at at
  *                               ctx->layout.algo[ID]);
  *   pn_<name>_scene_scratch(l)  bytes of the frame region its pn_scene_set work uses;
- *   pn_<name>_scene(ctx)        its work at pn_scene_set, after the BVH (a context that
- *                               runs it);
+ *   pn_<name>_scene(ctx)        its work at pn_scene_set and pn_scene_update_positions,
+ *                               after the BVH (a context that runs it);
  *   pn_<name>_upload(fs)        its persistent pools to the frame's port when the scene
  *                               changed (a context that runs it);
  *   PN_ALGO_NO_SCENE(name) defines the last four for a module with no scene state, and

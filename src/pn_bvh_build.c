@@ -54,6 +54,17 @@ static void pn_box_join(pn_box *b, const pn_box *o)
     }
 }
 
+/* A whole triangle's box (p: its 9 floats): a reference's box when it is not split, and
+ * the start of a split. pn_bvh_refit reuses it so that a refitted leaf's box has the bits a
+ * build of the same tree gives. */
+static void pn_tri_box(const float *p, pn_box *b)
+{
+    pn_box_empty(b);
+    pn_box_point(b, p[0], p[1], p[2]);
+    pn_box_point(b, p[3], p[4], p[5]);
+    pn_box_point(b, p[6], p[7], p[8]);
+}
+
 static float pn_box_area(const pn_box *b)
 {
     float dx = b->hi[0] - b->lo[0], dy = b->hi[1] - b->lo[1], dz = b->hi[2] - b->lo[2];
@@ -154,10 +165,7 @@ static void pn_split_tri(const float *tris, uint32_t t, uint32_t cap, uint64_t *
     uint32_t sp = 1, d;
     float mag = 0.0f, ext = 0.0f, m;
     int a;
-    pn_box_empty(&st[0].b);
-    pn_box_point(&st[0].b, p[0], p[1], p[2]);
-    pn_box_point(&st[0].b, p[3], p[4], p[5]);
-    pn_box_point(&st[0].b, p[6], p[7], p[8]);
+    pn_tri_box(p, &st[0].b);
     st[0].depth = 0;
     for (a = 0; a < 3; a++) {
         mag = pn_kmaxf(mag, pn_kmaxf(-st[0].b.lo[a], st[0].b.hi[a]));
@@ -256,6 +264,12 @@ typedef struct pn_work {
     uint32_t node, depth;
 } pn_work;
 
+/* Whether the context splits references (limits.bvh_refs above max_triangles). */
+static int pn_bvh_splits(const pn_context *ctx)
+{
+    return PN_BVH_SPLIT_DEPTH > 0u && pn_bvh_refs_max(&ctx->limits) > ctx->limits.max_triangles;
+}
+
 /* The references of the scene into refs (the frame region): every triangle split as deep
  * as the reserve allows (the same cap for all: the deepest whose count fits). One pass
  * splits to the deepest cap still possible, counting every shallower cap's references and
@@ -267,7 +281,7 @@ static uint32_t pn_bvh_refs(pn_context *ctx, pn_bref *refs, uint32_t *tris_out)
 {
     uint64_t count[PN_BVH_SPLIT_DEPTH + 1u], most = pn_bvh_refs_max(&ctx->limits);
     uint32_t t, r = 0, d, first_cap, cap, rest = ctx->tri_count - ctx->degenerate;
-    first_cap = cap = PN_BVH_SPLIT_DEPTH > 0u && most > ctx->limits.max_triangles ? PN_BVH_SPLIT_DEPTH : 0u;
+    first_cap = cap = pn_bvh_splits(ctx) ? PN_BVH_SPLIT_DEPTH : 0u;
     for (d = 0; d <= PN_BVH_SPLIT_DEPTH; d++) count[d] = 0;
     *tris_out = rest;
     for (t = 0; t < ctx->tri_count; t++)
@@ -554,6 +568,58 @@ pn_status pn_bvh_build(pn_context *ctx)
     ctx->bvh_max_leaf = max_leaf;
     if (max_depth + 1u > PN_BVH_STACK)
         return pn_fail(ctx, PN_E_INTERNAL, "BVH depth %u exceeds PN_BVH_STACK", max_depth);
+    pn_bvh_widen(ctx, PN_BVH_STACK);
+    return PN_OK;
+}
+
+/* The tree's shape, leaf order and raster order kept, every box recomputed from the
+ * triangles' new positions: a leaf's as the union of its triangles' boxes (pn_tri_box, as
+ * pn_bvh_refs gives a whole triangle's reference, joined in leaf order as the build joins
+ * them), an interior node's as the union of its two children's. Both are the smallest box
+ * over the vertices below the node, the box pn_bvh_build gives a node (min and max are
+ * exact; only the sign of a zero bound can follow the order of the joins), so a walk
+ * meets what it would in a built tree of this shape. Children are allocated after their
+ * parent, so one pass from the last node down meets every child before its parent.
+ * bvh_nodes, bvh_depth, bvh_max_leaf, bvh_refs and bvh_tris describe the shape and stay;
+ * the wide tree is folded anew (which nodes it opens follows the boxes' areas).
+ * A refit cannot stand in for a build when the leaves no longer list exactly the
+ * non-degenerate triangles, or when the context splits references (a part's box is the
+ * triangle clipped to the region the build chose, pn_part_box, and a triangle may now want
+ * another split): then the tree is built anew. */
+pn_status pn_bvh_refit(pn_context *ctx)
+{
+    pn_kbvh_node *nodes = ctx->nodes;
+    uint32_t n, i;
+    if (pn_bvh_splits(ctx) || ctx->bvh_tris != ctx->tri_count - ctx->degenerate) return pn_bvh_build(ctx);
+    /* raster_index lists each listed triangle once: all bvh_tris of them non-degenerate and
+     * as many as there are, they are the same set */
+    for (i = 0; i < ctx->bvh_tris; i++)
+        if (ctx->flags[ctx->raster_index[i]] & PN_TRI_DEGENERATE) return pn_bvh_build(ctx);
+    if (ctx->bvh_refs == 0u) return PN_OK; /* every triangle degenerate: the empty root stays */
+    for (n = ctx->bvh_nodes; n-- > 0u;) {
+        pn_kbvh_node *nd = nodes + n;
+        pn_box box;
+        int a;
+        pn_box_empty(&box);
+        if (nd->count != 0u) {
+            for (i = nd->first; i < nd->first + nd->count; i++) {
+                pn_box tb;
+                pn_tri_box(ctx->tris + (size_t)(ctx->tri_index[i] & PN_REF_TRI) * 9u, &tb);
+                pn_box_join(&box, &tb);
+            }
+        } else {
+            uint32_t c;
+            for (c = nd->first; c < nd->first + 2u; c++)
+                for (a = 0; a < 3; a++) {
+                    box.lo[a] = pn_kminf(box.lo[a], nodes[c].bmin[a]);
+                    box.hi[a] = pn_kmaxf(box.hi[a], nodes[c].bmax[a]);
+                }
+        }
+        for (a = 0; a < 3; a++) {
+            nd->bmin[a] = box.lo[a];
+            nd->bmax[a] = box.hi[a];
+        }
+    }
     pn_bvh_widen(ctx, PN_BVH_STACK);
     return PN_OK;
 }

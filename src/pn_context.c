@@ -20,7 +20,7 @@ const char *pn_status_str(pn_status status)
     case PN_E_CAMERA: return "PN_E_CAMERA: degenerate camera";
     case PN_E_IMAGE_SIZE: return "PN_E_IMAGE_SIZE: zero image width or height";
     case PN_E_NO_SCENE: return "PN_E_NO_SCENE: no scene set";
-    case PN_E_UNSUPPORTED: return "PN_E_UNSUPPORTED: not compiled in";
+    case PN_E_UNSUPPORTED: return "PN_E_UNSUPPORTED: not compiled in, or not offered for this request";
     case PN_E_POOL_EXHAUSTED: return "PN_E_POOL_EXHAUSTED: a pool is too small for this frame";
     case PN_E_DEVICE: return "PN_E_DEVICE: device error";
     case PN_E_INTERNAL: return "PN_E_INTERNAL: broken invariant";

@@ -165,13 +165,9 @@ static pn_status pn_setup_light(pn_context *ctx, const pn_light *l, uint32_t k, 
     return PN_OK;
 }
 
-static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
+/* The options every frame and point query reads (not the image size). */
+static pn_status pn_check_common(pn_context *ctx, const pn_frame_options *o)
 {
-    if (o->width == 0u || o->height == 0u)
-        return pn_fail(ctx, PN_E_IMAGE_SIZE, "image size %ux%u has a zero side", o->width, o->height);
-    if (o->width > ctx->limits.max_width || o->height > ctx->limits.max_height)
-        return pn_fail(ctx, PN_E_LIMIT, "image %ux%u exceeds the context's limits %ux%u", o->width,
-                       o->height, ctx->limits.max_width, ctx->limits.max_height);
     if (!(o->k == 4u || o->k == 8u || o->k == 16u || o->k == 32u) || o->k > PN_MASK_K_MAX)
         return pn_fail(ctx, PN_E_INVALID_ARG, "k = %u; k must be 4, 8, 16 or 32 and <= PN_MASK_K_MAX (%u)",
                        o->k, (uint32_t)PN_MASK_K_MAX);
@@ -182,6 +178,67 @@ static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
     if (!(o->albedo >= 0.0f && o->albedo <= 1.0f && o->ambient >= 0.0f && o->ambient <= 1.0f))
         return pn_fail(ctx, PN_E_INVALID_ARG, "albedo and ambient must be in [0, 1]");
     if (o->exact_stats > 1u) return pn_fail(ctx, PN_E_INVALID_ARG, "exact_stats must be 0 or 1");
+    return PN_OK;
+}
+
+/* Whether [p, p + bytes) meets the context's arena block (a caller buffer must not). */
+static int pn_in_arena(const pn_context *ctx, const void *p, size_t bytes)
+{
+    uintptr_t a = (uintptr_t)p, lo = (uintptr_t)ctx->base, hi = lo + ctx->bytes;
+    return a < hi && a + bytes > lo;
+}
+
+static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
+{
+    size_t px;
+    if (o->width == 0u || o->height == 0u)
+        return pn_fail(ctx, PN_E_IMAGE_SIZE, "image size %ux%u has a zero side", o->width, o->height);
+    if (o->width > ctx->limits.max_width || o->height > ctx->limits.max_height)
+        return pn_fail(ctx, PN_E_LIMIT, "image %ux%u exceeds the context's limits %ux%u", o->width,
+                       o->height, ctx->limits.max_width, ctx->limits.max_height);
+    if (o->no_rgba > 1u) return pn_fail(ctx, PN_E_INVALID_ARG, "no_rgba = %u; it must be 0 or 1", o->no_rgba);
+    if (o->no_rgba && o->rgba_out)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "rgba_out is set but no_rgba turns the RGBA image off");
+    px = (size_t)o->width * o->height;
+    if ((o->visibility_out && pn_in_arena(ctx, o->visibility_out, px * sizeof(float))) ||
+        (o->rgba_out && pn_in_arena(ctx, o->rgba_out, px * 4u)))
+        return pn_fail(ctx, PN_E_INVALID_ARG, "%s lies in the context's arena; an output buffer must be the caller's own",
+                       o->visibility_out && pn_in_arena(ctx, o->visibility_out, px * sizeof(float)) ? "visibility_out"
+                                                                                                     : "rgba_out");
+    if (o->gbuffer && (!o->gbuffer->depth || !o->gbuffer->tri_id))
+        return pn_fail(ctx, PN_E_INVALID_ARG, "gbuffer: depth and tri_id must not be NULL");
+    return pn_check_common(ctx, o);
+}
+
+/* A pixel's point of the caller's G-buffer must be one a frame can hold: on a triangle the
+ * scene draws, in front of the eye, within 2^40 (computed as the G-buffer pass computes
+ * it). Every pixel is read before anything is written. */
+static pn_status pn_check_gbuffer(pn_context *ctx, const pn_kview *kv, const pn_gbuffer *g)
+{
+    uint32_t x, y;
+    for (y = 0; y < kv->height; y++)
+        for (x = 0; x < kv->width; x++) {
+            size_t pix = (size_t)y * kv->width + x;
+            uint32_t t = g->tri_id[pix];
+            float d;
+            pn_v3 P;
+            if (t == PN_NO_TRIANGLE) continue;
+            if (t >= ctx->tri_count)
+                return pn_fail(ctx, PN_E_INDEX_RANGE, "gbuffer pixel (%u, %u) names triangle %u; the scene has %u", x, y,
+                               t, ctx->tri_count);
+            if (ctx->flags[t] & PN_TRI_DEGENERATE)
+                return pn_fail(ctx, PN_E_INVALID_ARG,
+                               "gbuffer pixel (%u, %u) names triangle %u, which is degenerate (never drawn)", x, y, t);
+            d = g->depth[pix];
+            if (!pn_finite(d))
+                return pn_fail(ctx, PN_E_NONFINITE, "gbuffer pixel (%u, %u): depth is NaN or infinite", x, y);
+            if (!(d > 0.0f))
+                return pn_fail(ctx, PN_E_INVALID_ARG, "gbuffer pixel (%u, %u): depth %g must be > 0", x, y, (double)d);
+            P = pn_v3_add(pn_view_eye(kv), pn_v3_scale(pn_ray_dir(kv, x, y), d));
+            if (!(pn_v3_linf(P) <= PN_MAX_COORD))
+                return pn_fail(ctx, PN_E_LIMIT, "gbuffer pixel (%u, %u): its point lies beyond 2^40 (depth %g)", x, y,
+                               (double)d);
+        }
     return PN_OK;
 }
 
@@ -228,7 +285,7 @@ static pn_status pn_scene_to_device(pn_frame_state *fs)
 }
 
 /* Primary visibility: per-triangle row ranges, then bands (clear, raster, resolve). */
-static pn_status pn_gbuffer(pn_frame_state *fs)
+static pn_status pn_gbuffer_raster(pn_frame_state *fs)
 {
     uint32_t npix = fs->width * fs->height;
     size_t px = npix;
@@ -237,6 +294,24 @@ static pn_status pn_gbuffer(pn_frame_state *fs)
         (st = pn_dev_run(fs, PN_K_RASTER_BAND, (fs->height + PN_RASTER_BAND - 1u) / PN_RASTER_BAND)) != PN_OK ||
         (st = pn_dev_to_host(fs, fs->depth, px * sizeof(float))) != PN_OK ||
         (st = pn_dev_to_host(fs, fs->tri_id, px * sizeof(uint32_t))) != PN_OK ||
+        (st = pn_dev_to_host(fs, fs->pos, px * 3u * sizeof(float))) != PN_OK)
+        return st;
+    return pn_dev_to_host(fs, fs->nrm, px * 3u * sizeof(float));
+}
+
+/* The caller's G-buffer (checked): depth and ids copied in, positions and normals
+ * resolved as pn_gbuffer's band pass resolves them. */
+static pn_status pn_gbuffer_caller(pn_frame_state *fs, const pn_gbuffer *g)
+{
+    size_t px = (size_t)fs->width * fs->height, i;
+    pn_status st;
+    for (i = 0; i < px; i++) {
+        fs->tri_id[i] = g->tri_id[i];
+        fs->depth[i] = g->tri_id[i] == PN_NO_TRIANGLE ? PN_KINF : g->depth[i];
+    }
+    if ((st = pn_scene_to_device(fs)) != PN_OK || (st = pn_dev_to_device(fs, fs->depth, px * sizeof(float))) != PN_OK ||
+        (st = pn_dev_to_device(fs, fs->tri_id, px * sizeof(uint32_t))) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_GBUFFER_RESOLVE, fs->height)) != PN_OK ||
         (st = pn_dev_to_host(fs, fs->pos, px * 3u * sizeof(float))) != PN_OK)
         return st;
     return pn_dev_to_host(fs, fs->nrm, px * 3u * sizeof(float));
@@ -312,77 +387,189 @@ static void pn_frame_pool_offsets(pn_frame_state *fs)
     P->counters = pn_dev_off(ctx, fs->counters);
 }
 
+/* What a frame and a point query share, before any pool: the algorithm's prepare, the
+ * view (the camera's, or for points a view that only sets the batch's shape), the light,
+ * the kernel parameters. */
+static pn_status pn_frame_begin(pn_frame_state *fs, pn_context *ctx, const pn_port *port, const pn_camera *camera,
+                                const pn_light *light, const pn_frame_options *opt, uint32_t points)
+{
+    pn_status st;
+    memset(fs, 0, sizeof(*fs));
+    fs->ctx = ctx;
+    fs->port = port;
+    fs->points = points;
+    if ((st = pn_prepare_algo(fs, opt)) != PN_OK) return st;
+    if (camera) {
+        if ((st = pn_setup_view(ctx, camera, opt->width, opt->height, &fs->K.view)) != PN_OK) return st;
+    } else {
+        fs->K.view.width = opt->width;
+        fs->K.view.height = opt->height;
+    }
+    if ((st = pn_setup_light(ctx, light, opt->k, opt->eps, &fs->K.light)) != PN_OK) return st;
+    fs->K.shade.albedo = opt->albedo;
+    fs->K.shade.ambient = opt->ambient;
+    fs->K.shade.background = (uint32_t)opt->background[0] | ((uint32_t)opt->background[1] << 8) |
+                             ((uint32_t)opt->background[2] << 16) | ((uint32_t)opt->background[3] << 24);
+    fs->K.tri_count = ctx->tri_count;
+    fs->K.raster_tris = ctx->bvh_tris;
+    fs->K.exact_stats = opt->exact_stats;
+    fs->algo = (uint32_t)opt->algo;
+    fs->width = opt->width;
+    fs->height = opt->height;
+    return PN_OK;
+}
+
+/* The frame region carved for the frame's size: the G-buffer and output pools first. */
+static pn_status pn_frame_pools(pn_frame_state *fs)
+{
+    pn_carver c;
+    pn_frame_reset(fs->ctx);
+    pn_carver_frame(&c, fs->ctx);
+    pn_frame_carve(&c, fs->width, fs->height, fs->ctx->tri_count, fs);
+    if (!c.ok) return PN_E_POOL_EXHAUSTED;
+    pn_frame_pool_offsets(fs);
+    return PN_OK;
+}
+
+/* The shadow pass on the G-buffer in place, and its counters into the context's stats. */
+static pn_status pn_frame_shadow(pn_frame_state *fs)
+{
+    pn_context *ctx = fs->ctx;
+    const pn_row_counters *cnt = (const pn_row_counters *)fs->counters;
+    uint64_t t0 = pn_dev_timestamp(fs);
+    uint32_t y;
+    pn_status st;
+    if ((st = pn_shadow(fs)) != PN_OK) return st;
+    ctx->pass_ns[PN_PASS_SHADOW] = pn_dev_timestamp(fs) - t0;
+    /* Integer sums of the rows' counters: any port, any schedule alike. */
+    for (y = 0; y < fs->height; y++) {
+        fs->candidates += cnt[y].c.candidates;
+        fs->blocking += cnt[y].c.blocking;
+        fs->nodes += cnt[y].c.nodes;
+        fs->lit += cnt[y].c.lit;
+        fs->overflow += cnt[y].c.overflow;
+    }
+    if (fs->overflow) return pn_fail(ctx, PN_E_INTERNAL, "BVH traversal stack overflowed %u times", fs->overflow);
+    ctx->shadow_candidates = fs->candidates;
+    ctx->shadow_blocking = fs->blocking;
+    ctx->shadow_nodes = fs->nodes;
+    ctx->lit_pixels = fs->lit;
+    ctx->cull_tol = fs->K.light.cull_tol;
+    return PN_OK;
+}
+
 pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *camera,
                          const pn_light *light, const pn_frame_options *opt, pn_frame *out)
 {
     pn_frame_state fs;
-    pn_carver c;
     pn_status st;
+    size_t px;
     uint64_t t0;
     if (!ctx) return PN_E_INVALID_ARG;
     if (!camera || !light || !opt || !out)
         return pn_fail(ctx, PN_E_INVALID_ARG, "pn_render: camera, light, options and output must not be NULL");
     if (!ctx->has_scene) return pn_fail(ctx, PN_E_NO_SCENE, "pn_render: no scene (call pn_scene_set first)");
     if ((st = pn_check_options(ctx, opt)) != PN_OK) return st;
-    memset(&fs, 0, sizeof(fs));
-    fs.ctx = ctx;
-    fs.port = port;
-    if ((st = pn_prepare_algo(&fs, opt)) != PN_OK) return st;
-    if ((st = pn_setup_view(ctx, camera, opt->width, opt->height, &fs.K.view)) != PN_OK) return st;
-    if ((st = pn_setup_light(ctx, light, opt->k, opt->eps, &fs.K.light)) != PN_OK) return st;
-    fs.K.shade.albedo = opt->albedo;
-    fs.K.shade.ambient = opt->ambient;
-    fs.K.shade.background = (uint32_t)opt->background[0] | ((uint32_t)opt->background[1] << 8) |
-                            ((uint32_t)opt->background[2] << 16) | ((uint32_t)opt->background[3] << 24);
-    fs.K.tri_count = ctx->tri_count;
-    fs.K.raster_tris = ctx->bvh_tris;
-    fs.K.exact_stats = opt->exact_stats;
-    fs.algo = (uint32_t)opt->algo;
-    fs.width = opt->width;
-    fs.height = opt->height;
-
-    pn_frame_reset(ctx);
-    pn_carver_frame(&c, ctx);
-    pn_frame_carve(&c, opt->width, opt->height, ctx->tri_count, &fs);
-    if (!c.ok) return PN_E_POOL_EXHAUSTED;
-    pn_frame_pool_offsets(&fs);
+    if ((st = pn_frame_begin(&fs, ctx, port, camera, light, opt, 0u)) != PN_OK) return st;
+    if (opt->gbuffer && (st = pn_check_gbuffer(ctx, &fs.K.view, opt->gbuffer)) != PN_OK) return st;
+    if ((st = pn_frame_pools(&fs)) != PN_OK) return st;
 
     t0 = pn_dev_timestamp(&fs);
-    if ((st = pn_gbuffer(&fs)) != PN_OK) return st;
+    if ((st = opt->gbuffer ? pn_gbuffer_caller(&fs, opt->gbuffer) : pn_gbuffer_raster(&fs)) != PN_OK) return st;
     ctx->pass_ns[PN_PASS_GBUFFER] = pn_dev_timestamp(&fs) - t0;
+    if ((st = pn_frame_shadow(&fs)) != PN_OK) return st;
     t0 = pn_dev_timestamp(&fs);
-    if ((st = pn_shadow(&fs)) != PN_OK) return st;
-    ctx->pass_ns[PN_PASS_SHADOW] = pn_dev_timestamp(&fs) - t0;
-    {
-        /* Integer sums of the rows' counters: any port, any schedule alike. */
-        const pn_row_counters *cnt = (const pn_row_counters *)fs.counters;
-        uint32_t y;
-        for (y = 0; y < fs.height; y++) {
-            fs.candidates += cnt[y].c.candidates;
-            fs.blocking += cnt[y].c.blocking;
-            fs.nodes += cnt[y].c.nodes;
-            fs.lit += cnt[y].c.lit;
-            fs.overflow += cnt[y].c.overflow;
-        }
-    }
-    if (fs.overflow)
-        return pn_fail(ctx, PN_E_INTERNAL, "BVH traversal stack overflowed %u times", fs.overflow);
-    t0 = pn_dev_timestamp(&fs);
-    if ((st = pn_shade(&fs)) != PN_OK) return st;
+    if (!opt->no_rgba && (st = pn_shade(&fs)) != PN_OK) return st;
     ctx->pass_ns[PN_PASS_SHADE] = pn_dev_timestamp(&fs) - t0;
-    ctx->shadow_candidates = fs.candidates;
-    ctx->shadow_blocking = fs.blocking;
-    ctx->shadow_nodes = fs.nodes;
-    ctx->lit_pixels = fs.lit;
-    ctx->cull_tol = fs.K.light.cull_tol;
 
+    px = (size_t)opt->width * opt->height;
+    if (opt->visibility_out) memcpy(opt->visibility_out, fs.vis, px * sizeof(float));
+    if (opt->rgba_out) memcpy(opt->rgba_out, fs.rgba, px * 4u);
     out->width = opt->width;
     out->height = opt->height;
     out->visibility = fs.vis;
-    out->rgba = fs.rgba;
+    out->rgba = opt->no_rgba ? NULL : fs.rgba;
     out->tri_id = fs.tri_id;
     out->depth = fs.depth;
     out->position = fs.pos;
     out->normal = fs.nrm;
+    return PN_OK;
+}
+
+/* The caller's points must be ones a frame could hold: finite, within 2^40, on a triangle
+ * the scene draws, with a unit normal. Every point is read before anything is written. */
+static pn_status pn_check_points(pn_context *ctx, const float *points, const float *normals, const uint32_t *ids,
+                                 uint32_t n)
+{
+    uint32_t i, c;
+    for (i = 0; i < n; i++) {
+        uint32_t t = ids[i];
+        float nn;
+        if (t == PN_NO_TRIANGLE) continue;
+        if (t >= ctx->tri_count)
+            return pn_fail(ctx, PN_E_INDEX_RANGE, "point %u names triangle %u; the scene has %u", i, t, ctx->tri_count);
+        if (ctx->flags[t] & PN_TRI_DEGENERATE)
+            return pn_fail(ctx, PN_E_INVALID_ARG, "point %u names triangle %u, which is degenerate", i, t);
+        for (c = 0; c < 6u; c++) {
+            float v = c < 3u ? points[(size_t)i * 3u + c] : normals[(size_t)i * 3u + c - 3u];
+            if (!pn_finite(v))
+                return pn_fail(ctx, PN_E_NONFINITE, "point %u: %s component %u is NaN or infinite", i,
+                               c < 3u ? "position" : "normal", c % 3u);
+            if (c < 3u && (v > PN_MAX_COORD || v < -PN_MAX_COORD))
+                return pn_fail(ctx, PN_E_LIMIT, "point %u: position component %u exceeds 2^40 in magnitude", i, c);
+        }
+        nn = pn_v3_dot(pn_v3_arr(normals + (size_t)i * 3u), pn_v3_arr(normals + (size_t)i * 3u));
+        if (!(nn > 0.998f && nn < 1.002f))
+            return pn_fail(ctx, PN_E_INVALID_ARG, "point %u: its normal is not unit (|n|^2 = %g)", i, (double)nn);
+    }
+    return PN_OK;
+}
+
+pn_status pn_points_with(pn_context *ctx, const pn_port *port, const pn_light *light, const pn_frame_options *opt,
+                         const float *points, const float *normals, const uint32_t *tri_ids, uint32_t n, float *out)
+{
+    pn_frame_state fs;
+    pn_status st;
+    uint32_t done;
+    if (!ctx) return PN_E_INVALID_ARG;
+    if (!light || !opt)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "pn_visibility_points: light and options must not be NULL");
+    if (n > 0u && (!points || !normals || !tri_ids || !out))
+        return pn_fail(ctx, PN_E_INVALID_ARG, "pn_visibility_points: points, normals, tri_ids and out must not be NULL");
+    if (!ctx->has_scene) return pn_fail(ctx, PN_E_NO_SCENE, "pn_visibility_points: no scene (call pn_scene_set first)");
+    if (opt->width == 0u || opt->height == 0u)
+        return pn_fail(ctx, PN_E_IMAGE_SIZE, "batch size %ux%u has a zero side", opt->width, opt->height);
+    if (opt->width > ctx->limits.max_width || opt->height > ctx->limits.max_height)
+        return pn_fail(ctx, PN_E_LIMIT, "batch %ux%u exceeds the context's limits %ux%u", opt->width, opt->height,
+                       ctx->limits.max_width, ctx->limits.max_height);
+    if ((st = pn_check_common(ctx, opt)) != PN_OK) return st;
+    if (n > 0u && pn_in_arena(ctx, out, (size_t)n * sizeof(float)))
+        return pn_fail(ctx, PN_E_INVALID_ARG, "out lies in the context's arena; it must be the caller's own");
+    if ((st = pn_frame_begin(&fs, ctx, port, NULL, light, opt, 1u)) != PN_OK) return st;
+    if ((st = pn_check_points(ctx, points, normals, tri_ids, n)) != PN_OK) return st;
+    for (done = 0; done < n;) {
+        uint32_t batch = opt->width * opt->height, m = n - done < batch ? n - done : batch, i;
+        size_t px = batch;
+        if ((st = pn_frame_pools(&fs)) != PN_OK) return st;
+        for (i = 0; i < batch; i++) {
+            uint32_t t = i < m ? tri_ids[done + i] : PN_NO_TRIANGLE;
+            int c;
+            fs.tri_id[i] = t;
+            fs.depth[i] = t == PN_NO_TRIANGLE ? PN_KINF : 0.0f;
+            for (c = 0; c < 3; c++) {
+                fs.pos[(size_t)i * 3u + c] = t == PN_NO_TRIANGLE ? 0.0f : points[(size_t)(done + i) * 3u + c];
+                fs.nrm[(size_t)i * 3u + c] = t == PN_NO_TRIANGLE ? 0.0f : normals[(size_t)(done + i) * 3u + c];
+            }
+        }
+        if ((st = pn_scene_to_device(&fs)) != PN_OK || (st = pn_dev_to_device(&fs, fs.depth, px * 4u)) != PN_OK ||
+            (st = pn_dev_to_device(&fs, fs.tri_id, px * 4u)) != PN_OK ||
+            (st = pn_dev_to_device(&fs, fs.pos, px * 12u)) != PN_OK ||
+            (st = pn_dev_to_device(&fs, fs.nrm, px * 12u)) != PN_OK || (st = pn_frame_shadow(&fs)) != PN_OK)
+            return st;
+        memcpy(out + done, fs.vis, (size_t)m * sizeof(float));
+        fs.candidates = fs.blocking = fs.nodes = 0u;
+        fs.lit = fs.overflow = 0u;
+        done += m;
+    }
     return PN_OK;
 }

@@ -42,6 +42,8 @@ typedef struct pn_frame_state {
     pn_kparams K;       /* K.view, K.light, K.shade: the frame's; K.tile per launch */
     uint32_t algo;
     uint32_t width, height;
+    uint32_t points;    /* 1: a point query (pn_visibility_points): no camera, the G-buffer the
+                           caller's points, width x height their batch */
     uint32_t res;       /* the algorithm's grid or map per axis (its prepare sets it) */
     float *depth;
     uint32_t *tri_id;
@@ -79,14 +81,17 @@ struct pn_context {
     size_t frame_high;
     /* scene */
     uint32_t has_scene;
-    uint32_t scene_version; /* changes whenever pn_scene_set replaces the scene */
+    uint32_t scene_version; /* changes whenever pn_scene_set replaces the scene (or
+                               pn_scene_update_positions moves it, pn_scene_set_receivers
+                               marks it) */
     uint32_t tri_count;
     uint32_t degenerate;
     uint32_t bvh_nodes, bvh_depth, bvh_max_leaf, bvh_tris, bvh_refs;
     uint32_t bvh_wide; /* four-wide nodes */
     float scene_min[3], scene_max[3], scene_diag;
     /* box of the occluders (every triangle not marked receiver-only: the triangles' box at
-     * pn_scene_set, pn_occluder_box at pn_scene_set_receivers),
+     * pn_scene_set, pn_occluder_box at pn_scene_set_receivers and, when some triangle is
+     * a receiver, at pn_scene_update_positions),
      * empty (min > max) when every triangle is a receiver */
     float occ_min[3], occ_max[3];
     /* execution */
@@ -184,6 +189,11 @@ void pn_run(pn_context *ctx, uint32_t count, pn_task_fn fn, void *task);
 #define PN_BVH_REF_BYTES 40u
 uint64_t pn_bvh_scratch_bytes(const pn_limits *l);
 pn_status pn_bvh_build(pn_context *ctx);
+/* The current tree's boxes recomputed from the triangles' new positions (its shape, leaf
+ * and raster order kept; pn_scene_update_positions); the tree built anew instead when the
+ * leaves no longer list exactly the non-degenerate triangles or the context splits
+ * references. Uses no scratch. */
+pn_status pn_bvh_refit(pn_context *ctx);
 /* The four-wide tree over the binary one (kernels/pn_ktypes.h pn_kbvh4); two-wide when a
  * walk of the four-wide one could need more than stack_max entries (pn_bvh_build passes
  * PN_BVH_STACK; a smaller value lets the tests build the two-wide tree). */
@@ -196,6 +206,9 @@ uint32_t pn_bvh_fold(const pn_kbvh_node *nodes, pn_kbvh4 *w, uint32_t width, uin
  * the G-buffer, the chosen algorithm's sequence and shading on the port. */
 pn_status pn_render_with(pn_context *ctx, const pn_port *port, const pn_camera *camera,
                          const pn_light *light, const pn_frame_options *opt, pn_frame *out);
+/* pn_visibility_points on a port (src/pn_frame.c). */
+pn_status pn_points_with(pn_context *ctx, const pn_port *port, const pn_light *light, const pn_frame_options *opt,
+                         const float *points, const float *normals, const uint32_t *tri_ids, uint32_t n, float *out);
 /* A rasterizer's set-up for the view of `rows_pass` (PN_K_RASTER_ROWS, PN_K_LMAP_ROWS):
  * every triangle's rows, then the band walk's chunks (kernels/pn_raster.h). */
 pn_status pn_raster_setup(pn_frame_state *fs, uint32_t rows_pass);

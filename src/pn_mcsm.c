@@ -39,7 +39,10 @@ pn_status pn_mcsm_prepare(pn_frame_state *fs, const pn_frame_options *opt)
     fs->K.mc.layers = opt->mcsm.layers ? opt->mcsm.layers : 2u;
     fs->K.mc.search = opt->mcsm.search ? opt->mcsm.search : PN_MC_SEARCH_HIER;
     fs->K.mc.rays = opt->mcsm.rays ? opt->mcsm.rays : 3u;
-    fs->K.mc.blur = opt->mcsm.blur == PN_MC_BLUR_OFF ? 0u : opt->mcsm.blur ? opt->mcsm.blur : 1u;
+    /* A point query has no screen to blur over, nor the eye's depth for a third layer. */
+    if (fs->points && fs->K.mc.layers == 3u)
+        return pn_fail(ctx, PN_E_UNSUPPORTED, "mcsm.layers = 3 needs the eye's depth: no point query");
+    fs->K.mc.blur = fs->points || opt->mcsm.blur == PN_MC_BLUR_OFF ? 0u : opt->mcsm.blur ? opt->mcsm.blur : 1u;
     fs->K.mc.flags = opt->mcsm.flags;
     fs->K.mc.seed = opt->mcsm.seed;
     return PN_OK;

@@ -1,6 +1,7 @@
 /* pn_scene.c - scene input: validate everything first (read-only), then copy into the
- * arena and build the BVH. Validation before any write keeps the previous scene intact
- * when the new one is rejected. */
+ * arena and build the BVH (pn_scene_set) or refit it (pn_scene_update_positions: the same
+ * triangles moved). Validation before any write keeps the previous scene intact when the
+ * new one is rejected. */
 #include <string.h>
 
 #include "pn_algorithms.h"
@@ -28,18 +29,15 @@ static void pn_occluder_box(pn_context *ctx)
     }
 }
 
-pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_count,
-                       const uint32_t *indices, uint32_t triangle_count)
+/* Everything pn_scene_set and pn_scene_update_positions (named by fn in the messages)
+ * check of their input, before either writes anything. */
+static pn_status pn_scene_check(pn_context *ctx, const char *fn, const float *positions, uint32_t vertex_count,
+                                const uint32_t *indices, uint32_t triangle_count)
 {
-    uint64_t t0;
-    uint32_t v, t, degenerate = 0;
-    float lo[3], hi[3];
-    pn_status st;
-    if (!ctx) return PN_E_INVALID_ARG;
+    uint32_t v, t;
     if (!positions || !indices)
-        return pn_fail(ctx, PN_E_INVALID_ARG, "pn_scene_set: positions and indices must not be NULL");
-    if (triangle_count == 0u)
-        return pn_fail(ctx, PN_E_INVALID_ARG, "pn_scene_set: the scene has no triangles");
+        return pn_fail(ctx, PN_E_INVALID_ARG, "%s: positions and indices must not be NULL", fn);
+    if (triangle_count == 0u) return pn_fail(ctx, PN_E_INVALID_ARG, "%s: the scene has no triangles", fn);
     if (triangle_count > ctx->limits.max_triangles)
         return pn_fail(ctx, PN_E_LIMIT, "scene has %u triangles; this context holds at most %u",
                        triangle_count, ctx->limits.max_triangles);
@@ -69,9 +67,18 @@ pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_
                                (uint32_t)c, i, vertex_count);
         }
     }
+    return PN_OK;
+}
 
-    /* Valid: from here on the previous scene is replaced. */
-    t0 = pn_now(ctx);
+/* Valid input into the arena, replacing the current scene: the triangles' corners, their
+ * degenerate flags (the flag bits in `keep` stay, the rest are cleared: the algorithms'
+ * scene work sets its own again), the scene's box and diagonal and the occluders' box. */
+static void pn_scene_copy(pn_context *ctx, const float *positions, const uint32_t *indices, uint32_t triangle_count,
+                          uint8_t keep)
+{
+    uint64_t t0 = pn_now(ctx);
+    uint32_t t, degenerate = 0, receivers = 0;
+    float lo[3], hi[3];
     ctx->has_scene = 0;
     ctx->scene_version++;
     lo[0] = lo[1] = lo[2] = PN_MAX_COORD;
@@ -97,34 +104,75 @@ pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_
         /* Zero area in float, or a normal that cannot be normalized in float (largest
          * component of the cross product below FLT_MIN: a triangle at subnormal scale,
          * issue 20): no plane, no edges; it can neither be seen nor block. */
-        ctx->flags[t] = pn_normal_ok(n) ? 0u : (uint8_t)PN_TRI_DEGENERATE;
+        ctx->flags[t] = (uint8_t)((ctx->flags[t] & keep) | (pn_normal_ok(n) ? 0u : PN_TRI_DEGENERATE));
         degenerate += ctx->flags[t] & PN_TRI_DEGENERATE;
+        receivers += (ctx->flags[t] & PN_TRI_RECEIVER) != 0u;
     }
     ctx->tri_count = triangle_count;
     ctx->degenerate = degenerate;
     memcpy(ctx->scene_min, lo, sizeof(lo));
     memcpy(ctx->scene_max, hi, sizeof(hi));
-    /* No triangle is receiver-only yet: the occluders' box is the triangles' box. */
-    memcpy(ctx->occ_min, lo, sizeof(lo));
-    memcpy(ctx->occ_max, hi, sizeof(hi));
+    if (receivers) {
+        pn_occluder_box(ctx); /* as pn_scene_set_receivers leaves it */
+    } else {
+        /* No triangle is receiver-only: the occluders' box is the triangles' box. */
+        memcpy(ctx->occ_min, lo, sizeof(lo));
+        memcpy(ctx->occ_max, hi, sizeof(hi));
+    }
     {
         pn_v3 d = pn_v3_make(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
         ctx->scene_diag = pn_ksqrt(pn_v3_dot(d, d));
     }
     ctx->pass_ns[PN_PASS_SCENE_COPY] = pn_now(ctx) - t0;
+}
 
-    t0 = pn_now(ctx);
-    st = pn_bvh_build(ctx);
+/* After pn_scene_copy: the BVH, built anew or refitted (pn_bvh_refit, which builds when it
+ * must), then each algorithm's own work on the scene (the wedges' connectivity, MCSM's
+ * sheets), for those the context runs; the scene is usable only once all of it is done. */
+static pn_status pn_scene_finish(pn_context *ctx, int refit)
+{
+    uint64_t t0 = pn_now(ctx);
+    pn_status st = refit ? pn_bvh_refit(ctx) : pn_bvh_build(ctx);
     ctx->pass_ns[PN_PASS_BVH_BUILD] = pn_now(ctx) - t0;
     if (st != PN_OK) return st;
-    /* Each algorithm's own work on the scene (the wedges' connectivity), for those the
-     * context runs. */
+    t0 = pn_now(ctx);
 #define PN_ALGO_SCENE(ID, name)                                                                \
     if ((pn_limits_algos(&ctx->limits) & (1u << PN_ALGO_##ID)) && (st = pn_##name##_scene(ctx)) != PN_OK) return st;
     PN_ALGORITHMS(PN_ALGO_SCENE)
 #undef PN_ALGO_SCENE
+    ctx->pass_ns[PN_PASS_SCENE_ALGOS] = pn_now(ctx) - t0;
     ctx->has_scene = 1;
     return PN_OK;
+}
+
+pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_count,
+                       const uint32_t *indices, uint32_t triangle_count)
+{
+    pn_status st;
+    if (!ctx) return PN_E_INVALID_ARG;
+    st = pn_scene_check(ctx, "pn_scene_set", positions, vertex_count, indices, triangle_count);
+    if (st != PN_OK) return st;
+    /* Valid: from here on the previous scene is replaced. */
+    pn_scene_copy(ctx, positions, indices, triangle_count, 0u);
+    return pn_scene_finish(ctx, 0);
+}
+
+pn_status pn_scene_update_positions(pn_context *ctx, const float *positions, uint32_t vertex_count,
+                                    const uint32_t *indices, uint32_t triangle_count)
+{
+    pn_status st;
+    if (!ctx) return PN_E_INVALID_ARG;
+    if (!ctx->has_scene)
+        return pn_fail(ctx, PN_E_NO_SCENE, "pn_scene_update_positions: no scene (call pn_scene_set first)");
+    if (triangle_count != ctx->tri_count)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "pn_scene_update_positions: %u triangles; the current scene has %u",
+                       triangle_count, ctx->tri_count);
+    st = pn_scene_check(ctx, "pn_scene_update_positions", positions, vertex_count, indices, triangle_count);
+    if (st != PN_OK) return st;
+    /* Valid: the triangles move, their receiver marking stays; the tree keeps its shape
+     * unless a refit cannot serve (pn_bvh_refit). */
+    pn_scene_copy(ctx, positions, indices, triangle_count, (uint8_t)PN_TRI_RECEIVER);
+    return pn_scene_finish(ctx, 1);
 }
 
 pn_status pn_scene_set_receivers(pn_context *ctx, uint32_t first, uint32_t count)

@@ -87,6 +87,8 @@ pn_status pn_wedges_prepare(pn_frame_state *fs, const pn_frame_options *opt)
     pn_context *ctx = fs->ctx;
     if (opt->wedges.mode > PN_WG_MODE_ADDITIVE)
         return pn_fail(ctx, PN_E_INVALID_ARG, "wedges.mode = %u; it must be 0 or a PN_WG_MODE_*", opt->wedges.mode);
+    if (fs->points)
+        return pn_fail(ctx, PN_E_UNSUPPORTED, "the penumbra wedges work in a camera's screen tiles: no point query");
     fs->K.wg.mode = opt->wedges.mode ? opt->wedges.mode : PN_WG_MODE_BLEND;
     return PN_OK;
 }

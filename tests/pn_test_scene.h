@@ -138,6 +138,24 @@ static inline void pn_test_close(pn_test_host *h)
     memset(h, 0, sizeof(*h));
 }
 
+/* The options of a core test's small frame of every algorithm: w x h, k = 8, a GEARS grid
+ * of 16 and, when maps is not 0, light-space maps of that many texels (the defaults, 512
+ * to 2048, cost far more than such a frame). */
+static inline void pn_test_frame_opts(pn_frame_options *opt, uint32_t w, uint32_t h, uint32_t algo, float eps,
+                                      uint32_t maps)
+{
+    pn_frame_options_default(opt);
+    opt->width = w;
+    opt->height = h;
+    opt->k = 8;
+    opt->eps = eps;
+    opt->algo = (pn_algo)algo;
+    opt->gears.grid = 16;
+    opt->srt.map = maps;
+    opt->occtex.map = maps;
+    opt->mcsm.map = maps;
+}
+
 /* ---- Serial schedules for pn_set_parallel_for ---------------------------------------------- *
  * The library may have its ranges run in any order (penumbra.h, "Work distribution"); these
  * run them on the calling thread in orders unlike its own loop (one call over [0, count)),

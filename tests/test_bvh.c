@@ -423,19 +423,6 @@ static void test_containment(void)
     free_scene(&s);
 }
 
-/* Every algorithm (the registry: pn_algo 0 .. PN_ALGO_COUNT - 1), at this file's frame size,
- * k = 8 and a GEARS grid of 16: the options every frame here renders with. */
-static void frame_opts(pn_frame_options *opt, uint32_t algo, float eps)
-{
-    pn_frame_options_default(opt);
-    opt->width = FRAME_W;
-    opt->height = FRAME_H;
-    opt->k = 8;
-    opt->eps = eps;
-    opt->algo = (pn_algo)algo;
-    opt->gears.grid = 16;
-}
-
 /* Renders every algorithm compiled in on three contexts (no splitting, the default
  * reserve, a reserve one short of the default's references) and compares the bytes. */
 static void frames_same(const char *label, const float *pos, uint32_t verts, const uint32_t *idx, uint32_t tris,
@@ -470,7 +457,7 @@ static void frames_same(const char *label, const float *pos, uint32_t verts, con
             pn_frame_options opt;
             pn_frame fr;
             pn_status rs;
-            frame_opts(&opt, a, eps);
+            pn_test_frame_opts(&opt, FRAME_W, FRAME_H, a, eps, 0u);
             rs = pn_render(ctx[c], cam, light, &opt, &fr);
             CHECK_MSG(rs == PN_OK, "%s %s: %s", label, pn_algo_name((pn_algo)a), pn_last_error(ctx[c]));
             if (rs != PN_OK) break;
@@ -525,7 +512,7 @@ static void test_frames_two_wide(void)
             pn_frame_options opt;
             pn_frame fr;
             if (!(built & (1u << a))) continue;
-            frame_opts(&opt, a, s.eps);
+            pn_test_frame_opts(&opt, FRAME_W, FRAME_H, a, s.eps, 0u);
             if (pn_render(ctx, &s.camera, &s.light, &opt, &fr) != PN_OK) {
                 CHECK_MSG(0, "room %s: %s", pn_algo_name((pn_algo)a), pn_last_error(ctx));
                 continue;
@@ -611,7 +598,7 @@ static void test_deep_tree(void)
         pn_frame fr;
         pn_status rs;
         if (!(built & (1u << a))) continue;
-        frame_opts(&opt, a, sq.eps);
+        pn_test_frame_opts(&opt, FRAME_W, FRAME_H, a, sq.eps, 0u);
         rs = pn_render(ctx, &sq.camera, &sq.light, &opt, &fr);
         CHECK_MSG(rs == PN_OK, "deep tree %s: %s", pn_algo_name((pn_algo)a), pn_last_error(ctx));
         if (rs != PN_OK) continue;

@@ -287,6 +287,105 @@ static int list_scenes(pn_xscene *out)
 }
 
 static pn_xrig g_rig;
+static pn_xframe g_kept; /* a frame kept while the rig renders others */
+
+/* The frame just rendered on both ports (g_rig.a), again from its own depth and triangle
+ * ids handed back as the caller's G-buffer: the same bytes, stats included, on both ports.
+ * Then its pixels' points through pn_visibility_points on both ports: the frame's
+ * visibility bit for bit (MCSM's against a frame without its screen-space blur, which a
+ * point query does not run); the wedges refuse points. */
+static void gbuffer_and_points(const pn_camera *cam, const pn_light *light, const pn_frame_options *o,
+                               const char *what)
+{
+    pn_frame_options g = *o;
+    pn_gbuffer gb;
+    pn_status sa, sb;
+    size_t n = (size_t)o->width * o->height;
+    float *va = (float *)malloc(n * sizeof(float)), *vb = (float *)malloc(n * sizeof(float));
+    char w2[300];
+    REQUIRE(va && vb);
+    g_kept.n = n;
+    memcpy(g_kept.vis, g_rig.a.vis, n * sizeof(float));
+    memcpy(g_kept.depth, g_rig.a.depth, n * sizeof(float));
+    memcpy(g_kept.pos, g_rig.a.pos, n * 3u * sizeof(float));
+    memcpy(g_kept.nrm, g_rig.a.nrm, n * 3u * sizeof(float));
+    memcpy(g_kept.ids, g_rig.a.ids, n * sizeof(uint32_t));
+    memcpy(g_kept.rgba, g_rig.a.rgba, n * 4u);
+    g_kept.st = g_rig.a.st;
+    gb.depth = g_kept.depth;
+    gb.tri_id = g_kept.ids;
+    g.gbuffer = &gb;
+    snprintf(w2, sizeof(w2), "%s, caller G-buffer", what);
+    if (cross(&g_rig, cam, light, &g, w2) == PN_OK) same_frame(w2, &g_kept, &g_rig.a);
+
+    g = *o;
+    if (g.algo == PN_ALGO_MCSM) {
+        g.mcsm.blur = PN_MC_BLUR_OFF;
+        snprintf(w2, sizeof(w2), "%s, no blur", what);
+        if (cross(&g_rig, cam, light, &g, w2) != PN_OK) goto done;
+        memcpy(g_kept.vis, g_rig.a.vis, n * sizeof(float));
+    }
+    snprintf(w2, sizeof(w2), "%s, points", what);
+    sa = pn_visibility_points(g_rig.h.ctx, light, o, g_kept.pos, g_kept.nrm, g_kept.ids, (uint32_t)n, va);
+    sb = pn_opencl_visibility_points(g_rig.cl, light, o, g_kept.pos, g_kept.nrm, g_kept.ids, (uint32_t)n, vb);
+    CHECK_MSG(sa == sb, "%s: scalar %s, opencl %s (%s)", w2, pn_status_str(sa), pn_status_str(sb),
+              pn_last_error(g_rig.h.ctx));
+    if (o->algo == PN_ALGO_WEDGES) {
+        CHECK_MSG(sa == PN_E_UNSUPPORTED, "%s: %s, not PN_E_UNSUPPORTED", w2, pn_status_str(sa));
+    } else if (sa == PN_OK && sb == PN_OK) {
+        same_buffer(w2, "scalar visibility", g_kept.vis, va, n, sizeof(float));
+        same_buffer(w2, "opencl visibility", g_kept.vis, vb, n, sizeof(float));
+    } else {
+        CHECK_MSG(0, "%s: %s (%s)", w2, pn_status_str(sa), pn_last_error(g_rig.h.ctx));
+    }
+done:
+    free(va);
+    free(vb);
+}
+
+/* Moving geometry on both ports: after pn_scene_update_positions the OpenCL port takes the
+ * moved scene (its version changed) and both ports give the bytes of a pn_scene_set of it. */
+static void test_update_positions(void)
+{
+    pn_setup s;
+    char err[256];
+    float *moved;
+    uint32_t v, a;
+    REQUIRE(pn_setup_load(&s, "spheres", 1, -1, err, sizeof(err)) == 0);
+    moved = (float *)malloc((size_t)s.mesh.vertex_count * 12u);
+    REQUIRE(moved != NULL);
+    for (v = 0; v < s.mesh.vertex_count; v++) {
+        const float *p = s.mesh.positions + (size_t)v * 3u;
+        float lift = v % 3u == 0u ? 0.05f * s.diag : 0.0f; /* every third vertex: shapes change too */
+        moved[v * 3u] = p[0] + 0.02f * s.diag;
+        moved[v * 3u + 1u] = p[1] + lift;
+        moved[v * 3u + 2u] = p[2];
+    }
+    for (a = 0; a < PN_ALGO_COUNT; a++) {
+        pn_frame_options o;
+        char what[128];
+        if (!(pn_build_info() & (1u << a))) continue;
+        opts(&o, &s, 48, 40, 8, (pn_algo)a);
+        snprintf(what, sizeof(what), "spheres moved, %s", pn_algo_name((pn_algo)a));
+        REQUIRE(pn_setup_upload(g_rig.h.ctx, &s) == PN_OK);
+        CHECK(cross(&g_rig, &s.camera, &s.light, &o, what) == PN_OK); /* the port holds the first scene */
+        REQUIRE(pn_scene_update_positions(g_rig.h.ctx, moved, s.mesh.vertex_count, s.mesh.indices,
+                                          s.mesh.triangle_count) == PN_OK);
+        if (cross(&g_rig, &s.camera, &s.light, &o, what) != PN_OK) continue;
+        g_kept.n = g_rig.a.n;
+        memcpy(g_kept.vis, g_rig.a.vis, g_kept.n * 4u);
+        memcpy(g_kept.rgba, g_rig.a.rgba, g_kept.n * 4u);
+        /* pn_scene_set clears the receiver marking the update kept: marked again */
+        REQUIRE(pn_scene_set(g_rig.h.ctx, moved, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
+        REQUIRE(pn_scene_set_receivers(g_rig.h.ctx, s.mesh.receiver_first, s.mesh.receiver_count) == PN_OK);
+        if (cross(&g_rig, &s.camera, &s.light, &o, what) != PN_OK) continue;
+        CHECK_MSG(memcmp(g_kept.vis, g_rig.a.vis, g_kept.n * 4u) == 0 && memcmp(g_kept.rgba, g_rig.a.rgba, g_kept.n * 4u) == 0,
+                  "%s: the refitted scene's frame is not the rebuilt one's", what);
+    }
+    free(moved);
+    pn_setup_free(&s);
+}
+
 static pn_xscene g_scenes[PN_X_MAX_SCENES];
 static pn_setup g_setups[PN_X_MAX_SCENES];
 static int g_loaded[PN_X_MAX_SCENES], g_nscenes;
@@ -312,9 +411,11 @@ static void test_scenes(void)
                 opts(&o, s, g_scenes[i].w, g_scenes[i].h, g_scenes[i].k, (pn_algo)a);
                 snprintf(what, sizeof(what), "%s %ux%u k=%u %s light, %s", s->name, o.width, o.height, o.k,
                          q ? "point" : "area", pn_algo_name((pn_algo)a));
-                if (cross(&g_rig, &s->camera, &light, &o, what) == PN_OK)
+                if (cross(&g_rig, &s->camera, &light, &o, what) == PN_OK) {
                     fprintf(stderr, "same: %s (%u lit pixels, %llu candidates)\n", what, g_rig.a.st.lit_pixels,
                             (unsigned long long)g_rig.a.st.shadow_candidates);
+                    gbuffer_and_points(&s->camera, &light, &o, what);
+                }
             }
         }
     }
@@ -699,7 +800,7 @@ int main(void)
         if (g_loaded[i] && g_setups[i].mesh.triangle_count > lim.max_triangles)
             lim.max_triangles = g_setups[i].mesh.triangle_count;
     }
-    if (rig_open(&g_rig, &lim, NULL) != 0) {
+    if (!xframe_init(&g_kept, (size_t)lim.max_width * lim.max_height) || rig_open(&g_rig, &lim, NULL) != 0) {
         CHECK_MSG(0, "cannot open the OpenCL port (see above)");
         return pn_test_summary();
     }
@@ -708,7 +809,9 @@ int main(void)
     RUN(test_options);
     RUN(test_tiling);
     RUN(test_scenes);
+    RUN(test_update_positions);
     rig_close(&g_rig);
+    xframe_free(&g_kept);
     for (i = 0; i < g_nscenes; i++)
         if (g_loaded[i]) pn_setup_free(&g_setups[i]);
     return pn_test_summary();

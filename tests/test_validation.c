@@ -620,6 +620,258 @@ static void test_error_contract(void)
     pn_test_close(&h);
 }
 
+/* ---- The caller's G-buffer, output buffers and points (issue 52) ---- */
+
+typedef struct kept_frame {
+    float vis[64 * 64], depth[64 * 64], pos[64 * 64 * 3], nrm[64 * 64 * 3];
+    uint32_t ids[64 * 64];
+    uint8_t rgba[64 * 64 * 4];
+} kept_frame;
+static kept_frame K0, K1;
+
+static void keep(kept_frame *k, const pn_frame *fr)
+{
+    memcpy(k->vis, fr->visibility, sizeof(k->vis));
+    memcpy(k->depth, fr->depth, sizeof(k->depth));
+    memcpy(k->pos, fr->position, sizeof(k->pos));
+    memcpy(k->nrm, fr->normal, sizeof(k->nrm));
+    memcpy(k->ids, fr->tri_id, sizeof(k->ids));
+    if (fr->rgba) memcpy(k->rgba, fr->rgba, sizeof(k->rgba));
+}
+
+static void test_caller_gbuffer(void)
+{
+    static float vis_out[64 * 64], depth[64 * 64];
+    static uint8_t rgba_out[64 * 64 * 4];
+    static uint32_t ids[64 * 64];
+    pn_frame_options o = OPT;
+    pn_gbuffer g;
+    pn_frame fr;
+    uint64_t cd, ci;
+    uint32_t a, lit = 0, i;
+    REQUIRE(pn_scene_set(H.ctx, S.mesh.positions, S.mesh.vertex_count, S.mesh.indices, S.mesh.triangle_count) == PN_OK);
+    REQUIRE(pn_render(H.ctx, &S.camera, &S.light, &OPT, &fr) == PN_OK);
+    keep(&K0, &fr);
+    for (i = 0; i < 64u * 64u; i++) lit += K0.ids[i] != PN_NO_TRIANGLE;
+    REQUIRE(lit > 100u && lit < 64u * 64u); /* both triangles and background */
+
+    /* Output buffers: the same bytes as the frame's; without RGBA no image and the same
+     * visibility; an output in the arena, or RGBA asked for and turned off, refused. */
+    memset(vis_out, 0xAB, sizeof(vis_out));
+    o.visibility_out = vis_out;
+    o.rgba_out = rgba_out;
+    CHECK(render_with(&S.camera, &S.light, &o) == PN_OK);
+    CHECK(memcmp(vis_out, K0.vis, sizeof(vis_out)) == 0 && memcmp(rgba_out, K0.rgba, sizeof(rgba_out)) == 0);
+    o = OPT;
+    o.no_rgba = 1;
+    REQUIRE(pn_render(H.ctx, &S.camera, &S.light, &o, &fr) == PN_OK);
+    CHECK(fr.rgba == NULL && memcmp(fr.visibility, K0.vis, sizeof(K0.vis)) == 0);
+    o.rgba_out = rgba_out;
+    CHECK(render_with(&S.camera, &S.light, &o) == PN_E_INVALID_ARG);
+    o = OPT;
+    o.no_rgba = 2;
+    CHECK(render_with(&S.camera, &S.light, &o) == PN_E_INVALID_ARG);
+    REQUIRE(pn_render(H.ctx, &S.camera, &S.light, &OPT, &fr) == PN_OK);
+    o = OPT;
+    o.visibility_out = (float *)(uintptr_t)fr.depth; /* the arena's */
+    CHECK(render_with(&S.camera, &S.light, &o) == PN_E_INVALID_ARG);
+    o = OPT;
+    o.rgba_out = (uint8_t *)(uintptr_t)fr.tri_id;
+    CHECK(render_with(&S.camera, &S.light, &o) == PN_E_INVALID_ARG);
+
+    /* The frame's own depth and ids handed back: the same bytes, every algorithm. */
+    memcpy(depth, K0.depth, sizeof(depth));
+    memcpy(ids, K0.ids, sizeof(ids));
+    g.depth = depth;
+    g.tri_id = ids;
+    for (a = 0; a < PN_ALGO_COUNT; a++) {
+        if (!(pn_build_info() & (1u << a))) continue;
+        o = OPT;
+        o.algo = (pn_algo)a;
+        REQUIRE(pn_render(H.ctx, &S.camera, &S.light, &o, &fr) == PN_OK);
+        keep(&K0, &fr);
+        o.gbuffer = &g;
+        REQUIRE(pn_render(H.ctx, &S.camera, &S.light, &o, &fr) == PN_OK);
+        keep(&K1, &fr);
+        CHECK_MSG(memcmp(&K0, &K1, sizeof(K0)) == 0, "%s: the caller's G-buffer gives other bytes",
+                  pn_algo_name((pn_algo)a));
+    }
+
+    /* Hostile G-buffers: each refused before anything is written, the caller's arrays
+     * untouched; a background pixel's depth is not read. */
+    cd = checksum(depth, sizeof(depth));
+    ci = checksum(ids, sizeof(ids));
+    o = OPT;
+    o.gbuffer = &g;
+    for (i = 0; ids[i] != PN_NO_TRIANGLE; i++) {}
+    depth[i] = NAN;
+    CHECK(render_with(&S.camera, &S.light, &o) == PN_OK);
+    depth[i] = K0.depth[i];
+    for (i = 0; ids[i] == PN_NO_TRIANGLE; i++) {}
+    {
+        const struct { uint32_t id; float d; pn_status st; } bad[] = {
+            {0xFFFFFFF0u, 1.0f, PN_E_INDEX_RANGE}, {0u, NAN, PN_E_NONFINITE}, {0u, INFINITY, PN_E_NONFINITE},
+            {0u, 0.0f, PN_E_INVALID_ARG}, {0u, -1.0f, PN_E_INVALID_ARG}, {0u, 3e12f, PN_E_LIMIT}};
+        uint32_t b, id0 = ids[i];
+        float d0 = depth[i];
+        for (b = 0; b < sizeof(bad) / sizeof(bad[0]); b++) {
+            ids[i] = bad[b].id == 0u ? id0 : S.mesh.triangle_count + bad[b].id - 0xFFFFFFF0u;
+            depth[i] = bad[b].d;
+            CHECK_MSG(render_with(&S.camera, &S.light, &o) == bad[b].st, "hostile G-buffer %u: %s", b,
+                      pn_last_error(H.ctx));
+        }
+        ids[i] = id0;
+        depth[i] = d0;
+        CHECK(checksum(depth, sizeof(depth)) == cd && checksum(ids, sizeof(ids)) == ci);
+    }
+    g.depth = NULL;
+    CHECK(render_with(&S.camera, &S.light, &o) == PN_E_INVALID_ARG);
+    g.depth = depth;
+    g.tri_id = NULL;
+    CHECK(render_with(&S.camera, &S.light, &o) == PN_E_INVALID_ARG);
+    g.tri_id = ids;
+    /* Any triangle at any depth in front of the eye is a G-buffer the frame takes: every
+     * pixel on triangle 0, at depths the raster would never give. */
+    for (i = 0; i < 64u * 64u; i++) {
+        ids[i] = (i * 7u) % S.mesh.triangle_count;
+        depth[i] = 0.001f + (float)(i % 97u) * 0.1f;
+    }
+    for (a = 0; a < PN_ALGO_COUNT; a++) {
+        if (!(pn_build_info() & (1u << a))) continue;
+        o.algo = (pn_algo)a;
+        CHECK_MSG(render_with(&S.camera, &S.light, &o) == PN_OK, "%s on an arbitrary G-buffer: %s",
+                  pn_algo_name((pn_algo)a), pn_last_error(H.ctx));
+    }
+}
+
+/* A degenerate triangle's id in a G-buffer or a point: refused (nothing draws it). */
+static void test_caller_degenerate(void)
+{
+    float pos[12] = {-1, -1, 0, 1, -1, 0, 0, 1, 0, 2, 0, 0};
+    uint32_t idx[6] = {0, 1, 2, 0, 0, 1};
+    static float depth[64 * 64];
+    static uint32_t ids[64 * 64];
+    float pt[3] = {0, 0, 0}, nm[3] = {0, 0, 1}, out = -1.0f;
+    uint32_t id = 1;
+    pn_gbuffer g;
+    pn_frame_options o = OPT;
+    uint32_t i;
+    REQUIRE(scene_with(pos, 4, idx, 2) == PN_OK);
+    for (i = 0; i < 64u * 64u; i++) {
+        ids[i] = PN_NO_TRIANGLE;
+        depth[i] = 1.0f;
+    }
+    ids[100] = 1;
+    g.depth = depth;
+    g.tri_id = ids;
+    o.gbuffer = &g;
+    CHECK(render_with(&S.camera, &S.light, &o) == PN_E_INVALID_ARG);
+    if (OPT.algo == PN_ALGO_WEDGES) return; /* no point query */
+    CHECK(pn_visibility_points(H.ctx, &S.light, &OPT, pt, nm, &id, 1, &out) == PN_E_INVALID_ARG && out == -1.0f);
+    id = 0;
+    CHECK(pn_visibility_points(H.ctx, &S.light, &OPT, pt, nm, &id, 1, &out) == PN_OK && out >= 0.0f);
+}
+
+static void test_points_input(void)
+{
+    static float pts[64 * 64 * 3], nrm[64 * 64 * 3], out[64 * 64];
+    static uint32_t ids[64 * 64];
+    pn_frame_options o = OPT;
+    pn_frame fr;
+    uint32_t a, n = 64u * 64u;
+    uint64_t cp, cn, ci;
+    REQUIRE(pn_scene_set(H.ctx, S.mesh.positions, S.mesh.vertex_count, S.mesh.indices, S.mesh.triangle_count) == PN_OK);
+    /* The frame's pixels as points: the frame's visibility; for an exact algorithm in any
+     * batch shape (here 64 batches of 16 x 4). */
+    for (a = 0; a < PN_ALGO_COUNT; a++) {
+        pn_status st;
+        if (!(pn_build_info() & (1u << a))) continue;
+        o = OPT;
+        o.algo = (pn_algo)a;
+        o.mcsm.blur = PN_MC_BLUR_OFF;
+        REQUIRE(pn_render(H.ctx, &S.camera, &S.light, &o, &fr) == PN_OK);
+        keep(&K0, &fr);
+        memset(out, 0xAB, sizeof(out));
+        st = pn_visibility_points(H.ctx, &S.light, &o, K0.pos, K0.nrm, K0.ids, n, out);
+        if (a == PN_ALGO_WEDGES) {
+            CHECK(st == PN_E_UNSUPPORTED && has_message());
+            continue;
+        }
+        CHECK_MSG(st == PN_OK && memcmp(out, K0.vis, sizeof(out)) == 0, "%s: points differ from the frame (%s)",
+                  pn_algo_name((pn_algo)a), pn_last_error(H.ctx));
+        if (a == PN_ALGO_REFERENCE || a == PN_ALGO_GEARS || a == PN_ALGO_RAYTRACE) {
+            o.width = 16;
+            o.height = 4;
+            memset(out, 0xAB, sizeof(out));
+            CHECK_MSG(pn_visibility_points(H.ctx, &S.light, &o, K0.pos, K0.nrm, K0.ids, n, out) == PN_OK &&
+                          memcmp(out, K0.vis, sizeof(out)) == 0,
+                      "%s: points in batches differ from the frame", pn_algo_name((pn_algo)a));
+        }
+    }
+    if (pn_build_info() & PN_BUILD_MCSM) {
+        o = OPT;
+        o.algo = PN_ALGO_MCSM;
+        o.mcsm.layers = 3;
+        CHECK(pn_visibility_points(H.ctx, &S.light, &o, K0.pos, K0.nrm, K0.ids, n, out) == PN_E_UNSUPPORTED);
+    }
+
+    /* Hostile points: refused before anything is written; the caller's arrays untouched.
+     * (A build with the wedges alone refuses every point query first.) */
+    if (OPT.algo == PN_ALGO_WEDGES) {
+        CHECK(pn_visibility_points(H.ctx, &S.light, &OPT, NULL, NULL, NULL, 0, NULL) == PN_E_UNSUPPORTED);
+        return;
+    }
+    memcpy(pts, K0.pos, sizeof(pts));
+    memcpy(nrm, K0.nrm, sizeof(nrm));
+    memcpy(ids, K0.ids, sizeof(ids));
+    cp = checksum(pts, sizeof(pts));
+    cn = checksum(nrm, sizeof(nrm));
+    ci = checksum(ids, sizeof(ids));
+    o = OPT;
+    memset(out, 0xAB, sizeof(out));
+    CHECK(pn_visibility_points(NULL, &S.light, &o, pts, nrm, ids, n, out) == PN_E_INVALID_ARG);
+    CHECK(pn_visibility_points(H.ctx, NULL, &o, pts, nrm, ids, n, out) == PN_E_INVALID_ARG);
+    CHECK(pn_visibility_points(H.ctx, &S.light, NULL, pts, nrm, ids, n, out) == PN_E_INVALID_ARG);
+    CHECK(pn_visibility_points(H.ctx, &S.light, &o, NULL, nrm, ids, n, out) == PN_E_INVALID_ARG);
+    CHECK(pn_visibility_points(H.ctx, &S.light, &o, pts, nrm, ids, n, NULL) == PN_E_INVALID_ARG);
+    CHECK(pn_visibility_points(H.ctx, &S.light, &o, NULL, NULL, NULL, 0, NULL) == PN_OK);
+    CHECK(pn_visibility_points(H.ctx, &S.light, &o, pts, nrm, ids, n, (float *)(uintptr_t)K0.vis) == PN_OK);
+    REQUIRE(pn_render(H.ctx, &S.camera, &S.light, &o, &fr) == PN_OK);
+    CHECK(pn_visibility_points(H.ctx, &S.light, &o, pts, nrm, ids, n, (float *)(uintptr_t)fr.visibility) ==
+          PN_E_INVALID_ARG);
+    o.width = 0;
+    CHECK(pn_visibility_points(H.ctx, &S.light, &o, pts, nrm, ids, n, out) == PN_E_IMAGE_SIZE);
+    o.width = 65;
+    CHECK(pn_visibility_points(H.ctx, &S.light, &o, pts, nrm, ids, n, out) == PN_E_LIMIT);
+    o = OPT;
+    o.k = 5;
+    CHECK(pn_visibility_points(H.ctx, &S.light, &o, pts, nrm, ids, n, out) == PN_E_INVALID_ARG);
+    o = OPT;
+    {
+        uint32_t j = 0, b;
+        while (ids[j] == PN_NO_TRIANGLE) j++;
+        for (b = 0; b < 6u; b++) {
+            float keep_p = pts[j * 3u], keep_n = nrm[j * 3u + 1u];
+            uint32_t keep_i = ids[j];
+            pn_status want = PN_E_NONFINITE;
+            if (b == 0u) pts[j * 3u] = NAN;
+            if (b == 1u) nrm[j * 3u + 1u] = INFINITY;
+            if (b == 2u) pts[j * 3u] = 3e12f, want = PN_E_LIMIT;
+            if (b == 3u) nrm[j * 3u + 1u] = keep_n * 0.5f + 0.5f, want = PN_E_INVALID_ARG;
+            if (b == 4u) ids[j] = S.mesh.triangle_count, want = PN_E_INDEX_RANGE;
+            if (b == 5u) nrm[j * 3u + 1u] = keep_n + 0.01f, want = PN_E_INVALID_ARG;
+            if (b == 3u && fabsf(keep_n * 0.5f + 0.5f - keep_n) < 0.01f) nrm[j * 3u + 1u] = keep_n + 0.5f;
+            CHECK_MSG(pn_visibility_points(H.ctx, &S.light, &o, pts, nrm, ids, n, out) == want && has_message(),
+                      "hostile point %u: %s", b, pn_last_error(H.ctx));
+            pts[j * 3u] = keep_p;
+            nrm[j * 3u + 1u] = keep_n;
+            ids[j] = keep_i;
+        }
+        CHECK(checksum(pts, sizeof(pts)) == cp && checksum(nrm, sizeof(nrm)) == cn && checksum(ids, sizeof(ids)) == ci);
+        for (b = 0; b < n; b++) CHECK((((const uint32_t *)(const void *)out)[b]) == 0xABABABABu);
+    }
+}
+
 int main(void)
 {
     if (pn_test_scene_load(&S, "spheres") != 0 || pn_test_open(&H, S.mesh.triangle_count, 64, 64) != 0) return 1;
@@ -639,6 +891,9 @@ int main(void)
     RUN(test_receivers);
     RUN(test_status_strings);
     RUN(test_error_contract);
+    RUN(test_caller_gbuffer);
+    RUN(test_points_input);
+    RUN(test_caller_degenerate);
     pn_test_close(&H);
     pn_test_scene_free(&S);
     return pn_test_summary();

@@ -97,6 +97,12 @@ pn_status pn_opencl_create(pn_context *ctx, const pn_opencl_options *opt, void *
 pn_status pn_opencl_render(pn_opencl *cl, const pn_camera *camera, const pn_light *light,
                            const pn_frame_options *opt, pn_frame *out);
 
+/* pn_visibility_points() on the device: the same checks, statuses and results (byte for
+ * byte), plus PN_E_INVALID_ARG for a NULL port and PN_E_DEVICE when an OpenCL call fails. */
+pn_status pn_opencl_visibility_points(pn_opencl *cl, const pn_light *light, const pn_frame_options *opt,
+                                      const float *points, const float *normals, const uint32_t *tri_ids, uint32_t n,
+                                      float *out);
+
 /* Releases the device objects. Returns the block given to pn_opencl_create (the caller's
  * to reuse or free), or NULL for NULL. */
 void *pn_opencl_destroy(pn_opencl *cl);

@@ -98,7 +98,8 @@ typedef enum pn_status {
                                   height * 2^-24 (neighbouring pixels' rays coincide) */
     PN_E_IMAGE_SIZE = 9,       /* zero width or height */
     PN_E_NO_SCENE = 10,        /* pn_render before a successful pn_scene_set */
-    PN_E_UNSUPPORTED = 11,     /* algorithm or port not compiled in */
+    PN_E_UNSUPPORTED = 11,     /* algorithm or port not compiled in, or not offered for the
+                                  request (pn_visibility_points with the wedges) */
     PN_E_POOL_EXHAUSTED = 12,  /* a pool is too small for this frame; message names it */
     PN_E_DEVICE = 13,          /* a port's device failed (OpenCL port) */
     PN_E_INTERNAL = 14         /* a broken invariant; please report */
@@ -320,6 +321,19 @@ pn_status pn_set_clock(pn_context *ctx, pn_clock_fn clock, void *user);
 pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_count,
                        const uint32_t *indices, uint32_t triangle_count);
 
+/* Moves the current scene's vertices: the same arguments as pn_scene_set, for a scene of
+ * the same triangle count (its triangles in the same order, typically the same index
+ * buffer with new positions). Instead of a new BVH the current one is refitted (its
+ * boxes recomputed bottom-up, its order kept) and every algorithm's own scene data is
+ * recomputed; the receiver marking is kept. Every frame afterwards has the same bytes as
+ * after pn_scene_set of the moved scene (only the BVH's shape, and so pn_stats' node
+ * counts, differ). When the set of degenerate triangles changes, or the context splits
+ * BVH references (limits.bvh_refs above max_triangles), the BVH is built anew instead.
+ * Statuses: those of pn_scene_set, PN_E_NO_SCENE, and PN_E_INVALID_ARG when
+ * triangle_count is not the current scene's; on failure the current scene stays. */
+pn_status pn_scene_update_positions(pn_context *ctx, const float *positions, uint32_t vertex_count,
+                                    const uint32_t *indices, uint32_t triangle_count);
+
 /* Marks triangles [first, first + count) of the current scene as receivers only: they
  * cast no shadow into the depth layers of PN_ALGO_MCSM (Curtis 2009 requires "pure
  * receivers", such as a ground plane, to stay out of the layers, which model occluders as
@@ -426,7 +440,30 @@ typedef struct pn_frame_options {
     pn_occtex_options occtex;
     pn_mcsm_options mcsm;
     pn_wedges_options wedges;
+    /* An engine's own G-buffer and its own output buffers (all NULL / 0 by default): */
+    const struct pn_gbuffer *gbuffer; /* NULL: the library rasterizes the camera's view;
+                                         else the caller's (pn_gbuffer), read, never written */
+    float *visibility_out; /* NULL, or width*height floats: the visibility is also written here */
+    uint8_t *rgba_out;     /* NULL, or width*height*4 bytes: the RGBA image is also written here */
+    uint32_t no_rgba;      /* 1: no shading pass, pn_frame.rgba is NULL (rgba_out must be NULL) */
 } pn_frame_options;
+
+/* A G-buffer the caller drew with the frame's camera (pn_frame_options.gbuffer): two
+ * arrays of width*height, row-major, top row first, as pn_frame returns them. The library
+ * recomputes each pixel's position and normal from them exactly as its own rasterizer
+ * does (position = eye + depth * the pixel's ray direction of CONVENTIONS, normal = the
+ * triangle's unit geometric normal), so handing back pn_frame's own depth and tri_id gives
+ * the same bytes as rasterizing, on every port. Per pixel, tri_id is PN_NO_TRIANGLE
+ * (background: depth is not read) or a non-degenerate triangle of the scene, and depth is
+ * finite, > 0, and puts the point within 2^40 of the origin; else the frame fails before
+ * anything is written: PN_E_INDEX_RANGE (an id beyond the scene), PN_E_INVALID_ARG (a
+ * degenerate triangle's id, a depth <= 0), PN_E_NONFINITE, PN_E_LIMIT, the message naming
+ * the pixel. An engine's depth buffer holds view-space z or a projected depth: convert it
+ * to the distance along the ray (z / cos of the ray's angle to the view direction). */
+typedef struct pn_gbuffer {
+    const float *depth;     /* distance from the eye along the pixel's primary ray */
+    const uint32_t *tri_id; /* the triangle seen (scene order), or PN_NO_TRIANGLE */
+} pn_gbuffer;
 
 #define PN_WG_MODE_BLEND 1u
 #define PN_WG_MODE_ADDITIVE 2u
@@ -478,10 +515,37 @@ typedef struct pn_frame {
 pn_status pn_render(pn_context *ctx, const pn_camera *camera, const pn_light *light,
                     const pn_frame_options *opt, pn_frame *out);
 
+/* Visibility of the light at n arbitrary surface points (light maps, probes, texture-space
+ * shading): out[i] for the point points[3i..3i+2] on triangle tri_ids[i] with unit
+ * geometric normal normals[3i..3i+2] (the triangle's, wound as the scene winds it; |n|
+ * within 1e-3 of 1), or 1 for tri_ids[i] = PN_NO_TRIANGLE, computed as a frame computes a
+ * pixel's. opt gives the algorithm, k, eps and the algorithm's options, and the shape of a
+ * batch: the points are taken width x height at a time, point i of a batch standing where
+ * pixel (i % width, i / width) stands in a frame (within the context's limits; G-buffer,
+ * output and shading fields are not read). So at a frame's own pixels (its position,
+ * normal and tri_id, in order, with the frame's options) out is the frame's visibility bit
+ * for bit; a map-based algorithm fits its maps to each batch's points. Algorithms: the
+ * reference, GEARS, ray tracing, SRT, the occlusion textures and MCSM (its screen-space
+ * blur is not run; layers 1 or 2); the wedges, which work in a camera's screen tiles, and
+ * MCSM's third layer (the eye's depth) return PN_E_UNSUPPORTED. Statuses: those of
+ * pn_render for the light and the options, PN_E_INVALID_ARG (NULL pointers when n > 0, a
+ * normal not unit, a degenerate triangle's id), PN_E_INDEX_RANGE (an id beyond the scene),
+ * PN_E_NONFINITE, PN_E_LIMIT (a coordinate beyond 2^40), the message naming the point:
+ * every point is checked before anything is written. The frame's buffers in the arena are
+ * reused (a pn_frame from before is no longer valid). out is written batch by batch: on a
+ * failure after the checks (PN_E_POOL_EXHAUSTED, PN_E_DEVICE) it may hold the batches
+ * done. */
+pn_status pn_visibility_points(pn_context *ctx, const pn_light *light, const pn_frame_options *opt,
+                               const float *points, const float *normals, const uint32_t *tri_ids, uint32_t n,
+                               float *out);
+
 /* ---- Introspection ------------------------------------------------------------------ */
 
+/* pn_stats.pass_ns: the last pn_scene_set or pn_scene_update_positions (its copy, its BVH
+ * build or refit, and every algorithm's own scene work: the wedges' and MCSM's
+ * connectivity), and the last frame's passes (a point query: its shadow pass). */
 enum { PN_PASS_SCENE_COPY, PN_PASS_BVH_BUILD, PN_PASS_GBUFFER, PN_PASS_SHADOW, PN_PASS_SHADE,
-       PN_PASS_COUNT };
+       PN_PASS_SCENE_ALGOS, PN_PASS_COUNT };
 
 /* Each algorithm's own statistics, a sub-struct of pn_stats named after its module
  * (stats.gears, stats.mcsm, ...), as the last frame that ran that algorithm left them. */

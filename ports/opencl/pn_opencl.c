@@ -735,6 +735,14 @@ pn_status pn_opencl_render(pn_opencl *cl, const pn_camera *camera, const pn_ligh
     return pn_render_with(cl->ctx, &cl->port, camera, light, opt, out);
 }
 
+pn_status pn_opencl_visibility_points(pn_opencl *cl, const pn_light *light, const pn_frame_options *opt,
+                                      const float *points, const float *normals, const uint32_t *tri_ids, uint32_t n,
+                                      float *out)
+{
+    if (!cl) return PN_E_INVALID_ARG;
+    return pn_points_with(cl->ctx, &cl->port, light, opt, points, normals, tri_ids, n, out);
+}
+
 void *pn_opencl_destroy(pn_opencl *cl)
 {
     int k;

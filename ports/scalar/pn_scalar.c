@@ -101,3 +101,10 @@ pn_status pn_render(pn_context *ctx, const pn_camera *camera, const pn_light *li
 {
     return pn_render_with(ctx, &pn_port_scalar, camera, light, opt, out);
 }
+
+pn_status pn_visibility_points(pn_context *ctx, const pn_light *light, const pn_frame_options *opt,
+                               const float *points, const float *normals, const uint32_t *tri_ids, uint32_t n,
+                               float *out)
+{
+    return pn_points_with(ctx, &pn_port_scalar, light, opt, points, normals, tri_ids, n, out);
+}

@@ -22,7 +22,13 @@
  *   penumbra-wedge builds: 12 % 4 the mode (3 invalid), 13 x 16 the pair pool (0: default);
  *   algo 6 is PN_ALGO_WEDGES
  *   then floats: eye[3] target[3] up[3] fov, light c[3] u[3] v[3], eps albedo ambient;
- *   4 background bytes; vertex count * 3 floats; triangle count * 3 uint32 indices.
+ *   4 background bytes; vertex count * 3 floats; triangle count * 3 uint32 indices;
+ *   then (issue 52) a byte of the caller-side entry points to try after a valid frame:
+ *   1 a hostile G-buffer (width x height depth floats, then ids: raw, or with 8 also set
+ *   taken modulo the triangle count + 1, which stands for PN_NO_TRIANGLE) with output
+ *   buffers, 2 hostile points (a count byte % 33, then per point position[3] normal[3]
+ *   and an id, raw or with 8 modulo as above; with 16 the normals normalized),
+ *   4 moved vertices (vertex count * 3 floats for pn_scene_update_positions).
  *
  * Invariants (penumbra.h trust model): a status is PN_OK exactly when the input is
  * valid, and otherwise names a cause present in the input (never PN_E_INTERNAL or a
@@ -33,7 +39,14 @@
  * Carlo shadow maps and penumbra wedges: in [0, 1]), background pixels at
  * visibility 1 / PN_NO_TRIANGLE / +inf depth / the background colour, ids below the
  * triangle count and unit normals; and rendering again, after scribbling over the
- * caller's arrays and under a reversed work-item schedule, gives the same bytes. Within
+ * caller's arrays and under a reversed work-item schedule, gives the same bytes. The
+ * frame's own depth and ids handed back as the caller's G-buffer give its bytes again;
+ * its pixels as points give its visibility (every algorithm but the wedges, which refuse,
+ * and MCSM with a blur, which points do not run); a hostile G-buffer or point set is
+ * refused exactly when a pixel or point is invalid (penumbra.h's pn_gbuffer and
+ * pn_visibility_points), and when taken gives a frame within the invariants above with
+ * the output buffers equal to the frame's; after pn_scene_update_positions a frame has
+ * the bytes of the same frame after pn_scene_set of the moved scene. Within
  * a few ulps of a numeric threshold (degenerate camera or light) either answer passes. */
 #include <math.h>
 #include <string.h>
@@ -90,11 +103,211 @@ static void reverse_for(void *user, uint32_t count, pn_task_fn fn, void *task)
     while (count-- > 0u) fn(task, count, count + 1u);
 }
 
+/* A triangle whose normal the library may find degenerate (its float cross product near
+ * or below FLT_MIN, or tiny against its edges): 2 surely, 1 perhaps, 0 not. */
+static int degenerate_tri(const float *pos, const uint32_t *idx, uint32_t t)
+{
+    const float *A = pos + 3u * idx[3u * t], *B = pos + 3u * idx[3u * t + 1u], *C = pos + 3u * idx[3u * t + 2u];
+    double e1[3], e2[3], c[3], m, l1, l2;
+    int i;
+    for (i = 0; i < 3; i++) e1[i] = (double)B[i] - A[i], e2[i] = (double)C[i] - A[i];
+    c[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    c[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    c[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    m = fmax(fabs(c[0]), fmax(fabs(c[1]), fabs(c[2])));
+    l1 = len3(e1), l2 = len3(e2);
+    if (m == 0.0) return 2;
+    return m < 1e-36 || m < 1e-5 * l1 * l2 ? 1 : 0;
+}
+
+/* The causes triangle id gives a G-buffer pixel or a point: must (surely) and may (near
+ * the degenerate threshold) bits. */
+static void point_causes(const float *pos, const uint32_t *idx, uint32_t tc, uint32_t id, unsigned *must,
+                         unsigned *may)
+{
+    int d;
+    if (id == PN_NO_TRIANGLE) return;
+    if (id >= tc) {
+        *must |= BIT(PN_E_INDEX_RANGE);
+        return;
+    }
+    d = degenerate_tri(pos, idx, id);
+    if (d == 2) *must |= BIT(PN_E_INVALID_ARG);
+    if (d == 1) *may |= BIT(PN_E_INVALID_ARG);
+}
+
+/* A valid frame's buffers, kept. */
+typedef struct kept_frame {
+    const float *vis, *depth, *pos, *nrm;
+    const uint32_t *ids;
+    const uint8_t *rgba;
+} kept_frame;
+
+/* The frame invariants of a G-buffer pixel's shading inputs and outputs (see the top). */
+static void check_pixel(const pn_frame *out, const pn_frame_options *opt, size_t i)
+{
+    const float *nr = out->normal + 3u * i;
+    float vi = out->visibility[i];
+    FUZZ_CHECK(vi >= 0.0f && vi <= 1.0f, "pixel %zu visibility %g", i, vi);
+    if (out->tri_id[i] == PN_NO_TRIANGLE) {
+        FUZZ_CHECK(vi == 1.0f && out->depth[i] == INFINITY && (!out->rgba || !memcmp(out->rgba + 4u * i, opt->background, 4u)),
+                   "background pixel %zu: visibility %g depth %g", i, vi, out->depth[i]);
+        return;
+    }
+    FUZZ_CHECK(fabsf(nr[0] * nr[0] + nr[1] * nr[1] + nr[2] * nr[2] - 1.0f) < 1e-3f,
+               "pixel %zu (triangle %u) normal (%g %g %g) is not unit", i, out->tri_id[i], nr[0], nr[1], nr[2]);
+}
+
+/* After a valid frame f of opt0: the caller-side entry points (issue 52; the top comment). */
+static void caller_side(pn_context *ctx, reader *r, unsigned api, const pn_camera *cam, const pn_light *light,
+                        const pn_frame_options *opt0, const float *pos, const uint32_t *idx, uint32_t vc, uint32_t tc,
+                        int receivers, const kept_frame *f)
+{
+    static float gdepth[MAX_W * MAX_H], gdepth0[MAX_W * MAX_H], vis_out[MAX_W * MAX_H], pvis[MAX_W * MAX_H];
+    static float ppos[32u * 3u], pnrm[32u * 3u], moved[MAX_T * 3u], moved0[MAX_T * 3u], vis2[MAX_W * MAX_H];
+    static uint32_t gids[MAX_W * MAX_H], gids0[MAX_W * MAX_H], pids[32u], ids2[MAX_W * MAX_H];
+    static uint8_t rgba_out[MAX_W * MAX_H * 4u], rgba2[MAX_W * MAX_H * 4u];
+    size_t n = (size_t)opt0->width * opt0->height, i;
+    pn_frame_options opt = *opt0;
+    pn_gbuffer g;
+    pn_frame out;
+    pn_status st;
+    unsigned must = 0u, may = 0u;
+    double eye = fmax(fabs(cam->eye[0]), fmax(fabs(cam->eye[1]), fabs(cam->eye[2])));
+    int near_limit = 0, blurred = opt0->algo == PN_ALGO_MCSM && opt0->mcsm.blur != PN_MC_BLUR_OFF;
+
+    /* The frame's own depth and ids back: its bytes (a point the rasterizer put a rounding
+     * beyond 2^40 may be refused). */
+    for (i = 0; i < n * 3u; i++) near_limit |= fabsf(f->pos[i]) > 0x1.fcp39f;
+    g.depth = f->depth;
+    g.tri_id = f->ids;
+    opt.gbuffer = &g;
+    st = pn_render(ctx, cam, light, &opt, &out);
+    expect("pn_render (its own G-buffer)", st, 0u, near_limit ? BIT(PN_E_LIMIT) : 0u, ctx);
+    if (st == PN_OK)
+        FUZZ_CHECK(!memcmp(f->vis, out.visibility, n * 4u) && !memcmp(f->ids, out.tri_id, n * 4u) &&
+                       !memcmp(f->depth, out.depth, n * 4u) && !memcmp(f->rgba, out.rgba, n * 4u) &&
+                       !memcmp(f->pos, out.position, n * 12u) && !memcmp(f->nrm, out.normal, n * 12u),
+                   "the frame's own G-buffer gives other bytes");
+    /* Its pixels as points: its visibility. */
+    st = pn_visibility_points(ctx, light, opt0, f->pos, f->nrm, f->ids, (uint32_t)n, pvis);
+    must = opt0->algo == PN_ALGO_WEDGES || (opt0->algo == PN_ALGO_MCSM && opt0->mcsm.layers == 3u)
+               ? BIT(PN_E_UNSUPPORTED) : 0u;
+    expect("pn_visibility_points (its pixels)", st, must, (near_limit ? BIT(PN_E_LIMIT) : 0u) | BIT(PN_E_POOL_EXHAUSTED),
+           ctx);
+    if (st == PN_OK && !blurred)
+        FUZZ_CHECK(!memcmp(pvis, f->vis, n * 4u), "the frame's pixels as points give another visibility");
+
+    if (api & 1u) { /* a hostile G-buffer, with output buffers */
+        take(r, gdepth, n * 4u);
+        take(r, gids, n * 4u);
+        for (i = 0; (api & 8u) && i < n; i++) gids[i] = gids[i] % (tc + 1u) == tc ? PN_NO_TRIANGLE : gids[i] % (tc + 1u);
+        memcpy(gdepth0, gdepth, n * 4u);
+        memcpy(gids0, gids, n * 4u);
+        must = may = 0u;
+        for (i = 0; i < n; i++) {
+            double d = gdepth[i];
+            unsigned m0 = 0u;
+            point_causes(pos, idx, tc, gids[i], &m0, &may);
+            must |= m0;
+            if (gids[i] >= tc || m0) continue;
+            if (!isfinite(d)) must |= BIT(PN_E_NONFINITE);
+            else if (!(d > 0.0)) must |= BIT(PN_E_INVALID_ARG);
+            else if (d / 1.7320508 - eye > 0x1p40 * 1.01) must |= BIT(PN_E_LIMIT);
+            else if (d + eye > 0x1p40 * 0.99) may |= BIT(PN_E_LIMIT);
+        }
+        g.depth = gdepth;
+        g.tri_id = gids;
+        opt.visibility_out = vis_out;
+        opt.rgba_out = (api & 32u) ? NULL : rgba_out;
+        opt.no_rgba = (api & 32u) ? 1u : 0u;
+        st = pn_render(ctx, cam, light, &opt, &out);
+        expect("pn_render (a hostile G-buffer)", st, must, may | BIT(PN_E_POOL_EXHAUSTED), ctx);
+        FUZZ_CHECK(!memcmp(gdepth, gdepth0, n * 4u) && !memcmp(gids, gids0, n * 4u), "pn_render changed the G-buffer");
+        if (st == PN_OK) {
+            FUZZ_CHECK(!memcmp(gids, out.tri_id, n * 4u), "the frame's ids are not the G-buffer's");
+            FUZZ_CHECK(!memcmp(vis_out, out.visibility, n * 4u), "visibility_out is not the frame's");
+            FUZZ_CHECK((api & 32u) ? out.rgba == NULL : !memcmp(rgba_out, out.rgba, n * 4u), "rgba_out is not the frame's");
+            for (i = 0; i < n; i++) check_pixel(&out, &opt, i);
+        }
+    }
+    if (api & 2u) { /* hostile points */
+        uint8_t m8 = 0;
+        uint32_t m, j;
+        take(r, &m8, 1u);
+        m = m8 % 33u;
+        for (j = 0; j < m; j++) {
+            take(r, ppos + 3u * j, 12u);
+            take(r, pnrm + 3u * j, 12u);
+            take(r, pids + j, 4u);
+            if (api & 8u) pids[j] = pids[j] % (tc + 1u) == tc ? PN_NO_TRIANGLE : pids[j] % (tc + 1u);
+            if (api & 16u) {
+                float *q = pnrm + 3u * j, l = sqrtf(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+                if (isfinite(l) && l > 1e-18f) q[0] /= l, q[1] /= l, q[2] /= l;
+            }
+        }
+        must = may = 0u;
+        for (j = 0; j < m; j++) {
+            unsigned m0 = 0u, c, pc, nc;
+            double nn = 0.0;
+            point_causes(pos, idx, tc, pids[j], &m0, &may);
+            must |= m0;
+            if (pids[j] >= tc || m0) continue;
+            for (c = 0; c < 3u; c++) nn += (double)pnrm[3u * j + c] * pnrm[3u * j + c];
+            pc = vec_causes(ppos + 3u * j, 3u);
+            nc = vec_causes(pnrm + 3u * j, 3u) & BIT(PN_E_NONFINITE);
+            if (pc | nc) {
+                must |= pc | nc; /* the components are checked before the length */
+            } else if (fabs(nn - 1.0) > 0.0025) {
+                must |= BIT(PN_E_INVALID_ARG);
+            } else if (fabs(nn - 1.0) > 0.0015) {
+                may |= BIT(PN_E_INVALID_ARG);
+            }
+        }
+        if (opt0->algo == PN_ALGO_WEDGES || (opt0->algo == PN_ALGO_MCSM && opt0->mcsm.layers == 3u))
+            must = BIT(PN_E_UNSUPPORTED), may = 0u; /* before any point is read */
+        memset(pvis, 0x5A, sizeof pvis);
+        st = pn_visibility_points(ctx, light, opt0, ppos, pnrm, pids, m, pvis);
+        expect("pn_visibility_points (hostile points)", st, must, may | BIT(PN_E_POOL_EXHAUSTED), ctx);
+        for (j = 0; st == PN_OK && j < m; j++)
+            FUZZ_CHECK(pvis[j] >= 0.0f && pvis[j] <= 1.0f && (pids[j] != PN_NO_TRIANGLE || pvis[j] == 1.0f),
+                       "point %u (triangle %u): visibility %g", j, pids[j], pvis[j]);
+        for (j = 0; st != PN_OK && st != PN_E_POOL_EXHAUSTED && j < m; j++)
+            FUZZ_CHECK(((const uint32_t *)(const void *)pvis)[j] == 0x5A5A5A5Au, "failed pn_visibility_points wrote out");
+    }
+    if (api & 4u) { /* moved vertices: refitted, the frame of a new scene's */
+        pn_status s1, s2;
+        take(r, moved, vc * 12u);
+        memcpy(moved0, moved, vc * 12u);
+        st = pn_scene_update_positions(ctx, moved, vc, idx, tc);
+        expect("pn_scene_update_positions", st, vec_causes(moved, vc * 3u), 0u, ctx);
+        FUZZ_CHECK(!memcmp(moved, moved0, vc * 12u), "pn_scene_update_positions changed its input");
+        if (st != PN_OK) return;
+        s1 = pn_render(ctx, cam, light, opt0, &out);
+        if (s1 == PN_OK) {
+            memcpy(vis2, out.visibility, n * 4u);
+            memcpy(ids2, out.tri_id, n * 4u);
+            memcpy(rgba2, out.rgba, n * 4u);
+        }
+        st = pn_scene_set(ctx, moved, vc, idx, tc);
+        FUZZ_CHECK(st == PN_OK, "pn_scene_set of the moved scene: %s", pn_last_error(ctx));
+        if (receivers) FUZZ_CHECK(pn_scene_set_receivers(ctx, tc / 2u, tc - tc / 2u) == PN_OK, "receivers");
+        s2 = pn_render(ctx, cam, light, opt0, &out);
+        FUZZ_CHECK(s1 == s2, "after the move: refit %s, rebuilt %s", pn_status_str(s1), pn_status_str(s2));
+        if (s1 == PN_OK && s2 == PN_OK)
+            FUZZ_CHECK(!memcmp(vis2, out.visibility, n * 4u) && !memcmp(ids2, out.tri_id, n * 4u) &&
+                           !memcmp(rgba2, out.rgba, n * 4u),
+                       "the refitted scene's frame differs from the rebuilt one's");
+    }
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static float pos[MAX_T * 3u], pos_copy[MAX_T * 3u], vis1[MAX_W * MAX_H], depth1[MAX_W * MAX_H];
     static uint32_t idx[MAX_T * 3u], idx_copy[MAX_T * 3u], id1[MAX_W * MAX_H];
     static uint8_t rgba1[MAX_W * MAX_H * 4u];
+    static float pos1[MAX_W * MAX_H * 3u], nrm1[MAX_W * MAX_H * 3u];
+    uint8_t api = 0;
     reader r = {data, size};
     uint8_t h[16];
     pn_limits lim = {.max_triangles = MAX_T, .max_width = MAX_W, .max_height = MAX_H};
@@ -182,6 +395,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     take(&r, pos, vc * 3u * sizeof(float));
     take(&r, idx, tc * 3u * sizeof(uint32_t));
     for (i = 0; (h[6] & 16u) && i < tc * 3u; i++) idx[i] = vc ? idx[i] % vc : 0u;
+    take(&r, &api, 1u);
     memcpy(pos_copy, pos, sizeof pos);
     memcpy(idx_copy, idx, sizeof idx);
     cam0 = cam, light0 = light, opt0 = opt;
@@ -364,6 +578,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         FUZZ_CHECK(!memcmp(vis1, out.visibility, n * sizeof(float)) && !memcmp(id1, out.tri_id, n * 4u) &&
                        !memcmp(depth1, out.depth, n * sizeof(float)) && !memcmp(rgba1, out.rgba, n * 4u),
                    "second render differs");
+        memcpy(pos1, out.position, n * 3u * sizeof(float));
+        memcpy(nrm1, out.normal, n * 3u * sizeof(float));
+        memcpy(pos, pos_copy, sizeof pos);
+        memcpy(idx, idx_copy, sizeof idx);
+        {
+            const kept_frame f = {vis1, depth1, pos1, nrm1, id1, rgba1};
+            caller_side(ctx, &r, api, &cam, &light, &opt, pos, idx, vc, tc, (h[6] & 128u) != 0, &f);
+        }
     }
     for (i = 0; i < fill; i++) FUZZ_CHECK(block[i] == FILL, "byte %td before the arena was written", block + i - mem);
     for (i = 0; i < GUARD; i++) FUZZ_CHECK(end[i] == FILL, "byte %zu after the arena was written", i);

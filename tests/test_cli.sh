@@ -135,6 +135,24 @@ if "$bin" info | grep -q '^ports: .*opencl'; then
   check grep -q 'PN_E_DEVICE' err.txt
 fi
 
+# bake: the ground's light map as a PFM of --size texels; the reference and GEARS (exact)
+# give the same bytes, on the OpenCL port too; the wedges refuse points; no --ground off.
+"$bin" bake "$scenes/spot.glb" --size 24x16 --k 8 --out lm_ref.pfm 2>err.txt
+check test $? -eq 0
+check test "$(head -n 3 lm_ref.pfm | tr '\n' ' ')" = "Pf 24 16 -1.0 "
+check grep -q 'light map 24x16' err.txt
+"$bin" bake "$scenes/spot.glb" --size 24x16 --k 8 --algo gears --out lm_gears.pfm 2>err.txt
+check cmp -s lm_ref.pfm lm_gears.pfm
+if "$bin" info | grep -q '^ports: .*opencl'; then
+  "$bin" bake "$scenes/spot.glb" --size 24x16 --k 8 --port opencl --out lm_cl.pfm 2>err.txt
+  check cmp -s lm_ref.pfm lm_cl.pfm
+fi
+"$bin" bake "$scenes/spot.glb" --size 24x16 --algo wedges --out lm_wg.pfm 2>err.txt; r=$?
+check test $r -eq 1
+check grep -q 'PN_E_UNSUPPORTED' err.txt
+"$bin" bake "$scenes/spot.glb" --ground off --out lm_x.pfm 2>err.txt; r=$?
+check test $r -eq 2
+
 # The demo at a small size: every image and the sheet.
 "$bin" demo --out demo --size 48x48 --k 4 > demo.txt 2>err.txt
 check test $? -eq 0

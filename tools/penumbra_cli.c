@@ -47,6 +47,10 @@ static void usage(FILE *f)
             "                  [--mc-map N] [--mc-no-bias] [--mc-no-classify] [--mc-seed N]\n"
             "                  [--wg-mode blend|additive]\n"
             "                  --out image.png [--vis vis.pfm] [--ids ids.bin] [--stats stats.json]\n"
+            "  penumbra bake [the scene, view, light and algorithm options of render]\n"
+            "                --out lightmap.pfm [--size WxH]\n"
+            "      the light map of the ground plane under the scene: visibility at the centres of\n"
+            "      WxH texels (default 256x256) over the scene's x,z extent, +x right, +z down\n"
             "  penumbra demo [--out DIR] [--size WxH] [--k K] [--threads N]\n"
             "  penumbra info [--no-build]\n"
             "algorithms:");
@@ -121,6 +125,48 @@ static pn_status cli_port_render(cli_port *p, pn_context *ctx, const pn_camera *
     return pn_render(ctx, cam, light, opt, fr);
 }
 
+static pn_status cli_port_points(cli_port *p, pn_context *ctx, const pn_light *light, const pn_frame_options *opt,
+                                 const float *pts, const float *nrm, const uint32_t *ids, uint32_t n, float *out)
+{
+#if PN_HAVE_OPENCL
+    if (p->cl) return pn_opencl_visibility_points(p->cl, light, opt, pts, nrm, ids, n, out);
+#endif
+    return pn_visibility_points(ctx, light, opt, pts, nrm, ids, n, out);
+}
+
+/* The light map's points: the centres of w x h texels over the x,z extent of the scene
+ * without its ground (s->ground: the last two triangles, (v0, v3, v2) and (v0, v2, v1) of
+ * the quad pn_mesh_add_ground appends), on the ground plane, each on the ground triangle
+ * that holds it, normal +y. Row r at z = zmin + (r + 0.5) dz. */
+static void ground_points(const pn_setup *s, uint32_t w, uint32_t h, float *pts, float *nrm, uint32_t *ids)
+{
+    const pn_mesh *m = &s->mesh;
+    uint32_t tg = m->triangle_count - 2u, v0 = m->indices[(size_t)tg * 3u], v, x, y;
+    float lo[2] = {m->positions[0], m->positions[2]}, hi[2] = {m->positions[0], m->positions[2]};
+    float gx = m->positions[(size_t)v0 * 3u], gy = m->positions[(size_t)v0 * 3u + 1u], gz = m->positions[(size_t)v0 * 3u + 2u];
+    for (v = 0; v + 4u < m->vertex_count; v++) {
+        const float *p = m->positions + (size_t)v * 3u;
+        lo[0] = p[0] < lo[0] ? p[0] : lo[0];
+        hi[0] = p[0] > hi[0] ? p[0] : hi[0];
+        lo[1] = p[2] < lo[1] ? p[2] : lo[1];
+        hi[1] = p[2] > hi[1] ? p[2] : hi[1];
+    }
+    for (y = 0; y < h; y++)
+        for (x = 0; x < w; x++) {
+            size_t i = (size_t)y * w + x;
+            float px = lo[0] + (hi[0] - lo[0]) * ((float)x + 0.5f) / (float)w;
+            float pz = lo[1] + (hi[1] - lo[1]) * ((float)y + 0.5f) / (float)h;
+            pts[i * 3u] = px;
+            pts[i * 3u + 1u] = gy;
+            pts[i * 3u + 2u] = pz;
+            nrm[i * 3u] = 0.0f;
+            nrm[i * 3u + 1u] = 1.0f;
+            nrm[i * 3u + 2u] = 0.0f;
+            /* (v0, v3, v2) holds the side of the diagonal v0-v2 toward v3 (-x, +z). */
+            ids[i] = pz - gz >= px - gx ? tg : tg + 1u;
+        }
+}
+
 /* The OpenCL device's name when the port is OpenCL, else NULL. */
 static const char *cli_port_device(const cli_port *p)
 {
@@ -193,6 +239,7 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
                "  \"bvh_max_leaf\": %u,\n  \"bvh_refs\": %u,\n  \"bvh_wide_nodes\": %u,\n",
             st->degenerate_triangles, st->bvh_nodes, st->bvh_depth, st->bvh_max_leaf, st->bvh_refs,
             st->bvh_wide_nodes);
+    fprintf(f, "  \"ms_scene_algos\": %.3f,\n", st->pass_ns[PN_PASS_SCENE_ALGOS] / 1e6);
     fprintf(f, "  \"ms_scene_copy\": %.3f,\n  \"ms_bvh_build\": %.3f,\n  \"ms_gbuffer\": %.3f,\n"
                "  \"ms_shadow\": %.3f,\n  \"ms_shade\": %.3f,\n  \"ms_render_total\": %.3f,\n",
             st->pass_ns[PN_PASS_SCENE_COPY] / 1e6, st->pass_ns[PN_PASS_BVH_BUILD] / 1e6,
@@ -243,7 +290,50 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
     return fclose(f) != 0;
 }
 
-static int cmd_render(int argc, char **argv)
+/* The ground's light map: one batch of width x height points (cmd_render's set-up done);
+ * closes the port, the context and the scene. 0, or 1 after a message. */
+static int cmd_bake(pn_setup *s, pn_host *h, cli_port *cp, const pn_frame_options *opt, const char *out)
+{
+    size_t n = (size_t)opt->width * opt->height;
+    float *pts = (float *)malloc(n * 12u), *nrm = (float *)malloc(n * 12u), *vis = (float *)malloc(n * 4u);
+    uint32_t *ids = (uint32_t *)malloc(n * 4u);
+    char err[512];
+    int rc = 1;
+    pn_status st;
+    uint64_t t0;
+    double ms;
+    if (!pts || !nrm || !vis || !ids) {
+        fprintf(stderr, "penumbra: out of memory for %zu points\n", n);
+        goto done;
+    }
+    ground_points(s, opt->width, opt->height, pts, nrm, ids);
+    t0 = pn_threads_now_ns(NULL);
+    st = cli_port_points(cp, h->ctx, &s->light, opt, pts, nrm, ids, (uint32_t)n, vis);
+    ms = (pn_threads_now_ns(NULL) - t0) / 1e6;
+    if (st != PN_OK) {
+        fprintf(stderr, "penumbra: bake failed: %s (%s)\n", pn_last_error(h->ctx), pn_status_str(st));
+        goto done;
+    }
+    if (pn_write_pfm(out, vis, opt->width, opt->height, err, sizeof(err))) {
+        fprintf(stderr, "penumbra: %s\n", err);
+        goto done;
+    }
+    fprintf(stderr, "%s: light map %ux%u k=%u %s/%s %.1f ms (%.0f points/s)\n", s->name, opt->width, opt->height, opt->k,
+            algo_name(opt->algo), cp->name, ms, ms > 0.0 ? (double)n / (ms * 1e-3) : 0.0);
+    rc = 0;
+done:
+    free(pts);
+    free(nrm);
+    free(vis);
+    free(ids);
+    cli_port_close(cp);
+    pn_host_close(h);
+    pn_setup_free(s);
+    return rc;
+}
+
+/* render, or with bake set the ground's light map (usage). */
+static int cmd_render(int argc, char **argv, int bake)
 {
     const char *scene = NULL, *builtin = NULL, *out = NULL, *vis = NULL, *ids = NULL, *stats = NULL;
     const char *port = "scalar", *device = NULL, *view_name = NULL, *views_file = NULL;
@@ -379,7 +469,10 @@ static int cmd_render(int argc, char **argv)
         usage(stderr);
         return 2;
     }
-    if (!out) { fprintf(stderr, "penumbra: --out image.png is required\n"); return 2; }
+    if (!out) { fprintf(stderr, "penumbra: --out %s is required\n", bake ? "lightmap.pfm" : "image.png"); return 2; }
+    if (bake && ground == 0) { fprintf(stderr, "penumbra: bake bakes the ground plane: --ground off is not allowed\n"); return 2; }
+    if (bake && (vis || ids)) { fprintf(stderr, "penumbra: bake writes the light map only (--out)\n"); return 2; }
+    if (bake) ground = 1;
     if (views_file && !view_name) { fprintf(stderr, "penumbra: --views FILE needs --view NAME\n"); return 2; }
     /* A named view: the camera, light, size and ground of views.json; explicit flags still
      * override its fields one by one below. */
@@ -398,7 +491,7 @@ static int cmd_render(int argc, char **argv)
             return 2;
         }
         if (ground < 0) ground = view.ground;
-        if (!have_size && view.width > 0) {
+        if (!have_size && view.width > 0 && !bake) {
             opt.width = view.width;
             opt.height = view.height;
         }
@@ -425,6 +518,7 @@ static int cmd_render(int argc, char **argv)
     s.eps = s.eps_rel * s.diag;
     opt.eps = s.eps;
 
+    if (bake && !have_size) opt.width = opt.height = 256u;
     if (pn_host_open(&h, s.mesh.triangle_count, opt.width > 0 ? opt.width : 1, opt.height > 0 ? opt.height : 1,
                      threads, err, sizeof(err)) != 0) {
         fprintf(stderr, "penumbra: %s\n", err);
@@ -439,6 +533,7 @@ static int cmd_render(int argc, char **argv)
         goto fail;
     }
     if (cli_port_open(&cp, port, device, h.ctx) != 0) goto fail;
+    if (bake) return cmd_bake(&s, &h, &cp, &opt, out) == 0 ? 0 : 1;
     t0 = pn_threads_now_ns(NULL);
     rs = cli_port_render(&cp, h.ctx, &s.camera, &s.light, &opt, &fr);
     ms = (pn_threads_now_ns(NULL) - t0) / 1e6;
@@ -672,7 +767,8 @@ int main(int argc, char **argv)
         usage(stderr);
         return 2;
     }
-    if (strcmp(argv[1], "render") == 0) return cmd_render(argc - 2, argv + 2);
+    if (strcmp(argv[1], "render") == 0) return cmd_render(argc - 2, argv + 2, 0);
+    if (strcmp(argv[1], "bake") == 0) return cmd_render(argc - 2, argv + 2, 1);
     if (strcmp(argv[1], "demo") == 0) return cmd_demo(argc - 2, argv + 2);
     if (strcmp(argv[1], "info") == 0) {
         int build = !(argc > 2 && strcmp(argv[2], "--no-build") == 0);

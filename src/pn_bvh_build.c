@@ -583,14 +583,15 @@ pn_status pn_bvh_build(pn_context *ctx)
  * bvh_nodes, bvh_depth, bvh_max_leaf, bvh_refs and bvh_tris describe the shape and stay;
  * the wide tree is folded anew (which nodes it opens follows the boxes' areas).
  * A refit cannot stand in for a build when the leaves no longer list exactly the
- * non-degenerate triangles, or when the context splits references (a part's box is the
- * triangle clipped to the region the build chose, pn_part_box, and a triangle may now want
- * another split): then the tree is built anew. */
+ * non-degenerate triangles, or when the tree holds split references (a part's box is the
+ * triangle clipped to the region the build chose, pn_part_box): then the tree is built anew.
+ * A context that may split but whose tree split nothing (most scenes) is refitted: a
+ * triangle the move made long and thin may then go unsplit, which costs time, never bits. */
 pn_status pn_bvh_refit(pn_context *ctx)
 {
     pn_kbvh_node *nodes = ctx->nodes;
     uint32_t n, i;
-    if (pn_bvh_splits(ctx) || ctx->bvh_tris != ctx->tri_count - ctx->degenerate) return pn_bvh_build(ctx);
+    if (ctx->bvh_refs != ctx->bvh_tris || ctx->bvh_tris != ctx->tri_count - ctx->degenerate) return pn_bvh_build(ctx);
     /* raster_index lists each listed triangle once: all bvh_tris of them non-degenerate and
      * as many as there are, they are the same set */
     for (i = 0; i < ctx->bvh_tris; i++)

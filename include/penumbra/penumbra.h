@@ -327,8 +327,9 @@ pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_
  * boxes recomputed bottom-up, its order kept) and every algorithm's own scene data is
  * recomputed; the receiver marking is kept. Every frame afterwards has the same bytes as
  * after pn_scene_set of the moved scene (only the BVH's shape, and so pn_stats' node
- * counts, differ). When the set of degenerate triangles changes, or the context splits
- * BVH references (limits.bvh_refs above max_triangles), the BVH is built anew instead.
+ * counts, differ). When the set of degenerate triangles changes, or the current BVH holds
+ * split references (limits.bvh_refs above max_triangles, and a scene of long thin
+ * triangles), the BVH is built anew instead.
  * Statuses: those of pn_scene_set, PN_E_NO_SCENE, and PN_E_INVALID_ARG when
  * triangle_count is not the current scene's; on failure the current scene stays. */
 pn_status pn_scene_update_positions(pn_context *ctx, const float *positions, uint32_t vertex_count,

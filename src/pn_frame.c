@@ -300,7 +300,7 @@ static pn_status pn_gbuffer_raster(pn_frame_state *fs)
 }
 
 /* The caller's G-buffer (checked): depth and ids copied in, positions and normals
- * resolved as pn_gbuffer's band pass resolves them. */
+ * resolved as the rasterizer's band pass resolves its own (PN_K_GBUFFER_RESOLVE). */
 static pn_status pn_gbuffer_caller(pn_frame_state *fs, const pn_gbuffer *g)
 {
     size_t px = (size_t)fs->width * fs->height, i;

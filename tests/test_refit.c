@@ -4,11 +4,13 @@
  *   frames       on every built-in scene, animated over a few steps (a block of vertices
  *                turned and moved and two scaled about their centres; a triangle made
  *                degenerate; everything moved far with the camera and light; other
- *                blocks moved, the triangle whole again), every algorithm compiled in renders the same bytes (visibility,
- *                RGBA, depth, triangle ids, positions, normals) after the update in one
- *                context as after pn_scene_set of the moved scene in another; without
- *                receivers, with the scene's receivers marked (kept by the update), and on
- *                a context that splits BVH references (where the update builds anew)
+ *                blocks moved, the triangle whole again), every algorithm compiled in
+ *                renders the same bytes (visibility, RGBA, depth, triangle ids, positions,
+ *                normals) after the update in one context as after pn_scene_set of the
+ *                moved scene in another; without receivers, with the scene's receivers
+ *                marked (kept by the update), and on contexts that split BVH references
+ *                (a tree with split references, thin's, is built anew; one that split
+ *                nothing, colonnade's, is refitted)
  *   tree         a refit keeps the tree (pn_get_stats' node counts, the nodes' shape, the
  *                leaf and raster orders) unless the set of degenerate triangles changed,
  *                and its boxes are conservative and tight: every leaf's box is the

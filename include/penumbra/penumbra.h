@@ -46,7 +46,7 @@
  *   pn_light light = { {0,3,0}, {0.5f,0,0}, {0,0,0.5f} };
  *   pn_frame_options opt; pn_frame_options_default(&opt);   // 512x512, k = 16, reference
  *   pn_frame out; if (pn_render(ctx, &cam, &light, &opt, &out) != PN_OK) puts(pn_last_error(ctx));
- *   use(out.visibility, out.rgba);           // valid until the next pn_render/pn_scene_set
+ *   use(out.visibility, out.rgba);           // valid until the next render or scene call
  *
  * CONVENTIONS (shared with the CLI and every test; see docs/conventions.md)
  *   Right-handed, Y up. Camera: f = normalize(target - eye), r = normalize(f x up),
@@ -495,19 +495,22 @@ void pn_frame_options_default(pn_frame_options *opt);
 #define PN_NO_TRIANGLE 0xFFFFFFFFu
 
 /* Results of one pn_render. All pointers point into the arena and stay valid until the
- * next pn_render or pn_scene_set on the context. Arrays are width*height, row-major, top
- * row first. */
+ * next pn_render, pn_visibility_points or scene call on the context. Arrays are
+ * width*height, row-major, top row first. */
 typedef struct pn_frame {
     uint32_t width, height;
     const float *visibility;  /* [0, 1] */
-    const uint8_t *rgba;      /* 4 bytes per pixel */
+    const uint8_t *rgba;      /* 4 bytes per pixel; NULL when the options set no_rgba */
     const uint32_t *tri_id;   /* triangle index (scene order) or PN_NO_TRIANGLE */
     const float *depth;       /* distance along the pixel's primary ray; +inf background */
     const float *position;    /* 3 floats per pixel: world position on the triangle */
     const float *normal;      /* 3 floats per pixel: unit geometric normal (winding order) */
 } pn_frame;
 
-/* Renders one frame: G-buffer, shadow pass of opt->algo, shading.
+/* Renders one frame: G-buffer (rasterized, or the caller's opt->gbuffer, checked as
+ * pn_gbuffer says), shadow pass of opt->algo, shading (unless opt->no_rgba); then the
+ * visibility and the image also into opt->visibility_out and opt->rgba_out when set
+ * (PN_E_INVALID_ARG for one inside the arena, or rgba_out with no_rgba).
  * Statuses: PN_E_INVALID_ARG, PN_E_NO_SCENE, PN_E_NONFINITE (camera or light),
  * PN_E_CAMERA, PN_E_LIGHT_DEGENERATE, PN_E_LIGHT_NOT_ORTHO, PN_E_IMAGE_SIZE, PN_E_LIMIT
  * (sizes over the limits, coordinates or eps beyond 2^40), PN_E_UNSUPPORTED,

@@ -194,7 +194,8 @@ uint32_t pn_bvh_refs_cap(const pn_limits *l)
 uint32_t pn_bvh_refs_max(const pn_limits *l) { return l->bvh_refs ? l->bvh_refs : l->max_triangles; }
 uint64_t pn_bvh_scratch_bytes(const pn_limits *l)
 {
-    return (uint64_t)pn_bvh_refs_max(l) * PN_BVH_REF_BYTES + ((uint64_t)l->max_triangles / 32u + 1u) * 4u;
+    return (uint64_t)pn_bvh_refs_max(l) * PN_BVH_REF_BYTES + ((uint64_t)l->max_triangles / 32u + 1u) * 4u +
+           PN_BVH_TASK_BYTES;
 }
 uint32_t pn_nb_levels(uint32_t res)
 {

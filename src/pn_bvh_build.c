@@ -13,12 +13,23 @@
  *
  * Work list: after a split the larger child is pushed and the smaller one is built next,
  * so every pushed entry at least halves the remaining count: the list never holds more
- * than log2(N) + 1 entries (64 is plenty). Below depth PN_BVH_SAH_DEPTH the split is the
+ * than log2(N) + 1 entries (32 is plenty). Below depth PN_BVH_SAH_DEPTH the split is the
  * object median (an iterative quickselect), which halves the count at each level and so
  * bounds the tree depth by PN_BVH_SAH_DEPTH + 27 <= PN_BVH_STACK (check_config.h; at most
  * 2^26 references): the traversal stack can never overflow. Node 0 is the root; children
  * are allocated in pairs, so at most 2R - 1 nodes exist for R references. Everything is
- * deterministic: same triangles, same tree. */
+ * deterministic: same triangles, same tree.
+ *
+ * In parallel (pn_set_parallel_for), with the same tree: a node's split depends on its own
+ * references alone (pn_bvh_node), so the top of the tree is split on the calling thread,
+ * a large node's two passes (bounds, bins) in chunks whose partials merge exactly (min, max
+ * and counts), and the subtrees below it are built as work items, each in its own range of
+ * nodes, closed up afterwards (pn_bvh_build). The references move with their indices, so a
+ * node's references are contiguous in memory; a child's bounds come from its parent's bins
+ * and partition, not from another pass. Only the nodes' numbering differs from a build in
+ * one piece, and it is the same for any schedule (test_bvh). */
+#include <string.h>
+
 #include "pn_internal.h"
 #include "pn_kmath.h"
 
@@ -81,6 +92,14 @@ typedef struct pn_bref {
 
 typedef char pn_bref_size_check[sizeof(pn_bref) == PN_BVH_REF_BYTES ? 1 : -1];
 
+/* A node's bounds when its parent's split already gave them (known): its box and its
+ * references' centroid box; out of pn_bvh_node, the two children's (b[0], b[1] the first
+ * child's, b[2], b[3] the second's) when known. */
+typedef struct pn_bounds {
+    pn_box b[4];
+    int known;
+} pn_bounds;
+
 static void pn_ref_box(const pn_bref *refs, uint32_t r, pn_box *b)
 {
     int a;
@@ -92,12 +111,13 @@ static void pn_ref_box(const pn_bref *refs, uint32_t r, pn_box *b)
 
 static float pn_centroid(const pn_bref *refs, uint32_t r, int axis) { return refs[r].c[axis]; }
 
-/* Total order for the median split: centroid, then reference index. */
-static int pn_key_less(const pn_bref *refs, int axis, uint32_t a, uint32_t b)
+/* Total order for the median split: centroid, then reference index (ix: the references are
+ * kept in the order of ix, so position a holds reference ix[a]). */
+static int pn_key_less(const pn_bref *refs, const uint32_t *ix, int axis, uint32_t a, uint32_t b)
 {
     float ca = pn_centroid(refs, a, axis), cb = pn_centroid(refs, b, axis);
     if (ca != cb) return ca < cb;
-    return a < b;
+    return ix[a] < ix[b];
 }
 
 /* The box of the part of triangle p (9 floats) inside the region [rlo, rhi], widened by m,
@@ -232,26 +252,31 @@ static void pn_split_tri(const float *tris, uint32_t t, uint32_t cap, uint64_t *
     }
 }
 
-static void pn_swap(uint32_t *ix, uint32_t a, uint32_t b)
+/* The references themselves move with their indices, so that a node's references are
+ * contiguous in memory at every level (the passes read them in order). */
+static void pn_swap(pn_bref *refs, uint32_t *ix, uint32_t a, uint32_t b)
 {
     uint32_t t = ix[a];
+    pn_bref r = refs[a];
     ix[a] = ix[b];
     ix[b] = t;
+    refs[a] = refs[b];
+    refs[b] = r;
 }
 
 /* Places the element of rank kth (within [lo, hi]) at kth, smaller ones before it. */
-static void pn_select(const pn_bref *refs, uint32_t *ix, int axis, uint32_t lo, uint32_t hi, uint32_t kth)
+static void pn_select(pn_bref *refs, uint32_t *ix, int axis, uint32_t lo, uint32_t hi, uint32_t kth)
 {
     while (lo < hi) {
         uint32_t mid = lo + (hi - lo) / 2u, i, j;
         /* median of three to hi as pivot */
-        if (pn_key_less(refs, axis, ix[mid], ix[lo])) pn_swap(ix, mid, lo);
-        if (pn_key_less(refs, axis, ix[hi], ix[lo])) pn_swap(ix, hi, lo);
-        if (pn_key_less(refs, axis, ix[mid], ix[hi])) pn_swap(ix, mid, hi);
+        if (pn_key_less(refs, ix, axis, mid, lo)) pn_swap(refs, ix, mid, lo);
+        if (pn_key_less(refs, ix, axis, hi, lo)) pn_swap(refs, ix, hi, lo);
+        if (pn_key_less(refs, ix, axis, mid, hi)) pn_swap(refs, ix, mid, hi);
         i = lo;
         for (j = lo; j < hi; j++)
-            if (pn_key_less(refs, axis, ix[j], ix[hi])) pn_swap(ix, i++, j);
-        pn_swap(ix, i, hi);
+            if (pn_key_less(refs, ix, axis, j, hi)) pn_swap(refs, ix, i++, j);
+        pn_swap(refs, ix, i, hi);
         if (i == kth) return;
         if (kth < i)
             hi = i - 1u;
@@ -262,6 +287,8 @@ static void pn_select(const pn_bref *refs, uint32_t *ix, int axis, uint32_t lo, 
 
 typedef struct pn_work {
     uint32_t node, depth;
+    int known;      /* box and cbox hold the node's bounds (pn_bounds) */
+    pn_box box, cbox;
 } pn_work;
 
 /* Whether the context splits references (limits.bvh_refs above max_triangles). */
@@ -382,22 +409,393 @@ void pn_bvh_widen(pn_context *ctx, uint32_t stack_max)
     if (need > stack_max) ctx->bvh_wide = pn_bvh_fold(ctx->nodes, ctx->wnodes, 2u, &need);
 }
 
+/* The top of the tree's large nodes bin in parallel: PN_BVH_CHUNKS ranges of a node's
+ * references, each into its own partial bounds or bins (pn_bvh_part), merged in range
+ * order. Min and max are exact and counts are integers, so the merged bins are the ones a
+ * single pass gives, whatever the schedule. The partials live in the node pool's tail,
+ * which the top of the tree does not reach (pn_bvh_par.room). */
+#define PN_BVH_CHUNKS 16u
+#define PN_BVH_PAR_MIN 65536u
+typedef struct pn_bvh_part {
+    pn_box box, cbox;
+    pn_box bb[3][PN_BVH_BINS];
+    uint32_t bc[3][PN_BVH_BINS];
+} pn_bvh_part;
+
+typedef struct pn_bvh_par {
+    pn_context *ctx;
+    pn_bvh_part *part; /* PN_BVH_CHUNKS of them at the node pool's end, and after them pre:
+                          a large node's bounds and bins, merged (pn_bvh_large) */
+    uint32_t room;     /* nodes below them: a node may use them while its split's children fit under */
+} pn_bvh_par;
+
+typedef struct pn_bvh_chunks {
+    const pn_bref *refs;
+    uint32_t first, count, bins; /* bins: 0 the node's bounds, 1 its bins */
+    const pn_box *cbox;
+    const float *scale;
+    pn_bvh_part *part;
+} pn_bvh_chunks;
+
+/* The bins' scale per axis from the centroids' box (0: all centroids coincide on it, the
+ * axis is not binned). */
+static void pn_bin_scale(const pn_box *cbox, float *scale)
+{
+    int a;
+    for (a = 0; a < 3; a++) {
+        float ext = cbox->hi[a] - cbox->lo[a];
+        scale[a] = ext > 0.0f ? (float)PN_BVH_BINS / ext : 0.0f;
+    }
+}
+
+static void pn_bins_empty(pn_box bb[3][PN_BVH_BINS], uint32_t bc[3][PN_BVH_BINS])
+{
+    uint32_t a, b;
+    for (a = 0; a < 3u; a++)
+        for (b = 0; b < PN_BVH_BINS; b++) {
+            pn_box_empty(&bb[a][b]);
+            bc[a][b] = 0;
+        }
+}
+
+/* References [from, to) into the bins bb, bc (scale[a] 0: axis a not binned). */
+static void pn_bin_range(const pn_bref *refs, uint32_t from, uint32_t to, const pn_box *cbox,
+                         const float *scale, pn_box bb[3][PN_BVH_BINS], uint32_t bc[3][PN_BVH_BINS])
+{
+    uint32_t i;
+    int a;
+    for (i = from; i < to; i++) {
+        pn_box tb;
+        pn_ref_box(refs, i, &tb);
+        for (a = 0; a < 3; a++) {
+            int32_t bin;
+            if (scale[a] == 0.0f) continue;
+            bin = pn_kfloor_clamp((pn_centroid(refs, i, a) - cbox->lo[a]) * scale[a], 0, (int32_t)PN_BVH_BINS - 1);
+            pn_box_join(&bb[a][bin], &tb);
+            bc[a][bin]++;
+        }
+    }
+}
+
+/* References [from, to) of ix: their box and their centroids' box. */
+static void pn_bounds_range(const pn_bref *refs, uint32_t from, uint32_t to, pn_box *box,
+                            pn_box *cbox)
+{
+    uint32_t i;
+    for (i = from; i < to; i++) {
+        pn_box tb;
+        pn_ref_box(refs, i, &tb);
+        pn_box_join(box, &tb);
+        pn_box_point(cbox, pn_centroid(refs, i, 0), pn_centroid(refs, i, 1), pn_centroid(refs, i, 2));
+    }
+}
+
+static void pn_bvh_chunk_fn(void *task, uint32_t begin, uint32_t end)
+{
+    const pn_bvh_chunks *j = (const pn_bvh_chunks *)task;
+    uint32_t k;
+    for (k = begin; k < end; k++) {
+        pn_bvh_part *p = j->part + k;
+        uint32_t from = j->first + (uint32_t)((uint64_t)j->count * k / PN_BVH_CHUNKS);
+        uint32_t to = j->first + (uint32_t)((uint64_t)j->count * (k + 1u) / PN_BVH_CHUNKS);
+        if (j->bins) {
+            pn_bins_empty(p->bb, p->bc);
+            pn_bin_range(j->refs, from, to, j->cbox, j->scale, p->bb, p->bc);
+        } else {
+            pn_box_empty(&p->box);
+            pn_box_empty(&p->cbox);
+            pn_bounds_range(j->refs, from, to, &p->box, &p->cbox);
+        }
+    }
+}
+
+/* A large node's two passes, each in PN_BVH_CHUNKS work items, into pre: its bounds
+ * (given when its parent's split gave them) and its bins, the partials merged in order. */
+static void pn_bvh_large(pn_bvh_par *par, const pn_bref *refs, uint32_t first, uint32_t count, const pn_bounds *known)
+{
+    pn_bvh_chunks j;
+    pn_bvh_part *pre = par->part + PN_BVH_CHUNKS;
+    float scale[3];
+    uint32_t k, a, b;
+    j.refs = refs;
+    j.first = first;
+    j.count = count;
+    j.cbox = &pre->cbox;
+    j.scale = scale;
+    j.part = par->part;
+    pn_box_empty(&pre->box);
+    pn_box_empty(&pre->cbox);
+    if (known->known) {
+        pre->box = known->b[0];
+        pre->cbox = known->b[1];
+    } else {
+        j.bins = 0;
+        pn_run(par->ctx, PN_BVH_CHUNKS, pn_bvh_chunk_fn, &j);
+        for (k = 0; k < PN_BVH_CHUNKS; k++) {
+            pn_box_join(&pre->box, &par->part[k].box);
+            pn_box_join(&pre->cbox, &par->part[k].cbox);
+        }
+    }
+    pn_bin_scale(&pre->cbox, scale);
+    j.bins = 1;
+    pn_run(par->ctx, PN_BVH_CHUNKS, pn_bvh_chunk_fn, &j);
+    pn_bins_empty(pre->bb, pre->bc);
+    for (k = 0; k < PN_BVH_CHUNKS; k++)
+        for (a = 0; a < 3u; a++)
+            for (b = 0; b < PN_BVH_BINS; b++) {
+                pn_box_join(&pre->bb[a][b], &par->part[k].bb[a][b]);
+                pre->bc[a][b] += par->part[k].bc[a][b];
+            }
+}
+
+/* Node nd (its references ix[first, first + count) set) at `depth`: its box written, then
+ * either a leaf (0) or a split (1) of its references into [first, first + *split_out) and
+ * the rest, ix partitioned in place. It reads and writes nothing beyond the node and its
+ * range of ix, so nodes can be processed in any order, on any thread, and give the same
+ * tree. */
+static int pn_bvh_node(pn_kbvh_node *nd, pn_bref *refs, uint32_t *ix, uint32_t depth, uint32_t *split_out,
+                       pn_bounds *io, const pn_bvh_part *pre)
+{
+    uint32_t first = nd->first, count = nd->count, i, split = 0;
+    pn_box box, cbox;
+    int axis = -1, leaf = 0;
+
+    if (pre) {
+        box = pre->box;
+        cbox = pre->cbox;
+    } else if (io->known) {
+        box = io->b[0];
+        cbox = io->b[1];
+    } else {
+        pn_box_empty(&box);
+        pn_box_empty(&cbox);
+        pn_bounds_range(refs, first, first + count, &box, &cbox);
+    }
+    io->known = 0;
+    for (i = 0; i < 3; i++) {
+        nd->bmin[i] = box.lo[i];
+        nd->bmax[i] = box.hi[i];
+    }
+    if (count == 1u) {
+        leaf = 1;
+    } else if (depth >= PN_BVH_SAH_DEPTH) {
+        int a;
+        float ext = -1.0f;
+        for (a = 0; a < 3; a++)
+            if (cbox.hi[a] - cbox.lo[a] > ext) {
+                ext = cbox.hi[a] - cbox.lo[a];
+                axis = a;
+            }
+        split = count / 2u;
+        pn_select(refs, ix, axis, first, first + count - 1u, first + split);
+    } else {
+        /* Binned SAH over all three axes, binned in one pass over the triangles.
+         * Costs: traversal 1, triangle 1. */
+        float best = PN_KINF, parent = pn_box_area(&box), scale[3];
+        int best_axis = -1;
+        uint32_t best_bin = 0;
+        pn_box bb[3][PN_BVH_BINS];
+        uint32_t bc[3][PN_BVH_BINS];
+        int a;
+        pn_bin_scale(&cbox, scale);
+        if (pre) {
+            memcpy(bb, pre->bb, sizeof(bb));
+            memcpy(bc, pre->bc, sizeof(bc));
+        } else {
+            pn_bins_empty(bb, bc);
+            pn_bin_range(refs, first, first + count, &cbox, scale, bb, bc);
+        }
+        for (a = 0; a < 3; a++) {
+            pn_box acc;
+            uint32_t b, left = 0, rc = 0, right_count[PN_BVH_BINS];
+            float right_area[PN_BVH_BINS];
+            if (scale[a] == 0.0f) continue;
+            /* An empty bin's box is empty: joining it changes nothing, so it is skipped (a
+             * small node fills few of the bins). */
+            pn_box_empty(&acc);
+            for (b = PN_BVH_BINS - 1u; b > 0u; b--) {
+                if (bc[a][b]) {
+                    pn_box_join(&acc, &bb[a][b]);
+                    rc += bc[a][b];
+                    right_area[b] = pn_box_area(&acc);
+                } else {
+                    right_area[b] = b + 1u < PN_BVH_BINS ? right_area[b + 1u] : pn_box_area(&acc);
+                }
+                right_count[b] = rc;
+            }
+            pn_box_empty(&acc);
+            for (b = 0; b + 1u < PN_BVH_BINS; b++) {
+                float cost;
+                if (!bc[a][b]) continue; /* the same cost as the bin before, or none */
+                pn_box_join(&acc, &bb[a][b]);
+                left += bc[a][b];
+                if (left == 0u || right_count[b + 1u] == 0u) continue;
+                cost = pn_box_area(&acc) * (float)left + right_area[b + 1u] * (float)right_count[b + 1u];
+                if (cost < best) {
+                    best = cost;
+                    best_axis = a;
+                    best_bin = b;
+                }
+            }
+        }
+        if (best_axis < 0) {
+            /* All centroids coincide: split by position in the list. */
+            if (count <= PN_BVH_LEAF_MAX) leaf = 1;
+            else split = count / 2u;
+        } else if (count <= PN_BVH_LEAF_MAX &&
+                   (parent <= 0.0f || (float)count <= 1.0f + best / parent)) {
+            leaf = 1;
+        } else {
+            /* The partition also gives the children's bounds: their boxes are the unions of
+             * their bins' (every reference of a bin goes to the same side), their centroid
+             * boxes are taken on the way; min and max are exact, so these are the bits a
+             * pass over each child gives. */
+            uint32_t lo = first, hi = first + count, b;
+            pn_box_empty(&io->b[1]);
+            pn_box_empty(&io->b[3]);
+            while (lo < hi) {
+                const float *c = refs[lo].c;
+                int32_t bin = pn_kfloor_clamp((c[best_axis] - cbox.lo[best_axis]) * scale[best_axis], 0,
+                                              (int32_t)PN_BVH_BINS - 1);
+                if ((uint32_t)bin <= best_bin) {
+                    pn_box_point(&io->b[1], c[0], c[1], c[2]);
+                    lo++;
+                } else {
+                    pn_box_point(&io->b[3], c[0], c[1], c[2]);
+                    pn_swap(refs, ix, lo, --hi);
+                }
+            }
+            split = lo - first;
+            pn_box_empty(&io->b[0]);
+            pn_box_empty(&io->b[2]);
+            for (b = 0; b < PN_BVH_BINS; b++) pn_box_join(&io->b[b <= best_bin ? 0 : 2], &bb[best_axis][b]);
+            io->known = 1;
+            if (split == 0u || split == count) {
+                split = count / 2u;
+                io->known = 0;
+            }
+        }
+    }
+    *split_out = split;
+    return !leaf;
+}
+
+/* Subtrees: the top of the tree is built on the calling thread down to nodes of at most
+ * `small` references (pn_bvh_build), which are handed, up to PN_BVH_TASKS of them, to
+ * pn_run as work items; each builds its subtree into its own range of nodes (2c - 2 for c
+ * references), and the ranges are closed up afterwards. Which nodes are handed over
+ * depends on the scene alone, and every node's split on its own references alone
+ * (pn_bvh_node), so the tree is the same for any number of threads, and its shape the one
+ * a build in one piece gives (only the nodes' numbering differs). */
+#define PN_BVH_TASKS 64u
+#define PN_BVH_TASK_MIN 2048u
+typedef struct pn_bvh_task {
+    uint32_t node, depth; /* the subtree's root and its depth */
+    uint32_t base, end;   /* its descendants' nodes: [base, end) */
+    uint32_t used, max_depth, max_leaf;
+    pn_status st;         /* PN_E_INTERNAL: a work list or node range overflowed */
+} pn_bvh_task;
+
+typedef char pn_bvh_task_bytes[PN_BVH_TASKS * sizeof(pn_bvh_task) <= PN_BVH_TASK_BYTES ? 1 : -1];
+
+typedef struct pn_bvh_job {
+    pn_bref *refs;
+    uint32_t *ix;
+    pn_kbvh_node *nodes;
+    pn_bvh_task *tasks;
+} pn_bvh_job;
+
+/* The subtree under t->node (start: its bounds when known, else NULL), its descendants
+ * allocated from t->base up to t->end. With defer (the top of the tree), a node of at most
+ * `small` references goes to defer[] instead while *ndefer < PN_BVH_TASKS. Work list:
+ * after a split the larger child is pushed and the smaller one built next (the file's
+ * head). */
+static void pn_bvh_grow(pn_bref *refs, uint32_t *ix, pn_kbvh_node *nodes, pn_bvh_task *t, const pn_work *start,
+                        uint32_t small, pn_bvh_task *defer, uint32_t *ndefer)
+{
+    pn_work list[32], cur; /* at most log2(2^26 references) + 1 entries (the file's head) */
+    pn_bounds bd;
+    uint32_t sp = 0, next = t->base, split;
+    if (start) {
+        cur = *start;
+    } else {
+        cur.node = t->node;
+        cur.depth = t->depth;
+        cur.known = 0;
+    }
+    t->max_depth = t->max_leaf = 0;
+    t->st = PN_OK;
+    for (;;) {
+        pn_kbvh_node *nd = nodes + cur.node;
+        if (defer && nd->count <= small && *ndefer < PN_BVH_TASKS) {
+            defer[*ndefer].node = cur.node;
+            defer[*ndefer].depth = cur.depth;
+            (*ndefer)++;
+        } else {
+            if (cur.depth > t->max_depth) t->max_depth = cur.depth;
+            bd.known = cur.known;
+            bd.b[0] = cur.box;
+            bd.b[1] = cur.cbox;
+            if (pn_bvh_node(nd, refs, ix, cur.depth, &split, &bd, NULL)) {
+                uint32_t l = next, r = next + 1u, first = nd->first, count = nd->count;
+                pn_work sm, lg;
+                if (next + 2u > t->end || sp >= 32u) {
+                    t->st = PN_E_INTERNAL;
+                    return;
+                }
+                next += 2u;
+                nodes[l].first = first;
+                nodes[l].count = split;
+                nodes[r].first = first + split;
+                nodes[r].count = count - split;
+                nd->first = l;
+                nd->count = 0;
+                sm.node = split <= count - split ? l : r;
+                lg.node = split <= count - split ? r : l;
+                sm.depth = lg.depth = cur.depth + 1u;
+                sm.known = lg.known = bd.known;
+                sm.box = bd.b[sm.node == l ? 0 : 2];
+                sm.cbox = bd.b[sm.node == l ? 1 : 3];
+                lg.box = bd.b[lg.node == l ? 0 : 2];
+                lg.cbox = bd.b[lg.node == l ? 1 : 3];
+                list[sp++] = lg;
+                cur = sm;
+                continue;
+            }
+            if (nd->count > t->max_leaf) t->max_leaf = nd->count;
+        }
+        if (sp == 0u) break;
+        cur = list[--sp];
+    }
+    t->used = next - t->base;
+}
+
+static void pn_bvh_task_fn(void *task, uint32_t begin, uint32_t end)
+{
+    const pn_bvh_job *j = (const pn_bvh_job *)task;
+    uint32_t i;
+    for (i = begin; i < end; i++) pn_bvh_grow(j->refs, j->ix, j->nodes, j->tasks + i, NULL, 0u, NULL, NULL);
+}
+
 pn_status pn_bvh_build(pn_context *ctx)
 {
     pn_bref *refs = (pn_bref *)(void *)ctx->frame;
     uint32_t *ix = ctx->tri_index;
     pn_kbvh_node *nodes = ctx->nodes;
-    pn_work list[64];
-    uint32_t sp = 0, n, t, node_count = 1, max_depth = 0, max_leaf = 0, refs_max = pn_bvh_refs_max(&ctx->limits);
-    pn_work cur;
+    pn_bvh_task top, *tasks;
+    pn_bvh_job job;
+    pn_bvh_par par;
+    pn_work large[16]; /* the large nodes waiting: beyond 16, grown as the others are */
+    uint32_t n, t, node_count, ntasks = 0, max_depth, max_leaf, refs_max = pn_bvh_refs_max(&ctx->limits), small, i;
+    uint32_t nl;
 
+    /* after the references and the bit per triangle (pn_bvh_scratch_bytes) */
+    tasks = (pn_bvh_task *)(void *)((uint8_t *)(refs + refs_max) + ((size_t)ctx->limits.max_triangles / 32u + 1u) * 4u);
     n = pn_bvh_refs(ctx, refs, &ctx->bvh_tris);
     for (t = 0; t < n; t++) ix[t] = t;
     ctx->bvh_refs = n;
     nodes[0].first = 0;
     nodes[0].count = n;
-    cur.node = 0;
-    cur.depth = 0;
     if (n == 0u) {
         int a;
         for (a = 0; a < 3; a++) {
@@ -410,152 +808,107 @@ pn_status pn_bvh_build(pn_context *ctx)
         pn_bvh_widen(ctx, PN_BVH_STACK);
         return PN_OK;
     }
-
-    for (;;) {
-        pn_kbvh_node *nd = nodes + cur.node;
-        uint32_t first = nd->first, count = nd->count, i, split = 0;
-        pn_box box, cbox;
-        int axis = -1, leaf = 0;
-
-        pn_box_empty(&box);
-        pn_box_empty(&cbox);
-        for (i = first; i < first + count; i++) {
-            pn_box tb;
-            pn_ref_box(refs, ix[i], &tb);
-            pn_box_join(&box, &tb);
-            pn_box_point(&cbox, pn_centroid(refs, ix[i], 0), pn_centroid(refs, ix[i], 1),
-                         pn_centroid(refs, ix[i], 2));
-        }
-        for (i = 0; i < 3; i++) {
-            nd->bmin[i] = box.lo[i];
-            nd->bmax[i] = box.hi[i];
-        }
-        if (cur.depth > max_depth) max_depth = cur.depth;
-
-        if (count == 1u) {
-            leaf = 1;
-        } else if (cur.depth >= PN_BVH_SAH_DEPTH) {
-            int a;
-            float ext = -1.0f;
-            for (a = 0; a < 3; a++)
-                if (cbox.hi[a] - cbox.lo[a] > ext) {
-                    ext = cbox.hi[a] - cbox.lo[a];
-                    axis = a;
-                }
-            split = count / 2u;
-            pn_select(refs, ix, axis, first, first + count - 1u, first + split);
-        } else {
-            /* Binned SAH over all three axes, binned in one pass over the triangles.
-             * Costs: traversal 1, triangle 1. */
-            float best = PN_KINF, parent = pn_box_area(&box), scale[3];
-            int best_axis = -1;
-            uint32_t best_bin = 0;
-            pn_box bb[3][PN_BVH_BINS];
-            uint32_t bc[3][PN_BVH_BINS];
-            int a;
-            for (a = 0; a < 3; a++) {
-                float ext = cbox.hi[a] - cbox.lo[a];
-                uint32_t b;
-                scale[a] = ext > 0.0f ? (float)PN_BVH_BINS / ext : 0.0f;
-                for (b = 0; b < PN_BVH_BINS; b++) {
-                    pn_box_empty(&bb[a][b]);
-                    bc[a][b] = 0;
-                }
-            }
-            for (i = first; i < first + count; i++) {
-                pn_box tb;
-                pn_ref_box(refs, ix[i], &tb);
-                for (a = 0; a < 3; a++) {
-                    int32_t bin;
-                    if (scale[a] == 0.0f) continue;
-                    bin = pn_kfloor_clamp((pn_centroid(refs, ix[i], a) - cbox.lo[a]) * scale[a], 0,
-                                          (int32_t)PN_BVH_BINS - 1);
-                    pn_box_join(&bb[a][bin], &tb);
-                    bc[a][bin]++;
-                }
-            }
-            for (a = 0; a < 3; a++) {
-                pn_box acc;
-                uint32_t b, left = 0, rc = 0, right_count[PN_BVH_BINS];
-                float right_area[PN_BVH_BINS];
-                if (scale[a] == 0.0f) continue;
-                pn_box_empty(&acc);
-                for (b = PN_BVH_BINS - 1u; b > 0u; b--) {
-                    pn_box_join(&acc, &bb[a][b]);
-                    rc += bc[a][b];
-                    right_area[b] = pn_box_area(&acc);
-                    right_count[b] = rc;
-                }
-                pn_box_empty(&acc);
-                for (b = 0; b + 1u < PN_BVH_BINS; b++) {
-                    float cost;
-                    pn_box_join(&acc, &bb[a][b]);
-                    left += bc[a][b];
-                    if (left == 0u || right_count[b + 1u] == 0u) continue;
-                    cost = pn_box_area(&acc) * (float)left + right_area[b + 1u] * (float)right_count[b + 1u];
-                    if (cost < best) {
-                        best = cost;
-                        best_axis = a;
-                        best_bin = b;
-                    }
-                }
-            }
-            if (best_axis < 0) {
-                /* All centroids coincide: split by position in the list. */
-                if (count <= PN_BVH_LEAF_MAX) leaf = 1;
-                else split = count / 2u;
-            } else if (count <= PN_BVH_LEAF_MAX &&
-                       (parent <= 0.0f || (float)count <= 1.0f + best / parent)) {
-                leaf = 1;
-            } else {
-                uint32_t lo = first, hi = first + count;
-                while (lo < hi) {
-                    int32_t bin = pn_kfloor_clamp(
-                        (pn_centroid(refs, ix[lo], best_axis) - cbox.lo[best_axis]) * scale[best_axis], 0,
-                        (int32_t)PN_BVH_BINS - 1);
-                    if ((uint32_t)bin <= best_bin)
-                        lo++;
-                    else
-                        pn_swap(ix, lo, --hi);
-                }
-                split = lo - first;
-                if (split == 0u || split == count) split = count / 2u;
-            }
-        }
-
-        if (leaf) {
-            if (count > max_leaf) max_leaf = count;
-            if (sp == 0u) break;
-            cur = list[--sp];
+    /* The top, here: nodes of PN_BVH_PAR_MIN references or more each split with their two
+     * passes in chunks (pn_bvh_large; their partials at the node pool's end, below which
+     * the top's nodes stay), the others grown on this thread (pn_bvh_grow) down to about
+     * PN_BVH_TASKS / 2 subtrees of at most `small` references. */
+    small = n / (PN_BVH_TASKS / 2u);
+    if (small < PN_BVH_TASK_MIN) small = PN_BVH_TASK_MIN;
+    par.ctx = ctx;
+    par.part = (pn_bvh_part *)(void *)(nodes + 2u * (size_t)refs_max) - (PN_BVH_CHUNKS + 1u);
+    par.room = (uint32_t)(((uintptr_t)par.part - (uintptr_t)nodes) / sizeof(pn_kbvh_node));
+    max_depth = max_leaf = 0;
+    node_count = 1u;
+    large[0].node = 0;
+    large[0].depth = 0;
+    large[0].known = 0;
+    for (nl = 1; nl > 0u;) {
+        pn_work w = large[--nl];
+        pn_kbvh_node *nd = nodes + w.node;
+        pn_bounds bd;
+        uint32_t split, first = nd->first, count = nd->count, c;
+        if (count < PN_BVH_PAR_MIN || node_count + 2u > par.room || nl + 2u > 16u) {
+            top.node = w.node;
+            top.depth = w.depth;
+            top.base = node_count;
+            top.end = 2u * refs_max;
+            pn_bvh_grow(refs, ix, nodes, &top, &w, small, tasks, &ntasks);
+            if (top.st != PN_OK) return pn_fail(ctx, PN_E_INTERNAL, "BVH build: a work list or the node pool overflowed");
+            node_count += top.used;
+            if (top.max_depth > max_depth) max_depth = top.max_depth;
+            if (top.max_leaf > max_leaf) max_leaf = top.max_leaf;
             continue;
         }
-        {
-            uint32_t l = node_count, r = node_count + 1u;
-            pn_work small, large;
-            if (node_count + 2u > 2u * refs_max)
-                return pn_fail(ctx, PN_E_INTERNAL, "BVH node pool overflow at %u nodes", node_count);
-            node_count += 2u;
-            nodes[l].first = first;
-            nodes[l].count = split;
-            nodes[r].first = first + split;
-            nodes[r].count = count - split;
-            nd->first = l;
-            nd->count = 0;
-            small.node = split <= count - split ? l : r;
-            large.node = split <= count - split ? r : l;
-            small.depth = large.depth = cur.depth + 1u;
-            if (sp >= 64u) return pn_fail(ctx, PN_E_INTERNAL, "BVH build list overflow");
-            list[sp++] = large;
-            cur = small;
+        bd.known = w.known;
+        bd.b[0] = w.box;
+        bd.b[1] = w.cbox;
+        pn_bvh_large(&par, refs, first, count, &bd);
+        if (w.depth > max_depth) max_depth = w.depth;
+        if (!pn_bvh_node(nd, refs, ix, w.depth, &split, &bd, par.part + PN_BVH_CHUNKS)) {
+            if (count > max_leaf) max_leaf = count;
+            continue;
         }
+        /* the children: the second pushed first, so the first is split next */
+        nodes[node_count].first = first;
+        nodes[node_count].count = split;
+        nodes[node_count + 1u].first = first + split;
+        nodes[node_count + 1u].count = count - split;
+        nd->first = node_count;
+        nd->count = 0;
+        for (c = 2u; c-- > 0u;) {
+            pn_work *k = large + nl++;
+            k->node = node_count + c;
+            k->depth = w.depth + 1u;
+            k->known = bd.known;
+            k->box = bd.b[2u * c];
+            k->cbox = bd.b[2u * c + 1u];
+        }
+        node_count += 2u;
+    }
+    top.used = node_count - 1u;
+    top.max_depth = max_depth;
+    top.max_leaf = max_leaf;
+    /* Each subtree's range: 2c - 2 nodes below a root of c references. */
+    for (i = 0; i < ntasks; i++) {
+        tasks[i].base = node_count;
+        node_count += 2u * nodes[tasks[i].node].count - 2u;
+        tasks[i].end = node_count;
+    }
+    if (node_count > 2u * refs_max) return pn_fail(ctx, PN_E_INTERNAL, "BVH node pool overflow at %u nodes", node_count);
+    job.refs = refs;
+    job.ix = ix;
+    job.nodes = nodes;
+    job.tasks = tasks;
+    pn_run(ctx, ntasks, pn_bvh_task_fn, &job);
+    /* The ranges closed up, in order: a subtree moves down by the room the ones before it
+     * left, its interior nodes' child indices (and its root's) with it. */
+    max_depth = top.max_depth;
+    max_leaf = top.max_leaf;
+    node_count = 1u + top.used;
+    for (i = 0; i < ntasks; i++) {
+        const pn_bvh_task *k = tasks + i;
+        uint32_t shift = k->base - node_count, m;
+        if (k->st != PN_OK) return pn_fail(ctx, PN_E_INTERNAL, "BVH build: a work list or node range overflowed");
+        if (shift) {
+            /* down, in ascending order (the ranges may overlap; no memmove in the core) */
+            for (m = 0; m < k->used; m++) {
+                pn_kbvh_node c = nodes[k->base + m];
+                if (c.count == 0u) c.first -= shift;
+                nodes[node_count + m] = c;
+            }
+            if (nodes[k->node].count == 0u) nodes[k->node].first -= shift;
+        }
+        node_count += k->used;
+        if (k->max_depth > max_depth) max_depth = k->max_depth;
+        if (k->max_leaf > max_leaf) max_leaf = k->max_leaf;
     }
     /* References to triangle ids; the raster order: each triangle at its first reference
      * (a bit per triangle after the references marks the ones written). */
     {
-        uint32_t *seen = (uint32_t *)(void *)(refs + refs_max), k = 0, i;
+        uint32_t *seen = (uint32_t *)(void *)(refs + refs_max), k = 0;
         for (t = 0; t <= ctx->tri_count / 32u; t++) seen[t] = 0;
         for (i = 0; i < n; i++) {
-            ix[i] = refs[ix[i]].tri;
+            ix[i] = refs[i].tri; /* the references are in ix's order */
             t = ix[i] & PN_REF_TRI;
             if (!(seen[t >> 5] & (1u << (t & 31u)))) {
                 seen[t >> 5] |= 1u << (t & 31u);

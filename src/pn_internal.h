@@ -185,8 +185,11 @@ void pn_run(pn_context *ctx, uint32_t count, pn_task_fn fn, void *task);
 
 
 /* pn_bvh_build.c. The build's scratch sits in the frame region (call outside a frame):
- * PN_BVH_REF_BYTES per reference of pn_bvh_refs_max, then a bit per triangle. */
+ * PN_BVH_REF_BYTES per reference of pn_bvh_refs_max, then a bit per triangle, then the
+ * subtrees' work items (PN_BVH_TASK_BYTES, kept off the stack: pn_run's items may be any
+ * pass, so the build's frame adds to the deepest pass in the stack bound). */
 #define PN_BVH_REF_BYTES 40u
+#define PN_BVH_TASK_BYTES 2048u
 uint64_t pn_bvh_scratch_bytes(const pn_limits *l);
 pn_status pn_bvh_build(pn_context *ctx);
 /* The current tree's boxes recomputed from the triangles' new positions (its shape, leaf

@@ -23,7 +23,8 @@
  *                them and fewer than the binary interior nodes, and no root-to-leaf path
  *                needs more walk stack than PN_BVH_STACK; the two-wide fold pn_bvh_widen
  *                falls back to renders the same bytes as the four-wide one (built-in room,
- *                every algorithm) */
+ *                every algorithm)
+ *   parallel     the same tree, byte for byte, under every schedule of the parallel-for */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -668,6 +669,57 @@ static void test_limits(void)
     }
 }
 
+/* The build in parallel (src/pn_bvh_build.c: subtrees as work items, a large node's passes
+ * in chunks): the same tree, byte for byte (binary nodes, leaf and raster orders, the wide
+ * tree), whatever the schedule, on a scene small enough for one work item, on spheres
+ * (subtrees), and on 90,000 mixed triangles split by the default reserve (chunked passes
+ * over more than 65,536 references); and the serial loop's tree is the tree without
+ * splitting's for a scene that split nothing. */
+static void test_parallel_same_tree(void)
+{
+    static const pn_test_order orders[4] = {PN_TEST_ITEMS_FORWARD, PN_TEST_ITEMS_BACKWARD, PN_TEST_ITEMS_SHUFFLED,
+                                            PN_TEST_CHUNKS_UNEVEN};
+    pn_test_scene sp;
+    scene mixed;
+    uint32_t which;
+    REQUIRE(pn_test_scene_load(&sp, "spheres") == 0);
+    make_mixed(&mixed, 90000u);
+    for (which = 0; which < 3u; which++) {
+        const float *pos = which == 2u ? mixed.pos : sp.mesh.positions;
+        const uint32_t *idx = which == 2u ? mixed.idx : sp.mesh.indices;
+        uint32_t verts = which == 2u ? mixed.verts : sp.mesh.vertex_count;
+        uint32_t tris = which == 0u ? 500u : which == 2u ? mixed.tris : sp.mesh.triangle_count;
+        pn_test_host h0, h1;
+        pn_context *a = open_ctx(&h0, tris, 0u), *b;
+        uint32_t o;
+        if (!a) break;
+        REQUIRE(pn_scene_set(a, pos, verts, idx, tris) == PN_OK);
+        if (which == 2u) CHECK_MSG(a->bvh_refs > 65536u, "%u references: the chunked passes are not reached", a->bvh_refs);
+        for (o = 0; o < 4u; o++) {
+            pn_test_schedule sc;
+            memset(&sc, 0, sizeof(sc));
+            sc.order = orders[o];
+            b = open_ctx(&h1, tris, 0u);
+            if (!b) break;
+            pn_set_parallel_for(b, pn_test_parallel_for, &sc);
+            CHECK(pn_scene_set(b, pos, verts, idx, tris) == PN_OK);
+            CHECK_MSG(a->bvh_nodes == b->bvh_nodes && a->bvh_refs == b->bvh_refs && a->bvh_wide == b->bvh_wide &&
+                          memcmp(a->nodes, b->nodes, (size_t)a->bvh_nodes * sizeof(pn_kbvh_node)) == 0 &&
+                          memcmp(a->tri_index, b->tri_index, (size_t)a->bvh_refs * 4u) == 0 &&
+                          memcmp(a->raster_index, b->raster_index, (size_t)a->bvh_tris * 4u) == 0 &&
+                          memcmp(a->wnodes, b->wnodes, (size_t)a->bvh_wide * sizeof(pn_kbvh4)) == 0,
+                      "scene %u, schedule %u: another tree (%u nodes against %u)", which, o, b->bvh_nodes,
+                      a->bvh_nodes);
+            CHECK_MSG(which == 0u || sc.jobs > 0u, "scene %u: the build handed no work to the parallel-for", which);
+            pn_test_close(&h1);
+        }
+        pn_test_close(&h0);
+    }
+    free_scene(&mixed);
+    pn_test_scene_free(&sp);
+}
+
+
 int main(void)
 {
     if (PN_BVH_SPLIT_DEPTH == 0u || PN_BVH_SPLIT_REFS == 0u) {
@@ -681,5 +733,6 @@ int main(void)
     RUN(test_frames_two_wide);
     RUN(test_deep_tree);
     RUN(test_limits);
+    RUN(test_parallel_same_tree);
     return pn_test_summary();
 }

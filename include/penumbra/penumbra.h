@@ -31,9 +31,10 @@
  *   as exactly degenerate ones (PN_E_CAMERA, PN_E_LIGHT_DEGENERATE).
  *
  * THREADS
- *   The library starts no threads. Passes are split into work items; by default they run
- *   in a loop on the calling thread. pn_set_parallel_for installs the caller's job system.
- *   Results never depend on how work items are scheduled. A context is not re-entrant:
+ *   The library starts no threads. Passes are split into work items (a frame's passes, and
+ *   pn_scene_set's BVH build: its subtrees); by default they run in a loop on the calling
+ *   thread. pn_set_parallel_for installs the caller's job system. Results never depend on
+ *   how work items are scheduled (the BVH is the same tree for any schedule). A context is not re-entrant:
  *   one call at a time per context.
  *
  * USAGE
@@ -162,17 +163,18 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
  * and MCSM, with its pools when the wedges are not compiled in).
  * test_arena checks pn_arena_size <= it <= 1.25 pn_arena_size over a grid of limits, in
  * every single-algorithm build. Split references (limits.bvh_refs above t) cost
- * PN_BVH_SPLIT_REF_BYTES more each. */
+ * PN_BVH_SPLIT_REF_BYTES more each (the bound holds 2 PN_ARENA_ALIGN for the two pools
+ * whose rounding they can lengthen beyond that: the leaf order and the build scratch). */
 #define PN_ARENA_BYTES_MAX(t, w, h)                                                          \
     (PN_PERSIST_BYTES_MAX(t) +                                                                \
      PN_MAX_(PN_FRAME_BYTES_MAX(t, w, h) +                                                    \
                  PN_MAX_(PN_MAX_(PN_GEARS_BYTES_MAX(t, w, h), PN_SRT_BYTES_MAX(t, w, h)),     \
                          PN_MAX_(PN_MAX_(PN_OCCTEX_BYTES_MAX(t, w, h), PN_MCSM_BYTES_MAX(t, w, h)), \
                                  PN_WEDGES_BYTES_MAX(t, w, h))),                              \
-             PN_MAX_(PN_POOL_((size_t)(t) * 40u + ((size_t)(t) / 32u + 1u) * 4u),               \
+             PN_MAX_(PN_POOL_((size_t)(t) * 40u + ((size_t)(t) / 32u + 1u) * 4u + 2048u),       \
                      PN_ENABLE_WEDGES ? PN_POOL_((size_t)(t) * 24u)                              \
                      : PN_ENABLE_MCSM ? PN_POOL_((size_t)(t) * 52u + 4u) : 0u)) +                \
-     (size_t)PN_ARENA_ALIGN - 1u)
+     (size_t)PN_ARENA_ALIGN - 1u + 2u * (size_t)PN_ARENA_ALIGN)
 /* The split BVH references a context of t triangles may reserve (limits.bvh_refs up to t
  * plus these): PN_BVH_SPLIT_REFS, at most 2^PN_BVH_SPLIT_DEPTH - 1 a triangle (and t plus
  * them at most 2^26, which only lowers it). Each costs PN_BVH_SPLIT_REF_BYTES beyond

@@ -188,14 +188,22 @@ static int pn_in_arena(const pn_context *ctx, const void *p, size_t bytes)
     return a < hi && a + bytes > lo;
 }
 
+/* A frame's image, or a point query's batch (what: "image" or "batch"), within the limits. */
+static pn_status pn_check_size(pn_context *ctx, const pn_frame_options *o, const char *what)
+{
+    if (o->width == 0u || o->height == 0u)
+        return pn_fail(ctx, PN_E_IMAGE_SIZE, "%s size %ux%u has a zero side", what, o->width, o->height);
+    if (o->width > ctx->limits.max_width || o->height > ctx->limits.max_height)
+        return pn_fail(ctx, PN_E_LIMIT, "%s %ux%u exceeds the context's limits %ux%u", what, o->width, o->height,
+                       ctx->limits.max_width, ctx->limits.max_height);
+    return PN_OK;
+}
+
 static pn_status pn_check_options(pn_context *ctx, const pn_frame_options *o)
 {
     size_t px;
-    if (o->width == 0u || o->height == 0u)
-        return pn_fail(ctx, PN_E_IMAGE_SIZE, "image size %ux%u has a zero side", o->width, o->height);
-    if (o->width > ctx->limits.max_width || o->height > ctx->limits.max_height)
-        return pn_fail(ctx, PN_E_LIMIT, "image %ux%u exceeds the context's limits %ux%u", o->width,
-                       o->height, ctx->limits.max_width, ctx->limits.max_height);
+    pn_status st;
+    if ((st = pn_check_size(ctx, o, "image")) != PN_OK) return st;
     if (o->no_rgba > 1u) return pn_fail(ctx, PN_E_INVALID_ARG, "no_rgba = %u; it must be 0 or 1", o->no_rgba);
     if (o->no_rgba && o->rgba_out)
         return pn_fail(ctx, PN_E_INVALID_ARG, "rgba_out is set but no_rgba turns the RGBA image off");
@@ -537,12 +545,7 @@ pn_status pn_points_with(pn_context *ctx, const pn_port *port, const pn_light *l
     if (n > 0u && (!points || !normals || !tri_ids || !out))
         return pn_fail(ctx, PN_E_INVALID_ARG, "pn_visibility_points: points, normals, tri_ids and out must not be NULL");
     if (!ctx->has_scene) return pn_fail(ctx, PN_E_NO_SCENE, "pn_visibility_points: no scene (call pn_scene_set first)");
-    if (opt->width == 0u || opt->height == 0u)
-        return pn_fail(ctx, PN_E_IMAGE_SIZE, "batch size %ux%u has a zero side", opt->width, opt->height);
-    if (opt->width > ctx->limits.max_width || opt->height > ctx->limits.max_height)
-        return pn_fail(ctx, PN_E_LIMIT, "batch %ux%u exceeds the context's limits %ux%u", opt->width, opt->height,
-                       ctx->limits.max_width, ctx->limits.max_height);
-    if ((st = pn_check_common(ctx, opt)) != PN_OK) return st;
+    if ((st = pn_check_size(ctx, opt, "batch")) != PN_OK || (st = pn_check_common(ctx, opt)) != PN_OK) return st;
     if (n > 0u && pn_in_arena(ctx, out, (size_t)n * sizeof(float)))
         return pn_fail(ctx, PN_E_INVALID_ARG, "out lies in the context's arena; it must be the caller's own");
     if ((st = pn_frame_begin(&fs, ctx, port, NULL, light, opt, 1u)) != PN_OK) return st;

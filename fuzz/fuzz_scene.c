@@ -143,8 +143,10 @@ typedef struct kept_frame {
     const uint8_t *rgba;
 } kept_frame;
 
-/* The frame invariants of a G-buffer pixel's shading inputs and outputs (see the top). */
-static void check_pixel(const pn_frame *out, const pn_frame_options *opt, size_t i)
+/* The frame invariants of pixel i (the top comment): visibility in [0, 1]; a background
+ * pixel at 1, +inf depth and the background colour (when there is an image); otherwise a
+ * triangle of the tc, a finite depth and position and a unit normal. */
+static void check_pixel(const pn_frame *out, const pn_frame_options *opt, uint32_t tc, size_t i)
 {
     const float *nr = out->normal + 3u * i;
     float vi = out->visibility[i];
@@ -154,6 +156,10 @@ static void check_pixel(const pn_frame *out, const pn_frame_options *opt, size_t
                    "background pixel %zu: visibility %g depth %g", i, vi, out->depth[i]);
         return;
     }
+    FUZZ_CHECK(out->tri_id[i] < tc, "pixel %zu triangle %u of %u", i, out->tri_id[i], tc);
+    FUZZ_CHECK(out->depth[i] >= 0.0f && isfinite(out->depth[i]) && isfinite(out->position[3u * i]) &&
+                   isfinite(out->position[3u * i + 1u]) && isfinite(out->position[3u * i + 2u]),
+               "pixel %zu depth %g", i, out->depth[i]);
     FUZZ_CHECK(fabsf(nr[0] * nr[0] + nr[1] * nr[1] + nr[2] * nr[2] - 1.0f) < 1e-3f,
                "pixel %zu (triangle %u) normal (%g %g %g) is not unit", i, out->tri_id[i], nr[0], nr[1], nr[2]);
 }
@@ -228,7 +234,7 @@ static void caller_side(pn_context *ctx, reader *r, unsigned api, const pn_camer
             FUZZ_CHECK(!memcmp(gids, out.tri_id, n * 4u), "the frame's ids are not the G-buffer's");
             FUZZ_CHECK(!memcmp(vis_out, out.visibility, n * 4u), "visibility_out is not the frame's");
             FUZZ_CHECK((api & 32u) ? out.rgba == NULL : !memcmp(rgba_out, out.rgba, n * 4u), "rgba_out is not the frame's");
-            for (i = 0; i < n; i++) check_pixel(&out, &opt, i);
+            for (i = 0; i < n; i++) check_pixel(&out, &opt, tc, i);
         }
     }
     if (api & 2u) { /* hostile points */
@@ -544,22 +550,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         FUZZ_CHECK(out.width == opt.width && out.height == opt.height, "frame size %ux%u", out.width, out.height);
         for (i = 0; i < n; i++) {
             float vi = out.visibility[i];
-            const float *nr = out.normal + 3u * i;
-            FUZZ_CHECK(vi >= 0.0f && vi <= 1.0f, "pixel %zu visibility %g", i, vi);
             FUZZ_CHECK(opt.algo == PN_ALGO_OCCTEX || opt.algo == PN_ALGO_MCSM || opt.algo == PN_ALGO_WEDGES || (point ? vi == 0.0f || vi == 1.0f : vi * kk == floorf(vi * kk)),
                        "pixel %zu visibility %g: not a multiple of 1/k^2 (k %u)", i, vi, k);
-            if (out.tri_id[i] == PN_NO_TRIANGLE) {
-                FUZZ_CHECK(vi == 1.0f && out.depth[i] == INFINITY && !memcmp(out.rgba + 4u * i, opt.background, 4u),
-                           "background pixel %zu: visibility %g depth %g", i, vi, out.depth[i]);
-                continue;
-            }
-            FUZZ_CHECK(out.tri_id[i] < tc, "pixel %zu triangle %u of %u", i, out.tri_id[i], tc);
-            FUZZ_CHECK(out.depth[i] >= 0.0f && isfinite(out.depth[i]) && isfinite(out.position[3u * i]) &&
-                           isfinite(out.position[3u * i + 1u]) && isfinite(out.position[3u * i + 2u]),
-                       "pixel %zu depth %g", i, out.depth[i]);
-            FUZZ_CHECK(fabsf(nr[0] * nr[0] + nr[1] * nr[1] + nr[2] * nr[2] - 1.0f) < 1e-3f,
-                       "pixel %zu (triangle %u) normal (%g %g %g) is not unit", i, out.tri_id[i], nr[0],
-                       nr[1], nr[2]);
+            check_pixel(&out, &opt, tc, i);
         }
         FUZZ_CHECK(pn_get_stats(ctx, &stats) == PN_OK && stats.triangles == tc &&
                        stats.arena_high_water <= stats.arena_carved && stats.arena_carved < bytes,

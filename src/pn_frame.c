@@ -447,6 +447,8 @@ static pn_status pn_frame_shadow(pn_frame_state *fs)
     uint64_t t0 = pn_dev_timestamp(fs);
     uint32_t y;
     pn_status st;
+    fs->candidates = fs->blocking = fs->nodes = 0u; /* a point query's batches run one after another */
+    fs->lit = fs->overflow = 0u;
     if ((st = pn_shadow(fs)) != PN_OK) return st;
     ctx->pass_ns[PN_PASS_SHADOW] = pn_dev_timestamp(fs) - t0;
     /* Integer sums of the rows' counters: any port, any schedule alike. */
@@ -570,8 +572,6 @@ pn_status pn_points_with(pn_context *ctx, const pn_port *port, const pn_light *l
             (st = pn_dev_to_device(&fs, fs.nrm, px * 12u)) != PN_OK || (st = pn_frame_shadow(&fs)) != PN_OK)
             return st;
         memcpy(out + done, fs.vis, (size_t)m * sizeof(float));
-        fs.candidates = fs.blocking = fs.nodes = 0u;
-        fs.lit = fs.overflow = 0u;
         done += m;
     }
     return PN_OK;

@@ -122,14 +122,23 @@ static inline int pn_test_open_limits(pn_test_host *h, const pn_limits *limits)
     return 0;
 }
 
-static inline int pn_test_open(pn_test_host *h, uint32_t max_triangles, uint32_t max_w, uint32_t max_h)
+/* A context of max_triangles, max_w x max_h and bvh_refs BVH references (0: the
+ * library's default, no split references). */
+static inline int pn_test_open_refs(pn_test_host *h, uint32_t max_triangles, uint32_t max_w, uint32_t max_h,
+                                    uint32_t bvh_refs)
 {
     pn_limits lim;
     memset(&lim, 0, sizeof(lim));
     lim.max_triangles = max_triangles;
     lim.max_width = max_w;
     lim.max_height = max_h;
+    lim.bvh_refs = bvh_refs;
     return pn_test_open_limits(h, &lim);
+}
+
+static inline int pn_test_open(pn_test_host *h, uint32_t max_triangles, uint32_t max_w, uint32_t max_h)
+{
+    return pn_test_open_refs(h, max_triangles, max_w, max_h, 0u);
 }
 
 static inline void pn_test_close(pn_test_host *h)

@@ -387,15 +387,9 @@ static void check_tree(pn_context *ctx, const scene *s, int expect_split)
 
 static pn_context *open_ctx(pn_test_host *h, uint32_t tris, uint32_t refs)
 {
-    pn_limits lim;
-    memset(&lim, 0, sizeof(lim));
-    lim.max_triangles = tris;
-    lim.max_width = FRAME_W;
-    lim.max_height = FRAME_H;
     /* 0: the largest reserve, tris + PN_BVH_SPLIT_EXTRA (the library's own default is no
      * split reference at all: test_limits). */
-    lim.bvh_refs = refs ? refs : tris + (uint32_t)PN_BVH_SPLIT_EXTRA(tris);
-    if (pn_test_open_limits(h, &lim) != 0) {
+    if (pn_test_open_refs(h, tris, FRAME_W, FRAME_H, refs ? refs : tris + (uint32_t)PN_BVH_SPLIT_EXTRA(tris)) != 0) {
         CHECK_MSG(0, "context for %u triangles, %u references", tris, refs);
         return NULL;
     }

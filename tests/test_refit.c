@@ -299,13 +299,7 @@ static uint32_t g_refits, g_rebuilds;
 
 static pn_context *open_ctx(pn_test_host *h, uint32_t tris, int split)
 {
-    pn_limits lim;
-    memset(&lim, 0, sizeof(lim));
-    lim.max_triangles = tris;
-    lim.max_width = FRAME_W;
-    lim.max_height = FRAME_H;
-    lim.bvh_refs = split ? tris + (uint32_t)PN_BVH_SPLIT_EXTRA(tris) : 0u;
-    if (pn_test_open_limits(h, &lim) != 0) {
+    if (pn_test_open_refs(h, tris, FRAME_W, FRAME_H, split ? tris + (uint32_t)PN_BVH_SPLIT_EXTRA(tris) : 0u) != 0) {
         CHECK_MSG(0, "context for %u triangles", tris);
         return NULL;
     }

@@ -194,12 +194,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 /* The ray tracer's per-ray filter (bounds from the triangle's box and from the
                  * triangles' box, as the BVH's leaves and root give them) and slab test. */
                 pn_ray_origin X;
-                pn_kbvh_node nd;
+                float nlo[3], nhi[3];
                 uint32_t q;
-                memset(&nd, 0, sizeof(nd));
                 for (q = 0; q < 3; q++) {
-                    nd.bmin[q] = pn_kminf(T[q], pn_kminf(T[3 + q], T[6 + q]));
-                    nd.bmax[q] = pn_kmaxf(T[q], pn_kmaxf(T[3 + q], T[6 + q]));
+                    nlo[q] = pn_kminf(T[q], pn_kminf(T[3 + q], T[6 + q]));
+                    nhi[q] = pn_kmaxf(T[q], pn_kmaxf(T[3 + q], T[6 + q]));
                 }
                 pn_ray_origin_make(origins[o], &L, tbox, tbox + 3, &X);
                 for (j = 0; j < L.k; j++)
@@ -208,11 +207,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                         pn_ray R;
                         float tn;
                         pn_ray_make(&X, &L, (int32_t)i, (int32_t)j, &R);
-                        FUZZ_CHECK(pn_ray_tri(&R, &L, T, pn_ray_bound(&R, nd.bmin, nd.bmax)) == mb &&
+                        FUZZ_CHECK(pn_ray_tri(&R, &L, T, pn_ray_bound(&R, nlo, nhi)) == mb &&
                                        pn_ray_tri(&R, &L, T, R.ebr) == mb,
                                    "triangle %u, origin %u, k %u, sample %u,%u: the ray filter disagrees with the mask's %u",
                                    t, o, L.k, i, j, mb);
-                        FUZZ_CHECK(!mb || pn_ray_box(&R, &nd, &tn),
+                        FUZZ_CHECK(!mb || pn_ray_box(&R, nlo, nhi, &tn),
                                    "triangle %u blocks sample %u,%u from origin %u but the ray's slab test rejects its box",
                                    t, i, j, o);
                     }

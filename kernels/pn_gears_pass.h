@@ -345,7 +345,7 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
                                PN_CONST uint32_t *tri_id, PN_CONST float *pos, PN_CONST float *nrm,
                                PN_CONST uint32_t *pix_cell, PN_CONST uint32_t *cell_off, PN_CONST uint32_t *sorted,
                                PN_CONST float *chunk_box, PN_CONST float *super_box, PN_CONST float *tris,
-                               PN_CONST pn_kbvh_node *nodes, size_t pix,
+                               PN_CONST pn_kbvh4 *wnodes, size_t pix,
                                pn_shadow_counters *cnt, float *vis_out)
 {
     uint32_t cell = pix_cell[pix], own = tri_id[pix], e0, e1, s0, slast, k = L->k, any, nq = 0u, qs[4], done = 0u;
@@ -368,7 +368,7 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
     any = pn_mask_count(m, k) != 0u;
     pn_frustum_make(O, L, &fr);
     pn_foot_make(O, L, &fp);
-    pn_tri_block_origin(O, L, nodes, &X);
+    pn_tri_block_origin(O, L, wnodes, &X);
     pn_ray_cache_clear(&RC);
     e0 = cell_off[cell];
     e1 = cell_off[cell + 1u];

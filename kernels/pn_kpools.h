@@ -12,7 +12,7 @@
 
 typedef struct pn_kpools {
     /* persistent: the scene (index: the BVH's leaf order; rindex: the raster order) */
-    uint64_t tris, flags, nodes, wnodes, index, rindex;
+    uint64_t tris, flags, wnodes, index, rindex;
     /* frame: G-buffer, outputs, scratch */
     uint64_t depth, tri_id, pos, nrm, vis, rgba, rows, chunks, counters;
     /* frame: GEARS (src/pn_gears.c) */

@@ -29,37 +29,73 @@ typedef struct pn_klight {
     uint32_t is_point;
 } pn_klight;
 
-/* BVH node, 32 bytes. Interior (count == 0): children at first and first + 1.
- * Leaf: triangles tri_index[first .. first + count). The root is node 0, so no child
- * index is ever 0: a root with count 0 and first 0 is the empty tree. A leaf entry is a
+/* The BVH: four-wide nodes, 128 bytes each (src/pn_bvh_build.c builds a binary tree in
+ * the frame region and folds it, pn_bvh_fold, so that a walk tests up to four children's
+ * boxes at once, one lane each: kernels/pn_raytrace.h). Child c < n: box lo[a][c] ..
+ * hi[a][c], and child[c] either a wide node's index or a leaf, PN_W4_LEAF |
+ * (count - 1) << PN_W4_COUNT_SHIFT | first: the references tri_index[first .. first +
+ * count), 2 .. PN_BVH_LEAF_MAX of them (one in a tree of one reference). A reference is a
  * triangle id (PN_REF_TRI), with PN_REF_SPLIT set when the triangle is split into several
- * references (src/pn_bvh_build.c): a leaf box then holds the part of it that matters to
- * the walks, not necessarily its vertices. */
+ * references: a leaf box then holds the part of it that matters to the walks, not
+ * necessarily its vertices. Lanes c >= n hold zeros and are never used. Node 0 is the
+ * root, so no child index is 0; an empty tree's root has n = 0. The tree's box is the
+ * union of the root's lanes (pn_w4_root_box). */
 #define PN_REF_SPLIT 0x80000000u
 #define PN_REF_TRI 0x7FFFFFFFu
-typedef struct pn_kbvh_node {
-    float bmin[3];
-    uint32_t first;
-    float bmax[3];
-    uint32_t count;
-} pn_kbvh_node;
-
-/* Four-wide BVH node, 128 bytes: the same tree with up to three levels of binary nodes
- * folded into one (src/pn_bvh_build.c, pn_bvh_widen), so that a walk tests up to four
- * children's boxes at once, one lane each (kernels/pn_raytrace.h). Child c < n: box
- * lo[a][c] .. hi[a][c] (exactly the binary node's), and child[c] a four-wide node index,
- * or PN_W4_LEAF | the index of the binary leaf node it is (its box, first and count).
- * Lanes c >= n hold zeros and are never used. Node 0 is the root; an empty tree's root
- * has n = 0. */
 #define PN_W4_LEAF 0x80000000u
+#define PN_W4_COUNT_SHIFT 26u
+#define PN_W4_FIRST 0x03FFFFFFu
 typedef struct pn_kbvh4 {
     float lo[3][4];
     float hi[3][4];
     uint32_t child[4];
     uint32_t n;   /* children */
-    uint32_t bin; /* the binary node it folds */
-    uint32_t pad0, pad1;
+    uint32_t pad0, pad1, pad2;
 } pn_kbvh4;
+
+/* A walk's stack entry for child c of wide node w (wn = wnodes + w): the child's wide
+ * index, or for a leaf PN_W4_LEAF | w << 2 | c, so that the leaf's box (lane c of w) is
+ * at hand when the entry is popped (w < 2^29: at most 2^26 references). */
+PN_KFN uint32_t pn_w4_entry(PN_CONST pn_kbvh4 *wn, uint32_t w, uint32_t c)
+{
+    uint32_t ch = wn->child[c];
+    return (ch & PN_W4_LEAF) ? (PN_W4_LEAF | (w << 2) | c) : ch;
+}
+
+/* A leaf entry's references: tri_index[*first .. *first + return value). */
+PN_KFN uint32_t pn_w4_leaf_refs(PN_CONST pn_kbvh4 *wnodes, uint32_t e, uint32_t *first)
+{
+    uint32_t ch = wnodes[(e & ~PN_W4_LEAF) >> 2].child[e & 3u];
+    *first = ch & PN_W4_FIRST;
+    return ((ch & ~PN_W4_LEAF) >> PN_W4_COUNT_SHIFT) + 1u;
+}
+
+/* The tree's box: the union of the root's lanes (zeros for an empty tree). Only its
+ * bounds' magnitudes about a shadow origin matter (pn_ray_origin_make), so the sign of a
+ * zero bound, which follows the order of the joins, never does. */
+PN_KFN void pn_w4_root_box(PN_CONST pn_kbvh4 *wnodes, float *lo, float *hi)
+{
+    uint32_t c, a;
+    for (a = 0; a < 3u; a++) {
+        lo[a] = wnodes->n ? wnodes->lo[a][0] : 0.0f;
+        hi[a] = wnodes->n ? wnodes->hi[a][0] : 0.0f;
+        for (c = 1; c < wnodes->n; c++) {
+            lo[a] = lo[a] < wnodes->lo[a][c] ? lo[a] : wnodes->lo[a][c];
+            hi[a] = hi[a] > wnodes->hi[a][c] ? hi[a] : wnodes->hi[a][c];
+        }
+    }
+}
+
+/* A leaf entry's box. */
+PN_KFN void pn_w4_leaf_box(PN_CONST pn_kbvh4 *wnodes, uint32_t e, float *lo, float *hi)
+{
+    PN_CONST pn_kbvh4 *w = wnodes + ((e & ~PN_W4_LEAF) >> 2);
+    uint32_t c = e & 3u, a;
+    for (a = 0; a < 3u; a++) {
+        lo[a] = w->lo[a][c];
+        hi[a] = w->hi[a][c];
+    }
+}
 
 /* Shading constants. */
 typedef struct pn_kshade {

@@ -23,12 +23,12 @@ PN_KFN void pn_pixel_shadow(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
     nrm = pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u);
 #if PN_ENABLE_RAYTRACE
     if (rays)
-        v = pn_raytrace_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
-                              PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), &K->light, &c);
+        v = pn_raytrace_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
+                              PN_POOL(const uint32_t, index), &K->light, &c);
     else
 #endif
-        v = pn_reference_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
-                               PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), &K->light, &c);
+        v = pn_reference_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
+                               PN_POOL(const uint32_t, index), &K->light, &c);
     (void)rays;
     PN_POOL(float, vis)[pix] = v;
     pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);

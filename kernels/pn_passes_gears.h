@@ -100,7 +100,7 @@ PN_KFN void pn_e_gears_masks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
                              PN_POOL(const uint32_t, pix_cell), PN_POOL(const uint32_t, cell_off),
                              PN_POOL(const uint32_t, sorted), PN_POOL(const float, chunk_box),
                              PN_POOL(const float, super_box), PN_POOL(const float, tris),
-                             PN_POOL(const pn_kbvh_node, nodes), pix, &c, &v))
+                             PN_POOL(const pn_kbvh4, wnodes), pix, &c, &v))
         return;
     PN_POOL(float, vis)[pix] = v;
     pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);

@@ -96,8 +96,8 @@ PN_KFN void pn_e_srt_exact(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kp
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
     PN_POOL(float, vis)[pix] = pn_reference_pixel(
         pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u), pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u),
-        PN_POOL(const uint32_t, tri_id)[pix], PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
-        PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), &K->light, &c);
+        PN_POOL(const uint32_t, tri_id)[pix], PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
+        PN_POOL(const uint32_t, index), &K->light, &c);
     c.lit = 0u; /* counted by the classification */
     pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);
 }

@@ -106,15 +106,15 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
         return;
     }
     tile = (pix / W / PN_WG_TILE) * K->wg.tiles_x + tx;
-    v = pn_wg_pixel(O, id, &K->light, K->wg.mode, PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
-                    PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), PN_POOL(const uint32_t, wg_tcomp), PN_POOL(const uint32_t, wg_tcast), PN_POOL(const pn_wsil, wg_sil),
+    v = pn_wg_pixel(O, id, &K->light, K->wg.mode, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
+                    PN_POOL(const uint32_t, index), PN_POOL(const uint32_t, wg_tcomp), PN_POOL(const uint32_t, wg_tcast), PN_POOL(const pn_wsil, wg_sil),
                     K->wg.sils, PN_POOL(const float, wg_bbox), PN_POOL(const float, wg_sbox), PN_POOL(const uint32_t, wg_sorted), PN_POOL(const uint32_t, wg_pairs), toff[tile], toff[tile + 1u], &c);
     if (v == PN_WG_EXACT) {
         pn_shadow_counters ce = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
         pn_klight Lk = K->light;
         if (Lk.k > PN_WG_EXACT_K) Lk.k = PN_WG_EXACT_K;
-        v = pn_reference_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh_node, nodes),
-                               PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), &Lk, &ce);
+        v = pn_reference_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
+                               PN_POOL(const uint32_t, index), &Lk, &ce);
         c.exact = 1u;
     } else if (v > 0.0f) {
         uint32_t m[PN_MASK_WORDS_MAX];

@@ -219,16 +219,6 @@ PN_KFN void pn_ray_make(const pn_ray_origin *X, const pn_klight *L, int32_t i, i
     pn_ray_set(X, pn_v3_add(pn_ray_row(X, L, b), pn_v3_scale(pn_light_U(L), a)), a, b, i, j, R);
 }
 
-PN_KFN void pn_ray_node_box(PN_CONST pn_kbvh_node *nd, float *lo, float *hi)
-{
-    lo[0] = nd->bmin[0];
-    lo[1] = nd->bmin[1];
-    lo[2] = nd->bmin[2];
-    hi[0] = nd->bmax[0];
-    hi[1] = nd->bmax[1];
-    hi[2] = nd->bmax[2];
-}
-
 /* 1 when O lies in child c of wide node w, grown by tol. */
 PN_KFN int pn_ray_holds_origin(const pn_ray_origin *X, PN_CONST pn_kbvh4 *w, uint32_t c)
 {
@@ -278,18 +268,18 @@ PN_KFN_HOT uint32_t pn_ray_box4(const pn_ray *R, PN_CONST pn_kbvh4 *w, float *tn
 }
 
 #if !defined(__OPENCL_VERSION__) && !defined(__OPENCL_C_VERSION__)
-/* 1 when the segment may meet node nd's box grown by tol; *tn its entry parameter: the
- * one slab test, on a wide node of one child in private memory (so host code only: the
- * tests' and fuzzers' check of a single box). */
-PN_KFN int pn_ray_box(const pn_ray *R, const pn_kbvh_node *nd, float *tn)
+/* 1 when the segment may meet the box [lo, hi] (xyz) grown by tol; *tn its entry
+ * parameter: the one slab test, on a wide node of one child in private memory (so host
+ * code only: the tests' and fuzzers' check of a single box). */
+PN_KFN int pn_ray_box(const pn_ray *R, const float *lo, const float *hi, float *tn)
 {
     pn_kbvh4 w;
     float t[4];
     uint32_t a, c;
     for (a = 0; a < 3u; a++)
         for (c = 0; c < 4u; c++) {
-            w.lo[a][c] = nd->bmin[a];
-            w.hi[a][c] = nd->bmax[a];
+            w.lo[a][c] = lo[a];
+            w.hi[a][c] = hi[a];
         }
     w.n = 1u;
     a = pn_ray_box4(R, &w, t);

@@ -23,15 +23,15 @@
 #define PN_RAY_NONE 0xFFFFFFFFu
 
 typedef struct pn_ray_walk {
-    uint32_t stack[PN_BVH_STACK]; /* wide node indices and PN_W4_LEAF | binary leaf indices */
+    uint32_t stack[PN_BVH_STACK]; /* entries (pn_w4_entry): wide node indices and leaves */
     uint32_t sp, node, done;
     uint32_t q;    /* the next triangle of the current node when it is a leaf left at a blocker */
-    uint32_t lost; /* entries the stack had no room for (must stay 0: pn_bvh_widen) */
+    uint32_t lost; /* entries the stack had no room for (must stay 0: pn_bvh_fold) */
 } pn_ray_walk;
 
 /* The chain first: each of its nodes is entered at t = 0 through the child that holds O;
  * its other children are tested and pushed. The walk starts at the chain's end. The
- * pushes are those a walk down the same path could leave, which pn_bvh_widen keeps
+ * pushes are those a walk down the same path could leave, which pn_bvh_fold keeps
  * within PN_BVH_STACK. */
 PN_KFN_HOT void pn_ray_walk_begin(pn_ray_walk *W, const pn_ray_origin *X, const pn_ray *R, PN_CONST pn_kbvh4 *wnodes)
 {
@@ -47,7 +47,7 @@ PN_KFN_HOT void pn_ray_walk_begin(pn_ray_walk *W, const pn_ray_origin *X, const 
         for (c = 0; c < 4u; c++)
             if ((hit >> c) & 1u) {
                 if (W->sp < PN_BVH_STACK)
-                    W->stack[W->sp++] = w->child[c];
+                    W->stack[W->sp++] = pn_w4_entry(w, X->chain[cd], c);
                 else
                     W->lost++;
             }
@@ -57,11 +57,11 @@ PN_KFN_HOT void pn_ray_walk_begin(pn_ray_walk *W, const pn_ray_origin *X, const 
 
 /* The next triangle other than `own` that blocks the ray's sample, or PN_RAY_NONE. At a
  * wide node the children the segment may meet are visited nearest entry first (the others
- * pushed, farthest first); a leaf is the binary leaf node, whose box gives the filter's
+ * pushed, farthest first); a leaf's box (its lane of its parent) gives the filter's
  * bound. */
 PN_KFN_HOT uint32_t pn_ray_walk_next(pn_ray_walk *W, const pn_ray *R, uint32_t own, PN_CONST float *tris,
-                                     PN_CONST pn_kbvh_node *nodes, PN_CONST pn_kbvh4 *wnodes,
-                                     PN_CONST uint32_t *tri_index, const pn_klight *L, pn_shadow_counters *cnt)
+                                     PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index,
+                                     const pn_klight *L, pn_shadow_counters *cnt)
 {
     uint32_t cur = W->node, sp = W->sp, tests = 0u;
     cnt->overflow += W->lost;
@@ -81,7 +81,7 @@ PN_KFN_HOT uint32_t pn_ray_walk_next(pn_ray_walk *W, const pn_ray *R, uint32_t o
                         ids[j] = ids[j - 1u];
                     }
                     ks[j] = tn[c];
-                    ids[j] = wn->child[c];
+                    ids[j] = pn_w4_entry(wn, cur, c);
                 }
                 for (j = 0; j + 1u < m; j++) {
                     if (sp < PN_BVH_STACK)
@@ -95,8 +95,7 @@ PN_KFN_HOT uint32_t pn_ray_walk_next(pn_ray_walk *W, const pn_ray *R, uint32_t o
         } else {
             /* The scene box's bound first; the leaf's, finer, computed once where needed,
              * or a split triangle's own box's (its leaf's box need not hold it). */
-            PN_CONST pn_kbvh_node *nd = nodes + (cur & ~PN_W4_LEAF);
-            uint32_t first = nd->first, count = nd->count, q;
+            uint32_t first, count = pn_w4_leaf_refs(wnodes, cur, &first), q;
             float eb = -1.0f, e[3], eu;
             for (q = W->q; q < count; q++) {
                 uint32_t ref = tri_index[first + q], t = ref & PN_REF_TRI;
@@ -113,7 +112,7 @@ PN_KFN_HOT uint32_t pn_ray_walk_next(pn_ray_walk *W, const pn_ray *R, uint32_t o
                     } else {
                         if (eb < 0.0f) {
                             float lo[3], hi[3];
-                            pn_ray_node_box(nd, lo, hi);
+                            pn_w4_leaf_box(wnodes, cur, lo, hi);
                             eb = pn_ray_bound(R, lo, hi);
                         }
                         eu = eb;
@@ -147,8 +146,8 @@ PN_KFN_HOT uint32_t pn_ray_walk_next(pn_ray_walk *W, const pn_ray *R, uint32_t o
  * exact test, with the scene box's bound), and walks only when that one does not block it.
  * A ray is blocked when some triangle blocks it, whichever is found: the same bits. */
 PN_KFN float pn_raytrace_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris,
-                               PN_CONST pn_kbvh_node *nodes, PN_CONST pn_kbvh4 *wnodes,
-                               PN_CONST uint32_t *tri_index, const pn_klight *L, pn_shadow_counters *cnt)
+                               PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index, const pn_klight *L,
+                               pn_shadow_counters *cnt)
 {
     uint32_t k = L->k, blocked = 0, last = PN_RAY_NONE;
     int32_t i, j;
@@ -160,11 +159,7 @@ PN_KFN float pn_raytrace_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float 
     if (!pn_shadow_origin(P, nrm, L, &O)) return 0.0f;
     cnt->lit++;
     pn_horizon_of(P, nrm, own, tris, L, &H);
-    {
-        float lo[3], hi[3];
-        pn_ray_node_box(nodes, lo, hi);
-        pn_ray_origin_make(O, L, lo, hi, &X);
-    }
+    pn_tri_block_origin(O, L, wnodes, &X);
     pn_ray_chain(&X, wnodes);
     for (i = 0; i < (int32_t)k; i++) av[i] = pn_sample_coord(i, k);
     for (j = 0; j < (int32_t)k; j++) {
@@ -187,7 +182,7 @@ PN_KFN float pn_raytrace_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float 
                 pn_ray_walk W;
                 uint32_t t;
                 pn_ray_walk_begin(&W, &X, &R, wnodes);
-                t = pn_ray_walk_next(&W, &R, own, tris, nodes, wnodes, tri_index, L, cnt);
+                t = pn_ray_walk_next(&W, &R, own, tris, wnodes, tri_index, L, cnt);
                 if (t != PN_RAY_NONE) {
                     last = t;
                     blocked++;

@@ -67,12 +67,12 @@ PN_KFN uint32_t pn_tri_block(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, PN_CONST float 
     return hit;
 }
 
-/* The rays' set-up for origin O over the scene box of the binary root (no chain: the
- * callers of pn_tri_block do not walk rays). */
-PN_KFN void pn_tri_block_origin(pn_v3 O, const pn_klight *L, PN_CONST pn_kbvh_node *nodes, pn_ray_origin *X)
+/* The rays' set-up for origin O over the BVH's box (no chain: the callers of
+ * pn_tri_block do not walk rays; a ray walk adds it, pn_ray_chain). */
+PN_KFN void pn_tri_block_origin(pn_v3 O, const pn_klight *L, PN_CONST pn_kbvh4 *wnodes, pn_ray_origin *X)
 {
     float lo[3], hi[3];
-    pn_ray_node_box(nodes, lo, hi);
+    pn_w4_root_box(wnodes, lo, hi);
     pn_ray_origin_make(O, L, lo, hi, X);
 }
 
@@ -311,8 +311,8 @@ PN_KFN_HOT uint32_t pn_tris_block4(PN_CONST uint32_t *list, uint32_t n, uint32_t
  * is the OR over every triangle that can block an open sample, so it is the same mask in
  * any order and over any tree; only the counters depend on them. */
 PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris,
-                                PN_CONST pn_kbvh_node *nodes, PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index,
-                                const pn_klight *L, pn_shadow_counters *cnt)
+                                PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index, const pn_klight *L,
+                                pn_shadow_counters *cnt)
 {
     uint32_t m[PN_MASK_WORDS_MAX], stack[PN_BVH_STACK], rects[PN_BVH_STACK];
     uint32_t k = L->k, sp = 0u, any;
@@ -333,7 +333,7 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
     any = pn_mask_count(m, k) != 0u;
     pn_frustum_make(O, L, &fr);
     pn_foot_make(O, L, &fp);
-    pn_tri_block_origin(O, L, nodes, &X);
+    pn_tri_block_origin(O, L, wnodes, &X);
     pn_ray_cache_clear(&RC);
     stack[0] = 0u; /* the root: its children are tested when it is popped */
     rects[0] = pn_rect_pack(pn_rect_full(k));
@@ -402,7 +402,7 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
                     pk[j] = pk[j - 1u];
                 }
                 key[j] = kc;
-                id[j] = w->child[c];
+                id[j] = pn_w4_entry(w, e, c);
                 pk[j] = pn_rect_pack(r);
             }
             for (c = 0; c < n_in; c++) {
@@ -415,23 +415,22 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
                 }
             }
         } else {
-            PN_CONST pn_kbvh_node *nd = nodes + (e & ~PN_W4_LEAF);
             int32_t si[PN_REF_RAYS], sj[PN_REF_RAYS];
-            uint32_t q, nf = pn_rect_few(m, k, rb, PN_REF_RAYS, si, sj);
+            uint32_t first, count = pn_w4_leaf_refs(wnodes, e, &first), q, nf = pn_rect_few(m, k, rb, PN_REF_RAYS, si, sj);
             if (nf <= PN_REF_RAYS) {
                 /* A few open samples in the leaf's rectangle: each one's ray (from the
                  * pixel's cache) against the leaf's triangles until one blocks it, with
                  * the filter's bound from the leaf's box (a split triangle's from its own). */
                 uint32_t s;
                 float lo[3], hi[3];
-                pn_ray_node_box(nd, lo, hi);
+                pn_w4_leaf_box(wnodes, e, lo, hi);
                 /* nf >= 1: rb held an open sample when popped */
-                for (q = 0; q < nd->count; q++) cnt->candidates += (tri_index[nd->first + q] & PN_REF_TRI) != own;
+                for (q = 0; q < count; q++) cnt->candidates += (tri_index[first + q] & PN_REF_TRI) != own;
                 for (s = 0; s < nf; s++) {
                     const pn_ray *R = &RC.r[pn_ray_cache_get(&RC, &X, L, si[s], sj[s])];
                     float eb = pn_ray_bound(R, lo, hi);
-                    for (q = 0; q < nd->count; q++) {
-                        uint32_t ref = tri_index[nd->first + q], t = ref & PN_REF_TRI;
+                    for (q = 0; q < count; q++) {
+                        uint32_t ref = tri_index[first + q], t = ref & PN_REF_TRI;
                         PN_CONST float *p = tris + (size_t)t * 9u;
                         if (t == own) continue;
                         if (pn_ray_tri(R, L, p, (ref & PN_REF_SPLIT) ? pn_ray_tri_bound(R, p) : eb)) {
@@ -442,7 +441,7 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
                         }
                     }
                 }
-            } else if (pn_tris_block4(tri_index + nd->first, nd->count, own, 0u, 0u, tris, &fr, &fp, O, L, &X, &RC, m,
+            } else if (pn_tris_block4(tri_index + first, count, own, 0u, 0u, tris, &fr, &fp, O, L, &X, &RC, m,
                                       &any, cnt)) {
                 break; /* the mask is full */
             }

@@ -893,9 +893,9 @@ PN_KFN int pn_wg_listed(PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t
  * nodes = blockers of the centre ray, capped = more than PN_WG_HARD_MAX objects listed in
  * the tile block the centre (taken as umbra; reported as pn_stats.wedges.hard_overflow, not
  * an error), overflow = the centre ray's walk lost a stack entry (a broken invariant:
- * pn_bvh_widen bounds the stack). */
+ * pn_bvh_fold bounds the stack). */
 PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mode, PN_CONST float *tris,
-                         PN_CONST pn_kbvh_node *nodes, PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index,
+                         PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index,
                          PN_CONST uint32_t *tcomp, PN_CONST uint32_t *tcast,
                          PN_CONST pn_wsil *sil, uint32_t nsil, PN_CONST float *bbox, PN_CONST float *sbox,
                          PN_CONST uint32_t *list, PN_CONST uint32_t *next, uint32_t lo, uint32_t hi, pn_shadow_counters *cnt)
@@ -914,18 +914,14 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
 
     /* The centre: which objects block it (exactly). */
     Lc.k = 1u;
-    {
-        float blo[3], bhi[3];
-        pn_ray_node_box(nodes, blo, bhi);
-        pn_ray_origin_make(O, &Lc, blo, bhi, &X);
-    }
+    pn_tri_block_origin(O, &Lc, wnodes, &X);
     pn_ray_chain(&X, wnodes);
     pn_ray_make(&X, &Lc, 0, 0, &R);
     pn_ray_walk_begin(&W, &X, &R, wnodes);
     for (;;) {
         pn_shadow_counters rc = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
         uint32_t s, j;
-        t = pn_ray_walk_next(&W, &R, own, tris, nodes, wnodes, tri_index, &Lc, &rc);
+        t = pn_ray_walk_next(&W, &R, own, tris, wnodes, tri_index, &Lc, &rc);
         cnt->overflow += rc.overflow;
         if (t == PN_RAY_NONE) break;
         cnt->nodes++;

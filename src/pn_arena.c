@@ -87,8 +87,7 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
     if (!pn_bump(&off, 1u, sizeof(pn_context), &lay.ctx) ||
         !pn_bump(&off, l->max_triangles, 9u * sizeof(float), &lay.tris) ||
         !pn_bump(&off, l->max_triangles, 1u, &lay.flags) ||
-        !pn_bump(&off, 2u * (uint64_t)pn_bvh_refs_max(l), sizeof(pn_kbvh_node), &lay.nodes) ||
-        !pn_bump(&off, pn_bvh_refs_max(l), sizeof(pn_kbvh4), &lay.wnodes) ||
+        !pn_bump(&off, pn_bvh_wide_max(pn_bvh_refs_max(l)), sizeof(pn_kbvh4), &lay.wnodes) ||
         !pn_bump(&off, pn_bvh_refs_max(l), sizeof(uint32_t), &lay.index) ||
         !pn_bump(&off, l->max_triangles, sizeof(uint32_t), &lay.rindex) ||
         !pn_bump(&off, PN_PORT_SCRATCH_WORDS, sizeof(uint32_t), &lay.scratch))
@@ -192,10 +191,15 @@ uint32_t pn_bvh_refs_cap(const pn_limits *l)
     return (uint32_t)(n + extra);
 }
 uint32_t pn_bvh_refs_max(const pn_limits *l) { return l->bvh_refs ? l->bvh_refs : l->max_triangles; }
+uint64_t pn_bvh_nodes_at(const pn_limits *l)
+{
+    uint64_t at = (uint64_t)pn_bvh_refs_max(l) * PN_BVH_REF_BYTES + ((uint64_t)l->max_triangles / 32u + 1u) * 4u +
+                  PN_BVH_TASK_BYTES;
+    return (at + (PN_ARENA_ALIGN - 1u)) & ~(uint64_t)(PN_ARENA_ALIGN - 1u);
+}
 uint64_t pn_bvh_scratch_bytes(const pn_limits *l)
 {
-    return (uint64_t)pn_bvh_refs_max(l) * PN_BVH_REF_BYTES + ((uint64_t)l->max_triangles / 32u + 1u) * 4u +
-           PN_BVH_TASK_BYTES;
+    return pn_bvh_nodes_at(l) + (uint64_t)pn_bvh_refs_max(l) * PN_BVH_NODE_BYTES;
 }
 uint32_t pn_nb_levels(uint32_t res)
 {
@@ -240,8 +244,8 @@ pn_status pn_init(pn_context **out_ctx, void *memory, size_t bytes, const pn_lim
     ctx->bytes = bytes;
     ctx->tris = (float *)(void *)(base + lay.tris);
     ctx->flags = base + lay.flags;
-    ctx->nodes = (pn_kbvh_node *)(void *)(base + lay.nodes);
     ctx->wnodes = (pn_kbvh4 *)(void *)(base + lay.wnodes);
+    ctx->bvh_depth_max = PN_BVH_DEPTH_MAX;
     ctx->tri_index = (uint32_t *)(void *)(base + lay.index);
     ctx->raster_index = (uint32_t *)(void *)(base + lay.rindex);
     ctx->scratch = (uint32_t *)(void *)(base + lay.scratch);

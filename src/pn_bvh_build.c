@@ -1,5 +1,6 @@
-/* pn_bvh_build.c - binned SAH BVH over triangle references, built top-down into the arena
- * without recursion.
+/* pn_bvh_build.c - binned SAH BVH over triangle references, built top-down without
+ * recursion as a binary tree in the frame region, then folded into the four-wide tree the
+ * context keeps and the walks read (pn_bvh_fold; kernels/pn_ktypes.h pn_kbvh4).
  *
  * References. Every non-degenerate triangle is one reference with its box, or, when its
  * box is far larger than itself, several (early split clipping, Ernst and Greiner 2007;
@@ -13,12 +14,15 @@
  *
  * Work list: after a split the larger child is pushed and the smaller one is built next,
  * so every pushed entry at least halves the remaining count: the list never holds more
- * than log2(N) + 1 entries (32 is plenty). Below depth PN_BVH_SAH_DEPTH the split is the
- * object median (an iterative quickselect), which halves the count at each level and so
- * bounds the tree depth by PN_BVH_SAH_DEPTH + 27 <= PN_BVH_STACK (check_config.h; at most
- * 2^26 references): the traversal stack can never overflow. Node 0 is the root; children
- * are allocated in pairs, so at most 2R - 1 nodes exist for R references. Everything is
- * deterministic: same triangles, same tree.
+ * than log2(N) + 1 entries (32 is plenty). Leaves hold at least PN_BVH_LEAF_MIN (2)
+ * references, which bounds the wide tree at a third of a node a reference. Depth: where
+ * the median splits a node still needs would take the tree below PN_BVH_DEPTH_MAX, the
+ * split is the object median (an iterative quickselect), which halves the count at each
+ * level, so the tree never passes that depth (2^26 references need 25 levels:
+ * check_config.h keeps it above) and no walk's stack can overflow (pn_bvh_fold). Node 0
+ * is the root; children are allocated in pairs, so at most 2R - 1 nodes exist for R
+ * references, R - 1 with leaves of two or more. Everything is deterministic: same
+ * triangles, same tree.
  *
  * In parallel (pn_set_parallel_for), with the same tree: a node's split depends on its own
  * references alone (pn_bvh_node), so the top of the tree is split on the calling thread,
@@ -36,6 +40,8 @@
 typedef struct pn_box {
     float lo[3], hi[3];
 } pn_box;
+
+typedef char pn_bnode_size_check[sizeof(pn_bnode) == PN_BVH_NODE_BYTES ? 1 : -1];
 
 static void pn_box_empty(pn_box *b)
 {
@@ -326,24 +332,36 @@ static uint32_t pn_bvh_refs(pn_context *ctx, pn_bref *refs, uint32_t *tris_out)
     return r;
 }
 
-static float pn_node_area(const pn_kbvh_node *nd)
+static float pn_node_area(const pn_bnode *nd)
 {
     float dx = nd->bmax[0] - nd->bmin[0], dy = nd->bmax[1] - nd->bmin[1], dz = nd->bmax[2] - nd->bmin[2];
     return dx * dy + dy * dz + dz * dx;
 }
 
-/* The children of binary interior node b, opened up to `width`: while there are fewer,
- * the interior child with the largest box (the first of equals) is replaced in place by
- * its two children, so the list keeps the tree's left-to-right order. */
-static uint32_t pn_widen_children(const pn_kbvh_node *nodes, uint32_t b, uint32_t width, uint32_t *ch)
+/* The children of binary interior node b, opened up to four, by one of two rules. Greedy
+ * (the walks' better tree: callgrind, per-sample ray tracing on the bunny 3.88 G -> 3.54 G
+ * instructions against breadth first): while there are fewer than four, the interior child
+ * with the largest box (the first of equals) is replaced in place by its two children.
+ * Breadth first (the bound on the walk stack, pn_bvh_fold): both of b's children when
+ * both are interior; else the interior one, and then the larger interior one of its two.
+ * Either keeps the tree's left-to-right order, and stops short of four only when every
+ * child is a leaf. */
+static uint32_t pn_fold_children(const pn_bnode *nodes, uint32_t b, int greedy, uint32_t *ch)
 {
-    uint32_t n = 2u, i, best;
+    uint32_t n = 2u, i, best, from = 0u;
     ch[0] = nodes[b].first;
     ch[1] = nodes[b].first + 1u;
-    while (n < width) {
+    if (!greedy && nodes[ch[0]].count == 0u && nodes[ch[1]].count == 0u) {
+        ch[2] = nodes[ch[1]].first;
+        ch[3] = ch[2] + 1u;
+        ch[1] = nodes[ch[0]].first + 1u;
+        ch[0] = nodes[ch[0]].first;
+        return 4u;
+    }
+    while (n < 4u) {
         float ba = -1.0f;
         best = n;
-        for (i = 0; i < n; i++)
+        for (i = from; i < n; i++)
             if (nodes[ch[i]].count == 0u && pn_node_area(nodes + ch[i]) > ba) {
                 ba = pn_node_area(nodes + ch[i]);
                 best = i;
@@ -353,29 +371,54 @@ static uint32_t pn_widen_children(const pn_kbvh_node *nodes, uint32_t b, uint32_
         ch[best + 1u] = nodes[ch[best]].first + 1u;
         ch[best] = nodes[ch[best]].first;
         n++;
+        /* breadth first: after b's one interior child, only its two children */
+        if (!greedy) from = best;
     }
     return n;
 }
 
-/* The four-wide tree (pn_kbvh4) over the binary one, in breadth-first order: the wide
- * nodes themselves are the queue (field bin names the binary node a wide node folds,
- * pad0 the walk stack its path needs). Each wide node folds a distinct binary interior
- * node (or the root), so there are at most max(1, interior nodes) of them. Returns their
- * count; *need the stack a walk needs: the largest sum over a root-to-leaf path of
- * (children - 1), the entries a walk leaves pushed, plus one. */
-uint32_t pn_bvh_fold(const pn_kbvh_node *nodes, pn_kbvh4 *w, uint32_t width, uint32_t *need_out)
+/* Walk-stack entries a path may leave pushed below a node of binary height h folded breadth
+ * first, times two: 3 (h - 1) + 6 for h >= 1 (pn_bvh_fold), 0 for a leaf. */
+static uint32_t pn_fold_room2(uint32_t h) { return h ? 3u * (h - 1u) + 6u : 0u; }
+
+/* The four-wide tree (pn_kbvh4) over the binary one (nodes, root 0) into w, in
+ * breadth-first order: the wide nodes themselves are the queue (pad0 names the binary
+ * node a wide node folds, pad1 the walk-stack entries its path has pushed; both zeroed at
+ * the end). height[b]: binary node b's height (edges to its deepest leaf), or NULL to fold
+ * every node breadth first. Returns the count, or 0 when it would pass `room`; *need the
+ * stack a walk needs: the largest sum over a root-to-leaf path of (children - 1), the
+ * entries a walk leaves pushed, plus one.
+ *
+ * Count: with every leaf of at least two references (the builder's, pn_bvh_node) a tree of
+ * R >= 2 references has L <= R / 2 leaves; a wide node of fewer than four children has
+ * only leaves below it (either rule), so there are at most L / 2 of those, and counting
+ * children (every node but the root is a child) gives at most (2L - 1) / 3 <= R / 3 wide
+ * nodes (pn_bvh_wide_max).
+ *
+ * Stack. A node folded breadth first that a path goes on below pushes at most 3 entries
+ * for the at least 2 binary levels the path crosses in it; the last node on a path pushes
+ * at most 3; so below a node of height h a path pushes at most F(h) = 1.5 (h - 1) + 3
+ * (pn_fold_room2 = 2F), and a tree of depth D <= PN_BVH_DEPTH_MAX (pn_bvh_node keeps to
+ * it) needs F(D) + 1 <= PN_BVH_STACK. A greedy node may cross only one level for its 3
+ * entries, so it is folded greedily only where p + 3 + F(h - 1) <= PN_BVH_STACK - 1 (p: the
+ * path's entries above it), which leaves every child's subtree within the stack however
+ * it is folded; elsewhere breadth first, whose children's subtrees fit as F(h) = 3 +
+ * F(h - 2) does. At the root p + F(D) fits, so every path does: real scenes' trees, far
+ * shallower than the bound, are folded greedily throughout. */
+uint32_t pn_bvh_fold(const pn_bnode *nodes, const uint8_t *height, pn_kbvh4 *w, uint32_t room, uint32_t *need_out)
 {
     uint32_t head = 0, tail = 1, need_max = 1, ch[4], n, c, a;
-    w[0].bin = 0u;
     w[0].pad0 = 0u;
+    w[0].pad1 = 0u;
     while (head < tail) {
         pn_kbvh4 *wn = w + head++;
-        uint32_t b = wn->bin, need = wn->pad0;
+        uint32_t b = wn->pad0, need = wn->pad1;
         if (nodes[b].count != 0u || nodes[b].first == 0u) { /* the root is a leaf, or empty */
             ch[0] = b;
             n = nodes[b].count != 0u ? 1u : 0u;
         } else {
-            n = pn_widen_children(nodes, b, width, ch);
+            int greedy = height && 2u * need + 6u + pn_fold_room2(height[b] - 1u) <= 2u * ((uint32_t)PN_BVH_STACK - 1u);
+            n = pn_fold_children(nodes, b, greedy, ch);
         }
         need += n > 0u ? n - 1u : 0u;
         if (need + 1u > need_max) need_max = need + 1u;
@@ -387,26 +430,43 @@ uint32_t pn_bvh_fold(const pn_kbvh_node *nodes, pn_kbvh4 *w, uint32_t width, uin
             wn->child[c] = 0u;
             if (c >= n) continue;
             if (nodes[ch[c]].count != 0u) {
-                wn->child[c] = PN_W4_LEAF | ch[c];
+                wn->child[c] = PN_W4_LEAF | (nodes[ch[c]].count - 1u) << PN_W4_COUNT_SHIFT | nodes[ch[c]].first;
             } else {
-                w[tail].bin = ch[c];
-                w[tail].pad0 = need;
+                if (tail >= room) return 0u;
+                w[tail].pad0 = ch[c];
+                w[tail].pad1 = need;
                 wn->child[c] = tail++;
             }
         }
         wn->n = n;
-        wn->pad1 = 0u;
     }
-    for (c = 0; c < tail; c++) w[c].pad0 = 0u;
+    for (c = 0; c < tail; c++) w[c].pad0 = w[c].pad1 = w[c].pad2 = 0u;
     *need_out = need_max;
     return tail;
 }
 
-void pn_bvh_widen(pn_context *ctx, uint32_t stack_max)
+/* The wide tree of the binary one (its n nodes; `scratch`: room for n bytes, the nodes'
+ * heights). Children come after their parent, so one pass from the last node down meets
+ * every child before its parent. */
+static pn_status pn_bvh_widen(pn_context *ctx, const pn_bnode *nodes, uint32_t n, uint8_t *height)
 {
-    uint32_t need;
-    ctx->bvh_wide = pn_bvh_fold(ctx->nodes, ctx->wnodes, 4u, &need);
-    if (need > stack_max) ctx->bvh_wide = pn_bvh_fold(ctx->nodes, ctx->wnodes, 2u, &need);
+    uint32_t need, i;
+    for (i = n; i-- > 0u;) {
+        uint32_t h0, h1;
+        if (nodes[i].count != 0u || (i == 0u && nodes[0].first == 0u)) {
+            height[i] = 0u;
+            continue;
+        }
+        h0 = height[nodes[i].first];
+        h1 = height[nodes[i].first + 1u];
+        height[i] = (uint8_t)((h0 > h1 ? h0 : h1) + 1u);
+    }
+    ctx->bvh_wide = pn_bvh_fold(nodes, height, ctx->wnodes, pn_bvh_wide_max(pn_bvh_refs_max(&ctx->limits)), &need);
+    if (ctx->bvh_wide == 0u) return pn_fail(ctx, PN_E_INTERNAL, "BVH fold: more wide nodes than the reserve");
+    if (need > PN_BVH_STACK)
+        return pn_fail(ctx, PN_E_INTERNAL, "BVH fold: a walk needs %u stack entries, PN_BVH_STACK is %u", need,
+                       (uint32_t)PN_BVH_STACK);
+    return PN_OK;
 }
 
 /* The top of the tree's large nodes bin in parallel: PN_BVH_CHUNKS ranges of a node's
@@ -548,17 +608,29 @@ static void pn_bvh_large(pn_bvh_par *par, const pn_bref *refs, uint32_t first, u
             }
 }
 
+/* The levels of median splits that bring `count` references down to leaves (fewer than
+ * 2 PN_BVH_LEAF_MIN references each). */
+static uint32_t pn_median_levels(uint32_t count)
+{
+    uint32_t m = 0;
+    while (count >= 2u * PN_BVH_LEAF_MIN) {
+        count = count - count / 2u; /* the larger half */
+        m++;
+    }
+    return m;
+}
+
 /* Node nd (its references ix[first, first + count) set) at `depth`: its box written, then
  * either a leaf (0) or a split (1) of its references into [first, first + *split_out) and
  * the rest, ix partitioned in place. It reads and writes nothing beyond the node and its
  * range of ix, so nodes can be processed in any order, on any thread, and give the same
  * tree. */
-static int pn_bvh_node(pn_kbvh_node *nd, pn_bref *refs, uint32_t *ix, uint32_t depth, uint32_t *split_out,
+static int pn_bvh_node(pn_bnode *nd, pn_bref *refs, uint32_t *ix, uint32_t depth, uint32_t dmax, uint32_t *split_out,
                        pn_bounds *io, const pn_bvh_part *pre)
 {
     uint32_t first = nd->first, count = nd->count, i, split = 0;
     pn_box box, cbox;
-    int axis = -1, leaf = 0;
+    int axis = -1, leaf = 0, median = 0;
 
     if (pre) {
         box = pre->box;
@@ -576,21 +648,12 @@ static int pn_bvh_node(pn_kbvh_node *nd, pn_bref *refs, uint32_t *ix, uint32_t d
         nd->bmin[i] = box.lo[i];
         nd->bmax[i] = box.hi[i];
     }
-    if (count == 1u) {
+    if (count < 2u * PN_BVH_LEAF_MIN) {
         leaf = 1;
-    } else if (depth >= PN_BVH_SAH_DEPTH) {
-        int a;
-        float ext = -1.0f;
-        for (a = 0; a < 3; a++)
-            if (cbox.hi[a] - cbox.lo[a] > ext) {
-                ext = cbox.hi[a] - cbox.lo[a];
-                axis = a;
-            }
-        split = count / 2u;
-        pn_select(refs, ix, axis, first, first + count - 1u, first + split);
-    } else {
+    } else if (depth + pn_median_levels(count) < dmax) {
         /* Binned SAH over all three axes, binned in one pass over the triangles.
-         * Costs: traversal 1, triangle 1. */
+         * Costs: traversal 1, triangle 1. A split leaves at least PN_BVH_LEAF_MIN
+         * references on each side. */
         float best = PN_KINF, parent = pn_box_area(&box), scale[3];
         int best_axis = -1;
         uint32_t best_bin = 0;
@@ -629,7 +692,7 @@ static int pn_bvh_node(pn_kbvh_node *nd, pn_bref *refs, uint32_t *ix, uint32_t d
                 if (!bc[a][b]) continue; /* the same cost as the bin before, or none */
                 pn_box_join(&acc, &bb[a][b]);
                 left += bc[a][b];
-                if (left == 0u || right_count[b + 1u] == 0u) continue;
+                if (left < PN_BVH_LEAF_MIN || right_count[b + 1u] < PN_BVH_LEAF_MIN) continue;
                 cost = pn_box_area(&acc) * (float)left + right_area[b + 1u] * (float)right_count[b + 1u];
                 if (cost < best) {
                     best = cost;
@@ -639,9 +702,10 @@ static int pn_bvh_node(pn_kbvh_node *nd, pn_bref *refs, uint32_t *ix, uint32_t d
             }
         }
         if (best_axis < 0) {
-            /* All centroids coincide: split by position in the list. */
+            /* No bin boundary leaves two references a side (the centroids coincide or
+             * crowd one bin): a leaf when small enough, else the median. */
             if (count <= PN_BVH_LEAF_MAX) leaf = 1;
-            else split = count / 2u;
+            else median = 1;
         } else if (count <= PN_BVH_LEAF_MAX &&
                    (parent <= 0.0f || (float)count <= 1.0f + best / parent)) {
             leaf = 1;
@@ -675,6 +739,21 @@ static int pn_bvh_node(pn_kbvh_node *nd, pn_bref *refs, uint32_t *ix, uint32_t d
                 io->known = 0;
             }
         }
+    } else {
+        median = 1; /* at the depth where only halving still stays within dmax */
+    }
+    if (median) {
+        /* The object median along the centroids' longest axis: halves the count, at least
+         * PN_BVH_LEAF_MIN a side. */
+        int a;
+        float ext = -1.0f;
+        for (a = 0; a < 3; a++)
+            if (cbox.hi[a] - cbox.lo[a] > ext) {
+                ext = cbox.hi[a] - cbox.lo[a];
+                axis = a;
+            }
+        split = count / 2u;
+        pn_select(refs, ix, axis, first, first + count - 1u, first + split);
     }
     *split_out = split;
     return !leaf;
@@ -682,7 +761,7 @@ static int pn_bvh_node(pn_kbvh_node *nd, pn_bref *refs, uint32_t *ix, uint32_t d
 
 /* Subtrees: the top of the tree is built on the calling thread down to nodes of at most
  * `small` references (pn_bvh_build), which are handed, up to PN_BVH_TASKS of them, to
- * pn_run as work items; each builds its subtree into its own range of nodes (2c - 2 for c
+ * pn_run as work items; each builds its subtree into its own range of nodes (c - 2 for c
  * references), and the ranges are closed up afterwards. Which nodes are handed over
  * depends on the scene alone, and every node's split on its own references alone
  * (pn_bvh_node), so the tree is the same for any number of threads, and its shape the one
@@ -701,8 +780,9 @@ typedef char pn_bvh_task_bytes[PN_BVH_TASKS * sizeof(pn_bvh_task) <= PN_BVH_TASK
 typedef struct pn_bvh_job {
     pn_bref *refs;
     uint32_t *ix;
-    pn_kbvh_node *nodes;
+    pn_bnode *nodes;
     pn_bvh_task *tasks;
+    uint32_t dmax;
 } pn_bvh_job;
 
 /* The subtree under t->node (start: its bounds when known, else NULL), its descendants
@@ -710,7 +790,7 @@ typedef struct pn_bvh_job {
  * `small` references goes to defer[] instead while *ndefer < PN_BVH_TASKS. Work list:
  * after a split the larger child is pushed and the smaller one built next (the file's
  * head). */
-static void pn_bvh_grow(pn_bref *refs, uint32_t *ix, pn_kbvh_node *nodes, pn_bvh_task *t, const pn_work *start,
+static void pn_bvh_grow(pn_bref *refs, uint32_t *ix, pn_bnode *nodes, uint32_t dmax, pn_bvh_task *t, const pn_work *start,
                         uint32_t small, pn_bvh_task *defer, uint32_t *ndefer)
 {
     pn_work list[32], cur; /* at most log2(2^26 references) + 1 entries (the file's head) */
@@ -726,7 +806,7 @@ static void pn_bvh_grow(pn_bref *refs, uint32_t *ix, pn_kbvh_node *nodes, pn_bvh
     t->max_depth = t->max_leaf = 0;
     t->st = PN_OK;
     for (;;) {
-        pn_kbvh_node *nd = nodes + cur.node;
+        pn_bnode *nd = nodes + cur.node;
         if (defer && nd->count <= small && *ndefer < PN_BVH_TASKS) {
             defer[*ndefer].node = cur.node;
             defer[*ndefer].depth = cur.depth;
@@ -736,7 +816,7 @@ static void pn_bvh_grow(pn_bref *refs, uint32_t *ix, pn_kbvh_node *nodes, pn_bvh
             bd.known = cur.known;
             bd.b[0] = cur.box;
             bd.b[1] = cur.cbox;
-            if (pn_bvh_node(nd, refs, ix, cur.depth, &split, &bd, NULL)) {
+            if (pn_bvh_node(nd, refs, ix, cur.depth, dmax, &split, &bd, NULL)) {
                 uint32_t l = next, r = next + 1u, first = nd->first, count = nd->count;
                 pn_work sm, lg;
                 if (next + 2u > t->end || sp >= 32u) {
@@ -774,14 +854,14 @@ static void pn_bvh_task_fn(void *task, uint32_t begin, uint32_t end)
 {
     const pn_bvh_job *j = (const pn_bvh_job *)task;
     uint32_t i;
-    for (i = begin; i < end; i++) pn_bvh_grow(j->refs, j->ix, j->nodes, j->tasks + i, NULL, 0u, NULL, NULL);
+    for (i = begin; i < end; i++) pn_bvh_grow(j->refs, j->ix, j->nodes, j->dmax, j->tasks + i, NULL, 0u, NULL, NULL);
 }
 
 pn_status pn_bvh_build(pn_context *ctx)
 {
     pn_bref *refs = (pn_bref *)(void *)ctx->frame;
     uint32_t *ix = ctx->tri_index;
-    pn_kbvh_node *nodes = ctx->nodes;
+    pn_bnode *nodes;
     pn_bvh_task top, *tasks;
     pn_bvh_job job;
     pn_bvh_par par;
@@ -791,6 +871,7 @@ pn_status pn_bvh_build(pn_context *ctx)
 
     /* after the references and the bit per triangle (pn_bvh_scratch_bytes) */
     tasks = (pn_bvh_task *)(void *)((uint8_t *)(refs + refs_max) + ((size_t)ctx->limits.max_triangles / 32u + 1u) * 4u);
+    nodes = (pn_bnode *)(void *)(ctx->frame + pn_bvh_nodes_at(&ctx->limits));
     n = pn_bvh_refs(ctx, refs, &ctx->bvh_tris);
     for (t = 0; t < n; t++) ix[t] = t;
     ctx->bvh_refs = n;
@@ -805,8 +886,7 @@ pn_status pn_bvh_build(pn_context *ctx)
         ctx->bvh_nodes = 1;
         ctx->bvh_depth = 0;
         ctx->bvh_max_leaf = 0;
-        pn_bvh_widen(ctx, PN_BVH_STACK);
-        return PN_OK;
+        return pn_bvh_widen(ctx, nodes, 1u, (uint8_t *)(void *)refs);
     }
     /* The top, here: nodes of PN_BVH_PAR_MIN references or more each split with their two
      * passes in chunks (pn_bvh_large; their partials at the node pool's end, below which
@@ -815,8 +895,8 @@ pn_status pn_bvh_build(pn_context *ctx)
     small = n / (PN_BVH_TASKS / 2u);
     if (small < PN_BVH_TASK_MIN) small = PN_BVH_TASK_MIN;
     par.ctx = ctx;
-    par.part = (pn_bvh_part *)(void *)(nodes + 2u * (size_t)refs_max) - (PN_BVH_CHUNKS + 1u);
-    par.room = (uint32_t)(((uintptr_t)par.part - (uintptr_t)nodes) / sizeof(pn_kbvh_node));
+    par.part = (pn_bvh_part *)(void *)(nodes + (size_t)refs_max) - (PN_BVH_CHUNKS + 1u);
+    par.room = (uint32_t)(((uintptr_t)par.part - (uintptr_t)nodes) / sizeof(pn_bnode));
     max_depth = max_leaf = 0;
     node_count = 1u;
     large[0].node = 0;
@@ -824,15 +904,15 @@ pn_status pn_bvh_build(pn_context *ctx)
     large[0].known = 0;
     for (nl = 1; nl > 0u;) {
         pn_work w = large[--nl];
-        pn_kbvh_node *nd = nodes + w.node;
+        pn_bnode *nd = nodes + w.node;
         pn_bounds bd;
         uint32_t split, first = nd->first, count = nd->count, c;
         if (count < PN_BVH_PAR_MIN || node_count + 2u > par.room || nl + 2u > 16u) {
             top.node = w.node;
             top.depth = w.depth;
             top.base = node_count;
-            top.end = 2u * refs_max;
-            pn_bvh_grow(refs, ix, nodes, &top, &w, small, tasks, &ntasks);
+            top.end = refs_max;
+            pn_bvh_grow(refs, ix, nodes, ctx->bvh_depth_max, &top, &w, small, tasks, &ntasks);
             if (top.st != PN_OK) return pn_fail(ctx, PN_E_INTERNAL, "BVH build: a work list or the node pool overflowed");
             node_count += top.used;
             if (top.max_depth > max_depth) max_depth = top.max_depth;
@@ -844,7 +924,7 @@ pn_status pn_bvh_build(pn_context *ctx)
         bd.b[1] = w.cbox;
         pn_bvh_large(&par, refs, first, count, &bd);
         if (w.depth > max_depth) max_depth = w.depth;
-        if (!pn_bvh_node(nd, refs, ix, w.depth, &split, &bd, par.part + PN_BVH_CHUNKS)) {
+        if (!pn_bvh_node(nd, refs, ix, w.depth, ctx->bvh_depth_max, &split, &bd, par.part + PN_BVH_CHUNKS)) {
             if (count > max_leaf) max_leaf = count;
             continue;
         }
@@ -868,17 +948,19 @@ pn_status pn_bvh_build(pn_context *ctx)
     top.used = node_count - 1u;
     top.max_depth = max_depth;
     top.max_leaf = max_leaf;
-    /* Each subtree's range: 2c - 2 nodes below a root of c references. */
+    /* Each subtree's range: c - 2 nodes below a root of c >= 2 references (its leaves hold
+     * two or more, so it has at most c / 2 - 1 interior nodes, two children each). */
     for (i = 0; i < ntasks; i++) {
         tasks[i].base = node_count;
-        node_count += 2u * nodes[tasks[i].node].count - 2u;
+        node_count += nodes[tasks[i].node].count >= 2u ? nodes[tasks[i].node].count - 2u : 0u;
         tasks[i].end = node_count;
     }
-    if (node_count > 2u * refs_max) return pn_fail(ctx, PN_E_INTERNAL, "BVH node pool overflow at %u nodes", node_count);
+    if (node_count > refs_max) return pn_fail(ctx, PN_E_INTERNAL, "BVH node pool overflow at %u nodes", node_count);
     job.refs = refs;
     job.ix = ix;
     job.nodes = nodes;
     job.tasks = tasks;
+    job.dmax = ctx->bvh_depth_max;
     pn_run(ctx, ntasks, pn_bvh_task_fn, &job);
     /* The ranges closed up, in order: a subtree moves down by the room the ones before it
      * left, its interior nodes' child indices (and its root's) with it. */
@@ -892,7 +974,7 @@ pn_status pn_bvh_build(pn_context *ctx)
         if (shift) {
             /* down, in ascending order (the ranges may overlap; no memmove in the core) */
             for (m = 0; m < k->used; m++) {
-                pn_kbvh_node c = nodes[k->base + m];
+                pn_bnode c = nodes[k->base + m];
                 if (c.count == 0u) c.first -= shift;
                 nodes[node_count + m] = c;
             }
@@ -919,61 +1001,64 @@ pn_status pn_bvh_build(pn_context *ctx)
     ctx->bvh_nodes = node_count;
     ctx->bvh_depth = max_depth;
     ctx->bvh_max_leaf = max_leaf;
-    if (max_depth + 1u > PN_BVH_STACK)
-        return pn_fail(ctx, PN_E_INTERNAL, "BVH depth %u exceeds PN_BVH_STACK", max_depth);
-    pn_bvh_widen(ctx, PN_BVH_STACK);
-    return PN_OK;
+    if (max_depth > ctx->bvh_depth_max)
+        return pn_fail(ctx, PN_E_INTERNAL, "BVH depth %u exceeds its bound %u", max_depth, ctx->bvh_depth_max);
+    /* the references are ids now: their records hold the nodes' heights */
+    return pn_bvh_widen(ctx, nodes, node_count, (uint8_t *)(void *)refs);
 }
 
 /* The tree's shape, leaf order and raster order kept, every box recomputed from the
  * triangles' new positions: a leaf's as the union of its triangles' boxes (pn_tri_box, as
  * pn_bvh_refs gives a whole triangle's reference, joined in leaf order as the build joins
- * them), an interior node's as the union of its two children's. Both are the smallest box
- * over the vertices below the node, the box pn_bvh_build gives a node (min and max are
+ * them), an interior child's as the union of its wide node's lanes. Both are the smallest
+ * box over the vertices below it, the box pn_bvh_build gives a node (min and max are
  * exact; only the sign of a zero bound can follow the order of the joins), so a walk
- * meets what it would in a built tree of this shape. Children are allocated after their
- * parent, so one pass from the last node down meets every child before its parent.
- * bvh_nodes, bvh_depth, bvh_max_leaf, bvh_refs and bvh_tris describe the shape and stay;
- * the wide tree is folded anew (which nodes it opens follows the boxes' areas).
- * A refit cannot stand in for a build when the leaves no longer list exactly the
- * non-degenerate triangles, or when the tree holds split references (a part's box is the
- * triangle clipped to the region the build chose, pn_part_box): then the tree is built anew.
- * A context that may split but whose tree split nothing (most scenes) is refitted: a
- * triangle the move made long and thin may then go unsplit, which costs time, never bits. */
+ * meets what it would in a built tree of this shape. Wide nodes come after their parent
+ * (breadth-first order), so one pass from the last node down meets every child before
+ * its parent. bvh_nodes, bvh_depth, bvh_max_leaf, bvh_refs and bvh_tris describe the
+ * shape and stay. A refit cannot stand in for a build when the leaves no longer list
+ * exactly the non-degenerate triangles, or when the tree holds split references (a part's
+ * box is the triangle clipped to the region the build chose, pn_part_box): then the tree
+ * is built anew. A context that may split but whose tree split nothing (most scenes) is
+ * refitted: a triangle the move made long and thin may then go unsplit, which costs time,
+ * never bits. */
 pn_status pn_bvh_refit(pn_context *ctx)
 {
-    pn_kbvh_node *nodes = ctx->nodes;
-    uint32_t n, i;
+    pn_kbvh4 *w = ctx->wnodes;
+    uint32_t n, i, c, a;
     if (ctx->bvh_refs != ctx->bvh_tris || ctx->bvh_tris != ctx->tri_count - ctx->degenerate) return pn_bvh_build(ctx);
     /* raster_index lists each listed triangle once: all bvh_tris of them non-degenerate and
      * as many as there are, they are the same set */
     for (i = 0; i < ctx->bvh_tris; i++)
         if (ctx->flags[ctx->raster_index[i]] & PN_TRI_DEGENERATE) return pn_bvh_build(ctx);
     if (ctx->bvh_refs == 0u) return PN_OK; /* every triangle degenerate: the empty root stays */
-    for (n = ctx->bvh_nodes; n-- > 0u;) {
-        pn_kbvh_node *nd = nodes + n;
-        pn_box box;
-        int a;
-        pn_box_empty(&box);
-        if (nd->count != 0u) {
-            for (i = nd->first; i < nd->first + nd->count; i++) {
-                pn_box tb;
-                pn_tri_box(ctx->tris + (size_t)(ctx->tri_index[i] & PN_REF_TRI) * 9u, &tb);
-                pn_box_join(&box, &tb);
-            }
-        } else {
-            uint32_t c;
-            for (c = nd->first; c < nd->first + 2u; c++)
-                for (a = 0; a < 3; a++) {
-                    box.lo[a] = pn_kminf(box.lo[a], nodes[c].bmin[a]);
-                    box.hi[a] = pn_kmaxf(box.hi[a], nodes[c].bmax[a]);
+    for (n = ctx->bvh_wide; n-- > 0u;) {
+        pn_kbvh4 *wn = w + n;
+        for (c = 0; c < wn->n; c++) {
+            uint32_t ch = wn->child[c];
+            pn_box box;
+            pn_box_empty(&box);
+            if (ch & PN_W4_LEAF) {
+                uint32_t first = ch & PN_W4_FIRST, count = ((ch & ~PN_W4_LEAF) >> PN_W4_COUNT_SHIFT) + 1u;
+                for (i = first; i < first + count; i++) {
+                    pn_box tb;
+                    pn_tri_box(ctx->tris + (size_t)(ctx->tri_index[i] & PN_REF_TRI) * 9u, &tb);
+                    pn_box_join(&box, &tb);
                 }
-        }
-        for (a = 0; a < 3; a++) {
-            nd->bmin[a] = box.lo[a];
-            nd->bmax[a] = box.hi[a];
+            } else {
+                const pn_kbvh4 *cw = w + ch;
+                uint32_t d;
+                for (d = 0; d < cw->n; d++)
+                    for (a = 0; a < 3u; a++) {
+                        box.lo[a] = pn_kminf(box.lo[a], cw->lo[a][d]);
+                        box.hi[a] = pn_kmaxf(box.hi[a], cw->hi[a][d]);
+                    }
+            }
+            for (a = 0; a < 3u; a++) {
+                wn->lo[a][c] = box.lo[a];
+                wn->hi[a][c] = box.hi[a];
+            }
         }
     }
-    pn_bvh_widen(ctx, PN_BVH_STACK);
     return PN_OK;
 }

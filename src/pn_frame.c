@@ -277,7 +277,6 @@ static pn_status pn_scene_to_device(pn_frame_state *fs)
     sc->valid = 0;
     if ((st = pn_dev_to_device(fs, ctx->tris, (size_t)ctx->tri_count * 9u * sizeof(float))) != PN_OK ||
         (st = pn_dev_to_device(fs, ctx->flags, ctx->tri_count)) != PN_OK ||
-        (st = pn_dev_to_device(fs, ctx->nodes, (size_t)ctx->bvh_nodes * sizeof(pn_kbvh_node))) != PN_OK ||
         (st = pn_dev_to_device(fs, ctx->wnodes, (size_t)ctx->bvh_wide * sizeof(pn_kbvh4))) != PN_OK ||
         (st = pn_dev_to_device(fs, ctx->tri_index, (size_t)ctx->bvh_refs * sizeof(uint32_t))) != PN_OK ||
         (st = pn_dev_to_device(fs, ctx->raster_index, (size_t)ctx->bvh_tris * sizeof(uint32_t))) != PN_OK)
@@ -380,7 +379,6 @@ static void pn_frame_pool_offsets(pn_frame_state *fs)
     memset(P, 0, sizeof(*P));
     P->tris = pn_dev_off(ctx, ctx->tris);
     P->flags = pn_dev_off(ctx, ctx->flags);
-    P->nodes = pn_dev_off(ctx, ctx->nodes);
     P->wnodes = pn_dev_off(ctx, ctx->wnodes);
     P->index = pn_dev_off(ctx, ctx->tri_index);
     P->rindex = pn_dev_off(ctx, ctx->raster_index);

@@ -18,8 +18,7 @@ typedef struct pn_layout {
     size_t ctx;
     size_t tris;      /* max_triangles * 9 floats: the scene copy */
     size_t flags;     /* max_triangles bytes */
-    size_t nodes;     /* 2 * pn_bvh_refs_max BVH nodes */
-    size_t wnodes;    /* pn_bvh_refs_max four-wide BVH nodes (pn_bvh_widen) */
+    size_t wnodes;    /* pn_bvh_wide_max four-wide BVH nodes (src/pn_bvh_build.c) */
     size_t index;     /* pn_bvh_refs_max uint32: BVH leaf order (references: triangle ids,
                          a split triangle's repeated) */
     size_t rindex;    /* max_triangles uint32: raster order (each triangle once, leaf order) */
@@ -70,7 +69,6 @@ struct pn_context {
     /* persistent pools */
     float *tris;
     uint8_t *flags;
-    pn_kbvh_node *nodes;
     pn_kbvh4 *wnodes;
     uint32_t *tri_index;    /* BVH leaf order: bvh_refs entries */
     uint32_t *raster_index; /* raster order: bvh_tris entries */
@@ -87,7 +85,10 @@ struct pn_context {
     uint32_t tri_count;
     uint32_t degenerate;
     uint32_t bvh_nodes, bvh_depth, bvh_max_leaf, bvh_tris, bvh_refs;
-    uint32_t bvh_wide; /* four-wide nodes */
+    uint32_t bvh_wide; /* four-wide nodes: the tree (bvh_nodes counts the binary one it
+                          was folded from) */
+    uint32_t bvh_depth_max; /* the builder's depth bound: PN_BVH_DEPTH_MAX (test_bvh lowers
+                               it to see it act on a small scene) */
     float scene_min[3], scene_max[3], scene_diag;
     /* box of the occluders (every triangle not marked receiver-only: the triangles' box at
      * pn_scene_set, pn_occluder_box at pn_scene_set_receivers and, when some triangle is
@@ -187,23 +188,45 @@ void pn_run(pn_context *ctx, uint32_t count, pn_task_fn fn, void *task);
 /* pn_bvh_build.c. The build's scratch sits in the frame region (call outside a frame):
  * PN_BVH_REF_BYTES per reference of pn_bvh_refs_max, then a bit per triangle, then the
  * subtrees' work items (PN_BVH_TASK_BYTES, kept off the stack: pn_run's items may be any
- * pass, so the build's frame adds to the deepest pass in the stack bound). */
+ * pass, so the build's frame adds to the deepest pass in the stack bound), then at
+ * pn_bvh_nodes_at the binary tree, pn_bvh_refs_max nodes of PN_BVH_NODE_BYTES (R - 1 at
+ * most: its leaves hold two references or more), which is folded into the four-wide tree
+ * (the persistent one) at the end. */
 #define PN_BVH_REF_BYTES 40u
 #define PN_BVH_TASK_BYTES 2048u
+#define PN_BVH_NODE_BYTES 32u
+/* A node of that binary tree. Interior (count == 0): children at first and first + 1.
+ * Leaf: references tri_index[first .. first + count). The root is node 0, so no child
+ * index is ever 0: a root with count 0 and first 0 is the empty tree. */
+typedef struct pn_bnode {
+    float bmin[3];
+    uint32_t first;
+    float bmax[3];
+    uint32_t count;
+} pn_bnode;
+/* The four-wide tree (kernels/pn_ktypes.h pn_kbvh4) of a binary one (root 0, every leaf
+ * of 2 .. 16 references unless the root is the only one, depth at most PN_BVH_DEPTH_MAX)
+ * into w, at most room nodes: their count (0 when more would be needed), *need the walk
+ * stack it needs. height: every node's height, or NULL (see pn_bvh_build.c). */
+uint32_t pn_bvh_fold(const pn_bnode *nodes, const uint8_t *height, pn_kbvh4 *w, uint32_t room, uint32_t *need);
+uint64_t pn_bvh_nodes_at(const pn_limits *l);
 uint64_t pn_bvh_scratch_bytes(const pn_limits *l);
+/* Every leaf holds at least PN_BVH_LEAF_MIN references (a node of fewer than twice that
+ * is a leaf; a split leaves at least that many a side), so a tree of R references has at
+ * most R / 2 leaves and at most pn_bvh_wide_max(R) four-wide nodes (pn_bvh_fold). */
+#define PN_BVH_LEAF_MIN 2u
+#define pn_bvh_wide_max(refs) ((refs) / 3u + 1u)
+/* The binary tree's depth is at most PN_BVH_DEPTH_MAX (the builder switches to median
+ * splits where only halving still reaches it), so that a walk of the four-wide tree needs
+ * at most 1.5 (depth - 1) + 4 <= PN_BVH_STACK entries (pn_bvh_fold). check_config.h keeps
+ * it above the 25 levels 2^26 references need. */
+#define PN_BVH_DEPTH_MAX ((2u * ((uint32_t)PN_BVH_STACK - 4u)) / 3u + 1u)
 pn_status pn_bvh_build(pn_context *ctx);
 /* The current tree's boxes recomputed from the triangles' new positions (its shape, leaf
  * and raster order kept; pn_scene_update_positions); the tree built anew instead when the
- * leaves no longer list exactly the non-degenerate triangles or the context splits
- * references. Uses no scratch. */
+ * leaves no longer list exactly the non-degenerate triangles or the tree holds split
+ * references. A refit uses no scratch. */
 pn_status pn_bvh_refit(pn_context *ctx);
-/* The four-wide tree over the binary one (kernels/pn_ktypes.h pn_kbvh4); two-wide when a
- * walk of the four-wide one could need more than stack_max entries (pn_bvh_build passes
- * PN_BVH_STACK; a smaller value lets the tests build the two-wide tree). */
-void pn_bvh_widen(pn_context *ctx, uint32_t stack_max);
-/* The fold itself, over any binary tree (nodes, root 0) into w (room for max(1, its
- * interior nodes)); width 2 or 4. Returns the wide node count, *need the walk stack. */
-uint32_t pn_bvh_fold(const pn_kbvh_node *nodes, pn_kbvh4 *w, uint32_t width, uint32_t *need);
 
 /* pn_frame.c: validates and derives the frame's parameters, carves its pools, and runs
  * the G-buffer, the chosen algorithm's sequence and shading on the port. */

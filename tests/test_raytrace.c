@@ -185,14 +185,10 @@ static void ray_check(pn_v3 O, const float *T, const pn_klight *L, float grow, r
 {
     pn_ray_origin X;
     pn_v3 A = pn_v3_make(T[0], T[1], T[2]), B = pn_v3_make(T[3], T[4], T[5]), C = pn_v3_make(T[6], T[7], T[8]);
-    pn_kbvh_node nd;
     float lo[3], hi[3], blo[3], bhi[3];
     uint32_t i, j;
     tri_box(T, 0.0f, lo, hi);
     tri_box(T, grow, blo, bhi);
-    memset(&nd, 0, sizeof(nd));
-    memcpy(nd.bmin, lo, sizeof(lo));
-    memcpy(nd.bmax, hi, sizeof(hi));
     pn_ray_origin_make(O, L, blo, bhi, &X);
     for (j = 0; j < L->k; j++)
         for (i = 0; i < L->k; i++) {
@@ -213,7 +209,7 @@ static void ray_check(pn_v3 O, const float *T, const pn_klight *L, float grow, r
                             got1, got2);
                 st->disagree++;
             }
-            if (want && !pn_ray_box(&R, &nd, &tn)) st->cull_misses++;
+            if (want && !pn_ray_box(&R, lo, hi, &tn)) st->cull_misses++;
         }
     /* pn_tri_block (the reference's and GEARS' per-triangle step) against pn_tri_mask_in
      * from the same partial mask: up to 2 PN_REF_RAYS draws of an open sample (rays up to

@@ -11,12 +11,11 @@
  *                marked (kept by the update), and on contexts that split BVH references
  *                (a tree with split references, thin's, is built anew; one that split
  *                nothing, colonnade's, is refitted)
- *   tree         a refit keeps the tree (pn_get_stats' node counts, the nodes' shape, the
- *                leaf and raster orders) unless the set of degenerate triangles changed,
- *                and its boxes are conservative and tight: every leaf's box is the
- *                smallest holding its triangles' vertices, every interior node's the union
- *                of its children's, the four-wide tree folded from these boxes; where the
- *                update builds anew, the tree is the one pn_scene_set builds
+ *   tree         a refit keeps the tree (pn_get_stats' node counts, the wide nodes' shape,
+ *                the leaf and raster orders) unless the set of degenerate triangles
+ *                changed, and its boxes are conservative and tight: every leaf's box is
+ *                the smallest holding its triangles' vertices, every interior lane the
+ *                union of its node's lanes; where the update builds anew, the tree is the one pn_scene_set builds
  *   errors       NULL context, no scene (PN_E_NO_SCENE), another triangle count
  *                (PN_E_INVALID_ARG), NULL arrays, a NaN vertex (PN_E_NONFINITE), a
  *                coordinate beyond 2^40 (PN_E_LIMIT), an index out of range
@@ -134,52 +133,47 @@ static void frames_same(const char *label, pn_context *ctx, pn_context *ctx_b, c
     }
 }
 
-/* The binary tree's boxes against the triangles in the arena: every leaf's box is the
- * smallest holding its triangles' vertices, every interior node's the union of its
- * children's (children after their parent); and the four-wide tree's boxes are its binary
- * nodes'. Only for a tree of whole references (no split). */
+/* The wide tree's boxes against the triangles in the arena: every leaf's box (its lane) is
+ * the smallest holding its triangles' vertices, every interior lane the union of its
+ * node's lanes. Only for a tree of whole references (no split). */
 static void check_boxes(const char *label, const pn_context *ctx)
 {
-    const pn_kbvh_node *nodes = ctx->nodes;
-    uint32_t n, i, a, c, bad_leaf = 0, bad_inner = 0, bad_wide = 0;
+    uint32_t n, i, a, c, d, bad_leaf = 0, bad_inner = 0;
     if (ctx->bvh_refs == 0u) return;
-    for (n = 0; n < ctx->bvh_nodes; n++) {
-        const pn_kbvh_node *nd = nodes + n;
-        float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-        if (nd->count != 0u) {
-            for (i = nd->first; i < nd->first + nd->count; i++) {
-                const float *p = ctx->tris + (size_t)(ctx->tri_index[i] & PN_REF_TRI) * 9u;
-                if (ctx->tri_index[i] & PN_REF_SPLIT) bad_leaf++;
-                for (c = 0; c < 9u; c++) {
-                    lo[c % 3u] = fminf(lo[c % 3u], p[c]);
-                    hi[c % 3u] = fmaxf(hi[c % 3u], p[c]);
-                }
-            }
-            for (a = 0; a < 3u; a++) bad_leaf += nd->bmin[a] != lo[a] || nd->bmax[a] != hi[a];
-        } else {
-            if (nd->first <= n || nd->first + 1u >= ctx->bvh_nodes) {
-                bad_inner++;
-                continue;
-            }
-            for (c = nd->first; c < nd->first + 2u; c++)
-                for (a = 0; a < 3u; a++) {
-                    lo[a] = fminf(lo[a], nodes[c].bmin[a]);
-                    hi[a] = fmaxf(hi[a], nodes[c].bmax[a]);
-                }
-            for (a = 0; a < 3u; a++) bad_inner += nd->bmin[a] != lo[a] || nd->bmax[a] != hi[a];
-        }
-    }
-    for (i = 0; i < ctx->bvh_wide; i++) {
-        const pn_kbvh4 *w = ctx->wnodes + i;
+    for (n = 0; n < ctx->bvh_wide; n++) {
+        const pn_kbvh4 *w = ctx->wnodes + n;
         for (c = 0; c < w->n && c < 4u; c++) {
-            uint32_t ch = w->child[c], b = ch & PN_W4_LEAF ? ch & ~PN_W4_LEAF : ctx->wnodes[ch].bin;
-            for (a = 0; a < 3u; a++) bad_wide += w->lo[a][c] != nodes[b].bmin[a] || w->hi[a][c] != nodes[b].bmax[a];
+            uint32_t ch = w->child[c];
+            float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+            if (ch & PN_W4_LEAF) {
+                uint32_t first, count = pn_w4_leaf_refs(ctx->wnodes, PN_W4_LEAF | n << 2 | c, &first);
+                for (i = first; i < first + count; i++) {
+                    const float *p = ctx->tris + (size_t)(ctx->tri_index[i] & PN_REF_TRI) * 9u;
+                    if (ctx->tri_index[i] & PN_REF_SPLIT) bad_leaf++;
+                    for (d = 0; d < 9u; d++) {
+                        lo[d % 3u] = fminf(lo[d % 3u], p[d]);
+                        hi[d % 3u] = fmaxf(hi[d % 3u], p[d]);
+                    }
+                }
+                for (a = 0; a < 3u; a++) bad_leaf += w->lo[a][c] != lo[a] || w->hi[a][c] != hi[a];
+            } else {
+                const pn_kbvh4 *cw = ctx->wnodes + ch;
+                if (ch <= n || ch >= ctx->bvh_wide) {
+                    bad_inner++;
+                    continue;
+                }
+                for (d = 0; d < cw->n && d < 4u; d++)
+                    for (a = 0; a < 3u; a++) {
+                        lo[a] = fminf(lo[a], cw->lo[a][d]);
+                        hi[a] = fmaxf(hi[a], cw->hi[a][d]);
+                    }
+                for (a = 0; a < 3u; a++) bad_inner += w->lo[a][c] != lo[a] || w->hi[a][c] != hi[a];
+            }
         }
     }
-    CHECK_MSG(bad_leaf == 0u && bad_inner == 0u && bad_wide == 0u,
-              "%s: %u leaf bounds not their triangles' box, %u interior bounds not their children's, %u wide "
-              "bounds not their binary node's",
-              label, bad_leaf, bad_inner, bad_wide);
+    CHECK_MSG(bad_leaf == 0u && bad_inner == 0u,
+              "%s: %u leaf bounds not their triangles' box, %u interior bounds not their node's lanes'", label,
+              bad_leaf, bad_inner);
 }
 
 /* ---- The animation ------------------------------------------------------------------- */
@@ -244,8 +238,8 @@ static void animate(const pn_test_scene *s, const float *p0, float *p, int step,
 
 /* The BVH's shape and orders, to tell a refit (kept) from a build. */
 typedef struct tree_copy {
-    uint32_t nodes, refs, tris;
-    uint32_t *shape; /* first, count of every node */
+    uint32_t nodes, wide, refs, tris;
+    uint32_t *shape; /* children and child words of every wide node */
     uint32_t *index, *raster;
     uint8_t *degenerate;
 } tree_copy;
@@ -254,15 +248,16 @@ static void tree_save(const pn_context *ctx, tree_copy *t)
 {
     uint32_t i;
     t->nodes = ctx->bvh_nodes;
+    t->wide = ctx->bvh_wide;
     t->refs = ctx->bvh_refs;
     t->tris = ctx->bvh_tris;
-    t->shape = (uint32_t *)malloc((size_t)t->nodes * 2u * sizeof(uint32_t) + 4u);
+    t->shape = (uint32_t *)malloc((size_t)t->wide * 5u * sizeof(uint32_t) + 4u);
     t->index = (uint32_t *)malloc((size_t)t->refs * sizeof(uint32_t) + 4u);
     t->raster = (uint32_t *)malloc((size_t)t->tris * sizeof(uint32_t) + 4u);
     t->degenerate = (uint8_t *)malloc((size_t)ctx->tri_count + 1u);
-    for (i = 0; i < t->nodes; i++) {
-        t->shape[2u * i] = ctx->nodes[i].first;
-        t->shape[2u * i + 1u] = ctx->nodes[i].count;
+    for (i = 0; i < t->wide; i++) {
+        t->shape[5u * i] = ctx->wnodes[i].n;
+        memcpy(t->shape + 5u * i + 1u, ctx->wnodes[i].child, 4u * sizeof(uint32_t));
     }
     memcpy(t->index, ctx->tri_index, (size_t)t->refs * sizeof(uint32_t));
     memcpy(t->raster, ctx->raster_index, (size_t)t->tris * sizeof(uint32_t));
@@ -280,9 +275,11 @@ static void tree_free(tree_copy *t)
 static int tree_kept(const pn_context *ctx, const tree_copy *t)
 {
     uint32_t i;
-    if (ctx->bvh_nodes != t->nodes || ctx->bvh_refs != t->refs || ctx->bvh_tris != t->tris) return 0;
-    for (i = 0; i < t->nodes; i++)
-        if (ctx->nodes[i].first != t->shape[2u * i] || ctx->nodes[i].count != t->shape[2u * i + 1u]) return 0;
+    if (ctx->bvh_nodes != t->nodes || ctx->bvh_wide != t->wide || ctx->bvh_refs != t->refs || ctx->bvh_tris != t->tris)
+        return 0;
+    for (i = 0; i < t->wide; i++)
+        if (ctx->wnodes[i].n != t->shape[5u * i] || memcmp(ctx->wnodes[i].child, t->shape + 5u * i + 1u, 16u) != 0)
+            return 0;
     return memcmp(ctx->tri_index, t->index, (size_t)t->refs * sizeof(uint32_t)) == 0 &&
            memcmp(ctx->raster_index, t->raster, (size_t)t->tris * sizeof(uint32_t)) == 0;
 }
@@ -361,8 +358,8 @@ static void animate_scene(const char *name, uint32_t mask, int receivers, int sp
             } else {
                 /* built anew: the tree pn_scene_set builds */
                 g_rebuilds++;
-                CHECK_MSG(sa.bvh_nodes == sb.bvh_nodes && sa.bvh_refs == sb.bvh_refs &&
-                              memcmp(A->nodes, B->nodes, (size_t)sa.bvh_nodes * sizeof(pn_kbvh_node)) == 0 &&
+                CHECK_MSG(sa.bvh_nodes == sb.bvh_nodes && sa.bvh_refs == sb.bvh_refs && A->bvh_wide == B->bvh_wide &&
+                              memcmp(A->wnodes, B->wnodes, (size_t)A->bvh_wide * sizeof(pn_kbvh4)) == 0 &&
                               memcmp(A->tri_index, B->tri_index, (size_t)sa.bvh_refs * sizeof(uint32_t)) == 0,
                           "%s: rebuilt tree (%u nodes) is not pn_scene_set's (%u)", label, sa.bvh_nodes,
                           sb.bvh_nodes);

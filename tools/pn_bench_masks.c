@@ -104,7 +104,7 @@ void pn_bench_klight(const pn_light *l, uint32_t k, float eps, float cull_tol, p
 /* ---- A host-side BVH: median split on the longest centroid axis ----------------------- */
 
 typedef struct pn_hbvh {
-    pn_kbvh_node *nodes;
+    pn_bnode *nodes;
     pn_kbvh4 *wnodes; /* the library's fold of it (pn_bvh_fold) */
     uint32_t *index;
     float *tris; /* 9 floats per triangle, scene order */
@@ -138,7 +138,7 @@ static void pn_select(uint32_t *index, uint32_t lo, uint32_t hi, uint32_t mid, c
     }
 }
 
-static void pn_hbvh_bounds(pn_hbvh *b, pn_kbvh_node *nd, uint32_t first, uint32_t count)
+static void pn_hbvh_bounds(pn_hbvh *b, pn_bnode *nd, uint32_t first, uint32_t count)
 {
     uint32_t e;
     int a, v;
@@ -163,7 +163,7 @@ static int pn_hbvh_build(pn_hbvh *b, const pn_mesh *m)
     memset(b, 0, sizeof(*b));
     b->tris = (float *)malloc((size_t)n * 9u * sizeof(float));
     b->index = (uint32_t *)malloc((size_t)n * sizeof(uint32_t));
-    b->nodes = (pn_kbvh_node *)malloc((size_t)(2u * n + 1u) * sizeof(pn_kbvh_node));
+    b->nodes = (pn_bnode *)malloc((size_t)(2u * n + 1u) * sizeof(pn_bnode));
     b->wnodes = (pn_kbvh4 *)malloc((size_t)(n + 1u) * sizeof(pn_kbvh4));
     stack = (uint32_t(*)[3])malloc((size_t)(2u * n + 1u) * sizeof(*stack));
     if (!b->tris || !b->index || !b->nodes || !b->wnodes || !stack) {
@@ -184,7 +184,7 @@ static int pn_hbvh_build(pn_hbvh *b, const pn_mesh *m)
     sp++;
     while (sp > 0) {
         uint32_t node, first, count, mid;
-        pn_kbvh_node *nd;
+        pn_bnode *nd;
         float cmin[3] = {PN_KINF, PN_KINF, PN_KINF}, cmax[3] = {-PN_KINF, -PN_KINF, -PN_KINF};
         int axis = 0, a;
         uint32_t e;
@@ -221,9 +221,9 @@ static int pn_hbvh_build(pn_hbvh *b, const pn_mesh *m)
     }
     free(stack);
     {
+        /* leaves of 2 .. 4 triangles (of 5 or more: halves), depth log2 n: its walks fit */
         uint32_t need;
-        (void)pn_bvh_fold(b->nodes, b->wnodes, 4u, &need);
-        if (need > PN_BVH_STACK) (void)pn_bvh_fold(b->nodes, b->wnodes, 2u, &need);
+        if (pn_bvh_fold(b->nodes, NULL, b->wnodes, n + 1u, &need) == 0u || need > PN_BVH_STACK) return 1;
     }
     return 0;
 }
@@ -276,7 +276,7 @@ static void pn_mask_pixel(pn_mask_task *tk, size_t pix)
     pn_frustum_make(O, &tk->light, &fr);
     stack[sp++] = 0;
     while (sp > 0) {
-        const pn_kbvh_node *nd = b->nodes + stack[--sp];
+        const pn_bnode *nd = b->nodes + stack[--sp];
         if (!pn_frustum_aabb(&fr, pn_v3_make(nd->bmin[0], nd->bmin[1], nd->bmin[2]),
                              pn_v3_make(nd->bmax[0], nd->bmax[1], nd->bmax[2])))
             continue;
@@ -369,7 +369,7 @@ static void pn_class_rows(void *task, uint32_t begin, uint32_t end)
             if (!pn_shadow_origin(P, n, &tk->light, &O)) continue;
             memset(&cnt, 0, sizeof(cnt));
             t0 = pn_threads_now_ns(NULL);
-            v = pn_reference_pixel(P, n, g->tri[pix], tk->bvh->tris, tk->bvh->nodes, tk->bvh->wnodes, tk->bvh->index,
+            v = pn_reference_pixel(P, n, g->tri[pix], tk->bvh->tris, tk->bvh->wnodes, tk->bvh->index,
                                    &tk->light, &cnt);
             c = v == 1.0f ? 0 : v == 0.0f ? 1 : 2;
             tk->row_ns[y * 3u + (uint32_t)c] += (double)(pn_threads_now_ns(NULL) - t0);

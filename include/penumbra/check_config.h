@@ -96,14 +96,14 @@
 #error "PN_BVH_SPLIT_REFS must be in 0 .. 2^26"
 #endif
 
-#if PN_BVH_STACK < 8 || PN_BVH_STACK > 256
-#error "PN_BVH_STACK must be in 8 .. 256"
+/* The builder keeps the tree within 2 (PN_BVH_STACK - 4) / 3 + 1 binary levels, which
+ * must leave room for the 25 levels of median splits that 2^26 references need: 48 gives
+ * 30. */
+#if PN_BVH_STACK < 48 || PN_BVH_STACK > 256
+#error "PN_BVH_STACK must be in 48 .. 256"
 #endif
-
-/* Tree depth bound: SAH levels, then median splits halve the count (2^26 references at
- * most, split ones included -> 26 more levels), plus the leaf level. The traversal stack holds at most depth entries. */
-#if PN_BVH_SAH_DEPTH + 27 > PN_BVH_STACK
-#error "PN_BVH_SAH_DEPTH + 27 must not exceed PN_BVH_STACK: raise PN_BVH_STACK or lower PN_BVH_SAH_DEPTH"
+#ifdef PN_BVH_SAH_DEPTH
+#error "PN_BVH_SAH_DEPTH is gone: the BVH's depth follows PN_BVH_STACK (config.h)"
 #endif
 
 #if PN_DEBUG_ARENA != 0 && PN_DEBUG_ARENA != 1

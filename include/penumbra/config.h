@@ -113,10 +113,9 @@
 /* ---- Limits (they size the arena; see pn_arena_size()). ------------------------------ */
 
 /* Largest triangle count a scene may have, including any ground plane the caller adds.
- * Costs about 240 bytes per triangle of persistent arena (triangle copy 36, binary BVH
- * nodes up to 2 x 32, four-wide nodes up to 128, leaf and raster orders 4 + 4, raster
- * record 8), and the BVH's split references (PN_BVH_SPLIT_REFS) 196 bytes each. Range
- * 1 .. 2^26. */
+ * Costs about 88 bytes per triangle of persistent arena (triangle copy 36, flags 1,
+ * four-wide BVH nodes up to 128 / 3, leaf and raster orders 4 + 4), and the BVH's split
+ * references (PN_BVH_SPLIT_REFS) 47 bytes each. Range 1 .. 2^26. */
 #ifndef PN_MAX_TRIANGLES
 #define PN_MAX_TRIANGLES (1u << 20)
 #endif
@@ -171,8 +170,10 @@
 #define PN_BVH_BINS 16u
 #endif
 
-/* A node with at most this many triangles may become a leaf (1 .. 16). Nodes with more
- * are always split. */
+/* A node with at most this many references may become a leaf (1 .. 16); one with more is
+ * split. Every leaf holds at least two (a node of three or fewer is always a leaf, and a
+ * split leaves two or more a side), which bounds the four-wide tree at a third of a node
+ * a reference. */
 #ifndef PN_BVH_LEAF_MAX
 #define PN_BVH_LEAF_MAX 4u
 #endif
@@ -186,9 +187,9 @@
  * bits of every frame are the same; a ray just meets fewer boxes it then misses.
  * A context reserves split references only on request: pn_limits.bvh_refs above
  * max_triangles, at most PN_BVH_SPLIT_REFS beyond one per triangle (and at most
- * (2^depth - 1) per triangle, the total at most 2^26), 196 bytes each of persistent arena
- * (two binary BVH nodes, a four-wide node, an index entry; pn_scene_set's build also
- * borrows 40 bytes a reference of the frame region); when a scene wants more than the
+ * (2^depth - 1) per triangle, the total at most 2^26), 47 bytes each of persistent arena
+ * (a third of a four-wide node, an index entry; pn_scene_set's build also borrows 72
+ * bytes a reference of the frame region); when a scene wants more than the
  * context holds, every triangle is split one level less until it fits. 0 for either: no
  * splitting. Depth 0 .. 6; references 0 .. 2^26. */
 #ifndef PN_BVH_SPLIT_DEPTH
@@ -198,13 +199,10 @@
 #define PN_BVH_SPLIT_REFS 65536u
 #endif
 
-/* Depth after which the builder switches from SAH to median splits, which halve the
- * reference count at each level; with it the tree depth is at most
- * PN_BVH_SAH_DEPTH + log2(2^26 references) + 1, and that must fit the traversal stack
- * PN_BVH_STACK (8 .. 256 entries of 4 bytes, on the stack of each work item). */
-#ifndef PN_BVH_SAH_DEPTH
-#define PN_BVH_SAH_DEPTH 32u
-#endif
+/* Entries of the BVH walks' stacks (48 .. 256, 4 bytes each on the stack of each work
+ * item). The builder keeps the tree shallow enough for any walk to fit: binary depth at
+ * most 2 (PN_BVH_STACK - 4) / 3 + 1 (41 at 64), switching from SAH to median splits
+ * where only halving still gets there (src/pn_bvh_build.c). */
 #ifndef PN_BVH_STACK
 #define PN_BVH_STACK 64u
 #endif

@@ -131,7 +131,8 @@ typedef struct pn_limits {
                                 PN_WEDGES_PAIRS; 0: PN_WEDGES_PAIRS. A frame needing more
                                 is binned in bands of tiles (the same bytes); one tile
                                 needing more fails PN_E_POOL_EXHAUSTED with its count */
-    uint32_t bvh_refs;       /* BVH references (196 bytes of arena each); beyond one a
+    uint32_t bvh_refs;       /* BVH references (47 bytes of arena each, and 72 of the
+                                frame region while the tree is built); beyond one a
                                 triangle, split slivers (config.h PN_BVH_SPLIT_DEPTH; frames
                                 are the same bits with or without; a scene of long thin
                                 triangles traces faster with them). 0: max_triangles, no
@@ -163,40 +164,42 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
  * and MCSM, with its pools when the wedges are not compiled in).
  * test_arena checks pn_arena_size <= it <= 1.25 pn_arena_size over a grid of limits, in
  * every single-algorithm build. Split references (limits.bvh_refs above t) cost
- * PN_BVH_SPLIT_REF_BYTES more each (the bound holds 2 PN_ARENA_ALIGN for the two pools
- * whose rounding they can lengthen beyond that: the leaf order and the build scratch). */
+ * PN_BVH_SPLIT_REF_BYTES more each (the bound holds a spare four-wide node and 3
+ * PN_ARENA_ALIGN for the three pools whose rounding they can lengthen beyond that: the
+ * tree, the leaf order and the build scratch). */
 #define PN_ARENA_BYTES_MAX(t, w, h)                                                          \
     (PN_PERSIST_BYTES_MAX(t) +                                                                \
      PN_MAX_(PN_FRAME_BYTES_MAX(t, w, h) +                                                    \
                  PN_MAX_(PN_MAX_(PN_GEARS_BYTES_MAX(t, w, h), PN_SRT_BYTES_MAX(t, w, h)),     \
                          PN_MAX_(PN_MAX_(PN_OCCTEX_BYTES_MAX(t, w, h), PN_MCSM_BYTES_MAX(t, w, h)), \
                                  PN_WEDGES_BYTES_MAX(t, w, h))),                              \
-             PN_MAX_(PN_POOL_((size_t)(t) * 40u + ((size_t)(t) / 32u + 1u) * 4u + 2048u),       \
+             PN_MAX_(PN_POOL_(PN_POOL_((size_t)(t) * 40u + ((size_t)(t) / 32u + 1u) * 4u + 2048u) + \
+                             (size_t)(t) * 32u),                                              \
                      PN_ENABLE_WEDGES ? PN_POOL_((size_t)(t) * 24u)                              \
                      : PN_ENABLE_MCSM ? PN_POOL_((size_t)(t) * 52u + 4u) : 0u)) +                \
-     (size_t)PN_ARENA_ALIGN - 1u + 2u * (size_t)PN_ARENA_ALIGN)
+     (size_t)PN_ARENA_ALIGN - 1u + 3u * (size_t)PN_ARENA_ALIGN)
 /* The split BVH references a context of t triangles may reserve (limits.bvh_refs up to t
  * plus these): PN_BVH_SPLIT_REFS, at most 2^PN_BVH_SPLIT_DEPTH - 1 a triangle (and t plus
  * them at most 2^26, which only lowers it). Each costs PN_BVH_SPLIT_REF_BYTES beyond
- * PN_ARENA_BYTES_MAX: two binary nodes, a four-wide node and an index entry (196), and its
- * build scratch (40). */
+ * PN_ARENA_BYTES_MAX: a third of a four-wide node and an index entry (43 + 4), and its
+ * build scratch (40, and a binary node: 32). */
 #define PN_BVH_SPLIT_EXTRA(t)                                                                \
     ((size_t)((unsigned long long)PN_BVH_SPLIT_REFS <                                         \
                       ((1ull << PN_BVH_SPLIT_DEPTH) - 1ull) * (unsigned long long)(t)         \
                   ? (unsigned long long)PN_BVH_SPLIT_REFS                                     \
                   : ((1ull << PN_BVH_SPLIT_DEPTH) - 1ull) * (unsigned long long)(t)))
-#define PN_BVH_SPLIT_REF_BYTES 236u
+#define PN_BVH_SPLIT_REF_BYTES 119u
 /* Helpers of the bounds: largest, smallest, a pool of n bytes as carved. */
 #define PN_MAX_(a, b) ((a) > (b) ? (a) : (b))
 #define PN_MIN_(a, b) ((a) < (b) ? (a) : (b))
 #define PN_POOL_(n) (((size_t)(n) + PN_ARENA_ALIGN - 1u) / PN_ARENA_ALIGN * PN_ARENA_ALIGN)
 /* Persistent pools, no split references: the context (at most 1280 bytes, checked in
- * src/pn_arena.c), per triangle its copy (36), flags (1), two binary BVH nodes (64), a
- * four-wide node (128), its leaf-order and raster-order entries (4 + 4), port scratch
+ * src/pn_arena.c), per triangle its copy (36), flags (1), a third of a four-wide BVH node
+ * (128 / 3, and one spare), its leaf-order and raster-order entries (4 + 4), port scratch
  * (1 KB); with the wedges their connectivity (12 + 12 + 4). */
 #define PN_PERSIST_BYTES_MAX(t)                                                               \
-    (PN_POOL_(1280u) + PN_POOL_((size_t)(t) * 36u) + PN_POOL_(t) + PN_POOL_((size_t)(t) * 64u) +  \
-     PN_POOL_((size_t)(t) * 128u) + 2u * PN_POOL_((size_t)(t) * 4u) + PN_POOL_(1024u) +           \
+    (PN_POOL_(1280u) + PN_POOL_((size_t)(t) * 36u) + PN_POOL_(t) +                               \
+     PN_POOL_(((size_t)(t) / 3u + 2u) * 128u) + 2u * PN_POOL_((size_t)(t) * 4u) + PN_POOL_(1024u) + \
      (PN_ENABLE_WEDGES ? PN_POOL_((size_t)(t) * 12u) + PN_POOL_((size_t)(t) * 12u + 4u) +          \
                              PN_POOL_((size_t)(t) * 4u)                                          \
                        : 0u))
@@ -642,12 +645,13 @@ typedef struct pn_stats {
     size_t arena_high_water;     /* most bytes ever in use, from the aligned base */
     uint32_t triangles;          /* in the current scene */
     uint32_t degenerate_triangles;
-    uint32_t bvh_nodes;
-    uint32_t bvh_depth;
+    uint32_t bvh_nodes;          /* nodes of the binary tree the build makes (scratch) */
+    uint32_t bvh_depth;          /* its depth, at most PN_BVH_DEPTH_MAX (src/pn_internal.h) */
     uint32_t bvh_max_leaf;
     uint32_t bvh_refs;           /* BVH references: triangles, a split one counted once per
                                     part (config.h PN_BVH_SPLIT_DEPTH) */
-    uint32_t bvh_wide_nodes;     /* nodes of the four-wide tree the ray walks use */
+    uint32_t bvh_wide_nodes;     /* nodes of the four-wide tree it is folded into: the one
+                                    kept, which the walks use */
     uint64_t pass_ns[PN_PASS_COUNT]; /* 0 without a clock; last scene set / last frame */
     uint64_t shadow_candidates;  /* triangles handed to the predicate in the last frame
                                     (PN_ALGO_RAYTRACE: ray-triangle tests; PN_ALGO_OCCTEX:

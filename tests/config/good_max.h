@@ -8,7 +8,6 @@
 #define PN_MASK_K_MAX 32u
 #define PN_BVH_BINS 64u
 #define PN_BVH_LEAF_MAX 16u
-#define PN_BVH_SAH_DEPTH 229u
 #define PN_BVH_STACK 256u
 #define PN_BVH_SPLIT_DEPTH 6u
 #define PN_BVH_SPLIT_REFS (1u << 26)

@@ -8,8 +8,7 @@
 #define PN_MASK_K_MAX 4u
 #define PN_BVH_BINS 4u
 #define PN_BVH_LEAF_MAX 1u
-#define PN_BVH_SAH_DEPTH 0u
-#define PN_BVH_STACK 27u
+#define PN_BVH_STACK 48u
 #define PN_BVH_SPLIT_DEPTH 0u
 #define PN_BVH_SPLIT_REFS 0u
 #define PN_DEBUG_ARENA 0

@@ -7,6 +7,5 @@
 #define PN_MASK_K_MAX 8u
 #define PN_BVH_BINS 8u
 #define PN_BVH_LEAF_MAX 2u
-#define PN_BVH_SAH_DEPTH 16u
 #define PN_BVH_STACK 48u
 #define PN_DEBUG_ARENA 1

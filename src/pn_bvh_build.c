@@ -895,8 +895,13 @@ pn_status pn_bvh_build(pn_context *ctx)
     small = n / (PN_BVH_TASKS / 2u);
     if (small < PN_BVH_TASK_MIN) small = PN_BVH_TASK_MIN;
     par.ctx = ctx;
-    par.part = (pn_bvh_part *)(void *)(nodes + (size_t)refs_max) - (PN_BVH_CHUNKS + 1u);
-    par.room = (uint32_t)(((uintptr_t)par.part - (uintptr_t)nodes) / sizeof(pn_bnode));
+    /* (a pool too small for the partials has no node of PN_BVH_PAR_MIN references) */
+    par.room = 0u;
+    par.part = NULL;
+    if ((size_t)refs_max * sizeof(pn_bnode) >= (PN_BVH_CHUNKS + 1u) * sizeof(pn_bvh_part)) {
+        par.part = (pn_bvh_part *)(void *)(nodes + (size_t)refs_max) - (PN_BVH_CHUNKS + 1u);
+        par.room = (uint32_t)(((uintptr_t)par.part - (uintptr_t)nodes) / sizeof(pn_bnode));
+    }
     max_depth = max_leaf = 0;
     node_count = 1u;
     large[0].node = 0;

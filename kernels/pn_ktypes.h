@@ -34,7 +34,7 @@ typedef struct pn_klight {
  * boxes at once, one lane each: kernels/pn_raytrace.h). Child c < n: box lo[a][c] ..
  * hi[a][c], and child[c] either a wide node's index or a leaf, PN_W4_LEAF |
  * (count - 1) << PN_W4_COUNT_SHIFT | first: the references tri_index[first .. first +
- * count), 2 .. PN_BVH_LEAF_MAX of them (one in a tree of one reference). A reference is a
+ * count), 2 .. max(3, PN_BVH_LEAF_MAX) of them (one in a tree of one reference). A reference is a
  * triangle id (PN_REF_TRI), with PN_REF_SPLIT set when the triangle is split into several
  * references: a leaf box then holds the part of it that matters to the walks, not
  * necessarily its vertices. Lanes c >= n hold zeros and are never used. Node 0 is the

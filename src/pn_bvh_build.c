@@ -339,7 +339,7 @@ static float pn_node_area(const pn_bnode *nd)
 }
 
 /* The children of binary interior node b, opened up to four, by one of two rules. Greedy
- * (the walks' better tree: callgrind, per-sample ray tracing on the bunny 3.88 G -> 3.54 G
+ * (the walks' better tree: callgrind, per-sample ray tracing on the bunny 3.88 G -> 3.59 G
  * instructions against breadth first): while there are fewer than four, the interior child
  * with the largest box (the first of equals) is replaced in place by its two children.
  * Breadth first (the bound on the walk stack, pn_bvh_fold): both of b's children when
@@ -445,9 +445,9 @@ uint32_t pn_bvh_fold(const pn_bnode *nodes, const uint8_t *height, pn_kbvh4 *w, 
     return tail;
 }
 
-/* The wide tree of the binary one (its n nodes; `scratch`: room for n bytes, the nodes'
- * heights). Children come after their parent, so one pass from the last node down meets
- * every child before its parent. */
+/* The wide tree of the binary one (its n nodes; height: room for n bytes, where the nodes'
+ * heights are written first). Children come after their parent, so one pass from the last
+ * node down meets every child before its parent. */
 static pn_status pn_bvh_widen(pn_context *ctx, const pn_bnode *nodes, uint32_t n, uint8_t *height)
 {
     uint32_t need, i;

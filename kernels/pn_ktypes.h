@@ -62,12 +62,22 @@ PN_KFN uint32_t pn_w4_entry(PN_CONST pn_kbvh4 *wn, uint32_t w, uint32_t c)
     return (ch & PN_W4_LEAF) ? (PN_W4_LEAF | (w << 2) | c) : ch;
 }
 
-/* A leaf entry's references: tri_index[*first .. *first + return value). */
-PN_KFN uint32_t pn_w4_leaf_refs(PN_CONST pn_kbvh4 *wnodes, uint32_t e, uint32_t *first)
+/* A leaf's child word (count 1 .. 16, first < 2^26), and back: its references
+ * tri_index[*first .. *first + return value). */
+PN_KFN uint32_t pn_w4_leaf_word(uint32_t first, uint32_t count)
 {
-    uint32_t ch = wnodes[(e & ~PN_W4_LEAF) >> 2].child[e & 3u];
+    return PN_W4_LEAF | (count - 1u) << PN_W4_COUNT_SHIFT | first;
+}
+PN_KFN uint32_t pn_w4_word_refs(uint32_t ch, uint32_t *first)
+{
     *first = ch & PN_W4_FIRST;
     return ((ch & ~PN_W4_LEAF) >> PN_W4_COUNT_SHIFT) + 1u;
+}
+
+/* A leaf entry's references (its child word's, pn_w4_word_refs). */
+PN_KFN uint32_t pn_w4_leaf_refs(PN_CONST pn_kbvh4 *wnodes, uint32_t e, uint32_t *first)
+{
+    return pn_w4_word_refs(wnodes[(e & ~PN_W4_LEAF) >> 2].child[e & 3u], first);
 }
 
 /* The tree's box: the union of the root's lanes (zeros for an empty tree). Only its

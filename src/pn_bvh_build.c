@@ -430,7 +430,7 @@ uint32_t pn_bvh_fold(const pn_bnode *nodes, const uint8_t *height, pn_kbvh4 *w, 
             wn->child[c] = 0u;
             if (c >= n) continue;
             if (nodes[ch[c]].count != 0u) {
-                wn->child[c] = PN_W4_LEAF | (nodes[ch[c]].count - 1u) << PN_W4_COUNT_SHIFT | nodes[ch[c]].first;
+                wn->child[c] = pn_w4_leaf_word(nodes[ch[c]].first, nodes[ch[c]].count);
             } else {
                 if (tail >= room) return 0u;
                 w[tail].pad0 = ch[c];
@@ -1044,7 +1044,7 @@ pn_status pn_bvh_refit(pn_context *ctx)
             pn_box box;
             pn_box_empty(&box);
             if (ch & PN_W4_LEAF) {
-                uint32_t first = ch & PN_W4_FIRST, count = ((ch & ~PN_W4_LEAF) >> PN_W4_COUNT_SHIFT) + 1u;
+                uint32_t first, count = pn_w4_word_refs(ch, &first);
                 for (i = first; i < first + count; i++) {
                     pn_box tb;
                     pn_tri_box(ctx->tris + (size_t)(ctx->tri_index[i] & PN_REF_TRI) * 9u, &tb);

@@ -19,6 +19,7 @@
 
 #include "pn_gears.h"
 #include "pn_kpools.h"
+#include "pn_raster.h"
 #include "pn_reference.h"
 
 /* The grid cameras of a frame: n faces (1 area light, 6 point light) of res x res cells. */
@@ -29,18 +30,18 @@ typedef struct pn_kfaces {
 
 /* Shadow-ray origin of a pixel, or 0 when the pixel has no triangle or cannot see the
  * light (its visibility is then final: 1 or 0). */
-PN_KFN int pn_gears_origin(const pn_klight *L, PN_CONST uint32_t *tri_id, PN_CONST float *pos, PN_CONST float *nrm,
-                           size_t pix, pn_v3 *O)
+PN_KFN int pn_gears_origin(const pn_klight *L, const pn_ksurf *S, size_t pix, pn_v3 *O)
 {
-    if (tri_id[pix] == 0xFFFFFFFFu) return 0;
-    return pn_shadow_origin(pn_v3_load(pos + pix * 3u), pn_v3_load(nrm + pix * 3u), L, O);
+    pn_v3 P, n;
+    if (S->tri_id[pix] == 0xFFFFFFFFu) return 0;
+    pn_surf_at(S, pix, &P, &n);
+    return pn_shadow_origin(P, n, L, O);
 }
 
 /* Row y: visibility of final pixels (background 1, facing away 0) and 1 for the rest
  * until a tile's triangles block samples; the row's counters (lit pixels); the 3-D box of
  * its origins into row_box[y * 8 ..]. */
-PN_KFN void pn_gears_origins_row(const pn_klight *L, uint32_t width, uint32_t y, PN_CONST uint32_t *tri_id,
-                                 PN_CONST float *pos, PN_CONST float *nrm, PN_GLOBAL float *vis,
+PN_KFN void pn_gears_origins_row(const pn_klight *L, uint32_t width, uint32_t y, const pn_ksurf *S, PN_GLOBAL float *vis,
                                  PN_GLOBAL float *row_box, PN_GLOBAL pn_row_counters *cnt)
 {
     float b[6];
@@ -49,8 +50,8 @@ PN_KFN void pn_gears_origins_row(const pn_klight *L, uint32_t width, uint32_t y,
     for (x = 0; x < width; x++) {
         size_t pix = (size_t)y * width + x;
         pn_v3 O;
-        if (!pn_gears_origin(L, tri_id, pos, nrm, pix, &O)) {
-            vis[pix] = tri_id[pix] == 0xFFFFFFFFu ? 1.0f : 0.0f;
+        if (!pn_gears_origin(L, S, pix, &O)) {
+            vis[pix] = S->tri_id[pix] == 0xFFFFFFFFu ? 1.0f : 0.0f;
             continue;
         }
         vis[pix] = 1.0f;
@@ -67,30 +68,29 @@ PN_KFN void pn_gears_origins_row(const pn_klight *L, uint32_t width, uint32_t y,
 
 /* Row y: the 2-D box of its origins projected by the area light's grid camera. */
 PN_KFN void pn_gears_project_row(const pn_klight *L, const pn_kgrid *g, uint32_t width, uint32_t y,
-                                 PN_CONST uint32_t *tri_id, PN_CONST float *pos, PN_CONST float *nrm,
-                                 PN_GLOBAL float *row_box)
+                                 const pn_ksurf *S, PN_GLOBAL float *row_box)
 {
     float b[4];
     uint32_t x, i;
     pn_box2_empty(b);
     for (x = 0; x < width; x++) {
         pn_v3 O;
-        if (pn_gears_origin(L, tri_id, pos, nrm, (size_t)y * width + x, &O)) pn_box_add(g, O, b);
+        if (pn_gears_origin(L, S, (size_t)y * width + x, &O)) pn_box_add(g, O, b);
     }
     for (i = 0; i < 4u; i++) row_box[(size_t)y * 8u + i] = b[i];
 }
 
 /* Pixel pix: its global cell (face * res^2 + cell) or PN_CELL_NONE, and one more pixel in
  * that cell's count (cell_pix zeroed beforehand). */
-PN_KFN void pn_gears_pixel_cell(const pn_klight *L, PN_CONST pn_kfaces *F, PN_CONST uint32_t *tri_id,
-                                PN_CONST float *pos, PN_CONST float *nrm, size_t pix, PN_GLOBAL uint32_t *pix_cell,
+PN_KFN void pn_gears_pixel_cell(const pn_klight *L, PN_CONST pn_kfaces *F, const pn_ksurf *S, size_t pix,
+                                PN_GLOBAL uint32_t *pix_cell,
                                 PN_GLOBAL uint32_t *cell_pix)
 {
     pn_v3 O;
     pn_kgrid g;
     float px, py;
     uint32_t f, cell;
-    if (!pn_gears_origin(L, tri_id, pos, nrm, pix, &O)) {
+    if (!pn_gears_origin(L, S, pix, &O)) {
         pix_cell[pix] = PN_CELL_NONE;
         return;
     }
@@ -342,13 +342,12 @@ PN_KFN int pn_gears_in_tile(const pn_ktile *tl, uint32_t res, uint32_t cell)
  * spheres and room within 0.3%. The superchunk and chunk boxes tested against the frustum
  * are counted in cnt->nodes (pn_stats.shadow_nodes), as the reference counts its BVH's. */
 PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktile *tl, uint32_t res,
-                               PN_CONST uint32_t *tri_id, PN_CONST float *pos, PN_CONST float *nrm,
-                               PN_CONST uint32_t *pix_cell, PN_CONST uint32_t *cell_off, PN_CONST uint32_t *sorted,
+                               const pn_ksurf *S, PN_CONST uint32_t *pix_cell, PN_CONST uint32_t *cell_off, PN_CONST uint32_t *sorted,
                                PN_CONST float *chunk_box, PN_CONST float *super_box, PN_CONST float *tris,
                                PN_CONST pn_kbvh4 *wnodes, size_t pix,
                                pn_shadow_counters *cnt, float *vis_out)
 {
-    uint32_t cell = pix_cell[pix], own = tri_id[pix], e0, e1, s0, slast, k = L->k, any, nq = 0u, qs[4], done = 0u;
+    uint32_t cell = pix_cell[pix], own = S->tri_id[pix], e0, e1, s0, slast, k = L->k, any, nq = 0u, qs[4], done = 0u;
     float blo[12], bhi[12], tlo[12], thi[12];
     uint32_t m[PN_MASK_WORDS_MAX];
     pn_frustum fr;
@@ -356,14 +355,15 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
     pn_ray_origin X;
     pn_ray_cache RC;
     pn_horizon H;
-    pn_v3 O;
+    pn_v3 O, Ps, ns;
     /* A pixel has a cell only if it has an origin. */
-    if (cell == PN_CELL_NONE || !pn_gears_in_tile(tl, res, cell) || !pn_gears_origin(L, tri_id, pos, nrm, pix, &O))
-        return 0;
+    if (cell == PN_CELL_NONE || !pn_gears_in_tile(tl, res, cell) || own == 0xFFFFFFFFu) return 0;
+    pn_surf_at(S, pix, &Ps, &ns);
+    if (!pn_shadow_origin(Ps, ns, L, &O)) return 0;
     pn_mask_clear(m);
     /* The horizon first, as the reference does (a cell is in exactly one tile, so this runs
      * once per pixel). */
-    pn_horizon_of(pn_v3_load(pos + pix * 3u), pn_v3_load(nrm + pix * 3u), own, tris, L, &H);
+    pn_horizon_of(Ps, ns, own, tris, L, &H);
     pn_horizon_mask(&H, L, m);
     any = pn_mask_count(m, k) != 0u;
     pn_frustum_make(O, L, &fr);

@@ -19,6 +19,13 @@ PN_KFN pn_v3 pn_v3_make(float x, float y, float z)
     return r;
 }
 PN_KFN pn_v3 pn_v3_load(PN_CONST float *p) { return pn_v3_make(p[0], p[1], p[2]); }
+/* v into element i of three coordinate arrays (a run's structure of arrays). */
+PN_KFN void pn_v3_put(float *x, float *y, float *z, uint32_t i, pn_v3 v)
+{
+    x[i] = v.x;
+    y[i] = v.y;
+    z[i] = v.z;
+}
 PN_KFN pn_v3 pn_v3_add(pn_v3 a, pn_v3 b) { return pn_v3_make(a.x + b.x, a.y + b.y, a.z + b.z); }
 PN_KFN pn_v3 pn_v3_sub(pn_v3 a, pn_v3 b) { return pn_v3_make(a.x - b.x, a.y - b.y, a.z - b.z); }
 PN_KFN pn_v3 pn_v3_scale(pn_v3 a, float s) { return pn_v3_make(a.x * s, a.y * s, a.z * s); }

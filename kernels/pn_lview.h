@@ -34,8 +34,7 @@ PN_KFN pn_v3 pn_lview_frame(const pn_kview *lv, const pn_klight *L, pn_v3 X)
  * too far off the axis for any window (z <= 0 or beyond PN_LVIEW_TAN_MAX):
  * box[y * PN_LVIEW_BOX ..] = {x, y, min z, max z, count}. */
 PN_KFN void pn_lview_bounds_row(const pn_kview *lv, const pn_klight *L, float ha, float hb, uint32_t width, uint32_t y,
-                                PN_CONST uint32_t *tri_id, PN_CONST float *pos, PN_CONST float *nrm,
-                                PN_GLOBAL float *box)
+                                const pn_ksurf *S, PN_GLOBAL float *box)
 {
     float ax = 0.0f, ay = 0.0f, zmin = PN_KINF, zmax = 0.0f, out = 0.0f;
     pn_v3 lc = pn_v3_make(L->c[0], L->c[1], L->c[2]);
@@ -50,9 +49,10 @@ PN_KFN void pn_lview_bounds_row(const pn_kview *lv, const pn_klight *L, float ha
         int sees[PN_LVIEW_RUN];
         size_t pix = (size_t)y * width + x0;
         for (i = 0; i < n; i++) {
-            pn_v3 O, rel;
+            pn_v3 O, rel, P, nv;
             float cx, cy, cz;
-            sees[i] = pn_shadow_origin(pn_v3_load(pos + (pix + i) * 3u), pn_v3_load(nrm + (pix + i) * 3u), L, &O);
+            pn_surf_at(S, pix + i, &P, &nv);
+            sees[i] = pn_shadow_origin(P, nv, L, &O);
             rel = pn_v3_sub(O, lc);
             cx = pn_v3_dot(rel, r);
             cy = pn_v3_dot(rel, u);
@@ -63,7 +63,7 @@ PN_KFN void pn_lview_bounds_row(const pn_kview *lv, const pn_klight *L, float ha
         }
         for (i = 0; i < n; i++) {
             float cz = lz[i], tx = lx[i], ty = ly[i];
-            if (tri_id[pix + i] == 0xFFFFFFFFu || !sees[i]) continue;
+            if (S->tri_id[pix + i] == 0xFFFFFFFFu || !sees[i]) continue;
             if (!(cz > 0.0f)) {
                 out += 1.0f;
                 continue;

@@ -14,10 +14,11 @@
  * blur across a crease) adds w src[q] and w, w = wi / (1 + |depth[q] - dc| k); any other
  * adds +0 to each (the sums start at +0 and only grow: the same bytes as adding nothing). */
 PN_KFN void pn_mc_blur_tap(float wi, size_t q, int in, float ncx, float ncy, float ncz, float dc, float k,
-                           PN_CONST uint32_t *ids, PN_CONST float *depth, PN_CONST float *nrm, PN_CONST float *src,
-                           float *sum, float *wsum)
+                           const pn_ksurf *S, PN_CONST float *src, float *sum, float *wsum)
 {
-    pn_v3 nq = pn_v3_load(nrm + q * 3u);
+    PN_CONST uint32_t *ids = S->tri_id;
+    PN_CONST float *depth = S->depth;
+    pn_v3 nq = pn_surf_normal(S, q);
     /* & rather than &&: every load made (q is in the image), no branch on any of them */
     int inc = in & (ids[q] != 0xFFFFFFFFu) & (pn_v3_dot(pn_v3_make(ncx, ncy, ncz), nq) >= PN_MC_BLUR_COS);
     float w = wi / (1.0f + pn_kfabs(depth[q] - dc) * k), ws = w * src[q];
@@ -35,9 +36,10 @@ PN_KFN void pn_mc_blur_tap(float wi, size_t q, int in, float ncx, float ncy, flo
  * (the centre tap counts, so wsum > 0); a run whose whole window is so is written v
  * without its sums. */
 PN_KFN void pn_mc_blur_row(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t y, uint32_t vertical,
-                           PN_CONST uint32_t *ids, PN_CONST float *depth, PN_CONST float *nrm, PN_CONST float *src,
-                           PN_GLOBAL float *dst)
+                           const pn_ksurf *S, PN_CONST float *src, PN_GLOBAL float *dst)
 {
+    PN_CONST uint32_t *ids = S->tri_id;
+    PN_CONST float *depth = S->depth;
     int32_t r = (int32_t)mc->blur, i;
     uint32_t x0;
     for (x0 = 0; x0 < W; x0 += PN_MC_BLUR_RUN) {
@@ -46,7 +48,7 @@ PN_KFN void pn_mc_blur_row(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t y,
         float ncx[PN_MC_BLUR_RUN], ncy[PN_MC_BLUR_RUN], ncz[PN_MC_BLUR_RUN];
         size_t pix0 = (size_t)y * W + x0;
         for (l = 0; l < n; l++) {
-            pn_v3 nc = pn_v3_load(nrm + (pix0 + l) * 3u);
+            pn_v3 nc = pn_surf_normal(S, pix0 + l);
             ncx[l] = nc.x;
             ncy[l] = nc.y;
             ncz[l] = nc.z;
@@ -103,19 +105,19 @@ PN_KFN void pn_mc_blur_row(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t y,
                 if ((int32_t)y + i < 0 || (int32_t)y + i >= (int32_t)H) continue; /* adds nothing */
                 base = (size_t)((int32_t)y + i) * W + x0;
                 for (l = 0; l < n; l++)
-                    pn_mc_blur_tap(wi, base + l, 1, ncx[l], ncy[l], ncz[l], dc[l], k[l], ids, depth, nrm, src, &sum[l],
+                    pn_mc_blur_tap(wi, base + l, 1, ncx[l], ncy[l], ncz[l], dc[l], k[l], S, src, &sum[l],
                                    &wsum[l]);
             } else if ((int32_t)x0 + i >= 0 && (int32_t)(x0 + n) + i <= (int32_t)W) {
                 size_t base = (size_t)y * W + (size_t)((int32_t)x0 + i);
                 for (l = 0; l < n; l++)
-                    pn_mc_blur_tap(wi, base + l, 1, ncx[l], ncy[l], ncz[l], dc[l], k[l], ids, depth, nrm, src, &sum[l],
+                    pn_mc_blur_tap(wi, base + l, 1, ncx[l], ncy[l], ncz[l], dc[l], k[l], S, src, &sum[l],
                                    &wsum[l]);
             } else {
                 for (l = 0; l < n; l++) {
                     int32_t xx = (int32_t)(x0 + l) + i;
                     int in = xx >= 0 && xx < (int32_t)W;
                     pn_mc_blur_tap(wi, (size_t)y * W + (in ? (uint32_t)xx : x0 + l), in, ncx[l], ncy[l], ncz[l], dc[l],
-                                   k[l], ids, depth, nrm, src, &sum[l], &wsum[l]);
+                                   k[l], S, src, &sum[l], &wsum[l]);
                 }
             }
         }

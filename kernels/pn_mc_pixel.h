@@ -51,7 +51,7 @@ typedef struct pn_mc_px {
     uint32_t front;  /* the light's corners on the front side of its plane (0 .. 4) */
 } pn_mc_px;
 
-/* The run of count G-buffer pixels from pix on (ids, pos, nrm) into px[0 .. count), and
+/* The run of count G-buffer pixels from pix on (S) into px[0 .. count), and
  * whether the classification may call every one lit at once. Each pixel that the
  * classification would look at has its first region, pn_mc_reach at the whole map's
  * nearest depth zb: the rays from every light point to it stay there from zb on. When no
@@ -65,8 +65,7 @@ typedef struct pn_mc_px {
  * Without the classification (point light, PN_MC_F_NO_CLASSIFY): 0. A surface of a lit run
  * that faces the light centre with the whole light in front of its plane comes back as
  * PN_MC_PX_LIT (most of a frame's pixels); the others get the fields pn_mc_pixel reads. */
-PN_KFN int pn_mc_run(const pn_mc_ctx *m, PN_CONST uint32_t *ids, PN_CONST float *pos, PN_CONST float *nrm, size_t pix,
-                     uint32_t count, pn_mc_px *px)
+PN_KFN int pn_mc_run(const pn_mc_ctx *m, const pn_ksurf *S, size_t pix, uint32_t count, pn_mc_px *px)
 {
     const pn_kmc *mc = m->mc;
     const pn_klight *L = m->L;
@@ -79,6 +78,7 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, PN_CONST uint32_t *ids, PN_CONST float 
     uint32_t i, any = 0u;
     int lit;
     int classify = !(mc->flags & PN_MC_F_NO_CLASSIFY) && !L->is_point;
+    PN_CONST uint32_t *ids = S->tri_id;
     /* Every pixel's origin, light-frame point, image and first region, in one loop with no
      * branch (the compilers vectorize it: seven divisions a pixel), whatever its kind; a
      * pixel with no surface has some point and normal in the G-buffer, whose results are
@@ -87,10 +87,14 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, PN_CONST uint32_t *ids, PN_CONST float 
      * one, looked up apart so that the loop below stays free of loads by index. */
     for (i = 0; i < count; i++) {
         uint32_t id = ids[pix + i];
+        pn_v3 P, n;
         sheet[i] = id != PN_NO_PIXEL_TRIANGLE && (m->flags[id] & PN_TRI_SHEET) != 0u;
+        pn_surf_at(S, pix + i, &P, &n); /* into the arrays the loop below writes */
+        pn_v3_put(Ox, Oy, Oz, i, P);
+        pn_v3_put(Nx, Ny, Nz, i, n);
     }
     for (i = 0; i < count; i++) {
-        pn_v3 n = pn_v3_load(nrm + (pix + i) * 3u), P = pn_v3_load(pos + (pix + i) * 3u), O, E;
+        pn_v3 n = pn_v3_make(Nx[i], Ny[i], Nz[i]), P = pn_v3_make(Ox[i], Oy[i], Oz[i]), O, E;
         float b[4], x, y;
         n = pn_v3_scale(n, sheet[i] && pn_v3_dot(n, pn_v3_sub(c, P)) < 0.0f ? -1.0f : 1.0f);
         sees[i] = pn_shadow_origin(P, n, L, &O);
@@ -100,15 +104,9 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, PN_CONST uint32_t *ids, PN_CONST float 
                    (pn_v3_dot(pn_v3_sub(m->corner[2], O), n) > 0.0f) + (pn_v3_dot(pn_v3_sub(m->corner[3], O), n) > 0.0f);
         pn_mc_proj(m, E, &x, &y);
         pn_mc_reach(m, E, x, y, zb, b);
-        Nx[i] = n.x;
-        Ny[i] = n.y;
-        Nz[i] = n.z;
-        Ox[i] = O.x;
-        Oy[i] = O.y;
-        Oz[i] = O.z;
-        Ex[i] = E.x;
-        Ey[i] = E.y;
-        Ez[i] = E.z;
+        pn_v3_put(Nx, Ny, Nz, i, n);
+        pn_v3_put(Ox, Oy, Oz, i, O);
+        pn_v3_put(Ex, Ey, Ez, i, E);
         ex[i] = x;
         ey[i] = y;
         b0[i] = b[0];

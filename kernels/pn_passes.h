@@ -65,6 +65,20 @@ PN_KFN void pn_counters_add(PN_GLOBAL pn_shadow_counters *row, const pn_shadow_c
     if (c->exact) pn_katomic_add(&row->exact, c->exact);
 }
 
+/* The G-buffer as the shadow passes read it (pn_ksurf): a pos offset of 0 (no pool there:
+ * offset 0 is the context) means the frame keeps no positions and normals. */
+PN_KFN pn_ksurf pn_surf_of(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K)
+{
+    pn_ksurf S;
+    S.v = &K->view;
+    S.tris = PN_POOL(const float, tris);
+    S.depth = PN_POOL(const float, depth);
+    S.tri_id = PN_POOL(const uint32_t, tri_id);
+    S.pos = P->pos ? PN_POOL(const float, pos) : 0;
+    S.nrm = P->pos ? PN_POOL(const float, nrm) : 0;
+    return S;
+}
+
 /* ---- G-buffer (pn_raster.h) ------------------------------------------------------------ */
 
 /* Group of PN_RASTER_GROUP triangles: the pixel rows each may cover. */
@@ -104,8 +118,8 @@ PN_KFN void pn_e_gbuffer_resolve(PN_GLOBAL uint8_t *A, const pn_kpools *P, const
                            PN_POOL(const uint32_t, tri_id), PN_POOL(float, pos), PN_POOL(float, nrm));
 }
 
-/* Band of the G-buffer: its rows cleared, rasterized, then resolved (position, normal),
- * in one item so that they stay in cache. */
+/* Band of the G-buffer: its rows cleared, rasterized, then resolved (position, normal;
+ * unless the frame keeps none, pn_surf_of), in one item so that they stay in cache. */
 PN_KFN void pn_e_raster_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
 {
     uint32_t y0 = band * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND, W = K->view.width, x, y;
@@ -118,7 +132,8 @@ PN_KFN void pn_e_raster_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
             ids[(size_t)y * W + x] = PN_NO_PIXEL_TRIANGLE;
         }
     pn_band(&K->view, A, P, K, band, depth, ids);
-    for (y = y0; y < y1; y++) pn_e_gbuffer_resolve(A, P, K, y);
+    if (P->pos)
+        for (y = y0; y < y1; y++) pn_e_gbuffer_resolve(A, P, K, y);
 }
 
 /* Each algorithm's entries and its part of the list, in the list's order. */
@@ -135,10 +150,12 @@ PN_KFN void pn_e_raster_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
 /* Pixel: RGBA8 bytes r g b a, whatever the device's endianness. */
 PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
-    uint32_t c = pn_shade_pixel(&K->view, &K->light, &K->shade, PN_POOL(const uint32_t, tri_id)[pix],
-                                pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u),
-                                pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u), PN_POOL(const float, vis)[pix]);
+    pn_ksurf S = pn_surf_of(A, P, K);
+    pn_v3 Ps, ns;
+    uint32_t c;
     PN_GLOBAL uint8_t *o = PN_POOL(uint8_t, rgba) + (size_t)pix * 4u;
+    pn_surf_at(&S, pix, &Ps, &ns);
+    c = pn_shade_pixel(&K->view, &K->light, &K->shade, S.tri_id[pix], Ps, ns, PN_POOL(const float, vis)[pix]);
     o[0] = (uint8_t)(c & 0xFFu);
     o[1] = (uint8_t)((c >> 8) & 0xFFu);
     o[2] = (uint8_t)((c >> 16) & 0xFFu);

@@ -19,8 +19,10 @@ PN_KFN void pn_pixel_shadow(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
         PN_POOL(float, vis)[pix] = 1.0f;
         return;
     }
-    pos = pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u);
-    nrm = pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u);
+    {
+        pn_ksurf S = pn_surf_of(A, P, K);
+        pn_surf_at(&S, pix, &pos, &nrm);
+    }
 #if PN_ENABLE_RAYTRACE
     if (rays)
         v = pn_raytrace_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),

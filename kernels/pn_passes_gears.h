@@ -11,8 +11,8 @@
 /* Row: final visibility of pixels that need no mask, lit count, box of origins. */
 PN_KFN void pn_e_gears_origins(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
 {
-    pn_gears_origins_row(&K->light, K->view.width, y, PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos),
-                         PN_POOL(const float, nrm), PN_POOL(float, vis), PN_POOL(float, row_box),
+    pn_ksurf S = pn_surf_of(A, P, K);
+    pn_gears_origins_row(&K->light, K->view.width, y, &S, PN_POOL(float, vis), PN_POOL(float, row_box),
                          PN_POOL(pn_row_counters, counters));
 }
 
@@ -20,15 +20,15 @@ PN_KFN void pn_e_gears_origins(PN_GLOBAL uint8_t *A, const pn_kpools *P, const p
 PN_KFN void pn_e_gears_project(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
 {
     pn_kgrid g = PN_POOL(const pn_kfaces, faces)->f[0];
-    pn_gears_project_row(&K->light, &g, K->view.width, y, PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos),
-                         PN_POOL(const float, nrm), PN_POOL(float, row_box));
+    pn_ksurf S = pn_surf_of(A, P, K);
+    pn_gears_project_row(&K->light, &g, K->view.width, y, &S, PN_POOL(float, row_box));
 }
 
 /* Pixel: its global cell, and one more pixel in that cell (cell_pix zeroed first). */
 PN_KFN void pn_e_gears_pixel_cells(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
-    pn_gears_pixel_cell(&K->light, PN_POOL(const pn_kfaces, faces), PN_POOL(const uint32_t, tri_id),
-                        PN_POOL(const float, pos), PN_POOL(const float, nrm), pix, PN_POOL(uint32_t, pix_cell),
+    pn_ksurf S = pn_surf_of(A, P, K);
+    pn_gears_pixel_cell(&K->light, PN_POOL(const pn_kfaces, faces), &S, pix, PN_POOL(uint32_t, pix_cell),
                         PN_POOL(uint32_t, cell_pix));
 }
 
@@ -95,8 +95,8 @@ PN_KFN void pn_e_gears_masks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
 {
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
     float v;
-    if (!pn_gears_pixel_mask(&K->light, K->exact_stats, &K->tile, PN_POOL(const pn_kfaces, faces)->res,
-                             PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos), PN_POOL(const float, nrm),
+    pn_ksurf S = pn_surf_of(A, P, K);
+    if (!pn_gears_pixel_mask(&K->light, K->exact_stats, &K->tile, PN_POOL(const pn_kfaces, faces)->res, &S,
                              PN_POOL(const uint32_t, pix_cell), PN_POOL(const uint32_t, cell_off),
                              PN_POOL(const uint32_t, sorted), PN_POOL(const float, chunk_box),
                              PN_POOL(const float, super_box), PN_POOL(const float, tris),

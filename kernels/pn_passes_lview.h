@@ -11,9 +11,9 @@
 /* Row: the light-frame extent of its lit origins. */
 PN_KFN void pn_e_lview_bounds(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
 {
+    pn_ksurf S = pn_surf_of(A, P, K);
     pn_lview_bounds_row(&K->lview, &K->light, K->lview_ha, K->lview_hb, K->view.width, y,
-                        PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos), PN_POOL(const float, nrm),
-                        PN_POOL(float, lview_box));
+                        &S, PN_POOL(float, lview_box));
 }
 
 /* Group of triangles: the light-view rows each may cover (the G-buffer's set-up on the

@@ -48,13 +48,13 @@ PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     PN_GLOBAL uint32_t *words = PN_POOL(uint32_t, mc_words) + (size_t)y * PN_MC_ROW_WORDS;
     pn_mc_ctx m;
     pn_mc_px px[PN_MC_RUN];
+    pn_ksurf S = pn_surf_of(A, P, K);
     pn_mc_ctx_init(&m, &K->view, &K->lview, &K->light, &K->mc, PN_POOL(const float, mc_nb), PN_POOL(const float, depth),
                    PN_POOL(const uint8_t, flags));
     for (x0 = 0; x0 < W; x0 += PN_MC_RUN) {
         uint32_t count = pn_kminu(PN_MC_RUN, W - x0);
         size_t pix0 = (size_t)y * W + x0;
-        int run_lit = pn_mc_run(&m, PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos), PN_POOL(const float, nrm),
-                                pix0, count, px);
+        int run_lit = pn_mc_run(&m, &S, pix0, count, px);
         for (i = 0; i < count; i++) {
             uint32_t cls, rays;
             if (px[i].kind == PN_MC_PX_LIT) {
@@ -86,13 +86,13 @@ PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
  * (spot, 512x512, 2 threads: 3.3 -> 2.1 ms for both directions). */
 PN_KFN void pn_e_mc_blur_h(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
 {
-    pn_mc_blur_row(&K->mc, K->view.width, K->view.height, y, 0u, PN_POOL(const uint32_t, tri_id),
-                   PN_POOL(const float, depth), PN_POOL(const float, nrm), PN_POOL(const float, vis), PN_POOL(float, mc_tmp));
+    pn_ksurf S = pn_surf_of(A, P, K);
+    pn_mc_blur_row(&K->mc, K->view.width, K->view.height, y, 0u, &S, PN_POOL(const float, vis), PN_POOL(float, mc_tmp));
 }
 PN_KFN void pn_e_mc_blur_v(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
 {
-    pn_mc_blur_row(&K->mc, K->view.width, K->view.height, y, 1u, PN_POOL(const uint32_t, tri_id),
-                   PN_POOL(const float, depth), PN_POOL(const float, nrm), PN_POOL(const float, mc_tmp), PN_POOL(float, vis));
+    pn_ksurf S = pn_surf_of(A, P, K);
+    pn_mc_blur_row(&K->mc, K->view.width, K->view.height, y, 1u, &S, PN_POOL(const float, mc_tmp), PN_POOL(float, vis));
 }
 #endif
 

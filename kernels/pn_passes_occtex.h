@@ -48,11 +48,12 @@ PN_KFN void pn_e_occ_sat_cols(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn
 PN_KFN void pn_e_occ_init(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
-    pn_v3 O;
-    uint32_t id = PN_POOL(const uint32_t, tri_id)[pix];
-    int lit = id != PN_NO_PIXEL_TRIANGLE &&
-              pn_shadow_origin(pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u),
-                               pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u), &K->light, &O);
+    pn_v3 O, Ps, ns;
+    pn_ksurf S = pn_surf_of(A, P, K);
+    uint32_t id = S.tri_id[pix];
+    int lit;
+    pn_surf_at(&S, pix, &Ps, &ns);
+    lit = id != PN_NO_PIXEL_TRIANGLE && pn_shadow_origin(Ps, ns, &K->light, &O);
     PN_POOL(float, vis)[pix] = (id == PN_NO_PIXEL_TRIANGLE || lit) ? 1.0f : 0.0f;
     c.lit = lit ? 1u : 0u;
     pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);
@@ -61,12 +62,12 @@ PN_KFN void pn_e_occ_init(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
 /* Pixel: slice K->occ.slice's occlusion combined into its visibility. */
 PN_KFN void pn_e_occ_lookup(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
-    pn_v3 O;
+    pn_v3 O, Ps, ns;
     float I;
-    if (PN_POOL(const uint32_t, tri_id)[pix] == PN_NO_PIXEL_TRIANGLE ||
-        !pn_shadow_origin(pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u),
-                          pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u), &K->light, &O))
-        return;
+    pn_ksurf S = pn_surf_of(A, P, K);
+    if (S.tri_id[pix] == PN_NO_PIXEL_TRIANGLE) return;
+    pn_surf_at(&S, pix, &Ps, &ns);
+    if (!pn_shadow_origin(Ps, ns, &K->light, &O)) return;
     if (pn_occ_slice_occlusion(&K->lview, &K->light, &K->occ, PN_POOL(const uint32_t, occ_filt), O, &I) && I > 0.0f)
         PN_POOL(float, vis)[pix] = pn_occ_combine(K->occ.combine, PN_POOL(const float, vis)[pix], I);
 }
@@ -80,8 +81,10 @@ PN_KFN void pn_e_occ_finish(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
     pn_v3 pos, nrm, O;
     pn_horizon H;
     if (id == PN_NO_PIXEL_TRIANGLE) return;
-    pos = pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u);
-    nrm = pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u);
+    {
+        pn_ksurf S = pn_surf_of(A, P, K);
+        pn_surf_at(&S, pix, &pos, &nrm);
+    }
     if (!pn_shadow_origin(pos, nrm, &K->light, &O)) return;
     pn_mask_clear(m);
     pn_horizon_of(pos, nrm, id, PN_POOL(const float, tris), &K->light, &H);

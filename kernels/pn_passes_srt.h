@@ -71,9 +71,9 @@ PN_KFN void pn_e_srt_classify(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn
     a.wmax = K->srt_wmax;
     a.flags = K->srt_flags;
     a.tiles = K->srt_tiles;
+    pn_ksurf S = pn_surf_of(A, P, K);
     PN_POOL(uint32_t, pip_off)[pix] =
-        pn_srt_classify(&K->lview, &K->light, &a, PN_POOL(const uint32_t, tri_id), PN_POOL(const float, pos),
-                        PN_POOL(const float, nrm), PN_POOL(const float, tris), PN_POOL(const float, lmap_depth), PN_POOL(const uint32_t, lmap_id),
+        pn_srt_classify(&K->lview, &K->light, &a, &S, PN_POOL(const float, tris), PN_POOL(const float, lmap_depth), PN_POOL(const uint32_t, lmap_id),
                         PN_POOL(const uint32_t, lmap_cons), PN_POOL(const uint32_t, srt_tile_w),
                         PN_POOL(const uint32_t, srt_tile_mask), pix, &v, &lit);
     PN_POOL(float, vis)[pix] = v;
@@ -94,9 +94,10 @@ PN_KFN void pn_e_srt_exact(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kp
 {
     uint32_t pix = PN_POOL(const uint32_t, pip_list)[i];
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
-    PN_POOL(float, vis)[pix] = pn_reference_pixel(
-        pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u), pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u),
-        PN_POOL(const uint32_t, tri_id)[pix], PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
+    pn_ksurf S = pn_surf_of(A, P, K);
+    pn_v3 Ps, ns;
+    pn_surf_at(&S, pix, &Ps, &ns);
+    PN_POOL(float, vis)[pix] = pn_reference_pixel(Ps, ns, S.tri_id[pix], PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
         PN_POOL(const uint32_t, index), &K->light, &c);
     c.lit = 0u; /* counted by the classification */
     pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);

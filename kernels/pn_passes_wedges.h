@@ -54,8 +54,8 @@ PN_KFN void pn_e_wg_sblock_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const p
 /* Screen tile: the light-space box of its pixels' shadow origins. */
 PN_KFN void pn_e_wg_tile_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
 {
-    pn_wg_tile_box(&K->view, &K->light, t % K->wg.tiles_x, t / K->wg.tiles_x, PN_POOL(const uint32_t, tri_id),
-                   PN_POOL(const float, pos), PN_POOL(const float, nrm), PN_POOL(float, wg_tbox) + (size_t)t * PN_WG_BOX);
+    pn_ksurf S = pn_surf_of(A, P, K);
+    pn_wg_tile_box(&K->view, &K->light, t % K->wg.tiles_x, t / K->wg.tiles_x, &S, PN_POOL(float, wg_tbox) + (size_t)t * PN_WG_BOX);
 }
 
 /* Silhouette: the count of its (tile, silhouette) pairs in the band. */
@@ -99,8 +99,10 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
         PN_POOL(float, vis)[pix] = 1.0f;
         return;
     }
-    pos = pn_v3_load(PN_POOL(const float, pos) + (size_t)pix * 3u);
-    nrm = pn_v3_load(PN_POOL(const float, nrm) + (size_t)pix * 3u);
+    {
+        pn_ksurf S = pn_surf_of(A, P, K);
+        pn_surf_at(&S, pix, &pos, &nrm);
+    }
     if (!pn_shadow_origin(pos, nrm, &K->light, &O)) {
         PN_POOL(float, vis)[pix] = 0.0f;
         return;

@@ -628,6 +628,20 @@ PN_KFN void pn_raster_band(const pn_kview *v, PN_CONST float *tris, PN_CONST uin
     }
 }
 
+/* The unit geometric normal of triangle t (drawn, so not degenerate: pn_normal_ok holds). */
+PN_KFN pn_v3 pn_tri_unit_normal(PN_CONST float *tris, uint32_t t)
+{
+    PN_CONST float *p = tris + (size_t)t * 9u;
+    return pn_v3_normalize(pn_tri_cross(pn_v3_make(p[0], p[1], p[2]), pn_v3_make(p[3], p[4], p[5]),
+                                        pn_v3_make(p[6], p[7], p[8])));
+}
+
+/* The point at distance d along the primary ray of pixel (x, y). */
+PN_KFN pn_v3 pn_view_point(const pn_kview *v, uint32_t x, uint32_t y, float d)
+{
+    return pn_v3_add(pn_view_eye(v), pn_v3_scale(pn_ray_dir(v, x, y), d));
+}
+
 /* Fills position and normal of one pixel from its depth and triangle. */
 PN_KFN void pn_gbuffer_resolve(const pn_kview *v, PN_CONST float *tris, uint32_t x, uint32_t y,
                                PN_GLOBAL const float *depth, PN_GLOBAL const uint32_t *tri_id,
@@ -635,28 +649,57 @@ PN_KFN void pn_gbuffer_resolve(const pn_kview *v, PN_CONST float *tris, uint32_t
 {
     size_t pix = (size_t)y * v->width + (size_t)x;
     uint32_t t = tri_id[pix];
-    if (t == 0xFFFFFFFFu) {
-        pos[pix * 3u + 0u] = 0.0f;
-        pos[pix * 3u + 1u] = 0.0f;
-        pos[pix * 3u + 2u] = 0.0f;
-        nrm[pix * 3u + 0u] = 0.0f;
-        nrm[pix * 3u + 1u] = 0.0f;
-        nrm[pix * 3u + 2u] = 0.0f;
-    } else {
-        PN_CONST float *p = tris + (size_t)t * 9u;
-        pn_v3 A = pn_v3_make(p[0], p[1], p[2]);
-        pn_v3 B = pn_v3_make(p[3], p[4], p[5]);
-        pn_v3 C = pn_v3_make(p[6], p[7], p[8]);
-        /* Unit: triangle t was drawn, so it is not degenerate and pn_normal_ok holds. */
-        pn_v3 n = pn_v3_normalize(pn_tri_cross(A, B, C));
-        pn_v3 P = pn_v3_add(pn_view_eye(v), pn_v3_scale(pn_ray_dir(v, x, y), depth[pix]));
-        pos[pix * 3u + 0u] = P.x;
-        pos[pix * 3u + 1u] = P.y;
-        pos[pix * 3u + 2u] = P.z;
-        nrm[pix * 3u + 0u] = n.x;
-        nrm[pix * 3u + 1u] = n.y;
-        nrm[pix * 3u + 2u] = n.z;
+    pn_v3 P = pn_v3_make(0.0f, 0.0f, 0.0f), n = P;
+    if (t != 0xFFFFFFFFu) {
+        n = pn_tri_unit_normal(tris, t);
+        P = pn_view_point(v, x, y, depth[pix]);
     }
+    pos[pix * 3u + 0u] = P.x;
+    pos[pix * 3u + 1u] = P.y;
+    pos[pix * 3u + 2u] = P.z;
+    nrm[pix * 3u + 0u] = n.x;
+    nrm[pix * 3u + 1u] = n.y;
+    nrm[pix * 3u + 2u] = n.z;
+}
+
+/* The G-buffer as the shadow passes read it: each pixel's triangle, and its position and
+ * normal either stored (pos, nrm: the rasterizer's resolve above, or a point query's own)
+ * or, for a context whose limits set PN_LIMITS_NO_SURFACE (pos = 0), recomputed from its
+ * depth and triangle by the same functions: the same bits either way. */
+typedef struct pn_ksurf {
+    const pn_kview *v;
+    PN_CONST float *tris;
+    PN_CONST float *depth;
+    PN_CONST uint32_t *tri_id;
+    PN_CONST float *pos; /* 0: recomputed */
+    PN_CONST float *nrm;
+} pn_ksurf;
+
+/* Pixel pix's unit normal (zero for a background pixel). */
+PN_KFN pn_v3 pn_surf_normal(const pn_ksurf *S, size_t pix)
+{
+    uint32_t t;
+    if (S->pos) return pn_v3_load(S->nrm + pix * 3u);
+    t = S->tri_id[pix];
+    return t == 0xFFFFFFFFu ? pn_v3_make(0.0f, 0.0f, 0.0f) : pn_tri_unit_normal(S->tris, t);
+}
+
+/* Pixel pix's position and unit normal (zero for a background pixel). */
+PN_KFN void pn_surf_at(const pn_ksurf *S, size_t pix, pn_v3 *P, pn_v3 *n)
+{
+    uint32_t t;
+    if (S->pos) {
+        *P = pn_v3_load(S->pos + pix * 3u);
+        *n = pn_v3_load(S->nrm + pix * 3u);
+        return;
+    }
+    t = S->tri_id[pix];
+    if (t == 0xFFFFFFFFu) {
+        *P = *n = pn_v3_make(0.0f, 0.0f, 0.0f);
+        return;
+    }
+    *n = pn_tri_unit_normal(S->tris, t);
+    *P = pn_view_point(S->v, (uint32_t)(pix % S->v->width), (uint32_t)(pix / S->v->width), S->depth[pix]);
 }
 
 #endif

@@ -305,12 +305,12 @@ typedef struct pn_srt_args {
 /* Pixel pix: 1 if it is in the PIP set, else 0 with its visibility from the map in
  * *vis (also for background and unlit pixels, which are final). *lit: 1 if it faces the
  * light. */
-PN_KFN uint32_t pn_srt_classify(const pn_kview *lv, const pn_klight *L, const pn_srt_args *a, PN_CONST uint32_t *tri_id,
-                                PN_CONST float *pos, PN_CONST float *nrm, PN_CONST float *tris, PN_CONST float *depth,
+PN_KFN uint32_t pn_srt_classify(const pn_kview *lv, const pn_klight *L, const pn_srt_args *a, const pn_ksurf *S,
+                                PN_CONST float *tris, PN_CONST float *depth,
                                 PN_CONST uint32_t *lmap_id, PN_CONST uint32_t *cons, PN_CONST uint32_t *tile_w,
                                 PN_CONST uint32_t *tile_mask, size_t pix, float *vis, uint32_t *lit)
 {
-    uint32_t own = tri_id[pix], res = lv->width;
+    uint32_t own = S->tri_id[pix], res = lv->width;
     pn_v3 P, n, O, c, Lc, toL;
     float px, py, d, s, sinb, cosb, sina, cosa, dhat, bias;
     int32_t tx, ty;
@@ -319,8 +319,7 @@ PN_KFN uint32_t pn_srt_classify(const pn_kview *lv, const pn_klight *L, const pn
         *vis = 1.0f;
         return 0u;
     }
-    P = pn_v3_load(pos + pix * 3u);
-    n = pn_v3_load(nrm + pix * 3u);
+    pn_surf_at(S, pix, &P, &n);
     if (!pn_shadow_origin(P, n, L, &O)) {
         *vis = 0.0f;
         return 0u;

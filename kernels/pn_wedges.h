@@ -415,8 +415,8 @@ PN_KFN void pn_wg_block_box(PN_CONST pn_wsil *sil, uint32_t nsil, uint32_t k, ui
  * when no pixel of the tile has one. */
 #define PN_WG_BOX 6u
 
-PN_KFN void pn_wg_tile_box(const pn_kview *v, const pn_klight *L, uint32_t tx, uint32_t ty, PN_CONST uint32_t *tri_id,
-                           PN_CONST float *pos, PN_CONST float *nrm, PN_GLOBAL float *box)
+PN_KFN void pn_wg_tile_box(const pn_kview *v, const pn_klight *L, uint32_t tx, uint32_t ty, const pn_ksurf *S,
+                           PN_GLOBAL float *box)
 {
     float b[PN_WG_BOX];
     uint32_t x, y, x1 = (tx + 1u) * PN_WG_TILE, y1 = (ty + 1u) * PN_WG_TILE, i;
@@ -427,11 +427,11 @@ PN_KFN void pn_wg_tile_box(const pn_kview *v, const pn_klight *L, uint32_t tx, u
     for (y = ty * PN_WG_TILE; y < y1; y++)
         for (x = tx * PN_WG_TILE; x < x1; x++) {
             size_t pix = (size_t)y * v->width + x;
-            pn_v3 O;
+            pn_v3 O, P, n;
             float u, vv, h;
-            if (tri_id[pix] == PN_NO_PIXEL_TRIANGLE ||
-                !pn_shadow_origin(pn_v3_load(pos + pix * 3u), pn_v3_load(nrm + pix * 3u), L, &O))
-                continue;
+            if (S->tri_id[pix] == PN_NO_PIXEL_TRIANGLE) continue;
+            pn_surf_at(S, pix, &P, &n);
+            if (!pn_shadow_origin(P, n, L, &O)) continue;
             pn_wg_light(L, O, &u, &vv, &h);
             b[0] = pn_kminf(b[0], u);
             b[1] = pn_kmaxf(b[1], u);

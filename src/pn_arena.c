@@ -76,7 +76,7 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
     if (l->max_triangles < 1u || l->max_triangles > PN_MAX_TRIANGLES || l->max_width < 1u ||
         l->max_width > PN_MAX_WIDTH || l->max_height < 1u || l->max_height > PN_MAX_HEIGHT ||
         (l->bvh_refs != 0u && (l->bvh_refs < l->max_triangles || l->bvh_refs > pn_bvh_refs_cap(l))) ||
-        (l->algos & ~PN_ALGO_FLAGS) != 0u)
+        (l->algos & ~PN_ALGO_FLAGS) != 0u || (l->flags & ~PN_LIMITS_NO_SURFACE) != 0u)
         return PN_E_LIMIT;
     /* Each algorithm's own fields (an algorithm not compiled in ignores its). */
 #define PN_ALGO_LIMITS(ID, name)                                                               \
@@ -107,22 +107,29 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
     frame_start = off;
     {
         /* The frame's own pools, then the largest of the algorithms' sets (one algorithm a
-         * frame): each set's carve run at the limits' maxima. */
-        pn_frame_state fs;
-        uint64_t common;
-        pn_carver_query(&c, off);
-        pn_frame_carve(&c, l->max_width, l->max_height, l->max_triangles, &fs);
-        if (!c.ok) return PN_E_LIMIT;
-        common = c.top;
+         * frame): each set's carve run at the limits' maxima; for a context whose frames
+         * keep no positions and normals, also a point query's batch, which does. */
+        pn_limits lq = *l;
+        int pass;
+        for (pass = 0; pass < (pn_limits_surface(l) ? 1 : 2); pass++) {
+            pn_frame_state fs;
+            uint64_t common;
+            if (pass) lq.max_height = pn_points_rows(l, l->max_height);
+            pn_carver_query(&c, frame_start);
+            pn_frame_carve(&c, lq.max_width, lq.max_height, lq.max_triangles, pass || pn_limits_surface(l), &fs);
+            if (!c.ok) return PN_E_LIMIT;
+            common = c.top;
+            if (common > off) off = common;
 #define PN_ALGO_QUERY(ID, name)                                                                \
-        if (pn_limits_algos(l) & (1u << PN_ALGO_##ID)) {                                       \
-            pn_carver_query(&c, common);                                                       \
-            pn_##name##_query(&c, l);                                                          \
-            if (!c.ok) return PN_E_LIMIT;                                                      \
-            if (c.top > off) off = c.top;                                                      \
-        }
-        PN_ALGORITHMS(PN_ALGO_QUERY)
+            if (pn_limits_algos(l) & (1u << PN_ALGO_##ID)) {                                   \
+                pn_carver_query(&c, common);                                                   \
+                pn_##name##_query(&c, &lq);                                                    \
+                if (!c.ok) return PN_E_LIMIT;                                                  \
+                if (c.top > off) off = c.top;                                                  \
+            }
+            PN_ALGORITHMS(PN_ALGO_QUERY)
 #undef PN_ALGO_QUERY
+        }
         /* pn_scene_set's BVH build uses the region as scratch too. */
         if (pn_bvh_scratch_bytes(l) > off - frame_start) off = frame_start + pn_bvh_scratch_bytes(l);
         /* ...and so may an algorithm's own work at pn_scene_set. */

@@ -291,6 +291,16 @@ static pn_status pn_scene_to_device(pn_frame_state *fs)
     return PN_OK;
 }
 
+/* The positions and normals the resolve wrote, when the frame keeps them. */
+static pn_status pn_surface_to_host(pn_frame_state *fs)
+{
+    size_t px = (size_t)fs->width * fs->height;
+    pn_status st;
+    if (!fs->pos) return PN_OK;
+    if ((st = pn_dev_to_host(fs, fs->pos, px * 3u * sizeof(float))) != PN_OK) return st;
+    return pn_dev_to_host(fs, fs->nrm, px * 3u * sizeof(float));
+}
+
 /* Primary visibility: per-triangle row ranges, then bands (clear, raster, resolve). */
 static pn_status pn_gbuffer_raster(pn_frame_state *fs)
 {
@@ -300,10 +310,9 @@ static pn_status pn_gbuffer_raster(pn_frame_state *fs)
     if ((st = pn_scene_to_device(fs)) != PN_OK || (st = pn_raster_setup(fs, PN_K_RASTER_ROWS)) != PN_OK ||
         (st = pn_dev_run(fs, PN_K_RASTER_BAND, (fs->height + PN_RASTER_BAND - 1u) / PN_RASTER_BAND)) != PN_OK ||
         (st = pn_dev_to_host(fs, fs->depth, px * sizeof(float))) != PN_OK ||
-        (st = pn_dev_to_host(fs, fs->tri_id, px * sizeof(uint32_t))) != PN_OK ||
-        (st = pn_dev_to_host(fs, fs->pos, px * 3u * sizeof(float))) != PN_OK)
+        (st = pn_dev_to_host(fs, fs->tri_id, px * sizeof(uint32_t))) != PN_OK)
         return st;
-    return pn_dev_to_host(fs, fs->nrm, px * 3u * sizeof(float));
+    return pn_surface_to_host(fs);
 }
 
 /* The caller's G-buffer (checked): depth and ids copied in, positions and normals
@@ -317,11 +326,11 @@ static pn_status pn_gbuffer_caller(pn_frame_state *fs, const pn_gbuffer *g)
         fs->depth[i] = g->tri_id[i] == PN_NO_TRIANGLE ? PN_KINF : g->depth[i];
     }
     if ((st = pn_scene_to_device(fs)) != PN_OK || (st = pn_dev_to_device(fs, fs->depth, px * sizeof(float))) != PN_OK ||
-        (st = pn_dev_to_device(fs, fs->tri_id, px * sizeof(uint32_t))) != PN_OK ||
-        (st = pn_dev_run(fs, PN_K_GBUFFER_RESOLVE, fs->height)) != PN_OK ||
-        (st = pn_dev_to_host(fs, fs->pos, px * 3u * sizeof(float))) != PN_OK)
+        (st = pn_dev_to_device(fs, fs->tri_id, px * sizeof(uint32_t))) != PN_OK)
         return st;
-    return pn_dev_to_host(fs, fs->nrm, px * 3u * sizeof(float));
+    if (!fs->pos) return PN_OK; /* recomputed where read */
+    if ((st = pn_dev_run(fs, PN_K_GBUFFER_RESOLVE, fs->height)) != PN_OK) return st;
+    return pn_surface_to_host(fs);
 }
 
 /* The shadow pass of the frame's algorithm. Every algorithm leaves the visibility buffer
@@ -358,13 +367,16 @@ static pn_status pn_shade(pn_frame_state *fs)
     return pn_dev_to_host(fs, fs->rgba, (size_t)npix * 4u);
 }
 
-void pn_frame_carve(pn_carver *c, uint32_t w, uint32_t h, uint32_t tris, pn_frame_state *fs)
+void pn_frame_carve(pn_carver *c, uint32_t w, uint32_t h, uint32_t tris, int surface, pn_frame_state *fs)
 {
     uint64_t px = (uint64_t)w * h;
     fs->depth = (float *)pn_pool(c, px, sizeof(float), "depth");
     fs->tri_id = (uint32_t *)pn_pool(c, px, sizeof(uint32_t), "tri_id");
-    fs->pos = (float *)pn_pool(c, px * 3u, sizeof(float), "position");
-    fs->nrm = (float *)pn_pool(c, px * 3u, sizeof(float), "normal");
+    fs->pos = fs->nrm = NULL;
+    if (surface) {
+        fs->pos = (float *)pn_pool(c, px * 3u, sizeof(float), "position");
+        fs->nrm = (float *)pn_pool(c, px * 3u, sizeof(float), "normal");
+    }
     fs->vis = (float *)pn_pool(c, px, sizeof(float), "visibility");
     fs->rgba = (uint8_t *)pn_pool(c, px, 4u, "rgba");
     fs->rows = (uint32_t *)pn_pool(c, tris, sizeof(uint32_t), "raster rows");
@@ -384,8 +396,10 @@ static void pn_frame_pool_offsets(pn_frame_state *fs)
     P->rindex = pn_dev_off(ctx, ctx->raster_index);
     P->depth = pn_dev_off(ctx, fs->depth);
     P->tri_id = pn_dev_off(ctx, fs->tri_id);
-    P->pos = pn_dev_off(ctx, fs->pos);
-    P->nrm = pn_dev_off(ctx, fs->nrm);
+    if (fs->pos) { /* else 0: the passes recompute them (pn_surf_of) */
+        P->pos = pn_dev_off(ctx, fs->pos);
+        P->nrm = pn_dev_off(ctx, fs->nrm);
+    }
     P->vis = pn_dev_off(ctx, fs->vis);
     P->rgba = pn_dev_off(ctx, fs->rgba);
     P->rows = pn_dev_off(ctx, fs->rows);
@@ -431,7 +445,8 @@ static pn_status pn_frame_pools(pn_frame_state *fs)
     pn_carver c;
     pn_frame_reset(fs->ctx);
     pn_carver_frame(&c, fs->ctx);
-    pn_frame_carve(&c, fs->width, fs->height, fs->ctx->tri_count, fs);
+    pn_frame_carve(&c, fs->width, fs->height, fs->ctx->tri_count, fs->points || pn_limits_surface(&fs->ctx->limits),
+                   fs);
     if (!c.ok) return PN_E_POOL_EXHAUSTED;
     pn_frame_pool_offsets(fs);
     return PN_OK;
@@ -550,8 +565,10 @@ pn_status pn_points_with(pn_context *ctx, const pn_port *port, const pn_light *l
         return pn_fail(ctx, PN_E_INVALID_ARG, "out lies in the context's arena; it must be the caller's own");
     if ((st = pn_frame_begin(&fs, ctx, port, NULL, light, opt, 1u)) != PN_OK) return st;
     if ((st = pn_check_points(ctx, points, normals, tri_ids, n)) != PN_OK) return st;
+    /* A batch holds its points' positions and normals: fewer rows where frames keep none. */
+    fs.height = fs.K.view.height = pn_points_rows(&ctx->limits, opt->height);
     for (done = 0; done < n;) {
-        uint32_t batch = opt->width * opt->height, m = n - done < batch ? n - done : batch, i;
+        uint32_t batch = fs.width * fs.height, m = n - done < batch ? n - done : batch, i;
         size_t px = batch;
         if ((st = pn_frame_pools(&fs)) != PN_OK) return st;
         for (i = 0; i < batch; i++) {

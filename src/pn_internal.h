@@ -173,8 +173,13 @@ void pn_carver_at(pn_carver *c, uint8_t *base, uint64_t start);
 void pn_carver_frame(pn_carver *c, pn_context *ctx);
 void *pn_pool(pn_carver *c, uint64_t count, uint64_t elem, const char *name);
 /* The frame's own pools (G-buffer, visibility, RGBA, the rasterizer's set-up, the shadow
- * counters) for a w x h frame of `tris` triangles, into fs (pn_frame.c). */
-void pn_frame_carve(pn_carver *c, uint32_t w, uint32_t h, uint32_t tris, pn_frame_state *fs);
+ * counters) for a w x h frame of `tris` triangles, into fs (pn_frame.c); the positions and
+ * normals only with `surface` (else fs->pos and fs->nrm are NULL). */
+void pn_frame_carve(pn_carver *c, uint32_t w, uint32_t h, uint32_t tris, int surface, pn_frame_state *fs);
+/* Whether a context with limits l keeps positions and normals in its frames, and the rows
+ * of its point queries' batches (pn_visibility_points) for frames of h rows. */
+#define pn_limits_surface(l) (((l)->flags & PN_LIMITS_NO_SURFACE) == 0u)
+#define pn_points_rows(l, h) (pn_limits_surface(l) ? (h) : ((h) + 3u) / 4u)
 size_t pn_frame_mark(const pn_context *ctx);
 void pn_frame_rewind(pn_context *ctx, size_t mark);
 

@@ -34,6 +34,7 @@
 
 typedef struct pn_xframe {
     size_t n;
+    int surface; /* positions and normals kept (the frame has them: not PN_LIMITS_NO_SURFACE) */
     float *vis, *depth, *pos, *nrm;
     uint32_t *ids;
     uint8_t *rgba;
@@ -68,8 +69,11 @@ static void xframe_keep(pn_xframe *f, const pn_frame *fr, pn_context *ctx)
     size_t n = (size_t)fr->width * fr->height;
     memcpy(f->vis, fr->visibility, n * sizeof(float));
     memcpy(f->depth, fr->depth, n * sizeof(float));
-    memcpy(f->pos, fr->position, n * 3u * sizeof(float));
-    memcpy(f->nrm, fr->normal, n * 3u * sizeof(float));
+    f->surface = fr->position != NULL;
+    if (f->surface) {
+        memcpy(f->pos, fr->position, n * 3u * sizeof(float));
+        memcpy(f->nrm, fr->normal, n * 3u * sizeof(float));
+    }
     memcpy(f->ids, fr->tri_id, n * sizeof(uint32_t));
     memcpy(f->rgba, fr->rgba, n * 4u);
     pn_get_stats(ctx, &f->st);
@@ -90,7 +94,8 @@ static int same_buffer(const char *what, const char *buf, const void *a, const v
     return same;
 }
 
-/* Everything of frame b (OpenCL) against kept frame a (scalar). */
+/* Everything of frame b (OpenCL) against kept frame a (scalar): the positions and normals
+ * where both have them. */
 static int same_frame(const char *what, const pn_xframe *a, const pn_xframe *b)
 {
     int ok = 1;
@@ -99,8 +104,10 @@ static int same_frame(const char *what, const pn_xframe *a, const pn_xframe *b)
     ok &= same_buffer(what, "rgba", a->rgba, b->rgba, n, 4u);
     ok &= same_buffer(what, "depth", a->depth, b->depth, n, sizeof(float));
     ok &= same_buffer(what, "tri_id", a->ids, b->ids, n, sizeof(uint32_t));
-    ok &= same_buffer(what, "position", a->pos, b->pos, n, 3u * sizeof(float));
-    ok &= same_buffer(what, "normal", a->nrm, b->nrm, n, 3u * sizeof(float));
+    if (a->surface && b->surface) {
+        ok &= same_buffer(what, "position", a->pos, b->pos, n, 3u * sizeof(float));
+        ok &= same_buffer(what, "normal", a->nrm, b->nrm, n, 3u * sizeof(float));
+    }
 #define SAME_STAT(field)                                                                                   \
     CHECK_MSG(a->st.field == b->st.field, "%s: stats." #field " scalar %llu opencl %llu", what,         \
               (unsigned long long)a->st.field, (unsigned long long)b->st.field)
@@ -156,6 +163,7 @@ typedef struct pn_xrig {
     pn_opencl *cl;
     pn_xframe a, b; /* scalar, OpenCL */
     size_t cap;     /* pixels a and b hold */
+    int surface;    /* the context's frames keep positions and normals */
 } pn_xrig;
 
 static int in_arena(const pn_xrig *r, const void *p, size_t bytes)
@@ -189,8 +197,10 @@ static pn_status cross(pn_xrig *r, const pn_camera *cam, const pn_light *light, 
     }
     /* The frame points into the caller's arena, as pn_render's does. */
     CHECK_MSG(in_arena(r, fb.visibility, n * 4u) && in_arena(r, fb.rgba, n * 4u) && in_arena(r, fb.tri_id, n * 4u) &&
-                  in_arena(r, fb.depth, n * 4u) && in_arena(r, fb.position, n * 12u) && in_arena(r, fb.normal, n * 12u),
-              "%s: the OpenCL frame does not point into the arena", what);
+                  in_arena(r, fb.depth, n * 4u) &&
+                  (r->surface ? in_arena(r, fb.position, n * 12u) && in_arena(r, fb.normal, n * 12u)
+                              : fb.position == NULL && fb.normal == NULL && fa.position == NULL && fa.normal == NULL),
+              "%s: the OpenCL frame does not point into the arena (or has positions it must not)", what);
     CHECK(fb.visibility == fa.visibility && fb.rgba == fa.rgba && fb.width == opt->width && fb.height == opt->height);
     r->b.n = r->a.n = n;
     xframe_keep(&r->b, &fb, r->h.ctx);
@@ -203,6 +213,7 @@ static int rig_open(pn_xrig *r, const pn_limits *lim, const pn_opencl_options *o
     pn_status st;
     memset(r, 0, sizeof(*r));
     r->cap = (size_t)lim->max_width * lim->max_height;
+    r->surface = !(lim->flags & PN_LIMITS_NO_SURFACE);
     if (!xframe_init(&r->a, r->cap) || !xframe_init(&r->b, r->cap) || pn_arena_size(lim, &bytes) != PN_OK) return 1;
     r->h.bytes = bytes;
     r->h.memory = malloc(bytes);
@@ -287,7 +298,82 @@ static int list_scenes(pn_xscene *out)
 }
 
 static pn_xrig g_rig;
+static pn_xrig g_lean;   /* the same limits with PN_LIMITS_NO_SURFACE */
 static pn_xframe g_kept; /* a frame kept while the rig renders others */
+
+/* The rig's scalar frame of n pixels into g_kept. */
+static void keep_frame(size_t n)
+{
+    g_kept.n = n;
+    g_kept.surface = g_rig.a.surface;
+    memcpy(g_kept.vis, g_rig.a.vis, n * sizeof(float));
+    memcpy(g_kept.depth, g_rig.a.depth, n * sizeof(float));
+    memcpy(g_kept.pos, g_rig.a.pos, n * 3u * sizeof(float));
+    memcpy(g_kept.nrm, g_rig.a.nrm, n * 3u * sizeof(float));
+    memcpy(g_kept.ids, g_rig.a.ids, n * sizeof(uint32_t));
+    memcpy(g_kept.rgba, g_rig.a.rgba, n * 4u);
+    g_kept.st = g_rig.a.st;
+}
+
+/* The frame just rendered on both ports (g_rig.a) again on a context whose frames keep no
+ * positions and normals, on both ports: the same visibility, RGBA, depth, ids and stats;
+ * with the caller's G-buffer too. Its points (batches of a quarter of the rows) agree
+ * across the ports, and for the exact algorithms, whose answer per point does not depend
+ * on the batch, with the frame. */
+/* Frame b (no surface) against frame a of the same options on the other context: every
+ * buffer both have, the shadow counters and the frame's own algorithm's stats (another
+ * algorithm's stats are whatever each context last ran). */
+static void same_lean(const char *what, const pn_xframe *a, const pn_xframe *b, pn_algo algo)
+{
+    pn_xframe c = *b;
+    c.st = a->st;
+    c.st.shadow_candidates = b->st.shadow_candidates;
+    c.st.shadow_blocking = b->st.shadow_blocking;
+    c.st.shadow_nodes = b->st.shadow_nodes;
+    c.st.lit_pixels = b->st.lit_pixels;
+    switch (algo) {
+    case PN_ALGO_GEARS: c.st.gears = b->st.gears; break;
+    case PN_ALGO_SRT: c.st.srt = b->st.srt; break;
+    case PN_ALGO_OCCTEX: c.st.occtex = b->st.occtex; break;
+    case PN_ALGO_MCSM: c.st.mcsm = b->st.mcsm; break;
+    case PN_ALGO_WEDGES: c.st.wedges = b->st.wedges; break;
+    default: break;
+    }
+    same_frame(what, a, &c);
+}
+
+static void lean_same(const pn_camera *cam, const pn_light *light, const pn_frame_options *o, const char *what)
+{
+    pn_frame_options g = *o;
+    pn_gbuffer gb;
+    pn_status sa, sb;
+    size_t n = (size_t)o->width * o->height;
+    float *va = (float *)malloc(n * sizeof(float)), *vb = (float *)malloc(n * sizeof(float));
+    char w2[300];
+    REQUIRE(va && vb);
+    keep_frame(n);
+    g_kept.surface = 0;
+    snprintf(w2, sizeof(w2), "%s, no surface", what);
+    if (cross(&g_lean, cam, light, o, w2) == PN_OK) same_lean(w2, &g_kept, &g_lean.a, o->algo);
+    gb.depth = g_kept.depth;
+    gb.tri_id = g_kept.ids;
+    g.gbuffer = &gb;
+    snprintf(w2, sizeof(w2), "%s, no surface, caller G-buffer", what);
+    if (cross(&g_lean, cam, light, &g, w2) == PN_OK) same_lean(w2, &g_kept, &g_lean.a, o->algo);
+    if (o->algo == PN_ALGO_WEDGES) goto done; /* the wedges refuse points (gbuffer_and_points) */
+    snprintf(w2, sizeof(w2), "%s, no surface, points", what);
+    sa = pn_visibility_points(g_lean.h.ctx, light, o, g_kept.pos, g_kept.nrm, g_kept.ids, (uint32_t)n, va);
+    sb = pn_opencl_visibility_points(g_lean.cl, light, o, g_kept.pos, g_kept.nrm, g_kept.ids, (uint32_t)n, vb);
+    CHECK_MSG(sa == PN_OK && sb == PN_OK, "%s: scalar %s, opencl %s (%s)", w2, pn_status_str(sa), pn_status_str(sb),
+              pn_last_error(g_lean.h.ctx));
+    if (sa != PN_OK || sb != PN_OK) goto done;
+    same_buffer(w2, "visibility across the ports", va, vb, n, sizeof(float));
+    if (o->algo == PN_ALGO_REFERENCE || o->algo == PN_ALGO_GEARS || o->algo == PN_ALGO_RAYTRACE)
+        same_buffer(w2, "visibility against the frame", g_kept.vis, va, n, sizeof(float));
+done:
+    free(va);
+    free(vb);
+}
 
 /* The frame just rendered on both ports (g_rig.a), again from its own depth and triangle
  * ids handed back as the caller's G-buffer: the same bytes, stats included, on both ports.
@@ -304,14 +390,7 @@ static void gbuffer_and_points(const pn_camera *cam, const pn_light *light, cons
     float *va = (float *)malloc(n * sizeof(float)), *vb = (float *)malloc(n * sizeof(float));
     char w2[300];
     REQUIRE(va && vb);
-    g_kept.n = n;
-    memcpy(g_kept.vis, g_rig.a.vis, n * sizeof(float));
-    memcpy(g_kept.depth, g_rig.a.depth, n * sizeof(float));
-    memcpy(g_kept.pos, g_rig.a.pos, n * 3u * sizeof(float));
-    memcpy(g_kept.nrm, g_rig.a.nrm, n * 3u * sizeof(float));
-    memcpy(g_kept.ids, g_rig.a.ids, n * sizeof(uint32_t));
-    memcpy(g_kept.rgba, g_rig.a.rgba, n * 4u);
-    g_kept.st = g_rig.a.st;
+    keep_frame(n);
     gb.depth = g_kept.depth;
     gb.tri_id = g_kept.ids;
     g.gbuffer = &gb;
@@ -392,7 +471,7 @@ static int g_loaded[PN_X_MAX_SCENES], g_nscenes;
 
 static void test_scenes(void)
 {
-    int i, glbs = 0;
+    int i, glbs = 0, lean;
     for (i = 0; i < g_nscenes; i++) {
         const pn_setup *s = &g_setups[i];
         int q;
@@ -402,6 +481,9 @@ static void test_scenes(void)
         CHECK_MSG(pn_scene_set(g_rig.h.ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices,
                                s->mesh.triangle_count) == PN_OK,
                   "%s: %s", s->name, pn_last_error(g_rig.h.ctx));
+        lean = pn_scene_set(g_lean.h.ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices,
+                            s->mesh.triangle_count) == PN_OK;
+        CHECK_MSG(lean, "%s, no surface: %s", s->name, pn_last_error(g_lean.h.ctx));
         for (q = 0; q < 2; q++) {
             pn_light light = q ? point_light(&s->light) : s->light;
             for (a = 0; a < PN_ALGO_COUNT; a++) {
@@ -414,6 +496,7 @@ static void test_scenes(void)
                 if (cross(&g_rig, &s->camera, &light, &o, what) == PN_OK) {
                     fprintf(stderr, "same: %s (%u lit pixels, %llu candidates)\n", what, g_rig.a.st.lit_pixels,
                             (unsigned long long)g_rig.a.st.shadow_candidates);
+                    if (lean) lean_same(&s->camera, &light, &o, what);
                     gbuffer_and_points(&s->camera, &light, &o, what);
                 }
             }
@@ -661,7 +744,7 @@ static void test_api(void)
     /* Validation and statuses as pn_render's: no scene yet on a fresh context. */
     {
         pn_xrig fresh;
-        pn_limits lim = {64, 16, 16, 0, 0, 0, 0, 0, 0, 0, 0};
+        pn_limits lim = {64, 16, 16, 0, 0, 0, 0, 0, 0, 0, 0, 0};
         pn_camera cam = {{0, 1, 3}, {0, 0, 0}, {0, 1, 0}, 45.0f};
         pn_light light = {{0, 3, 0}, {0.5f, 0, 0}, {0, 0, 0.5f}};
         static const float quad[12] = {-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};
@@ -804,6 +887,11 @@ int main(void)
         CHECK_MSG(0, "cannot open the OpenCL port (see above)");
         return pn_test_summary();
     }
+    lim.flags = PN_LIMITS_NO_SURFACE;
+    if (rig_open(&g_lean, &lim, NULL) != 0) {
+        CHECK_MSG(0, "cannot open the OpenCL port on a context without surfaces (see above)");
+        return pn_test_summary();
+    }
     RUN(test_api);
     RUN(test_buffer_failure);
     RUN(test_options);
@@ -811,6 +899,7 @@ int main(void)
     RUN(test_scenes);
     RUN(test_update_positions);
     rig_close(&g_rig);
+    rig_close(&g_lean);
     xframe_free(&g_kept);
     for (i = 0; i < g_nscenes; i++)
         if (g_loaded[i]) pn_setup_free(&g_setups[i]);

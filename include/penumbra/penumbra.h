@@ -38,7 +38,7 @@
  *   one call at a time per context.
  *
  * USAGE
- *   pn_limits lim = { 100000, 512, 512, 0, 0, 0, 0, 0, 0, 0, 0 };  // max triangles, width, height; 0: default
+ *   pn_limits lim = { 100000, 512, 512, 0, 0, 0, 0, 0, 0, 0, 0, 0 };  // max triangles, width, height; 0: default
  *   size_t bytes; pn_arena_size(&lim, &bytes);
  *   void *mem = my_alloc(bytes);             // or static uint8_t mem[PN_ARENA_BYTES_MAX(...)]
  *   pn_context *ctx; pn_init(&ctx, mem, bytes, &lim);
@@ -143,7 +143,16 @@ typedef struct pn_limits {
                                 the frame region is sized for these alone, and a frame of
                                 another fails PN_E_LIMIT. 0: every algorithm compiled in.
                                 A flag of one not compiled in: PN_E_UNSUPPORTED */
+    uint32_t flags;          /* PN_LIMITS_* (0: none) */
 } pn_limits;
+
+/* pn_limits.flags. PN_LIMITS_NO_SURFACE: frames keep no per-pixel position and normal (24
+ * of a frame's 40 bytes a pixel): the passes recompute them from depth and tri_id where
+ * they read them, by the functions that would have stored them, so every frame's
+ * visibility, RGBA, depth and tri_id are the same bytes; pn_frame.position and .normal are
+ * NULL. pn_visibility_points then takes its points in batches of width x ceil(height / 4)
+ * (not width x height), which the approximate algorithms' light-space maps are fit to. */
+#define PN_LIMITS_NO_SURFACE 0x1u
 
 /* Limits equal to the compile-time maxima. */
 void pn_limits_max(pn_limits *limits);
@@ -508,8 +517,10 @@ typedef struct pn_frame {
     const uint8_t *rgba;      /* 4 bytes per pixel; NULL when the options set no_rgba */
     const uint32_t *tri_id;   /* triangle index (scene order) or PN_NO_TRIANGLE */
     const float *depth;       /* distance along the pixel's primary ray; +inf background */
-    const float *position;    /* 3 floats per pixel: world position on the triangle */
-    const float *normal;      /* 3 floats per pixel: unit geometric normal (winding order) */
+    const float *position;    /* 3 floats per pixel: world position on the triangle (NULL:
+                                 the context's limits set PN_LIMITS_NO_SURFACE) */
+    const float *normal;      /* 3 floats per pixel: unit geometric normal (winding order;
+                                 NULL as position) */
 } pn_frame;
 
 /* Renders one frame: G-buffer (rasterized, or the caller's opt->gbuffer, checked as

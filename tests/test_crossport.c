@@ -315,11 +315,6 @@ static void keep_frame(size_t n)
     g_kept.st = g_rig.a.st;
 }
 
-/* The frame just rendered on both ports (g_rig.a) again on a context whose frames keep no
- * positions and normals, on both ports: the same visibility, RGBA, depth, ids and stats;
- * with the caller's G-buffer too. Its points (batches of a quarter of the rows) agree
- * across the ports, and for the exact algorithms, whose answer per point does not depend
- * on the batch, with the frame. */
 /* Frame b (no surface) against frame a of the same options on the other context: every
  * buffer both have, the shadow counters and the frame's own algorithm's stats (another
  * algorithm's stats are whatever each context last ran). */
@@ -342,17 +337,19 @@ static void same_lean(const char *what, const pn_xframe *a, const pn_xframe *b, 
     same_frame(what, a, &c);
 }
 
-static void lean_same(const pn_camera *cam, const pn_light *light, const pn_frame_options *o, const char *what)
+/* The frame just rendered on both ports (kept in g_kept) again on a context whose frames keep no
+ * positions and normals, on both ports: the same visibility, RGBA, depth, ids and stats;
+ * with the caller's G-buffer too. Its points (batches of a quarter of the rows) agree
+ * across the ports, and for the exact algorithms, whose answer per point does not depend
+ * on the batch, with the frame. (va, vb: room for the points' answers) */
+static void lean_same(const pn_camera *cam, const pn_light *light, const pn_frame_options *o, const char *what,
+                      float *va, float *vb)
 {
     pn_frame_options g = *o;
     pn_gbuffer gb;
     pn_status sa, sb;
-    size_t n = (size_t)o->width * o->height;
-    float *va = (float *)malloc(n * sizeof(float)), *vb = (float *)malloc(n * sizeof(float));
+    size_t n = g_kept.n;
     char w2[300];
-    REQUIRE(va && vb);
-    keep_frame(n);
-    g_kept.surface = 0;
     snprintf(w2, sizeof(w2), "%s, no surface", what);
     if (cross(&g_lean, cam, light, o, w2) == PN_OK) same_lean(w2, &g_kept, &g_lean.a, o->algo);
     gb.depth = g_kept.depth;
@@ -360,28 +357,25 @@ static void lean_same(const pn_camera *cam, const pn_light *light, const pn_fram
     g.gbuffer = &gb;
     snprintf(w2, sizeof(w2), "%s, no surface, caller G-buffer", what);
     if (cross(&g_lean, cam, light, &g, w2) == PN_OK) same_lean(w2, &g_kept, &g_lean.a, o->algo);
-    if (o->algo == PN_ALGO_WEDGES) goto done; /* the wedges refuse points (gbuffer_and_points) */
+    if (o->algo == PN_ALGO_WEDGES) return; /* the wedges refuse points (gbuffer_and_points) */
     snprintf(w2, sizeof(w2), "%s, no surface, points", what);
     sa = pn_visibility_points(g_lean.h.ctx, light, o, g_kept.pos, g_kept.nrm, g_kept.ids, (uint32_t)n, va);
     sb = pn_opencl_visibility_points(g_lean.cl, light, o, g_kept.pos, g_kept.nrm, g_kept.ids, (uint32_t)n, vb);
     CHECK_MSG(sa == PN_OK && sb == PN_OK, "%s: scalar %s, opencl %s (%s)", w2, pn_status_str(sa), pn_status_str(sb),
               pn_last_error(g_lean.h.ctx));
-    if (sa != PN_OK || sb != PN_OK) goto done;
+    if (sa != PN_OK || sb != PN_OK) return;
     same_buffer(w2, "visibility across the ports", va, vb, n, sizeof(float));
     if (o->algo == PN_ALGO_REFERENCE || o->algo == PN_ALGO_GEARS || o->algo == PN_ALGO_RAYTRACE)
         same_buffer(w2, "visibility against the frame", g_kept.vis, va, n, sizeof(float));
-done:
-    free(va);
-    free(vb);
 }
 
 /* The frame just rendered on both ports (g_rig.a), again from its own depth and triangle
  * ids handed back as the caller's G-buffer: the same bytes, stats included, on both ports.
  * Then its pixels' points through pn_visibility_points on both ports: the frame's
  * visibility bit for bit (MCSM's against a frame without its screen-space blur, which a
- * point query does not run); the wedges refuse points. */
+ * point query does not run); the wedges refuse points. With `lean`, first lean_same. */
 static void gbuffer_and_points(const pn_camera *cam, const pn_light *light, const pn_frame_options *o,
-                               const char *what)
+                               const char *what, int lean)
 {
     pn_frame_options g = *o;
     pn_gbuffer gb;
@@ -391,6 +385,7 @@ static void gbuffer_and_points(const pn_camera *cam, const pn_light *light, cons
     char w2[300];
     REQUIRE(va && vb);
     keep_frame(n);
+    if (lean) lean_same(cam, light, o, what, va, vb);
     gb.depth = g_kept.depth;
     gb.tri_id = g_kept.ids;
     g.gbuffer = &gb;
@@ -496,8 +491,7 @@ static void test_scenes(void)
                 if (cross(&g_rig, &s->camera, &light, &o, what) == PN_OK) {
                     fprintf(stderr, "same: %s (%u lit pixels, %llu candidates)\n", what, g_rig.a.st.lit_pixels,
                             (unsigned long long)g_rig.a.st.shadow_candidates);
-                    if (lean) lean_same(&s->camera, &light, &o, what);
-                    gbuffer_and_points(&s->camera, &light, &o, what);
+                    gbuffer_and_points(&s->camera, &light, &o, what, lean);
                 }
             }
         }

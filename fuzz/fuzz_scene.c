@@ -408,12 +408,21 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 
     /* Arena: exactly the queried size, at a chosen misalignment, fenced by FILL bytes. */
     FUZZ_CHECK(pn_arena_size(&lim, &bytes) == PN_OK, "pn_arena_size failed");
-    /* The bound of limits (t, w, h), plus each split reference the limits reserve (every
-     * other pool at most its default), and what the static block holds. */
-    FUZZ_CHECK(bytes <= PN_ARENA_BYTES_MAX(lim.max_triangles, lim.max_width, lim.max_height) +
-                            (lim.bvh_refs > lim.max_triangles ? (size_t)(lim.bvh_refs - lim.max_triangles) : 0u) *
-                                PN_BVH_SPLIT_REF_BYTES,
-               "pn_arena_size %zu above PN_ARENA_BYTES_MAX", bytes);
+    /* The bound of limits (t, w, h), plus each split reference the limits reserve and each
+     * wedge pair above the default pool (12 bytes, in two pools that may each round one
+     * PN_ARENA_ALIGN further; every other pool at most its default), and what the static
+     * block holds. */
+    {
+        size_t wg_extra = 0u;
+#if PN_ENABLE_WEDGES
+        size_t wg_default = PN_WG_PAIRS_(lim.max_triangles, lim.max_width, lim.max_height);
+        if (lim.wg_pairs > wg_default) wg_extra = (lim.wg_pairs - wg_default) * 12u + 2u * PN_ARENA_ALIGN;
+#endif
+        FUZZ_CHECK(bytes <= PN_ARENA_BYTES_MAX(lim.max_triangles, lim.max_width, lim.max_height) +
+                                (lim.bvh_refs > lim.max_triangles ? (size_t)(lim.bvh_refs - lim.max_triangles) : 0u) *
+                                    PN_BVH_SPLIT_REF_BYTES + wg_extra,
+                   "pn_arena_size %zu above PN_ARENA_BYTES_MAX", bytes);
+    }
     FUZZ_CHECK(bytes <= sizeof(block) - 2u * GUARD - 64u, "pn_arena_size %zu beyond the fuzz block", bytes);
     mem = block + GUARD + (h[5] & 63u);
     end = mem + bytes;

@@ -67,7 +67,7 @@ PN_KFN void pn_counters_add(PN_GLOBAL pn_shadow_counters *row, const pn_shadow_c
 
 /* The G-buffer as the shadow passes read it (pn_ksurf): a pos offset of 0 (no pool there:
  * offset 0 is the context) means the frame keeps no positions and normals. */
-PN_KFN pn_ksurf pn_surf_of(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K)
+PN_KFN_HOT pn_ksurf pn_surf_of(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K)
 {
     pn_ksurf S;
     S.v = &K->view;
@@ -77,6 +77,20 @@ PN_KFN pn_ksurf pn_surf_of(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kp
     S.pos = P->pos ? PN_POOL(const float, pos) : 0;
     S.nrm = P->pos ? PN_POOL(const float, nrm) : 0;
     return S;
+}
+
+/* Pixel pix's position and unit normal, as pn_surf_at gives them: the per-pixel passes'
+ * path, the context set up only where the frame keeps none. */
+PN_KFN_HOT void pn_pix_surf(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, size_t pix, pn_v3 *Ps,
+                            pn_v3 *n)
+{
+    if (P->pos) {
+        *Ps = pn_v3_load(PN_POOL(const float, pos) + pix * 3u);
+        *n = pn_v3_load(PN_POOL(const float, nrm) + pix * 3u);
+    } else {
+        pn_ksurf S = pn_surf_of(A, P, K);
+        pn_surf_resolve(&S, pix, Ps, n);
+    }
 }
 
 /* ---- G-buffer (pn_raster.h) ------------------------------------------------------------ */
@@ -150,12 +164,12 @@ PN_KFN void pn_e_raster_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
 /* Pixel: RGBA8 bytes r g b a, whatever the device's endianness. */
 PN_KFN void pn_e_shade(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
-    pn_ksurf S = pn_surf_of(A, P, K);
     pn_v3 Ps, ns;
     uint32_t c;
     PN_GLOBAL uint8_t *o = PN_POOL(uint8_t, rgba) + (size_t)pix * 4u;
-    pn_surf_at(&S, pix, &Ps, &ns);
-    c = pn_shade_pixel(&K->view, &K->light, &K->shade, S.tri_id[pix], Ps, ns, PN_POOL(const float, vis)[pix]);
+    pn_pix_surf(A, P, K, pix, &Ps, &ns);
+    c = pn_shade_pixel(&K->view, &K->light, &K->shade, PN_POOL(const uint32_t, tri_id)[pix], Ps, ns,
+                       PN_POOL(const float, vis)[pix]);
     o[0] = (uint8_t)(c & 0xFFu);
     o[1] = (uint8_t)((c >> 8) & 0xFFu);
     o[2] = (uint8_t)((c >> 16) & 0xFFu);

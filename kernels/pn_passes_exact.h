@@ -19,10 +19,7 @@ PN_KFN void pn_pixel_shadow(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
         PN_POOL(float, vis)[pix] = 1.0f;
         return;
     }
-    {
-        pn_ksurf S = pn_surf_of(A, P, K);
-        pn_surf_at(&S, pix, &pos, &nrm);
-    }
+    pn_pix_surf(A, P, K, pix, &pos, &nrm);
 #if PN_ENABLE_RAYTRACE
     if (rays)
         v = pn_raytrace_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),

@@ -49,10 +49,9 @@ PN_KFN void pn_e_occ_init(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
 {
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
     pn_v3 O, Ps, ns;
-    pn_ksurf S = pn_surf_of(A, P, K);
-    uint32_t id = S.tri_id[pix];
+    uint32_t id = PN_POOL(const uint32_t, tri_id)[pix];
     int lit;
-    pn_surf_at(&S, pix, &Ps, &ns);
+    pn_pix_surf(A, P, K, pix, &Ps, &ns);
     lit = id != PN_NO_PIXEL_TRIANGLE && pn_shadow_origin(Ps, ns, &K->light, &O);
     PN_POOL(float, vis)[pix] = (id == PN_NO_PIXEL_TRIANGLE || lit) ? 1.0f : 0.0f;
     c.lit = lit ? 1u : 0u;
@@ -64,9 +63,8 @@ PN_KFN void pn_e_occ_lookup(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
 {
     pn_v3 O, Ps, ns;
     float I;
-    pn_ksurf S = pn_surf_of(A, P, K);
-    if (S.tri_id[pix] == PN_NO_PIXEL_TRIANGLE) return;
-    pn_surf_at(&S, pix, &Ps, &ns);
+    if (PN_POOL(const uint32_t, tri_id)[pix] == PN_NO_PIXEL_TRIANGLE) return;
+    pn_pix_surf(A, P, K, pix, &Ps, &ns);
     if (!pn_shadow_origin(Ps, ns, &K->light, &O)) return;
     if (pn_occ_slice_occlusion(&K->lview, &K->light, &K->occ, PN_POOL(const uint32_t, occ_filt), O, &I) && I > 0.0f)
         PN_POOL(float, vis)[pix] = pn_occ_combine(K->occ.combine, PN_POOL(const float, vis)[pix], I);
@@ -81,10 +79,7 @@ PN_KFN void pn_e_occ_finish(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
     pn_v3 pos, nrm, O;
     pn_horizon H;
     if (id == PN_NO_PIXEL_TRIANGLE) return;
-    {
-        pn_ksurf S = pn_surf_of(A, P, K);
-        pn_surf_at(&S, pix, &pos, &nrm);
-    }
+    pn_pix_surf(A, P, K, pix, &pos, &nrm);
     if (!pn_shadow_origin(pos, nrm, &K->light, &O)) return;
     pn_mask_clear(m);
     pn_horizon_of(pos, nrm, id, PN_POOL(const float, tris), &K->light, &H);

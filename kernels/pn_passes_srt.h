@@ -94,10 +94,9 @@ PN_KFN void pn_e_srt_exact(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kp
 {
     uint32_t pix = PN_POOL(const uint32_t, pip_list)[i];
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
-    pn_ksurf S = pn_surf_of(A, P, K);
     pn_v3 Ps, ns;
-    pn_surf_at(&S, pix, &Ps, &ns);
-    PN_POOL(float, vis)[pix] = pn_reference_pixel(Ps, ns, S.tri_id[pix], PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
+    pn_pix_surf(A, P, K, pix, &Ps, &ns);
+    PN_POOL(float, vis)[pix] = pn_reference_pixel(Ps, ns, PN_POOL(const uint32_t, tri_id)[pix], PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
         PN_POOL(const uint32_t, index), &K->light, &c);
     c.lit = 0u; /* counted by the classification */
     pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);

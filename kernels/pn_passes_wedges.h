@@ -99,10 +99,7 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
         PN_POOL(float, vis)[pix] = 1.0f;
         return;
     }
-    {
-        pn_ksurf S = pn_surf_of(A, P, K);
-        pn_surf_at(&S, pix, &pos, &nrm);
-    }
+    pn_pix_surf(A, P, K, pix, &pos, &nrm);
     if (!pn_shadow_origin(pos, nrm, &K->light, &O)) {
         PN_POOL(float, vis)[pix] = 0.0f;
         return;

@@ -675,31 +675,38 @@ typedef struct pn_ksurf {
     PN_CONST float *nrm;
 } pn_ksurf;
 
-/* Pixel pix's unit normal (zero for a background pixel). */
-PN_KFN pn_v3 pn_surf_normal(const pn_ksurf *S, size_t pix)
+/* Pixel pix's position and unit normal from its depth and triangle (zero for a background
+ * pixel): the path of a frame that keeps none, out of line so that the stored path below
+ * stays small where it is inlined. */
+PN_KFN_COLD void pn_surf_resolve(const pn_ksurf *S, size_t pix, pn_v3 *P, pn_v3 *n)
 {
-    uint32_t t;
-    if (S->pos) return pn_v3_load(S->nrm + pix * 3u);
-    t = S->tri_id[pix];
-    return t == 0xFFFFFFFFu ? pn_v3_make(0.0f, 0.0f, 0.0f) : pn_tri_unit_normal(S->tris, t);
-}
-
-/* Pixel pix's position and unit normal (zero for a background pixel). */
-PN_KFN void pn_surf_at(const pn_ksurf *S, size_t pix, pn_v3 *P, pn_v3 *n)
-{
-    uint32_t t;
-    if (S->pos) {
-        *P = pn_v3_load(S->pos + pix * 3u);
-        *n = pn_v3_load(S->nrm + pix * 3u);
-        return;
-    }
-    t = S->tri_id[pix];
+    uint32_t t = S->tri_id[pix];
     if (t == 0xFFFFFFFFu) {
         *P = *n = pn_v3_make(0.0f, 0.0f, 0.0f);
         return;
     }
     *n = pn_tri_unit_normal(S->tris, t);
     *P = pn_view_point(S->v, (uint32_t)(pix % S->v->width), (uint32_t)(pix / S->v->width), S->depth[pix]);
+}
+
+/* Pixel pix's position and unit normal (zero for a background pixel). */
+PN_KFN_HOT void pn_surf_at(const pn_ksurf *S, size_t pix, pn_v3 *P, pn_v3 *n)
+{
+    if (S->pos) {
+        *P = pn_v3_load(S->pos + pix * 3u);
+        *n = pn_v3_load(S->nrm + pix * 3u);
+    } else {
+        pn_surf_resolve(S, pix, P, n);
+    }
+}
+
+/* Pixel pix's unit normal (zero for a background pixel). */
+PN_KFN_HOT pn_v3 pn_surf_normal(const pn_ksurf *S, size_t pix)
+{
+    uint32_t t;
+    if (S->pos) return pn_v3_load(S->nrm + pix * 3u);
+    t = S->tri_id[pix];
+    return t == 0xFFFFFFFFu ? pn_v3_make(0.0f, 0.0f, 0.0f) : pn_tri_unit_normal(S->tris, t);
 }
 
 #endif

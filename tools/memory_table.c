@@ -114,17 +114,38 @@ int main(void)
     }
     {
         /* A microcontroller's workload: 1,000 triangles, 160x120, the maps' and the GEARS
-         * grid's limits at 128 (k = 8 costs no arena). */
+         * grid's limits at 128 (k = 8 costs no arena); then with frames that keep no
+         * positions and normals (PN_LIMITS_NO_SURFACE), and with that and GEARS' grid at 32
+         * and its pairs at 1 a pixel, MCSM's map at 64. */
         printf("\nA microcontroller's workload: 1,000 triangles, 160x120, the maps' and GEARS grid's limits at 128 "
-               "(bytes, pn_arena_size):\n\n| algorithm | bytes | of 1 MiB |\n| --- | ---: | ---: |\n");
+               "(bytes, pn_arena_size); then with `flags = PN_LIMITS_NO_SURFACE`; then with that and "
+               "`gears_grid_max = 32`, `gears_pairs = 19200` (1 a pixel), `mc_map_max = 64`:\n\n"
+               "| algorithm | bytes | of 1 MiB | no surface | of 1 MiB | no surface, smaller GEARS grid and pairs, "
+               "MCSM map | of 1 MiB |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
         for (a = first; a <= PN_ALGO_COUNT; a++) {
-            int algo = a == PN_ALGO_COUNT ? -1 : a;
-            pn_limits l = limits(1000, 160, 120, algo);
-            size_t bytes;
+            int algo = a == PN_ALGO_COUNT ? -1 : a, v;
             if (algo >= 0 && !(pn_build_info() & (1u << algo))) continue;
-            l.srt_map_max = l.occ_map_max = l.mc_map_max = l.gears_grid_max = 128;
-            if (pn_arena_size(&l, &bytes) == PN_OK)
-                printf("| %s | %zu | %.2f |\n", name_of(algo), bytes, (double)bytes / 1048576.0);
+            printf("| %s |", name_of(algo));
+            for (v = 0; v < 3; v++) {
+                pn_limits l = limits(1000, 160, 120, algo);
+                size_t bytes;
+                l.srt_map_max = l.occ_map_max = l.mc_map_max = l.gears_grid_max = 128;
+#ifdef PN_LIMITS_NO_SURFACE
+                if (v > 0) l.flags = PN_LIMITS_NO_SURFACE;
+#else
+                if (v > 0) break;
+#endif
+                if (v > 1) {
+                    l.gears_grid_max = 32;
+                    l.gears_pairs = 19200;
+                    l.mc_map_max = 64;
+                }
+                if (pn_arena_size(&l, &bytes) == PN_OK)
+                    printf(" %zu | %.2f |", bytes, (double)bytes / 1048576.0);
+                else
+                    printf(" - | - |");
+            }
+            printf("\n");
         }
     }
     return 0;

@@ -16,7 +16,10 @@
  *   the angle of U about the vertical; vertices (3 each, in [-1, 1)); then one byte per
  *   triangle corner: a vertex index (indices repeat, so edges are shared).
  * The ground quad, when on, is two triangles under the scene; the light is above it and
- * faces down, the camera looks at the origin. */
+ * faces down, the camera looks at the origin.
+ * With the default pair pool, the frame is rendered again on both ports by a context whose
+ * frames keep no positions and normals (PN_LIMITS_NO_SURFACE): the same status, and on
+ * PN_OK the same visibility, RGBA, depth and ids as the full frame. */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -45,7 +48,8 @@ static float num(rd *r)
     return (float)((int32_t)((hi << 8) | lo) - 32768) / 32768.0f;
 }
 
-/* One context and one OpenCL port per pair-pool size, made on first use. */
+/* One context and one OpenCL port per pair-pool size, and one with the default pool whose
+ * frames keep no surfaces (rig 4), made on first use. */
 typedef struct rig {
     void *mem;
     pn_context *ctx;
@@ -54,11 +58,12 @@ typedef struct rig {
 
 static rig *get_rig(uint32_t pool_sel)
 {
-    static rig rigs[4];
-    static const uint32_t pools[4] = {0u, 64u, 12u, 3u};
+    static rig rigs[5];
+    static const uint32_t pools[5] = {0u, 64u, 12u, 3u, 0u};
     rig *r = &rigs[pool_sel];
     if (!r->ctx) {
         pn_limits lim = {MAX_T, MAX_W, MAX_H, pools[pool_sel], 64u, 64u, 64u, 64u, 0u, 0u, 0u, 0u}; /* light-space maps: 64^2 at most */
+        if (pool_sel == 4u) lim.flags = PN_LIMITS_NO_SURFACE;
         size_t bytes;
         pn_status st;
         FUZZ_CHECK(pn_arena_size(&lim, &bytes) == PN_OK, "arena size");
@@ -81,7 +86,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     uint32_t i;
     (void)argc;
     (void)argv;
-    for (i = 0; i < 4u; i++) (void)get_rig(i);
+    for (i = 0; i < 5u; i++) (void)get_rig(i);
     return 0;
 }
 
@@ -95,7 +100,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     rd r = {data, size, 0};
     uint32_t algo = byte(&r) % PN_ALGO_COUNT, flags = byte(&r), k = 4u << (byte(&r) % 4u), grid = 1u + byte(&r) % 64u;
     uint32_t w = 1u + byte(&r) % MAX_W, h = 1u + byte(&r) % MAX_H, nv = 3u + byte(&r) % (MAX_V - 2u);
-    uint32_t nt = 1u + byte(&r) % (MAX_T - 2u), i, q;
+    uint32_t nt = 1u + byte(&r) % (MAX_T - 2u), i, q, j;
     float scale = (flags & 32u) ? 1e-3f : (flags & 64u) ? 1e3f : 1.0f;
     float pos[(MAX_V + 4u) * 3u], ang, su, sv;
     uint32_t idx[MAX_T * 3u];
@@ -150,11 +155,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         nt += 2u;
     }
 
-    s1 = pn_scene_set(rg->ctx, pos, nv, idx, nt);
-    FUZZ_CHECK(s1 == PN_OK, "pn_scene_set: %s", pn_last_error(rg->ctx));
-    if ((flags & 4u) && (grid & 1u))
-        FUZZ_CHECK(pn_scene_set_receivers(rg->ctx, nt - 2u, 2u) == PN_OK, "pn_scene_set_receivers: %s",
-                   pn_last_error(rg->ctx));
+    for (j = 0; j < (rg == get_rig(0u) ? 2u : 1u); j++) { /* the default pool's: its no-surface twin too */
+        pn_context *c = j ? get_rig(4u)->ctx : rg->ctx;
+        s1 = pn_scene_set(c, pos, nv, idx, nt);
+        FUZZ_CHECK(s1 == PN_OK, "pn_scene_set: %s", pn_last_error(c));
+        if ((flags & 4u) && (grid & 1u))
+            FUZZ_CHECK(pn_scene_set_receivers(c, nt - 2u, 2u) == PN_OK, "pn_scene_set_receivers: %s",
+                       pn_last_error(c));
+    }
     pn_frame_options_default(&opt);
     opt.width = w;
     opt.height = h;
@@ -229,6 +237,20 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                        sa_st.wedges.hard_blockers == sb_st.wedges.hard_blockers,
                    "wedge statistics differ: silhouettes %u/%u pairs %llu/%llu", sa_st.wedges.silhouettes,
                    sb_st.wedges.silhouettes, (unsigned long long)sa_st.wedges.pairs, (unsigned long long)sb_st.wedges.pairs);
+    }
+    if (rg == get_rig(0u)) {
+        rig *lean = get_rig(4u);
+        size_t n = (size_t)w * h;
+        pn_frame fl;
+        for (j = 0; j < 2u; j++) {
+            pn_status sl = j ? pn_opencl_render(lean->cl, &cam, &light, &opt, &fl) : pn_render(lean->ctx, &cam, &light, &opt, &fl);
+            FUZZ_CHECK(sl == PN_OK, "no surface, %s port: %s (%s)", j ? "opencl" : "scalar", pn_status_str(sl),
+                       pn_last_error(lean->ctx));
+            FUZZ_CHECK(fl.position == NULL && fl.normal == NULL && memcmp(k_vis, fl.visibility, n * 4u) == 0 &&
+                           memcmp(k_rgba, fl.rgba, n * 4u) == 0 && memcmp(k_depth, fl.depth, n * 4u) == 0 &&
+                           memcmp(k_ids, fl.tri_id, n * 4u) == 0,
+                       "no surface, %s port: the frame differs from the full one's", j ? "opencl" : "scalar");
+        }
     }
     return 0;
 }

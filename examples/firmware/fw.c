@@ -231,8 +231,9 @@ static void put_frame(const char *scene, const pn_frame_options *opt, const char
      * change in their last bits (FMA contraction shows here first). */
     put_str(" gbuffer=");
     put_hex(fnv1a(frame->depth, sizeof(float) * pixels) ^
-            fnv1a(frame->position, 3u * sizeof(float) * pixels) ^
-            fnv1a(frame->normal, 3u * sizeof(float) * pixels));
+            (frame->position ? fnv1a(frame->position, 3u * sizeof(float) * pixels) ^
+                                   fnv1a(frame->normal, 3u * sizeof(float) * pixels)
+                             : 0u)); /* none: PN_LIMITS_NO_SURFACE */
     put_str(" umbra_pixels=");
     put_u32(umbra);
     end_line();
@@ -371,13 +372,15 @@ static int run_spot(void)
 
     /* Sized for this scene and these frames: the two algorithms it runs (limits.algos: no
      * other algorithm's pools, no wedge connectivity), no split BVH references (the
-     * default). */
+     * default), frames that keep no positions and normals (24 bytes a pixel: the passes
+     * recompute them, the same bytes). */
     memset(&lim, 0, sizeof lim);
     lim.max_triangles = pn_fw_spot_triangle_count;
     lim.max_width = FW_SPOT_WIDTH;
     lim.max_height = FW_SPOT_HEIGHT;
     lim.mc_map_max = FW_SPOT_MC_MAP;
     lim.algos = PN_BUILD_REFERENCE | PN_BUILD_MCSM;
+    lim.flags = PN_LIMITS_NO_SURFACE;
 
     if (open_context("spot", &lim, &ctx) != 0)
         return -1;

@@ -547,11 +547,13 @@ pn_status pn_render(pn_context *ctx, const pn_camera *camera, const pn_light *li
  * geometric normal normals[3i..3i+2] (the triangle's, wound as the scene winds it; |n|
  * within 1e-3 of 1), or 1 for tri_ids[i] = PN_NO_TRIANGLE, computed as a frame computes a
  * pixel's. opt gives the algorithm, k, eps and the algorithm's options, and the shape of a
- * batch: the points are taken width x height at a time, point i of a batch standing where
- * pixel (i % width, i / width) stands in a frame (within the context's limits; G-buffer,
- * output and shading fields are not read). So at a frame's own pixels (its position,
- * normal and tri_id, in order, with the frame's options) out is the frame's visibility bit
- * for bit; a map-based algorithm fits its maps to each batch's points. Algorithms: the
+ * batch: the points are taken width x height at a time (width x ceil(height / 4) in a
+ * context whose limits set PN_LIMITS_NO_SURFACE), point i of a batch standing where pixel
+ * (i % width, i / width) stands in a frame (within the context's limits; G-buffer, output
+ * and shading fields are not read). So at a frame's own pixels (its position, normal and
+ * tri_id, in order, with the frame's options) out is the frame's visibility bit for bit
+ * (for a map-based algorithm, when one batch holds them all); a map-based algorithm fits
+ * its maps to each batch's points. Algorithms: the
  * reference, GEARS, ray tracing, SRT, the occlusion textures and MCSM (its screen-space
  * blur is not run; layers 1 or 2); the wedges, which work in a camera's screen tiles, and
  * MCSM's third layer (the eye's depth) return PN_E_UNSUPPORTED. Statuses: those of

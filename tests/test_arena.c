@@ -141,12 +141,31 @@ static void test_algos(void)
     }
 }
 
+/* PN_LIMITS_NO_SURFACE: each algorithm's context costs at least 20 of the 24 bytes a pixel
+ * of positions and normals less (a point query's batch, a quarter of the rows with its
+ * surfaces, fits in what is left). */
+static void test_no_surface(void)
+{
+    uint32_t a, built = pn_build_info() & ((1u << PN_ALGO_COUNT) - 1u);
+    for (a = 0; a < PN_ALGO_COUNT; a++) {
+        pn_limits l = lim3(1000, 64, 64), lean;
+        size_t full = 0, less = 0;
+        if (!(built & (1u << a))) continue;
+        l.algos = 1u << a;
+        lean = l;
+        lean.flags = PN_LIMITS_NO_SURFACE;
+        REQUIRE(pn_arena_size(&l, &full) == PN_OK && pn_arena_size(&lean, &less) == PN_OK);
+        CHECK_MSG(less + 20u * 64u * 64u <= full, "%s: %zu without surfaces, %zu with", pn_algo_name((pn_algo)a), less,
+                  full);
+    }
+}
+
 static void test_bad_limits(void)
 {
     size_t bytes = 12345;
-    pn_limits l[9];
+    pn_limits l[10];
     int i;
-    for (i = 0; i < 9; i++) l[i] = lim3(10, 10, 10);
+    for (i = 0; i < 10; i++) l[i] = lim3(10, 10, 10);
     l[0].max_triangles = 0;
     l[1].max_width = 0;
     l[2].max_height = PN_MAX_HEIGHT + 1u;
@@ -156,11 +175,12 @@ static void test_bad_limits(void)
     l[6].mc_map_max = PN_MCSM_MAP_MAX + 1u;
     l[7].mc_map_max = 7;
     l[8].wg_pairs = PN_WEDGES_PAIRS + 1u;
-    static const uint32_t owner[9] = {0, 0, 0, 0, PN_BUILD_GEARS, PN_BUILD_GEARS, PN_BUILD_MCSM, PN_BUILD_MCSM,
-                                      PN_BUILD_WEDGES};
+    l[9].flags = PN_LIMITS_NO_SURFACE << 1; /* a flag the library does not know */
+    static const uint32_t owner[10] = {0, 0, 0, 0, PN_BUILD_GEARS, PN_BUILD_GEARS, PN_BUILD_MCSM, PN_BUILD_MCSM,
+                                       PN_BUILD_WEDGES, 0};
     CHECK(pn_arena_size(NULL, &bytes) == PN_E_INVALID_ARG);
     CHECK(pn_arena_size(&l[0], NULL) == PN_E_INVALID_ARG);
-    for (i = 0; i < 9; i++) {
+    for (i = 0; i < 10; i++) {
         /* An algorithm's own field is checked by its module, and ignored in a build
          * without it. */
         if (owner[i] && !(pn_build_info() & owner[i])) {
@@ -277,6 +297,7 @@ int main(void)
     RUN(test_bytes_max_tight);
     RUN(test_algos);
     RUN(test_bad_limits);
+    RUN(test_no_surface);
     RUN(test_too_small_and_guard);
     RUN(test_static_arena);
     RUN(test_two_contexts);

@@ -162,7 +162,8 @@ typedef struct pn_kwg {
                          pixel's shadow origin may take: the scene box's, widened */
     uint32_t bx0, by0, bx1, by1; /* the band of tiles a binning pass fills: [bx0, bx1) x [by0, by1) */
     uint32_t pix0;    /* the pixel pass: its first pixel (item i is pixel pix0 + i) */
-    uint32_t pad0, pad1;
+    uint32_t count_rows; /* 1: the count pass also adds each tile row's pairs (the band planner's) */
+    uint32_t pad1;
 } pn_kwg;
 
 /* The G-buffer's triangle id of a pixel that sees no triangle. */

@@ -58,18 +58,20 @@ PN_KFN void pn_e_wg_tile_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
     pn_wg_tile_box(&K->view, &K->light, t % K->wg.tiles_x, t / K->wg.tiles_x, &S, PN_POOL(float, wg_tbox) + (size_t)t * PN_WG_BOX);
 }
 
-/* Silhouette: the count of its (tile, silhouette) pairs in the band. */
+/* Silhouette: the count of its (tile, silhouette) pairs in the band (with wg.count_rows,
+ * also added to each tile row's: wg_rowc, zeroed first). */
 PN_KFN void pn_e_wg_count(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t s)
 {
     PN_POOL(uint32_t, wg_poff)[s] = pn_wg_bin(&K->view, &K->light, &K->wg, PN_POOL(const float, tris), PN_POOL(const pn_wsil, wg_sil),
-                                              PN_POOL(const float, wg_tbox), s, 0u, 0, PN_POOL(uint32_t, wg_pairs));
+                                              PN_POOL(const float, wg_tbox), s, 0u, PN_WG_BIN_COUNT, PN_POOL(uint32_t, wg_rowc));
 }
 
 /* Silhouette: its (tile, silhouette) pairs in the band from its prefix-summed offset. */
 PN_KFN void pn_e_wg_scatter(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t s)
 {
     (void)pn_wg_bin(&K->view, &K->light, &K->wg, PN_POOL(const float, tris), PN_POOL(const pn_wsil, wg_sil),
-                    PN_POOL(const float, wg_tbox), s, PN_POOL(const uint32_t, wg_poff)[s], 1, PN_POOL(uint32_t, wg_pairs));
+                    PN_POOL(const float, wg_tbox), s, PN_POOL(const uint32_t, wg_poff)[s], PN_WG_BIN_WRITE,
+                    PN_POOL(uint32_t, wg_pairs));
 }
 
 /* Screen tile: the ends of its list's runs and objects (into the pair pool, free after the

@@ -481,10 +481,14 @@ PN_KFN int pn_wg_box_misses(PN_CONST float *B, PN_CONST pn_wsil *e)
 
 /* Silhouette s's (tile, s) pairs in the band [K->wg.bx0, bx1) x [by0, by1) of tiles: those
  * its reach covers and whose box (pn_wg_box_misses) it does not miss, in ascending tile
- * order. Counted (pairs 0: returns the count) or written from `at` on; both build the same
- * reach with the same arithmetic, so they agree. */
+ * order. Counted (mode PN_WG_BIN_COUNT: returns the count and, with G->count_rows, adds
+ * each tile row's into pairs[row], atomically: the band planner's counts) or written from
+ * `at` on (PN_WG_BIN_WRITE); both build the same reach with the same arithmetic, so they
+ * agree. */
+#define PN_WG_BIN_COUNT 0
+#define PN_WG_BIN_WRITE 1
 PN_KFN uint32_t pn_wg_bin(const pn_kview *v, const pn_klight *L, const pn_kwg *G, PN_CONST float *tris, PN_CONST pn_wsil *sil,
-                          PN_CONST float *tbox, uint32_t s, uint32_t at, int write, PN_GLOBAL uint32_t *pairs)
+                          PN_CONST float *tbox, uint32_t s, uint32_t at, int mode, PN_GLOBAL uint32_t *pairs)
 {
     uint32_t tw = PN_WG_TILES(v->width), x, y, x0, x1, ya, yb, n = 0u;
     PN_CONST pn_wsil *e = sil + s;
@@ -497,17 +501,19 @@ PN_KFN uint32_t pn_wg_bin(const pn_kview *v, const pn_klight *L, const pn_kwg *G
     pn_wg_ends(tris, e->h, &a, &b);
     pn_wg_reach(v, L, G->hmax, a, b, 1, &R);
     for (y = ya; y < yb; y++) {
+        uint32_t n0 = n;
         pn_wg_row(v, &R, y, &x0, &x1);
         if (x0 < G->bx0) x0 = G->bx0;
         if (x1 + 1u > G->bx1) x1 = G->bx1 - 1u;
         for (x = x0; x <= x1 && x0 <= x1; x++) {
             if (pn_wg_box_misses(tbox + (size_t)(y * tw + x) * PN_WG_BOX, e)) continue;
-            if (write) {
+            if (mode == PN_WG_BIN_WRITE) {
                 pairs[2u * (at + n)] = y * tw + x;
                 pairs[2u * (at + n) + 1u] = s;
             }
             n++;
         }
+        if (mode == PN_WG_BIN_COUNT && G->count_rows && n > n0) pn_katomic_add(&pairs[y], n - n0);
     }
     return n;
 }

@@ -118,6 +118,7 @@ typedef struct pn_wg_pools {
     uint32_t *sorted; /* [pair_cap] silhouettes by tile */
     uint32_t *toff;   /* [tiles + 1] */
     uint32_t *tscr;   /* [tiles] sort scratch */
+    uint32_t *rowc;   /* [tile rows] pairs a tile row needs (the band planner's) */
 } pn_wg_pools;
 
 /* The frame's pools at w x h for `tris` triangles of `edges` edges: run by the frame on
@@ -137,6 +138,7 @@ static void pn_wg_carve(pn_carver *c, const pn_limits *l, uint32_t w, uint32_t h
     s->sorted = (uint32_t *)pn_pool(c, pn_wg_pairs_max(l), 4u, "wedges tile lists");
     s->toff = (uint32_t *)pn_pool(c, (uint64_t)tiles + 1u, 4u, "wedges tile offsets");
     s->tscr = (uint32_t *)pn_pool(c, tiles, 4u, "wedges sort scratch");
+    s->rowc = (uint32_t *)pn_pool(c, PN_WG_TILES(h), 4u, "wedges tile row pairs");
 }
 
 void pn_wedges_query(pn_carver *c, const pn_limits *l)
@@ -168,6 +170,7 @@ static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
     P->wg_pairs = pn_dev_off(ctx, s->pairs);
     P->wg_sorted = pn_dev_off(ctx, s->sorted);
     P->wg_toff = pn_dev_off(ctx, s->toff);
+    P->wg_rowc = pn_dev_off(ctx, s->rowc);
     ctx->stats.wedges.silhouettes = 0;
     ctx->stats.wedges.pairs = 0;
     ctx->stats.wedges.bands = 0;
@@ -201,7 +204,8 @@ static pn_status pn_wg_band(pn_frame_state *fs, const pn_wg_pools *s, uint32_t t
     uint32_t nsil = fs->K.wg.sils, npairs;
     uint64_t t0 = pn_dev_timestamp(fs), t1;
     pn_status st;
-    if (nsil > 0u && ((st = pn_dev_run(fs, PN_K_WG_COUNT, nsil)) != PN_OK || (st = pn_dev_scan(fs, s->poff, nsil)) != PN_OK ||
+    if (nsil > 0u && ((fs->K.wg.count_rows && (st = pn_dev_fill(fs, s->rowc, PN_WG_TILES(fs->height), 0u)) != PN_OK) ||
+                      (st = pn_dev_run(fs, PN_K_WG_COUNT, nsil)) != PN_OK || (st = pn_dev_scan(fs, s->poff, nsil)) != PN_OK ||
                       (st = pn_dev_to_host(fs, s->poff + nsil, 4u)) != PN_OK))
         return st;
     *need = npairs = nsil > 0u ? s->poff[nsil] : 0u;
@@ -262,6 +266,7 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
     }
     K->wg.tiles_x = tw;
     K->wg.sils = 0u;
+    K->wg.count_rows = th > 1u; /* the first (whole frame's) count: the rows a plan needs */
     K->wg.bx0 = 0u;
     K->wg.by0 = 0u;
     K->wg.bx1 = tw;
@@ -289,13 +294,29 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
     {
         /* Bands of whole tile rows (of tiles of one row when a row alone needs more pairs
          * than the pool holds) whose pairs fit the pool, in order; a band that does not
-         * fit is cut and binned again. Each pixel takes its tile's silhouettes in the same
-         * order whatever the bands, so the bands change no byte. */
-        uint32_t rows = th, cols = tw, need;
+         * fit is cut and binned again. When the whole frame does not fit, its count gave
+         * each tile row's pairs (pn_wg_bin) and every band takes the most rows that fit, so
+         * only a row that alone needs more is cut again. Each pixel takes its
+         * tile's silhouettes in the same order whatever the bands, so the bands change no
+         * byte. */
+        uint32_t rows = th, cols = tw, need, planned = 0u;
         while (K->wg.by0 < th) {
+            if (planned && cols == tw) { /* the most whole rows from by0 whose pairs fit */
+                uint32_t r = K->wg.by0, sum = 0u;
+                while (r < th && (r == K->wg.by0 || (sum <= cap && s.rowc[r] <= cap - sum))) sum += s.rowc[r++];
+                rows = r - K->wg.by0;
+            }
             K->wg.by1 = K->wg.by0 + rows < th ? K->wg.by0 + rows : th;
             K->wg.bx1 = K->wg.bx0 + cols < tw ? K->wg.bx0 + cols : tw;
             if ((st = pn_wg_band(fs, &s, tiles, cap, &need)) != PN_OK) return st;
+            if (need > cap && !planned && rows > 1u) {
+                /* Every tile row's pairs, from the whole frame's count; no later count
+                 * touches them. */
+                planned = 1u;
+                K->wg.count_rows = 0u;
+                if ((st = pn_dev_to_host(fs, s.rowc, (size_t)th * sizeof(uint32_t))) != PN_OK) return st;
+                continue;
+            }
             if (need > cap) {
                 if (rows > 1u) {
                     rows = pn_wg_shrink(rows, need, cap);
@@ -315,7 +336,7 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
             K->wg.bx0 = 0u;
             cols = tw;
             K->wg.by0 = K->wg.by1;
-            if (need <= cap / 2u && rows < th) rows *= 2u; /* sparser rows: try more at once */
+            if (!planned && need <= cap / 2u && rows < th) rows *= 2u; /* sparser rows: try more at once */
         }
     }
     if ((st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_row_counters))) != PN_OK) return st;

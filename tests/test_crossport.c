@@ -597,6 +597,75 @@ static void test_options(void)
     pn_setup_free(&s);
 }
 
+/* The wedges through bands: pair pools of a third of the frame's pairs (bands of tile rows
+ * planned from the rows' counts) and of the fullest tile's pairs (read from the message of
+ * a pool of 2: rows cut into runs of tiles), against the one-band frame, on both ports. */
+static void test_wedge_bands(void)
+{
+    pn_setup s;
+    char err[256], what[256];
+    pn_frame_options o;
+    pn_xframe one;
+    uint64_t pairs;
+    uint32_t pool, tries;
+    if (!(pn_build_info() & PN_BUILD_WEDGES)) return;
+    REQUIRE(pn_setup_load(&s, "spheres", 1, -1, err, sizeof(err)) == 0);
+    REQUIRE(pn_scene_set(g_rig.h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) ==
+            PN_OK);
+    REQUIRE(xframe_init(&one, 96u * 72u));
+    opts(&o, &s, 96, 72, 16, PN_ALGO_WEDGES);
+    REQUIRE(cross(&g_rig, &s.camera, &s.light, &o, "spheres wedges one band") == PN_OK);
+    CHECK(g_rig.a.st.wedges.bands == 1u);
+    pairs = g_rig.a.st.wedges.pairs;
+    memcpy(one.vis, g_rig.a.vis, 96u * 72u * sizeof(float));
+    /* A third of the pairs; then from a pool of 2 up, each failure's count ("one screen
+     * tile needs N") the next pool, until the fullest tile's fits. */
+    for (pool = (uint32_t)(pairs / 3u), tries = 0; tries < 64u; tries++) {
+        pn_xrig small;
+        pn_limits lim;
+        pn_status st;
+        const char *m;
+        memset(&lim, 0, sizeof(lim));
+        lim.max_triangles = s.mesh.triangle_count;
+        lim.max_width = 96;
+        lim.max_height = 72;
+        lim.wg_pairs = pool;
+        if (rig_open(&small, &lim, NULL) != 0) {
+            CHECK_MSG(0, "small-pool rig");
+            rig_close(&small);
+            break;
+        }
+        REQUIRE(pn_scene_set(small.h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices,
+                             s.mesh.triangle_count) == PN_OK);
+        snprintf(what, sizeof(what), "spheres wedges, pool %u of %llu pairs", pool, (unsigned long long)pairs);
+        st = cross(&small, &s.camera, &s.light, &o, what);
+        m = strstr(pn_last_error(small.h.ctx), "one screen tile needs ");
+        if (st == PN_E_POOL_EXHAUSTED && tries > 0u) {
+            uint32_t need = 0u;
+            CHECK_MSG(m && sscanf(m, "one screen tile needs %u", &need) == 1 && need > pool, "%s: %s", what,
+                      pn_last_error(small.h.ctx));
+            rig_close(&small);
+            if (need <= pool) break;
+            pool = need;
+            continue;
+        }
+        CHECK_MSG(st == PN_OK, "%s: %s", what, pn_status_str(st));
+        if (st == PN_OK) {
+            /* five tile rows: a third of the pairs takes at least three bands; the fullest
+             * tile's count, more than five (rows cut into runs of tiles) */
+            CHECK_MSG(small.b.st.wedges.bands >= (tries ? 6u : 3u) && small.b.st.wedges.pairs == pairs,
+                      "%s: %u bands", what, small.b.st.wedges.bands);
+            CHECK_MSG(memcmp(small.b.vis, one.vis, 96u * 72u * sizeof(float)) == 0, "%s: differs from one band", what);
+            fprintf(stderr, "same: %s: %u bands\n", what, small.b.st.wedges.bands);
+        }
+        rig_close(&small);
+        if (tries > 0u) break;
+        pool = 2u;
+    }
+    xframe_free(&one);
+    pn_setup_free(&s);
+}
+
 /* GEARS through tiles: pair pools of a fifth of the frame's pairs (runs of grid rows) and
  * far below one grid row (rows split into runs of cells), against the one-pass frame;
  * and a pool below the largest cell: PN_E_POOL_EXHAUSTED on both ports. */
@@ -890,6 +959,7 @@ int main(void)
     RUN(test_buffer_failure);
     RUN(test_options);
     RUN(test_tiling);
+    RUN(test_wedge_bands);
     RUN(test_scenes);
     RUN(test_update_positions);
     rig_close(&g_rig);

@@ -68,7 +68,7 @@ int pn_wedges_limits_ok(const pn_limits *l) { return l->wg_pairs <= PN_WEDGES_PA
  * PN_WEDGES_SIL_MAX); (tile, silhouette) pairs: limits.wg_pairs, or by default a 32nd of
  * every tile with every silhouette (PN_WG_PAIRS_SHARE; on the 15 built-in and shared
  * scenes at 512x512 a frame needs at most a 78th, thin's 78,585, the tree's 1,476,247 a
- * 181st), at least the silhouette pool (so a tile, which needs at most a pair a
+ * 182nd), at least the silhouette pool (so a tile, which needs at most a pair a
  * silhouette, always fits), at most PN_WEDGES_PAIRS; never more than every tile with
  * every silhouette. */
 static uint32_t pn_wg_tiles_of(uint32_t width, uint32_t height) { return PN_WG_TILES(width) * PN_WG_TILES(height); }

@@ -65,12 +65,14 @@ pn_status pn_wedges_upload(pn_frame_state *fs)
 /* The context's pair pool: 0 (PN_WEDGES_PAIRS) or at most it. */
 int pn_wedges_limits_ok(const pn_limits *l) { return l->wg_pairs <= PN_WEDGES_PAIRS; }
 /* Screen tiles of a frame; silhouettes a context holds (an edge per triangle side, at most
- * PN_WEDGES_SIL_MAX); (tile, silhouette) pairs: limits.wg_pairs, or by default a 32nd of
- * every tile with every silhouette (PN_WG_PAIRS_SHARE; on the 15 built-in and shared
- * scenes at 512x512 a frame needs at most a 78th, thin's 78,585, the tree's 1,476,247 a
- * 182nd), at least the silhouette pool (so a tile, which needs at most a pair a
- * silhouette, always fits), at most PN_WEDGES_PAIRS; never more than every tile with
- * every silhouette. */
+ * PN_WEDGES_SIL_MAX); (tile, silhouette) pairs: limits.wg_pairs, or by default the larger
+ * of a 32nd of every tile with every silhouette slot (PN_WG_PAIRS_SHARE) and 6 pairs a slot
+ * (PN_WG_PAIRS_PER_SIL: small frames, where a wedge's few tiles are a larger share), at most
+ * PN_WEDGES_PAIRS; never more than every tile with every slot. On the 15 built-in and
+ * shared scenes at 64^2, 128^2, 256^2 and 512^2 every frame fits: the most a frame needs is
+ * thin's, a 41st of the product at 256^2 (3.6 pairs a slot at 128^2); the tree needs a
+ * 182nd at 512^2. At least the slots, so a tile, which needs at most a pair a silhouette,
+ * always fits. */
 static uint32_t pn_wg_tiles_of(uint32_t width, uint32_t height) { return PN_WG_TILES(width) * PN_WG_TILES(height); }
 static uint32_t pn_wg_sil_max(const pn_limits *l)
 {
@@ -81,7 +83,7 @@ static uint32_t pn_wg_pairs_max(const pn_limits *l)
 {
     uint64_t most = (uint64_t)pn_wg_tiles_of(l->max_width, l->max_height) * pn_wg_sil_max(l);
     uint64_t cap = most / PN_WG_PAIRS_SHARE;
-    if (cap < pn_wg_sil_max(l)) cap = pn_wg_sil_max(l);
+    if (cap < (uint64_t)PN_WG_PAIRS_PER_SIL * pn_wg_sil_max(l)) cap = (uint64_t)PN_WG_PAIRS_PER_SIL * pn_wg_sil_max(l);
     if (cap > PN_WEDGES_PAIRS) cap = PN_WEDGES_PAIRS;
     if (l->wg_pairs) cap = l->wg_pairs;
     return most < cap ? (uint32_t)most : (uint32_t)cap;

@@ -104,7 +104,7 @@
 
 /* Largest (screen tile, wedge) pair count of one binning pass (12 bytes each; a context
  * holds at most tiles x silhouettes, tiles being 16 x 16 pixels, and by default a 32nd of
- * that, at least the silhouettes: pn_limits.wg_pairs). A frame with more is binned and
+ * that, at least 6 a silhouette: pn_limits.wg_pairs). A frame with more is binned and
  * shaded in bands of tiles, the same bytes; only a tile needing more fails
  * PN_E_POOL_EXHAUSTED, naming it. Range 1024 .. 2^28. */
 #ifndef PN_WEDGES_PAIRS

@@ -130,7 +130,7 @@ typedef struct pn_limits {
     uint32_t wg_pairs;       /* penumbra wedges' (screen tile, wedge) pair pool, at most
                                 PN_WEDGES_PAIRS; 0: a 32nd of every 16x16 tile of
                                 max_width x max_height with every silhouette slot (3 a
-                                triangle, at most PN_WEDGES_SIL_MAX), at least the slots,
+                                triangle, at most PN_WEDGES_SIL_MAX), at least 6 a slot,
                                 at most PN_WEDGES_PAIRS. A frame needing more is binned in
                                 bands of tiles (the same bytes); one tile needing more fails
                                 PN_E_POOL_EXHAUSTED with its count */
@@ -227,8 +227,10 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
     ((r) >= 8192u ? 14u : (r) >= 4096u ? 13u : (r) >= 2048u ? 12u : (r) >= 1024u ? 11u :           \
      (r) >= 512u ? 10u : (r) >= 256u ? 9u : (r) >= 128u ? 8u : (r) >= 64u ? 7u : (r) >= 32u ? 6u :  \
      (r) >= 16u ? 5u : 4u)
-/* The default wedge pair pool's share of every tile with every silhouette (pn_limits.wg_pairs). */
+/* The default wedge pair pool (pn_limits.wg_pairs): the larger of a PN_WG_PAIRS_SHARE-th of
+ * every tile with every silhouette slot and PN_WG_PAIRS_PER_SIL pairs a slot. */
 #define PN_WG_PAIRS_SHARE 32u
+#define PN_WG_PAIRS_PER_SIL 6u
 #if PN_ENABLE_WEDGES
 /* Penumbra-wedge frame pools: per triangle its casting (4) and silhouette slots (12); per
  * silhouette (at most 3 a triangle and PN_WEDGES_SIL_MAX) 96 + 4; per (16 x 16 tile,
@@ -237,7 +239,9 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
 #define PN_WG_TILES_(w, h) ((((size_t)(w) + 15u) / 16u) * (((size_t)(h) + 15u) / 16u))
 #define PN_WG_PAIRS_(t, w, h)                                                                 \
     PN_MIN_(PN_WG_TILES_(w, h) * PN_WG_SIL_(t),                                                \
-            PN_MIN_(PN_MAX_(PN_WG_TILES_(w, h) * PN_WG_SIL_(t) / PN_WG_PAIRS_SHARE, PN_WG_SIL_(t)), (size_t)PN_WEDGES_PAIRS))
+            PN_MIN_(PN_MAX_(PN_WG_TILES_(w, h) * PN_WG_SIL_(t) / PN_WG_PAIRS_SHARE,                \
+                            PN_WG_SIL_(t) * PN_WG_PAIRS_PER_SIL),                                  \
+                    (size_t)PN_WEDGES_PAIRS))
 #define PN_WEDGES_BYTES_MAX(t, w, h)                                                          \
     (PN_POOL_((size_t)(t) * 4u) + PN_POOL_((size_t)(t) * 12u + 4u) + PN_POOL_(PN_WG_SIL_(t) * 96u) + \
      PN_POOL_((PN_WG_SIL_(t) / 16u + 1u) * 24u) + PN_POOL_((PN_WG_SIL_(t) / 128u + 1u) * 24u) + \

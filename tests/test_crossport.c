@@ -597,6 +597,27 @@ static void test_options(void)
     pn_setup_free(&s);
 }
 
+/* A rig for scene s at w x h whose GEARS and wedge pair pools are gears_pairs and wg_pairs
+ * (0: the default), the scene set; 0, or 1 after a failed check (the rig closed). */
+static int small_rig(pn_xrig *r, const pn_setup *s, uint32_t w, uint32_t h, uint32_t gears_pairs, uint32_t wg_pairs)
+{
+    pn_limits lim;
+    memset(&lim, 0, sizeof(lim));
+    lim.max_triangles = s->mesh.triangle_count;
+    lim.max_width = w;
+    lim.max_height = h;
+    lim.gears_pairs = gears_pairs;
+    lim.wg_pairs = wg_pairs;
+    if (rig_open(r, &lim, NULL) != 0 ||
+        pn_scene_set(r->h.ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices, s->mesh.triangle_count) !=
+            PN_OK) {
+        CHECK_MSG(0, "small-pool rig: %s", r->h.ctx ? pn_last_error(r->h.ctx) : "no context");
+        rig_close(r);
+        return 1;
+    }
+    return 0;
+}
+
 /* The wedges through bands: pair pools of a third of the frame's pairs (bands of tile rows
  * planned from the rows' counts) and of the fullest tile's pairs (read from the message of
  * a pool of 2: rows cut into runs of tiles), against the one-band frame, on both ports. */
@@ -622,21 +643,9 @@ static void test_wedge_bands(void)
      * tile needs N") the next pool, until the fullest tile's fits. */
     for (pool = (uint32_t)(pairs / 3u), tries = 0; tries < 64u; tries++) {
         pn_xrig small;
-        pn_limits lim;
         pn_status st;
         const char *m;
-        memset(&lim, 0, sizeof(lim));
-        lim.max_triangles = s.mesh.triangle_count;
-        lim.max_width = 96;
-        lim.max_height = 72;
-        lim.wg_pairs = pool;
-        if (rig_open(&small, &lim, NULL) != 0) {
-            CHECK_MSG(0, "small-pool rig");
-            rig_close(&small);
-            break;
-        }
-        REQUIRE(pn_scene_set(small.h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices,
-                             s.mesh.triangle_count) == PN_OK);
+        if (small_rig(&small, &s, 96, 72, 0u, pool) != 0) break;
         snprintf(what, sizeof(what), "spheres wedges, pool %u of %llu pairs", pool, (unsigned long long)pairs);
         st = cross(&small, &s.camera, &s.light, &o, what);
         m = strstr(pn_last_error(small.h.ctx), "one screen tile needs ");
@@ -697,20 +706,8 @@ static void test_tiling(void)
         pools[2] = max_cell - 1u;            /* below the largest cell */
         for (i = 0; i < 3; i++) {
             pn_xrig small;
-            pn_limits lim;
             pn_status st;
-            memset(&lim, 0, sizeof(lim));
-            lim.max_triangles = s.mesh.triangle_count;
-            lim.max_width = 48;
-            lim.max_height = 48;
-            lim.gears_pairs = pools[i];
-            if (rig_open(&small, &lim, NULL) != 0) {
-                CHECK_MSG(0, "small-pool rig");
-                rig_close(&small);
-                continue;
-            }
-            REQUIRE(pn_scene_set(small.h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices,
-                                 s.mesh.triangle_count) == PN_OK);
+            if (small_rig(&small, &s, 48, 48, pools[i], 0u) != 0) continue;
             snprintf(what, sizeof(what), "spheres GEARS %s light, pool %u of %llu pairs (largest cell %u)",
                      q ? "point" : "area", pools[i], (unsigned long long)pairs, max_cell);
             st = cross(&small, &s.camera, &light, &o, what);

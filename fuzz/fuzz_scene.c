@@ -62,8 +62,12 @@
 #define FILL 0xCD
 #define BIT(s) (1u << (s))
 
+/* The arena's bound at the maxima, the split references, and a GEARS pair pool of up to
+ * 65,535 (limits.gears_pairs, 16 bits of the input) above the default (8 bytes a pair at
+ * most, three pools: the bound below). */
+#define GEARS_POOL_EXTRA (PN_ENABLE_GEARS ? 65535u * 8u + 3u * PN_ARENA_ALIGN : 0u)
 static uint8_t block[GUARD + 64u + PN_ARENA_BYTES_MAX(MAX_T, MAX_W, MAX_H) +
-                     PN_BVH_SPLIT_EXTRA(MAX_T) * PN_BVH_SPLIT_REF_BYTES + GUARD];
+                     PN_BVH_SPLIT_EXTRA(MAX_T) * PN_BVH_SPLIT_REF_BYTES + GEARS_POOL_EXTRA + GUARD];
 
 typedef struct reader { const uint8_t *p; size_t n; } reader;
 static void take(reader *r, void *dst, size_t n)
@@ -408,19 +412,24 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 
     /* Arena: exactly the queried size, at a chosen misalignment, fenced by FILL bytes. */
     FUZZ_CHECK(pn_arena_size(&lim, &bytes) == PN_OK, "pn_arena_size failed");
-    /* The bound of limits (t, w, h), plus each split reference the limits reserve and each
+    /* The bound of limits (t, w, h), plus each split reference the limits reserve, each
      * wedge pair above the default pool (12 bytes, in two pools that may each round one
-     * PN_ARENA_ALIGN further; every other pool at most its default), and what the static
-     * block holds. */
+     * PN_ARENA_ALIGN further) and each GEARS pair above the default pool (4 bytes and its
+     * share of a 24-byte box per 8 and per 64, at most 8, in three pools; every other pool
+     * at most its default), and what the static block holds. */
     {
-        size_t wg_extra = 0u;
+        size_t wg_extra = 0u, gears_extra = 0u;
 #if PN_ENABLE_WEDGES
         size_t wg_default = PN_WG_PAIRS_(lim.max_triangles, lim.max_width, lim.max_height);
         if (lim.wg_pairs > wg_default) wg_extra = (lim.wg_pairs - wg_default) * 12u + 2u * PN_ARENA_ALIGN;
 #endif
+#if PN_ENABLE_GEARS
+        size_t gears_default = PN_GEARS_P_(lim.max_triangles, lim.max_width, lim.max_height);
+        if (lim.gears_pairs > gears_default) gears_extra = (lim.gears_pairs - gears_default) * 8u + 3u * PN_ARENA_ALIGN;
+#endif
         FUZZ_CHECK(bytes <= PN_ARENA_BYTES_MAX(lim.max_triangles, lim.max_width, lim.max_height) +
                                 (lim.bvh_refs > lim.max_triangles ? (size_t)(lim.bvh_refs - lim.max_triangles) : 0u) *
-                                    PN_BVH_SPLIT_REF_BYTES + wg_extra,
+                                    PN_BVH_SPLIT_REF_BYTES + wg_extra + gears_extra,
                    "pn_arena_size %zu above PN_ARENA_BYTES_MAX", bytes);
     }
     FUZZ_CHECK(bytes <= sizeof(block) - 2u * GUARD - 64u, "pn_arena_size %zu beyond the fuzz block", bytes);

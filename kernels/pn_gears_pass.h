@@ -3,17 +3,30 @@
  * steps (grid cameras, tile plan, statistics) is src/pn_gears.c.
  *
  *   per row       origins (visibility start, lit count, box of origins), projected box
- *   per pixel     grid cell of the pixel's origin, and the cell's pixel count
- *   per grid row  the prefix count of its cells that hold pixels
- *   per triangle  cell rectangle on each face; pairs per grid row (tile plan); pairs per
- *                 cell of one grid row (a row split into runs of cells); pair count and
- *                 scatter within a tile
+ *   per pixel     grid cell of the pixel's origin, and that cell's occupancy bit
+ *   per grid row  the prefix count of its cells that hold pixels, a word at a time
+ *   per pixel     (once a face) its cell's pixel count, in the face's own tables
+ *   per triangle  cell rectangle on a face and pairs per grid row (tile plan), a face at
+ *                 a time; pairs per cell of a tile's rows (or of one grid row split into
+ *                 runs of cells), then each into its cell's next slot (a sort of each
+ *                 cell's run between the tile's passes makes the order the raster order)
  *   per superchunk  the boxes of 8 consecutive list entries (a chunk) and of 64 (a
  *                 superchunk), after the sort by cell
  *   per pixel     the mask of the pixel's cell's triangles, chunk by chunk
  *
  * Counts that many work items add to (pixels per cell, pairs per row or cell) use
- * pn_katomic_add: integer sums, the same whatever the order. */
+ * pn_katomic_add: integer sums, the same whatever the order; the occupancy bits
+ * pn_katomic_or, the same; a cell's slots are handed out by pn_katomic_add in any order
+ * and its run sorted after.
+ *
+ * Tables. Per global grid row (face * res + row), for every face: the occupancy bits (a
+ * bit a cell, pn_gears_row_words words a row), their prefix counts (a word a bitmap word,
+ * and the row's total) and the row's pairs. Per cell, for one face at a time (a tile never
+ * spans two): its pixels, the tile's pair offsets and its counts, then cursors, indexed by
+ * the cell within its face. Per triangle its rectangle on that face. Per pair its entry
+ * (4 bytes) and its part of a chunk's and a superchunk's box. Against three tables over
+ * every face's cells, a fourth of prefix counts a word a cell, six rectangles a triangle,
+ * a (cell, entry) pair besides each entry and a count a triangle: docs/bench/MEMORY.md. */
 #ifndef PN_GEARS_PASS_H
 #define PN_GEARS_PASS_H
 
@@ -80,16 +93,24 @@ PN_KFN void pn_gears_project_row(const pn_klight *L, const pn_kgrid *g, uint32_t
     for (i = 0; i < 4u; i++) row_box[(size_t)y * 8u + i] = b[i];
 }
 
-/* Pixel pix: its global cell (face * res^2 + cell) or PN_CELL_NONE, and one more pixel in
- * that cell's count (cell_pix zeroed beforehand). */
+/* Words of a grid row's occupancy bits. */
+PN_KFN uint32_t pn_gears_row_words(uint32_t res) { return (res + 31u) >> 5; }
+
+/* Whether cell x of global grid row r holds a pixel. */
+PN_KFN uint32_t pn_gears_occupied(PN_CONST uint32_t *occ, uint32_t res, uint32_t r, uint32_t x)
+{
+    return (occ[(size_t)r * pn_gears_row_words(res) + (x >> 5)] >> (x & 31u)) & 1u;
+}
+
+/* Pixel pix: its global cell (face * res^2 + cell) or PN_CELL_NONE, and that cell's
+ * occupancy bit set (occ zeroed beforehand). */
 PN_KFN void pn_gears_pixel_cell(const pn_klight *L, PN_CONST pn_kfaces *F, const pn_ksurf *S, size_t pix,
-                                PN_GLOBAL uint32_t *pix_cell,
-                                PN_GLOBAL uint32_t *cell_pix)
+                                PN_GLOBAL uint32_t *pix_cell, PN_GLOBAL uint32_t *occ)
 {
     pn_v3 O;
     pn_kgrid g;
     float px, py;
-    uint32_t f, cell;
+    uint32_t f, in_face, x, r;
     if (!pn_gears_origin(L, S, pix, &O)) {
         pix_cell[pix] = PN_CELL_NONE;
         return;
@@ -97,87 +118,102 @@ PN_KFN void pn_gears_pixel_cell(const pn_klight *L, PN_CONST pn_kfaces *F, const
     f = pn_gears_origin_face(L, O);
     g = F->f[f]; /* the faces live in the arena: a private copy for the helpers */
     pn_grid_project(&g, O, &px, &py);
-    cell = f * F->res * F->res + pn_grid_cell(&g, px, py);
-    pix_cell[pix] = cell;
-    pn_katomic_add(&cell_pix[cell], 1u);
+    in_face = pn_grid_cell(&g, px, py);
+    pix_cell[pix] = f * F->res * F->res + in_face;
+    r = f * F->res + in_face / F->res;
+    x = in_face % F->res;
+    pn_katomic_or(&occ[(size_t)r * pn_gears_row_words(F->res) + (x >> 5)], 1u << (x & 31u));
 }
 
-/* Triangle t: its rectangle of cells on every face (A.3), rects[t * 6 + face]. */
-PN_KFN void pn_gears_tri_rects(PN_CONST pn_kfaces *F, const pn_klight *L, PN_CONST float *tris,
-                               PN_CONST uint8_t *flags, uint32_t t, PN_GLOBAL pn_cellrect *rects)
+/* Pixel pix, if its cell lies on face `face`: one more pixel in that cell's count,
+ * cell_pix[cell within the face] (zeroed beforehand). */
+PN_KFN void pn_gears_face_pixel(PN_CONST uint32_t *pix_cell, uint32_t res, uint32_t face, size_t pix,
+                                PN_GLOBAL uint32_t *cell_pix)
 {
-    uint32_t f;
+    uint32_t cell = pix_cell[pix], cells = res * res;
+    if (cell != PN_CELL_NONE && cell / cells == face) pn_katomic_add(&cell_pix[cell % cells], 1u);
+}
+
+/* Triangle t: its rectangle of cells on face `face` (A.3), rects[t]. */
+PN_KFN void pn_gears_tri_rects(PN_CONST pn_kfaces *F, const pn_klight *L, PN_CONST float *tris,
+                               PN_CONST uint8_t *flags, uint32_t face, uint32_t t, PN_GLOBAL pn_cellrect *rects)
+{
     pn_v3 A, B, C;
+    pn_kgrid g;
     if (flags[t] & PN_TRI_DEGENERATE) {
-        for (f = 0; f < F->n; f++) rects[(size_t)t * 6u + f] = pn_cellrect_empty();
+        rects[t] = pn_cellrect_empty();
         return;
     }
     pn_tri_load(tris, t, &A, &B, &C);
-    for (f = 0; f < F->n; f++) {
-        pn_kgrid g = F->f[f];
-        rects[(size_t)t * 6u + f] = pn_gears_tri_cells(&g, L, A, B, C);
-    }
+    g = F->f[face];
+    rects[t] = pn_gears_tri_cells(&g, L, A, B, C);
 }
 
-/* Global grid row r (face * res + row): row_pre[r * (res + 1) + x] = the cells of the
- * row left of column x that hold pixels, x = 0 .. res. */
-PN_KFN void pn_gears_row_prefix(PN_CONST uint32_t *cell_pix, uint32_t res, uint32_t r, PN_GLOBAL uint32_t *row_pre)
+/* Global grid row r (face * res + row): occ_pre[r * (W + 1) + w] = the cells of the row
+ * in words before w that hold pixels, w = 0 .. W (W = pn_gears_row_words). */
+PN_KFN void pn_gears_row_prefix(PN_CONST uint32_t *occ, uint32_t res, uint32_t r, PN_GLOBAL uint32_t *occ_pre)
 {
-    PN_CONST uint32_t *cp = cell_pix + (size_t)r * res;
-    PN_GLOBAL uint32_t *pre = row_pre + (size_t)r * (res + 1u);
-    uint32_t x, n = 0;
-    for (x = 0; x < res; x++) {
-        pre[x] = n;
-        n += cp[x] != 0u;
+    uint32_t W = pn_gears_row_words(res), w, n = 0;
+    PN_CONST uint32_t *bits = occ + (size_t)r * W;
+    PN_GLOBAL uint32_t *pre = occ_pre + (size_t)r * (W + 1u);
+    for (w = 0; w < W; w++) {
+        pre[w] = n;
+        n += pn_kpopcount(bits[w]);
     }
-    pre[res] = n;
+    pre[W] = n;
+}
+
+/* The cells of global grid row r left of column x (0 .. res) that hold pixels. */
+PN_KFN uint32_t pn_gears_rank(PN_CONST uint32_t *occ, PN_CONST uint32_t *occ_pre, uint32_t res, uint32_t r, uint32_t x)
+{
+    uint32_t W = pn_gears_row_words(res), w = x >> 5, b = x & 31u;
+    uint32_t n = occ_pre[(size_t)r * (W + 1u) + w];
+    if (b) n += pn_kpopcount(occ[(size_t)r * W + w] & ((1u << b) - 1u));
+    return n;
+}
+
+/* The bits x0 .. x1 (x0 <= x1 within one word) of a word. */
+PN_KFN uint32_t pn_gears_bits(uint32_t word, uint32_t x0, uint32_t x1)
+{
+    return word & (0xFFFFFFFFu << (x0 & 31u)) & (0xFFFFFFFFu >> (31u - (x1 & 31u)));
 }
 
 /* Pairs are made only for cells that hold pixels (paper §5.4: cells where no pixel
- * sample projects are discarded). Pairs of rectangle row y, columns [x0, x1]: two reads
- * of the row's prefix (pn_gears_row_prefix) instead of a walk over the columns (the
- * dragon at 512x512: the walks of the row-pairs and count passes were 5% of the run). */
-PN_KFN uint32_t pn_gears_row_count(PN_CONST uint32_t *row_pre, uint32_t res, uint32_t face, uint32_t y, uint32_t x0,
-                                   uint32_t x1)
+ * sample projects are discarded). Pairs of rectangle row y, columns [x0, x1]: the set bits
+ * of the row's occupancy there, by one word's count when the columns lie in one word,
+ * else two ranks (pn_gears_row_prefix), instead of a walk over the columns (the dragon at
+ * 512x512: the walks of the row-pairs and count passes were 5% of the run). */
+PN_KFN uint32_t pn_gears_row_count(PN_CONST uint32_t *occ, PN_CONST uint32_t *occ_pre, uint32_t res, uint32_t face,
+                                   uint32_t y, uint32_t x0, uint32_t x1)
 {
-    PN_CONST uint32_t *pre = row_pre + ((size_t)face * res + y) * (res + 1u);
-    return pre[x1 + 1u] - pre[x0];
+    uint32_t r = face * res + y;
+    if (x0 >> 5 == x1 >> 5)
+        return pn_kpopcount(pn_gears_bits(occ[(size_t)r * pn_gears_row_words(res) + (x0 >> 5)], x0, x1));
+    return pn_gears_rank(occ, occ_pre, res, r, x1 + 1u) - pn_gears_rank(occ, occ_pre, res, r, x0);
 }
 
-/* Triangle t: its pairs added to each global grid row (face * res + row) it covers, as a
+/* Triangle t: its pairs added to each grid row of face `face` (global row face * res +
+ * row) it covers, as a
  * 64-bit count in two words (low, high) per row: row_pairs[2 r], row_pairs[2 r + 1].
  * The carry goes with the add that wrapped the low word, so the sum is exact in any order. */
-PN_KFN void pn_gears_tri_row_pairs(PN_CONST pn_kfaces *F, PN_CONST pn_cellrect *rects, PN_CONST uint32_t *row_pre,
-                                   uint32_t t, PN_GLOBAL uint32_t *row_pairs)
+PN_KFN void pn_gears_tri_row_pairs(uint32_t res, PN_CONST pn_cellrect *rects, PN_CONST uint32_t *occ,
+                                   PN_CONST uint32_t *occ_pre, uint32_t face, uint32_t t, PN_GLOBAL uint32_t *row_pairs)
 {
-    uint32_t f, y;
-    for (f = 0; f < F->n; f++) {
-        pn_cellrect rc = rects[(size_t)t * 6u + f];
-        if (pn_cellrect_is_empty(rc)) continue;
-        for (y = rc.lo >> 16; y <= rc.hi >> 16; y++) {
-            uint32_t n = pn_gears_row_count(row_pre, F->res, f, y, rc.lo & 0xFFFFu, rc.hi & 0xFFFFu);
-            PN_GLOBAL uint32_t *w = row_pairs + 2u * ((size_t)f * F->res + y);
-            if (n != 0u && pn_katomic_add(&w[0], n) > 0xFFFFFFFFu - n) pn_katomic_add(&w[1], 1u);
-        }
+    uint32_t y;
+    pn_cellrect rc = rects[t];
+    if (pn_cellrect_is_empty(rc)) return;
+    for (y = rc.lo >> 16; y <= rc.hi >> 16; y++) {
+        uint32_t n = pn_gears_row_count(occ, occ_pre, res, face, y, rc.lo & 0xFFFFu, rc.hi & 0xFFFFu);
+        PN_GLOBAL uint32_t *w = row_pairs + 2u * ((size_t)face * res + y);
+        if (n != 0u && pn_katomic_add(&w[0], n) > 0xFFFFFFFFu - n) pn_katomic_add(&w[1], 1u);
     }
-}
-
-/* Triangle t: its pairs in each cell of grid row ry of face `face`, added to counts[x]. */
-PN_KFN void pn_gears_tri_row_cells(PN_CONST pn_cellrect *rects, PN_CONST uint32_t *cell_pix, uint32_t res,
-                                   uint32_t face, uint32_t ry, uint32_t t, PN_GLOBAL uint32_t *counts)
-{
-    pn_cellrect rc = rects[(size_t)t * 6u + face];
-    uint32_t x;
-    if (pn_cellrect_is_empty(rc) || ry < (rc.lo >> 16) || ry > (rc.hi >> 16)) return;
-    for (x = rc.lo & 0xFFFFu; x <= (rc.hi & 0xFFFFu); x++)
-        if (cell_pix[((size_t)face * res + ry) * res + x] != 0u) pn_katomic_add(&counts[x], 1u);
 }
 
 /* Triangle t's rectangle on the tile's face, clipped to the tile; 0 if nothing is left. */
 PN_KFN int pn_gears_tile_rect(PN_CONST pn_cellrect *rects, uint32_t t, const pn_ktile *tl, uint32_t *x0, uint32_t *y0,
                               uint32_t *x1, uint32_t *y1)
 {
-    pn_cellrect rc = rects[(size_t)t * 6u + tl->face];
+    pn_cellrect rc = rects[t];
     if (pn_cellrect_is_empty(rc)) return 0;
     *x0 = rc.lo & 0xFFFFu;
     *y0 = rc.lo >> 16;
@@ -190,31 +226,63 @@ PN_KFN int pn_gears_tile_rect(PN_CONST pn_cellrect *rects, uint32_t t, const pn_
     return *x0 <= *x1 && *y0 <= *y1;
 }
 
-/* Triangle t: how many pairs it makes in the tile. */
-PN_KFN uint32_t pn_gears_tri_count(PN_CONST pn_cellrect *rects, PN_CONST uint32_t *row_pre, uint32_t res,
-                                   const pn_ktile *tl, uint32_t t)
+/* Triangle t: its rectangle in the tile, as a difference per grid row: +1 at its first
+ * column, -1 (a wrapping add) after its last, into counts[cell within the face] (zeroed
+ * beforehand); pn_gears_cell_row turns a row of those into each cell's pairs. */
+PN_KFN void pn_gears_tri_diff(PN_CONST pn_cellrect *rects, uint32_t res, const pn_ktile *tl, uint32_t t,
+                              PN_GLOBAL uint32_t *counts)
 {
-    uint32_t x0, y0, x1, y1, y, n = 0;
-    if (pn_gears_tile_rect(rects, t, tl, &x0, &y0, &x1, &y1))
-        for (y = y0; y <= y1; y++) n += pn_gears_row_count(row_pre, res, tl->face, y, x0, x1);
-    return n;
+    uint32_t x0, y0, x1, y1, y;
+    if (!pn_gears_tile_rect(rects, t, tl, &x0, &y0, &x1, &y1)) return;
+    for (y = y0; y <= y1; y++) {
+        pn_katomic_add(&counts[y * res + x0], 1u);
+        if (x1 + 1u < res) pn_katomic_add(&counts[y * res + x1 + 1u], 0xFFFFFFFFu);
+    }
 }
 
-/* Triangle t: its pairs (global cell, v) in row-major cell order from pair index `o` on
- * (its exclusive prefix sum of the counts); v is t's raster position, the key the sort
- * orders each cell's entries by. */
-PN_KFN void pn_gears_tri_scatter(PN_CONST pn_cellrect *rects, PN_CONST uint32_t *cell_pix, uint32_t res,
-                                 const pn_ktile *tl, uint32_t t, uint32_t v, uint32_t o, PN_GLOBAL uint32_t *pairs)
+/* Grid row y of the tile's face: the running sum of its differences (pn_gears_tri_diff),
+ * the triangles whose rectangles cover each cell, kept where the cell holds pixels (its
+ * pairs), else 0; in place. */
+PN_KFN void pn_gears_cell_row(PN_CONST uint32_t *occ, uint32_t res, const pn_ktile *tl, uint32_t y,
+                              PN_GLOBAL uint32_t *counts)
 {
-    uint32_t x0, y0, x1, y1, x, y, base = tl->face * res * res;
+    uint32_t x, run = 0u;
+    PN_GLOBAL uint32_t *c = counts + (size_t)y * res;
+    for (x = 0; x < res; x++) {
+        run += c[x];
+        c[x] = pn_gears_occupied(occ, res, tl->face * res + y, x) ? run : 0u;
+    }
+}
+
+/* Triangle t, raster position v: v into the next slot of each cell of the tile that it
+ * covers and that holds pixels (cursors: the cells' next free slots, from their exclusive
+ * prefix sum on). The slots a cell's entries get depend on the order the work items ran
+ * in; the sort of each cell's run (PN_DEV_SORT_RUNS) that follows makes it the one
+ * ascending order (raster order). */
+PN_KFN void pn_gears_tri_scatter(PN_CONST pn_cellrect *rects, PN_CONST uint32_t *occ, uint32_t res, const pn_ktile *tl,
+                                 uint32_t t, uint32_t v, PN_GLOBAL uint32_t *cursors, PN_GLOBAL uint32_t *sorted)
+{
+    uint32_t x0, y0, x1, y1, y, w, w0, w1, m0, m1, W = pn_gears_row_words(res);
+    PN_CONST uint32_t *row;
+    PN_GLOBAL uint32_t *cur;
     if (!pn_gears_tile_rect(rects, t, tl, &x0, &y0, &x1, &y1)) return;
-    for (y = y0; y <= y1; y++)
-        for (x = x0; x <= x1; x++) {
-            uint32_t cell = base + y * res + x;
-            if (!cell_pix[cell]) continue;
-            pairs[(size_t)o * 2u] = cell;
-            pairs[(size_t)o * 2u + 1u] = v;
-            o++;
+    /* The rectangle's part of each row's occupancy, a word at a time, its cells with
+     * pixels by their highest bit first (the order within a triangle does not matter: it
+     * adds one entry to each cell). */
+    w0 = x0 >> 5;
+    w1 = x1 >> 5;
+    m0 = 0xFFFFFFFFu << (x0 & 31u);
+    m1 = 0xFFFFFFFFu >> (31u - (x1 & 31u));
+    row = occ + (size_t)(tl->face * res + y0) * W;
+    cur = cursors + (size_t)y0 * res;
+    for (y = y0; y <= y1; y++, row += W, cur += res)
+        for (w = w0; w <= w1; w++) {
+            uint32_t bits = row[w] & (w == w0 ? m0 : 0xFFFFFFFFu) & (w == w1 ? m1 : 0xFFFFFFFFu);
+            while (bits) {
+                uint32_t b = 31u - pn_kclz(bits);
+                bits ^= 1u << b;
+                sorted[pn_katomic_add(&cur[w * 32u + b], 1u)] = v;
+            }
         }
 }
 
@@ -282,7 +350,7 @@ PN_KFN void pn_gears_boxes4(PN_CONST float *boxes, uint32_t first, uint32_t last
  * `exact`): its triangles into mask m by pn_tris_block4, with their boxes against the
  * frustum first (the reference's conservative test). Returns 1 when the mask is full
  * (never with `exact`). */
-PN_KFN uint32_t pn_gears_chunk_mask(uint32_t q, pn_rect rc, uint32_t e0, uint32_t e1, uint32_t own,
+PN_KFN_HOT uint32_t pn_gears_chunk_mask(uint32_t q, pn_rect rc, uint32_t e0, uint32_t e1, uint32_t own,
                                     PN_CONST uint32_t *sorted, PN_CONST float *tris, uint32_t exact,
                                     const pn_frustum *fr, const pn_foot *fp, pn_v3 O, const pn_klight *L,
                                     const pn_ray_origin *X, pn_ray_cache *RC, uint32_t *m, uint32_t *any,
@@ -323,15 +391,17 @@ PN_KFN uint32_t pn_gears_queue_mask(const uint32_t *qs, uint32_t nq, const float
     return 0u;
 }
 
+/* Whether global cell `cell` is in the tile: a tile is a run of whole grid rows of one
+ * face, or a run of cells of one row (src/pn_gears.c's plan), so its cells are the global
+ * cells from (face, r0, x0) to (face, r1, x1) in row-major order, one compare. */
 PN_KFN int pn_gears_in_tile(const pn_ktile *tl, uint32_t res, uint32_t cell)
 {
-    uint32_t cells = res * res, f = cell / cells, in_face = cell % cells;
-    uint32_t y = in_face / res, x = in_face % res;
-    return f == tl->face && y >= tl->r0 && y <= tl->r1 && x >= tl->x0 && x <= tl->x1;
+    uint32_t lo = (tl->face * res + tl->r0) * res + tl->x0, hi = (tl->face * res + tl->r1) * res + tl->x1;
+    return cell - lo <= hi - lo;
 }
 
 /* Pixel pix, if its cell is in the tile: the mask of the cell's triangles
- * sorted[cell_off[cell] .. cell_off[cell + 1]) (in raster order), stopping at a full mask
+ * sorted[cell_off[c] .. cell_off[c + 1]) (in raster order; c the cell within its face), stopping at a full mask
  * unless `exact`; returns 1 and the visibility in *vis_out, else 0. A superchunk or a
  * chunk of the list (PN_GEARS_SUPER, PN_GEARS_CHUNK) whose box is outside the pixel's
  * light frustum, or (unless `exact`, and once a sample is blocked) whose footprint holds
@@ -370,6 +440,7 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
     pn_foot_make(O, L, &fp);
     pn_tri_block_origin(O, L, wnodes, &X);
     pn_ray_cache_clear(&RC);
+    cell -= tl->face * res * res;
     e0 = cell_off[cell];
     e1 = cell_off[cell + 1u];
     /* The superchunks of the list, four at a time against the frustum and (once a sample

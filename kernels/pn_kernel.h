@@ -14,6 +14,7 @@
  *   pn_katomic_add(p, v)   32-bit unsigned atomic add into the arena, returns the old value:
  *               for order-independent reductions (counts, histograms) only, never for
  *               anything whose result depends on which work item came first
+ *   pn_katomic_or(p, v)    32-bit atomic or into the arena (bit sets: order-independent)
  *   pn_katomic_imin(p, v), pn_katomic_imax(p, v)   32-bit signed atomic min / max into the
  *               arena, return the old value: order-independent; on the bits of floats
  *               that are >= 0 or -inf (pn_kfbits) the signed order is the floats' order
@@ -41,6 +42,7 @@ typedef ulong uint64_t;
 #define pn_kfabs(x) fabs(x)
 #define PN_KINF INFINITY
 #define pn_katomic_add(p, v) atomic_add((p), (v))
+#define pn_katomic_or(p, v) atomic_or((p), (v))
 #define pn_katomic_imin(p, v) atomic_min((p), (v))
 #define pn_katomic_imax(p, v) atomic_max((p), (v))
 #define pn_kclz(x) clz((uint)(x))
@@ -76,6 +78,7 @@ typedef ulong uint64_t;
  * library call, so it stays freestanding. Relaxed: only the sum matters, and the caller's
  * parallel-for joins before anything reads it. */
 #define pn_katomic_add(p, v) __atomic_fetch_add((p), (v), __ATOMIC_RELAXED)
+#define pn_katomic_or(p, v) __atomic_fetch_or((p), (v), __ATOMIC_RELAXED)
 /* Min (up = 0) or max (up = 1) by compare-and-swap (the same builtins): the old value. */
 PN_KFN int32_t pn_katomic_iext(int32_t *p, int32_t v, int up)
 {

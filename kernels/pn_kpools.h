@@ -16,7 +16,7 @@ typedef struct pn_kpools {
     /* frame: G-buffer, outputs, scratch */
     uint64_t depth, tri_id, pos, nrm, vis, rgba, rows, chunks, counters;
     /* frame: GEARS (src/pn_gears.c) */
-    uint64_t faces, rects, tri_off, pix_cell, row_box, cell_off, cell_pix, row_pre, cell_cur, row_pairs, pairs, sorted, chunk_box, super_box;
+    uint64_t faces, rects, pix_cell, row_box, cell_off, cell_pix, cell_bits, cell_rank, cell_cur, row_pairs, sorted, chunk_box, super_box;
     /* frame: the light view's row bounds (SRT, occlusion textures) */
     uint64_t lview_box;
     /* frame: occlusion textures (src/pn_occtex.c) */

@@ -24,61 +24,68 @@ PN_KFN void pn_e_gears_project(PN_GLOBAL uint8_t *A, const pn_kpools *P, const p
     pn_gears_project_row(&K->light, &g, K->view.width, y, &S, PN_POOL(float, row_box));
 }
 
-/* Pixel: its global cell, and one more pixel in that cell (cell_pix zeroed first). */
+/* Pixel: its global cell, and that cell's occupancy bit (cell_bits zeroed first). */
 PN_KFN void pn_e_gears_pixel_cells(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
     pn_ksurf S = pn_surf_of(A, P, K);
     pn_gears_pixel_cell(&K->light, PN_POOL(const pn_kfaces, faces), &S, pix, PN_POOL(uint32_t, pix_cell),
+                        PN_POOL(uint32_t, cell_bits));
+}
+
+/* Pixel on face tile.face: one more pixel in its cell (the face's cell_pix zeroed first). */
+PN_KFN void pn_e_gears_face_pixels(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+{
+    pn_gears_face_pixel(PN_POOL(const uint32_t, pix_cell), PN_POOL(const pn_kfaces, faces)->res, K->tile.face, pix,
                         PN_POOL(uint32_t, cell_pix));
 }
 
-/* Global grid row: its prefix count of cells with pixels (row_pre). */
+/* Global grid row: the prefix counts of its occupancy bits (cell_rank). */
 PN_KFN void pn_e_gears_row_prefix(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
 {
     (void)K;
-    pn_gears_row_prefix(PN_POOL(const uint32_t, cell_pix), PN_POOL(const pn_kfaces, faces)->res, r,
-                        PN_POOL(uint32_t, row_pre));
+    pn_gears_row_prefix(PN_POOL(const uint32_t, cell_bits), PN_POOL(const pn_kfaces, faces)->res, r,
+                        PN_POOL(uint32_t, cell_rank));
 }
 
-/* Triangle: its rectangle of cells on every face. */
+/* Triangle: its rectangle of cells on the plan's face (tile.face). */
 PN_KFN void pn_e_gears_tri_rects(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
 {
     pn_gears_tri_rects(PN_POOL(const pn_kfaces, faces), &K->light, PN_POOL(const float, tris),
-                       PN_POOL(const uint8_t, flags), t, PN_POOL(pn_cellrect, rects));
+                       PN_POOL(const uint8_t, flags), K->tile.face, t, PN_POOL(pn_cellrect, rects));
 }
 
-/* Triangle: its pairs added to every global grid row it covers (row_pairs zeroed first). */
+/* Triangle: its pairs added to every grid row of the plan's face it covers (row_pairs
+ * zeroed first). */
 PN_KFN void pn_e_gears_row_pairs(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
 {
-    (void)K;
-    pn_gears_tri_row_pairs(PN_POOL(const pn_kfaces, faces), PN_POOL(const pn_cellrect, rects),
-                           PN_POOL(const uint32_t, row_pre), t, PN_POOL(uint32_t, row_pairs));
+    pn_gears_tri_row_pairs(PN_POOL(const pn_kfaces, faces)->res, PN_POOL(const pn_cellrect, rects),
+                           PN_POOL(const uint32_t, cell_bits), PN_POOL(const uint32_t, cell_rank), K->tile.face, t,
+                           PN_POOL(uint32_t, row_pairs));
 }
 
-/* Triangle: its pairs per cell of grid row (tile.face, tile.r0), into cell_cur[0 .. res). */
-PN_KFN void pn_e_gears_row_cells(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
-{
-    pn_gears_tri_row_cells(PN_POOL(const pn_cellrect, rects), PN_POOL(const uint32_t, cell_pix),
-                           PN_POOL(const pn_kfaces, faces)->res, K->tile.face, K->tile.r0, t,
-                           PN_POOL(uint32_t, cell_cur));
-}
-
-/* Raster position r (the BVH's leaf order, kernels/pn_raster.h; r < K->raster_tris): how
- * many pairs its triangle makes in the tile, into tri_off[r]. */
+/* Raster position r (the BVH's leaf order, kernels/pn_raster.h; r < K->raster_tris): its
+ * triangle's rectangle in the tile as differences per grid row, into cell_cur (zeroed
+ * first). */
 PN_KFN void pn_e_gears_count(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
 {
-    PN_POOL(uint32_t, tri_off)[r] = pn_gears_tri_count(PN_POOL(const pn_cellrect, rects), PN_POOL(const uint32_t, row_pre),
-                                                       PN_POOL(const pn_kfaces, faces)->res, &K->tile,
-                                                       PN_POOL(const uint32_t, rindex)[r]);
+    pn_gears_tri_diff(PN_POOL(const pn_cellrect, rects), PN_POOL(const pn_kfaces, faces)->res, &K->tile,
+                      PN_POOL(const uint32_t, rindex)[r], PN_POOL(uint32_t, cell_cur));
 }
 
-/* Raster position r: its triangle's pairs (cell, r) from tri_off[r] (the prefix-summed
- * counts) on. */
+/* Grid row tile.r0 + i: its cells' pairs from the differences, in cell_cur. */
+PN_KFN void pn_e_gears_cell_rows(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
+{
+    pn_gears_cell_row(PN_POOL(const uint32_t, cell_bits), PN_POOL(const pn_kfaces, faces)->res, &K->tile,
+                      K->tile.r0 + i, PN_POOL(uint32_t, cell_cur));
+}
+
+/* Raster position r: r into the next slot of each cell of the tile its triangle covers
+ * (cell_cur: the cells' starts, then their cursors). */
 PN_KFN void pn_e_gears_scatter(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
 {
-    pn_gears_tri_scatter(PN_POOL(const pn_cellrect, rects), PN_POOL(const uint32_t, cell_pix),
+    pn_gears_tri_scatter(PN_POOL(const pn_cellrect, rects), PN_POOL(const uint32_t, cell_bits),
                          PN_POOL(const pn_kfaces, faces)->res, &K->tile, PN_POOL(const uint32_t, rindex)[r], r,
-                         PN_POOL(const uint32_t, tri_off)[r], PN_POOL(uint32_t, pairs));
+                         PN_POOL(uint32_t, cell_cur), PN_POOL(uint32_t, sorted));
 }
 
 /* Superchunk: its entries' raster positions turned into triangle ids, the boxes of its
@@ -113,11 +120,12 @@ PN_KFN void pn_e_gears_masks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
     X(GEARS_ORIGINS, gears_origins, 1, 1)           \
     X(GEARS_PROJECT, gears_project, 1, 1)           \
     X(GEARS_PIXEL_CELLS, gears_pixel_cells, 64, 1024) \
+    X(GEARS_FACE_PIXELS, gears_face_pixels, 64, 4096) \
     X(GEARS_ROW_PREFIX, gears_row_prefix, 64, 16)   \
     X(GEARS_TRI_RECTS, gears_tri_rects, 64, 4096)   \
     X(GEARS_ROW_PAIRS, gears_row_pairs, 64, 4096)   \
-    X(GEARS_ROW_CELLS, gears_row_cells, 64, 4096)   \
     X(GEARS_COUNT, gears_count, 64, 4096)           \
+    X(GEARS_CELL_ROWS, gears_cell_rows, 64, 16)     \
     X(GEARS_SCATTER, gears_scatter, 64, 4096)       \
     X(GEARS_CHUNKS, gears_chunks, 64, 4096)         \
     X(GEARS_MASKS, gears_masks, 16, 1024)

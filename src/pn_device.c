@@ -71,6 +71,16 @@ pn_status pn_dev_sort_pairs(pn_frame_state *fs, const uint32_t *pairs, uint32_t 
     return pn_dev_exec(fs->port, fs->ctx, &c);
 }
 
+pn_status pn_dev_sort_runs(pn_frame_state *fs, uint32_t *values, const uint32_t *offsets, uint32_t keys)
+{
+    pn_devcmd c;
+    pn_cmd(&c, PN_DEV_SORT_RUNS);
+    c.b = values;
+    c.c = offsets;
+    c.keys = keys;
+    return pn_dev_exec(fs->port, fs->ctx, &c);
+}
+
 static pn_status pn_dev_sync(pn_frame_state *fs, uint32_t op, const void *a, size_t bytes)
 {
     pn_devcmd c;

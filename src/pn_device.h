@@ -26,6 +26,9 @@ enum {
                            c (the first pair of each key; c[keys] = n); d: `keys` uint32 of
                            scratch. Any sort may be used: the output is the one ascending
                            (key, value) order */
+    PN_DEV_SORT_RUNS,   /* the run of each key k < `keys` of the uint32 values at b,
+                           [c[k], c[k + 1]) (offsets at c), sorted ascending in place: the
+                           one order of a run whose slots atomics handed out in any order */
     PN_DEV_TO_HOST,     /* `bytes` at a: make them readable by the host */
     PN_DEV_TO_DEVICE,   /* `bytes` at a: the host wrote them; passes may read them */
     PN_DEV_FINISH       /* wait until every command given so far has completed */
@@ -68,6 +71,7 @@ pn_status pn_dev_copy(pn_frame_state *fs, const void *dst, const void *src, size
 pn_status pn_dev_scan(pn_frame_state *fs, const uint32_t *a, uint32_t n);
 pn_status pn_dev_sort_pairs(pn_frame_state *fs, const uint32_t *pairs, uint32_t n, uint32_t keys, uint32_t *values,
                             uint32_t *offsets, uint32_t *scratch);
+pn_status pn_dev_sort_runs(pn_frame_state *fs, uint32_t *values, const uint32_t *offsets, uint32_t keys);
 pn_status pn_dev_to_host(pn_frame_state *fs, const void *a, size_t bytes);
 pn_status pn_dev_to_device(pn_frame_state *fs, const void *a, size_t bytes);
 /* The context's clock after every command so far has completed (pass timings). */

@@ -12,17 +12,22 @@
 #if PN_ENABLE_GEARS
 
 /* The context's GEARS limits: the largest grid (default PN_GEARS_GRID_MAX, at most 1024),
- * and the pair pool: by default 16 pairs a pixel of the largest frame, and no fewer than
- * the triangles (one cell's pairs, which no tiling splits, are at most one a triangle) or
- * 2^16; at most PN_GEARS_PAIRS (a request up to 2^28). */
+ * and the pair pool. Besides its pairs, a tile costs two passes over the triangles (count
+ * and scatter), one over the pixels (masks) and the cells of its grid rows: a pool of a
+ * few pairs a triangle, one a pixel and one a cell of the largest grid keeps those passes
+ * to a fraction of the pairs' own work, whatever the tiles. That is the default: 4 a
+ * triangle + 1 a pixel of the largest frame + the grid's cells, at most 16 a pixel (more
+ * would seldom tile less), no fewer than the triangles (one cell's pairs, which no tiling
+ * splits, are at most one a triangle), at most PN_GEARS_PAIRS; a request up to 2^28. */
 int pn_gears_limits_ok(const pn_limits *l) { return l->gears_pairs <= (1u << 28) && l->gears_grid_max <= 1024u; }
 static uint32_t pn_gears_grid_max(const pn_limits *l) { return l->gears_grid_max ? l->gears_grid_max : PN_GEARS_GRID_MAX; }
 static uint32_t pn_gears_pairs_max(const pn_limits *l)
 {
-    uint64_t n = 16u * (uint64_t)l->max_width * l->max_height;
+    uint64_t px = (uint64_t)l->max_width * l->max_height, g = pn_gears_grid_max(l);
+    uint64_t n = 4u * (uint64_t)l->max_triangles + px + g * g;
     if (l->gears_pairs) return l->gears_pairs;
+    if (n > 16u * px) n = 16u * px;
     if (n < l->max_triangles) n = l->max_triangles;
-    if (n < 65536u) n = 65536u;
     return (uint32_t)(n > PN_GEARS_PAIRS ? PN_GEARS_PAIRS : n);
 }
 
@@ -43,33 +48,33 @@ pn_status pn_gears_prepare(pn_frame_state *fs, const pn_frame_options *opt)
  * statistics. */
 typedef struct pn_gears_frame {
     pn_kfaces *faces;    /* [1]: the grid cameras, written by the host, read by passes */
-    pn_cellrect *rects;  /* [max_triangles * 6]: rectangle of triangle t on face f at t * 6 + f */
-    uint32_t *tri_off;   /* [max_triangles + 1]: pairs per triangle, then their prefix sum */
+    pn_cellrect *rects;  /* [max_triangles]: rectangle of triangle t on the plan's face */
     uint32_t *pix_cell;  /* [pixels]: global cell or PN_CELL_NONE */
     float *row_box;      /* [height * 8]: box of a row's origins (3-D, then projected 2-D) */
-    uint32_t *cell_off;  /* [cells + 1]: a tile's pairs per cell, prefix-summed */
-    uint32_t *cell_pix;  /* [cells]: pixels per cell */
-    uint32_t *row_pre;   /* [rows][res + 1]: per grid row, the cells with pixels left of each column */
-    uint32_t *cell_cur;  /* [cells]: sort scratch; the counts of a grid row being split */
+    uint32_t *cell_bits; /* [rows][W]: per global grid row, a bit a cell that holds pixels */
+    uint32_t *cell_rank; /* [rows][W + 1]: per grid row, the set bits before each word */
+    uint32_t *cell_off;  /* [res^2 + 1]: a tile's pairs per cell of its face, prefix-summed */
+    uint32_t *cell_pix;  /* [res^2]: pixels per cell of one face (face_counted) */
+    uint32_t *cell_cur;  /* [res^2]: a tile's pairs per cell, then the scatter's cursors; the
+                          * counts of a grid row being split */
     uint32_t *row_pairs; /* [rows * 2]: pairs per global grid row, low and high word */
-    uint32_t *pairs;     /* [pool * 2]: (global cell, triangle) */
     uint32_t *sorted;    /* [pool]: triangles by cell, in raster order within a cell */
     float *chunk_box;    /* [pool / PN_GEARS_CHUNK + 1][6]: box of each chunk of sorted */
     float *super_box;    /* [pool / (PN_GEARS_CHUNK PN_GEARS_SUPER) + 1][6]: of each superchunk */
-    uint32_t cells_max;  /* capacity of the per-cell pools */
-    uint32_t cells;      /* faces * res^2 */
+    uint32_t cells;      /* res^2: the cells of a face */
     uint32_t rows;       /* faces * res: global grid rows */
     uint32_t pool;       /* pairs one tile may hold */
     uint64_t lit;
     /* tile plan: runs of global rows [start, end) handed out face by face from s0; a row
      * too big for the pool (split) handed out as runs of cells from xs */
     uint32_t plan_start, plan_end, plan_s0, plan_split, plan_xs, plan_counted;
+    uint32_t face_ready; /* the face of rects, of its rows' pairs and of cell_pix; 6: none */
     /* statistics over all tiles */
     uint64_t total_pairs, assignments, sum_tris_cell;
-    uint32_t tiles, pairs_high, max_tris_cell;
+    uint32_t tiles, pairs_high, max_tris_cell, cells_used, max_pix;
 } pn_gears_frame_pools;
 
-enum { PN_GEARS_PLAN_DONE = 0, PN_GEARS_PLAN_TILE = 1, PN_GEARS_PLAN_COUNT_ROW = 2 };
+enum { PN_GEARS_PLAN_DONE = 0, PN_GEARS_PLAN_TILE = 1, PN_GEARS_PLAN_COUNT_ROW = 2, PN_GEARS_PLAN_FACE = 3 };
 
 static void pn_set3(float *d, pn_v3 v)
 {
@@ -169,24 +174,23 @@ static float pn_u64_to_f32(uint64_t v)
 
 /* The frame's pools at w x h: run by the frame on the frame region and by pn_gears_query
  * at the limits' maxima. The per-triangle and per-cell pools are the context's (its
- * triangles, its largest grid), the pair pool what a tile may hold. */
+ * triangles, its largest grid: the occupancy of six faces' rows, the cell tables of one
+ * face), the pair pool what a tile may hold. */
 static void pn_gears_carve(pn_carver *c, const pn_limits *l, uint32_t w, uint32_t h, pn_gears_frame_pools *g)
 {
-    uint64_t px = (uint64_t)w * h, gmax = pn_gears_grid_max(l), cmax = 6u * gmax * gmax;
-    uint64_t pool = pn_gears_pairs_max(l);
+    uint64_t px = (uint64_t)w * h, gmax = pn_gears_grid_max(l), cmax = gmax * gmax, rmax = 6u * gmax;
+    uint64_t W = (gmax + 31u) / 32u, pool = pn_gears_pairs_max(l);
     g->pool = (uint32_t)pool;
-    g->cells_max = (uint32_t)cmax;
     g->faces = (pn_kfaces *)pn_pool(c, 1u, sizeof(pn_kfaces), "gears grid cameras");
-    g->rects = (pn_cellrect *)pn_pool(c, l->max_triangles, 6u * 8u, "gears cell rects");
-    g->tri_off = (uint32_t *)pn_pool(c, (uint64_t)l->max_triangles + 1u, 4u, "gears pair offsets");
+    g->rects = (pn_cellrect *)pn_pool(c, l->max_triangles, 8u, "gears cell rects");
     g->pix_cell = (uint32_t *)pn_pool(c, px, 4u, "gears pixel cells");
     g->row_box = (float *)pn_pool(c, h, 32u, "gears row boxes");
+    g->cell_bits = (uint32_t *)pn_pool(c, rmax * W, 4u, "gears cell occupancy");
+    g->cell_rank = (uint32_t *)pn_pool(c, rmax * (W + 1u), 4u, "gears occupancy prefixes");
     g->cell_off = (uint32_t *)pn_pool(c, cmax + 1u, 4u, "gears cell offsets");
     g->cell_pix = (uint32_t *)pn_pool(c, cmax, 4u, "gears pixels per cell");
-    g->row_pre = (uint32_t *)pn_pool(c, 6u * gmax * (gmax + 1u), 4u, "gears row prefixes");
     g->cell_cur = (uint32_t *)pn_pool(c, cmax, 4u, "gears cell cursors");
-    g->row_pairs = (uint32_t *)pn_pool(c, 6u * gmax, 8u, "gears pairs per row");
-    g->pairs = (uint32_t *)pn_pool(c, pool, 8u, "gears pairs");
+    g->row_pairs = (uint32_t *)pn_pool(c, rmax, 8u, "gears pairs per row");
     g->sorted = (uint32_t *)pn_pool(c, pool, 4u, "gears sorted pairs");
     g->chunk_box = (float *)pn_pool(c, pool / PN_GEARS_CHUNK + 1u, 24u, "gears chunk boxes");
     g->super_box = (float *)pn_pool(c, pool / (PN_GEARS_CHUNK * PN_GEARS_SUPER) + 1u, 24u, "gears superchunk boxes");
@@ -215,15 +219,14 @@ static pn_status pn_gears_begin(pn_frame_state *fs, pn_gears_frame_pools *g)
     g->faces->res = fs->res;
     P->faces = pn_dev_off(ctx, g->faces);
     P->rects = pn_dev_off(ctx, g->rects);
-    P->tri_off = pn_dev_off(ctx, g->tri_off);
     P->pix_cell = pn_dev_off(ctx, g->pix_cell);
     P->row_box = pn_dev_off(ctx, g->row_box);
+    P->cell_bits = pn_dev_off(ctx, g->cell_bits);
+    P->cell_rank = pn_dev_off(ctx, g->cell_rank);
     P->cell_off = pn_dev_off(ctx, g->cell_off);
     P->cell_pix = pn_dev_off(ctx, g->cell_pix);
-    P->row_pre = pn_dev_off(ctx, g->row_pre);
     P->cell_cur = pn_dev_off(ctx, g->cell_cur);
     P->row_pairs = pn_dev_off(ctx, g->row_pairs);
-    P->pairs = pn_dev_off(ctx, g->pairs);
     P->sorted = pn_dev_off(ctx, g->sorted);
     P->chunk_box = pn_dev_off(ctx, g->chunk_box);
     P->super_box = pn_dev_off(ctx, g->super_box);
@@ -245,8 +248,9 @@ static uint32_t pn_gears_cameras(pn_context *ctx, const pn_frame_state *fs, pn_g
     }
     if (g->lit == 0u) return 0;
     g->faces->n = pn_gears_faces(&fs->K.light, obox, ctx->scene_diag, g->faces->f);
-    g->cells = g->faces->n * G * G;
+    g->cells = G * G;
     g->rows = g->faces->n * G;
+    g->face_ready = 6u;
     if (fs->K.light.is_point)
         for (f = 0; f < 6; f++) pn_gears_bounds(&g->faces->f[f], -1.0f, -1.0f, 1.0f, 1.0f, G);
     return 1;
@@ -277,16 +281,18 @@ static void pn_tile_set(pn_ktile *t, uint32_t face, uint32_t r0, uint32_t r1, ui
     t->x1 = x1;
 }
 
-/* Tiles: runs of global grid rows (face * res + row) whose pairs fit the pool, cut at face
- * boundaries (a tile never spans two faces); a row that alone exceeds the pool goes as
- * runs of consecutive cells, its per-cell counts taken afresh before each run (the tile
- * before it used cell_cur). */
+/* Tiles: runs of global grid rows (face * res + row) whose pairs fit the pool, within one
+ * face (a tile never spans two), each face announced first (PN_GEARS_PLAN_FACE: its
+ * rectangles and rows' pairs are computed then); a row that alone exceeds the pool goes
+ * as runs of consecutive cells, its per-cell counts taken afresh before each run (the
+ * tile before it used cell_cur). */
 static pn_status pn_gears_plan_next(pn_context *ctx, pn_gears_frame_pools *g, pn_ktile *tile, uint32_t *action)
 {
     uint32_t G = g->faces->res;
     for (;;) {
         if (g->plan_split) {
             uint32_t row = g->plan_start, face = row / G, ry = row % G, x, xe;
+            const uint32_t *counts = g->cell_cur + (size_t)ry * G; /* the row's, pn_gears_count_cells */
             uint64_t sum = 0;
             if (g->plan_xs >= G) {
                 g->plan_split = 0;
@@ -300,22 +306,21 @@ static pn_status pn_gears_plan_next(pn_context *ctx, pn_gears_frame_pools *g, pn
                 return PN_OK;
             }
             for (x = 0; g->plan_xs == 0u && x < G; x++)
-                if (g->cell_cur[x] > g->pool)
+                if (counts[x] > g->pool)
                     return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
                                    "GEARS pair pool 'gears pairs' holds %u pairs; cell %u of grid row %u alone "
                                    "needs %u (raise pn_limits.gears_pairs or PN_GEARS_PAIRS)",
-                                   g->pool, x, row, g->cell_cur[x]);
-            for (xe = g->plan_xs; xe < G && sum + g->cell_cur[xe] <= g->pool; xe++) sum += g->cell_cur[xe];
+                                   g->pool, x, row, counts[x]);
+            for (xe = g->plan_xs; xe < G && sum + counts[xe] <= g->pool; xe++) sum += counts[xe];
             pn_tile_set(tile, face, ry, ry, g->plan_xs, xe - 1u);
             g->plan_xs = xe;
             g->plan_counted = 0;
             *action = PN_GEARS_PLAN_TILE;
             return PN_OK;
         }
-        if (g->plan_s0 < g->plan_end) {
-            uint32_t face = g->plan_s0 / G, e0 = (face + 1u) * G < g->plan_end ? (face + 1u) * G : g->plan_end;
-            pn_tile_set(tile, face, g->plan_s0 % G, (e0 - 1u) % G, 0, G - 1u);
-            g->plan_s0 = e0;
+        if (g->plan_s0 < g->plan_end) { /* a run never spans two faces */
+            pn_tile_set(tile, g->plan_s0 / G, g->plan_s0 % G, (g->plan_end - 1u) % G, 0, G - 1u);
+            g->plan_s0 = g->plan_end;
             *action = PN_GEARS_PLAN_TILE;
             return PN_OK;
         }
@@ -323,10 +328,15 @@ static pn_status pn_gears_plan_next(pn_context *ctx, pn_gears_frame_pools *g, pn
             *action = PN_GEARS_PLAN_DONE;
             return PN_OK;
         }
+        if (g->plan_start / G != g->face_ready) { /* its rectangles and rows' pairs first */
+            pn_tile_set(tile, g->plan_start / G, 0, G - 1u, 0, G - 1u);
+            *action = PN_GEARS_PLAN_FACE;
+            return PN_OK;
+        }
         {
             uint64_t sum = 0;
-            uint32_t r = g->plan_start;
-            while (r < g->rows && sum + pn_row_pairs_at(g, r) <= g->pool) sum += pn_row_pairs_at(g, r++);
+            uint32_t r = g->plan_start, end = (g->plan_start / G + 1u) * G;
+            while (r < end && sum + pn_row_pairs_at(g, r) <= g->pool) sum += pn_row_pairs_at(g, r++);
             if (r == g->plan_start) { /* this row alone exceeds the pool */
                 g->plan_split = 1;
                 g->plan_xs = 0;
@@ -349,10 +359,11 @@ static pn_status pn_gears_tile_pairs(pn_context *ctx, pn_gears_frame_pools *g, u
     return PN_OK;
 }
 
-static void pn_gears_tile_cells(pn_gears_frame_pools *g)
+/* The tile's cells, [c0, c1) of its face: their pairs, and the pairs times the pixels. */
+static void pn_gears_tile_cells(pn_gears_frame_pools *g, uint32_t c0, uint32_t c1)
 {
     uint32_t c;
-    for (c = 0; c < g->cells; c++) {
+    for (c = c0; c < c1; c++) {
         uint32_t n = g->cell_off[c + 1u] - g->cell_off[c];
         if (n && g->cell_pix[c]) {
             g->assignments += (uint64_t)n * g->cell_pix[c];
@@ -362,14 +373,31 @@ static void pn_gears_tile_cells(pn_gears_frame_pools *g)
     }
 }
 
-static void pn_gears_end(pn_context *ctx, const pn_gears_frame_pools *g)
+/* The plan's next face (fs->K.tile.face; the plan visits every face, in order): every
+ * triangle's rectangle of cells on it, the pairs of its grid rows (to the host, for the
+ * plan), its pixels per cell (to the host) and their statistics. */
+static pn_status pn_gears_face(pn_frame_state *fs, pn_gears_frame_pools *g)
 {
-    uint32_t c, used = 0, max_pix = 0;
+    uint32_t c, face = fs->K.tile.face, G = g->faces->res, T = fs->ctx->tri_count;
+    pn_status st;
+    g->face_ready = face;
+    if ((st = pn_dev_run(fs, PN_K_GEARS_TRI_RECTS, T)) != PN_OK || (st = pn_dev_run(fs, PN_K_GEARS_ROW_PAIRS, T)) != PN_OK ||
+        (st = pn_dev_to_host(fs, g->row_pairs + (size_t)face * G * 2u, (size_t)G * 8u)) != PN_OK ||
+        (st = pn_dev_fill(fs, g->cell_pix, g->cells, 0u)) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_GEARS_FACE_PIXELS, fs->width * fs->height)) != PN_OK ||
+        (st = pn_dev_to_host(fs, g->cell_pix, (size_t)g->cells * 4u)) != PN_OK)
+        return st;
     for (c = 0; c < g->cells; c++)
         if (g->cell_pix[c]) {
-            used++;
-            if (g->cell_pix[c] > max_pix) max_pix = g->cell_pix[c];
+            g->cells_used++;
+            if (g->cell_pix[c] > g->max_pix) g->max_pix = g->cell_pix[c];
         }
+    return PN_OK;
+}
+
+static void pn_gears_end(pn_context *ctx, const pn_gears_frame_pools *g)
+{
+    uint32_t used = g->cells_used, max_pix = g->max_pix;
     ctx->stats.gears.pairs = g->total_pairs;
     ctx->stats.gears.assignments = g->assignments;
     ctx->stats.gears.tiles = g->tiles;
@@ -382,27 +410,46 @@ static void pn_gears_end(pn_context *ctx, const pn_gears_frame_pools *g)
     ctx->stats.gears.pairs_high_water = g->pairs_high;
 }
 
-/* One tile: count -> exclusive prefix sum -> scatter -> sort by cell -> chunk and
- * superchunk boxes -> masks. */
+/* One tile: pairs per cell (differences per row, then their running sums) -> exclusive
+ * prefix sum (the offsets, to the host) -> each triangle into its cells' next slots ->
+ * each cell's run sorted -> chunk and superchunk boxes -> masks. The runs come out in
+ * raster order (work item r: the triangle rindex[r], entry r) on every port and thread
+ * count: a sorted run of distinct values is unique; the chunk pass turns the entries into
+ * triangle ids. The per-cell steps cover the tile's grid rows, [c0, c0 + C) of its face,
+ * whose offsets start from 0 (a tile's list is the pool from its start): the cells of a
+ * face cost once a frame, not once a tile. */
+/* The pairs of each cell of the tile's grid rows into cell_cur (cells of its face):
+ * each triangle's rectangle as differences per row, then each row's running sums, kept
+ * where a cell holds pixels. */
+static pn_status pn_gears_count_cells(pn_frame_state *fs, pn_gears_frame_pools *g)
+{
+    const pn_ktile *tl = &fs->K.tile;
+    uint32_t rows = tl->r1 - tl->r0 + 1u;
+    pn_status st;
+    if ((st = pn_dev_fill(fs, g->cell_cur + (size_t)tl->r0 * g->faces->res, rows * g->faces->res, 0u)) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_GEARS_COUNT, fs->K.raster_tris)) != PN_OK)
+        return st;
+    return pn_dev_run(fs, PN_K_GEARS_CELL_ROWS, rows);
+}
+
 static pn_status pn_gears_tile(pn_frame_state *fs, pn_gears_frame_pools *g)
 {
-    uint32_t R = fs->K.raster_tris; /* the raster order's entries: every triangle but the degenerate */
+    const pn_ktile *tl = &fs->K.tile;
+    uint32_t R = fs->K.raster_tris; /* every triangle but the degenerate */
+    uint32_t c0 = tl->r0 * g->faces->res, C = (tl->r1 - tl->r0 + 1u) * g->faces->res, n;
+    uint32_t *cur = g->cell_cur + c0, *off = g->cell_off + c0;
     pn_status st;
-    if ((st = pn_dev_run(fs, PN_K_GEARS_COUNT, R)) != PN_OK || (st = pn_dev_scan(fs, g->tri_off, R)) != PN_OK ||
-        (st = pn_dev_to_host(fs, g->tri_off + R, sizeof(uint32_t))) != PN_OK ||
-        (st = pn_gears_tile_pairs(fs->ctx, g, g->tri_off[R])) != PN_OK)
+    if ((st = pn_gears_count_cells(fs, g)) != PN_OK || (st = pn_dev_copy(fs, off, cur, (size_t)C * 4u)) != PN_OK || (st = pn_dev_scan(fs, off, C)) != PN_OK ||
+        (st = pn_dev_to_host(fs, off, ((size_t)C + 1u) * 4u)) != PN_OK ||
+        (st = pn_gears_tile_pairs(fs->ctx, g, off[C])) != PN_OK)
         return st;
-    /* Pairs are scattered in raster order (work item r: the triangle rindex[r], pair value
-     * r), so each cell's values ascend: the sort by cell is the one stable order on every
-     * port; the chunk pass turns the values into triangle ids. */
-    if ((st = pn_dev_run(fs, PN_K_GEARS_SCATTER, R)) != PN_OK ||
-        (st = pn_dev_sort_pairs(fs, g->pairs, g->tri_off[R], g->cells, g->sorted, g->cell_off, g->cell_cur)) != PN_OK ||
-        (st = pn_dev_to_host(fs, g->cell_off, ((size_t)g->cells + 1u) * 4u)) != PN_OK)
+    n = off[C];
+    if ((st = pn_dev_copy(fs, cur, off, (size_t)C * 4u)) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_GEARS_SCATTER, R)) != PN_OK || (st = pn_dev_sort_runs(fs, g->sorted, off, C)) != PN_OK)
         return st;
-    pn_gears_tile_cells(g);
-    fs->K.tile.pairs = g->tri_off[R];
-    if ((st = pn_dev_run(fs, PN_K_GEARS_CHUNKS,
-                         (g->tri_off[R] + PN_GEARS_CHUNK * PN_GEARS_SUPER - 1u) / (PN_GEARS_CHUNK * PN_GEARS_SUPER))) !=
+    pn_gears_tile_cells(g, c0, c0 + C);
+    fs->K.tile.pairs = n;
+    if ((st = pn_dev_run(fs, PN_K_GEARS_CHUNKS, (n + PN_GEARS_CHUNK * PN_GEARS_SUPER - 1u) / (PN_GEARS_CHUNK * PN_GEARS_SUPER))) !=
         PN_OK)
         return st;
     return pn_dev_run(fs, PN_K_GEARS_MASKS, fs->width * fs->height);
@@ -412,7 +459,7 @@ pn_status pn_gears_frame(pn_frame_state *fs)
 {
     pn_context *ctx = fs->ctx;
     pn_gears_frame_pools g;
-    uint32_t T = ctx->tri_count, H = fs->height, action = PN_GEARS_PLAN_DONE;
+    uint32_t H = fs->height, action = PN_GEARS_PLAN_DONE;
     pn_status st;
 
     if ((st = pn_gears_begin(fs, &g)) != PN_OK) return st;
@@ -431,26 +478,23 @@ pn_status pn_gears_frame(pn_frame_state *fs)
         pn_gears_grid(fs, &g);
         if ((st = pn_dev_to_device(fs, g.faces, sizeof(pn_kfaces))) != PN_OK) return st;
     }
-    if ((st = pn_dev_fill(fs, g.cell_pix, g.cells, 0u)) != PN_OK ||
+    if ((st = pn_dev_fill(fs, g.cell_bits, g.rows * ((g.faces->res + 31u) / 32u), 0u)) != PN_OK ||
         (st = pn_dev_run(fs, PN_K_GEARS_PIXEL_CELLS, fs->width * H)) != PN_OK ||
-        (st = pn_dev_run(fs, PN_K_GEARS_ROW_PREFIX, g.rows)) != PN_OK ||
-        (st = pn_dev_to_host(fs, g.cell_pix, (size_t)g.cells * 4u)) != PN_OK)
+        (st = pn_dev_run(fs, PN_K_GEARS_ROW_PREFIX, g.rows)) != PN_OK)
         return st;
 
-    /* A.3: every triangle's rectangle of cells on every face; pairs per grid row. */
-    if ((st = pn_dev_run(fs, PN_K_GEARS_TRI_RECTS, T)) != PN_OK ||
-        (st = pn_dev_fill(fs, g.row_pairs, g.rows * 2u, 0u)) != PN_OK ||
-        (st = pn_dev_run(fs, PN_K_GEARS_ROW_PAIRS, T)) != PN_OK ||
-        (st = pn_dev_to_host(fs, g.row_pairs, (size_t)g.rows * 8u)) != PN_OK)
-        return st;
-
+    /* A.3 (face by face, as the plan reaches each): the triangles' rectangles of cells,
+     * the pairs per grid row; then the tiles. */
+    if ((st = pn_dev_fill(fs, g.row_pairs, g.rows * 2u, 0u)) != PN_OK) return st;
     for (;;) {
         if ((st = pn_gears_plan_next(ctx, &g, &fs->K.tile, &action)) != PN_OK) return st;
         if (action == PN_GEARS_PLAN_DONE) break;
-        if (action == PN_GEARS_PLAN_COUNT_ROW) {
-            if ((st = pn_dev_fill(fs, g.cell_cur, g.faces->res, 0u)) != PN_OK ||
-                (st = pn_dev_run(fs, PN_K_GEARS_ROW_CELLS, T)) != PN_OK ||
-                (st = pn_dev_to_host(fs, g.cell_cur, (size_t)g.faces->res * 4u)) != PN_OK)
+        if (action == PN_GEARS_PLAN_FACE) {
+            if ((st = pn_gears_face(fs, &g)) != PN_OK) return st;
+        } else if (action == PN_GEARS_PLAN_COUNT_ROW) {
+            if ((st = pn_gears_count_cells(fs, &g)) != PN_OK ||
+                (st = pn_dev_to_host(fs, g.cell_cur + (size_t)fs->K.tile.r0 * g.faces->res,
+                                     (size_t)g.faces->res * 4u)) != PN_OK)
                 return st;
         } else if ((st = pn_gears_tile(fs, &g)) != PN_OK) {
             return st;

@@ -5,18 +5,20 @@
  *   [origins per row]                    -> row boxes and lit counts to the host
  *   grid cameras                         nothing lit: the frame is done
  *   [projected box per row]              area light only, then the grid bounds
- *   [pixel cells, cell_pix zeroed first] [cell rectangles per triangle]
- *   [pairs per grid row, row_pairs zeroed first]
+ *   [pixel cells and occupancy bits, cell_bits zeroed first] [their prefixes per grid row]
+ *   [cell rectangles per triangle] [pairs per grid row, row_pairs zeroed first]
  *   tile plan, step by step:
- *     count a row  [pairs per cell of grid row (face, r0) into cell_cur[0 .. res)]
- *     tile         [count per triangle] prefix sum -> pair total to the host
- *                  [scatter] sort pairs by cell -> cell offsets to the host
- *                  [masks per pixel]
+ *     a new face   [pixels per cell of that face, cell_pix zeroed first] -> to the host
+ *     count a row  pairs per cell of grid row (face, r0), as a tile's below -> to the host
+ *     tile         pairs per cell of its rows: [differences per triangle, cell_cur zeroed
+ *                  first] [running sums per grid row] -> prefix sum: cell offsets -> to
+ *                  the host; [each triangle into its cells' next slots] [each cell's run
+ *                  sorted] [chunk boxes] [masks per pixel]
  *   statistics into the context
  *
- * The host reads back only what its steps read (row boxes and counters, pixels per cell,
- * pairs per grid row, the counts of a row being split, a tile's pair total and cell
- * offsets); the large pools stay on the device. Not installed. */
+ * The host reads back only what its steps read (row boxes and counters, a face's pixels per cell,
+ * pairs per grid row, the counts of a row being split, a tile's cell offsets and their
+ * total); the large pools stay on the device. Not installed. */
 #ifndef PN_GEARS_FRAME_H
 #define PN_GEARS_FRAME_H
 

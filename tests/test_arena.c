@@ -160,6 +160,72 @@ static void test_no_surface(void)
     }
 }
 
+/* A microcontroller's workload (issue 47): one algorithm, 1,000 triangles, 160x120, the
+ * maps' and GEARS grid's limits at 128, frames without surfaces: pn_arena_size at most 1
+ * MiB for every algorithm but MCSM, whose N-buffer at 128 alone is 1.5 MiB (8 levels of
+ * 128^2 texels of 12 bytes; a smaller hierarchy changes its bytes: issue 48), and which
+ * fits at a map of 64. Then each renders `thin` (2,002 triangles) in such a context, k =
+ * 8, GEARS in tiles of its default pool: the same visibility as in a context of default
+ * limits. */
+static pn_limits mcu_limits(uint32_t t, uint32_t a)
+{
+    pn_limits l = lim3(t, 160, 120);
+    l.algos = 1u << a;
+    l.srt_map_max = l.occ_map_max = l.mc_map_max = l.gears_grid_max = 128;
+    if (a == PN_ALGO_MCSM) l.mc_map_max = 64;
+    l.flags = PN_LIMITS_NO_SURFACE;
+    return l;
+}
+
+static void test_microcontroller(void)
+{
+    uint32_t a, built = pn_build_info() & ((1u << PN_ALGO_COUNT) - 1u);
+    pn_test_scene sc;
+    REQUIRE(pn_test_scene_load(&sc, "thin") == 0);
+    for (a = 0; a < PN_ALGO_COUNT; a++) {
+        pn_limits l = mcu_limits(1000, a), big;
+        size_t bytes = 0, px = 160u * 120u;
+        pn_test_host small, full;
+        pn_frame_options o;
+        pn_frame fs, ff;
+        pn_stats st;
+        float *vis;
+        if (!(built & (1u << a))) continue;
+        REQUIRE(pn_arena_size(&l, &bytes) == PN_OK);
+        fprintf(stderr, "%s: %zu bytes\n", pn_algo_name((pn_algo)a), bytes);
+        CHECK_MSG(bytes <= 1048576u, "%s: %zu bytes for 1,000 triangles at 160x120", pn_algo_name((pn_algo)a), bytes);
+        l = mcu_limits(sc.mesh.triangle_count, a);
+        big = lim3(sc.mesh.triangle_count, 160, 120);
+        REQUIRE(pn_test_open_limits(&small, &l) == 0);
+        REQUIRE(pn_test_open_limits(&full, &big) == 0);
+        REQUIRE(pn_test_scene_upload(small.ctx, &sc) == PN_OK && pn_test_scene_upload(full.ctx, &sc) == PN_OK);
+        pn_frame_options_default(&o);
+        o.width = 160;
+        o.height = 120;
+        o.k = 8;
+        o.eps = sc.eps;
+        o.algo = (pn_algo)a;
+        o.srt.map = o.occtex.map = 128;
+        o.mcsm.map = 64;
+        CHECK_MSG(pn_render(small.ctx, &sc.camera, &sc.light, &o, &fs) == PN_OK, "%s: %s", pn_algo_name((pn_algo)a),
+                  pn_last_error(small.ctx));
+        vis = (float *)malloc(px * sizeof(float));
+        REQUIRE(vis != NULL);
+        memcpy(vis, fs.visibility, px * sizeof(float));
+        CHECK(pn_render(full.ctx, &sc.camera, &sc.light, &o, &ff) == PN_OK);
+        CHECK_MSG(memcmp(vis, ff.visibility, px * sizeof(float)) == 0, "%s: the small context's frame differs",
+                  pn_algo_name((pn_algo)a));
+        if (a == PN_ALGO_GEARS) {
+            REQUIRE(pn_get_stats(small.ctx, &st) == PN_OK);
+            CHECK_MSG(st.gears.tiles > 1u, "GEARS: %u tiles, the default pool held the frame", st.gears.tiles);
+        }
+        free(vis);
+        pn_test_close(&small);
+        pn_test_close(&full);
+    }
+    pn_test_scene_free(&sc);
+}
+
 static void test_bad_limits(void)
 {
     size_t bytes = 12345;
@@ -298,6 +364,7 @@ int main(void)
     RUN(test_algos);
     RUN(test_bad_limits);
     RUN(test_no_surface);
+    RUN(test_microcontroller);
     RUN(test_too_small_and_guard);
     RUN(test_static_arena);
     RUN(test_two_contexts);

@@ -6,7 +6,8 @@
 # name; a scene with an entry in SCENES_DIR/views.json is rendered from that view (--view),
 # the others from the CLI's default view; both binaries get the same flags. With --compare,
 # BEFORE_CLI is the baseline and the table has before, after (PENUMBRA_CLI) and after/before;
-# rows outside 0.99-1.01 are marked. Each run: one thread, collection on only inside
+# rows outside 0.99-1.01 are marked. ALGOS="gears mcsm" limits the algorithms (default: every
+# one the CLI lists). Each run: one thread, collection on only inside
 # pn_render_with (the scalar pn_render is a tail jump to it in src/pn_frame.c, so the toggle
 # must name pn_render_with), the count from the out file's totals line. Instruction counts do
 # not move with the machine's load; build both CLIs with the same flags and no -march=native
@@ -24,7 +25,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 # The algorithms as the CLI's help lists them ("algorithms: ..."); the fallback is the list of 195dced.
-algos=$("$cli" --help 2>&1 | sed -n 's/^algorithms: //p' | head -n 1)
+algos=${ALGOS:-$("$cli" --help 2>&1 | sed -n 's/^algorithms: //p' | head -n 1)}
 [ -n "$algos" ] || algos="reference gears raytrace srt occtex mcsm wedges"
 
 # frame_ir CLI SCENE ALGO: the Ir of the frame, on stdout.

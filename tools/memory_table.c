@@ -115,13 +115,13 @@ int main(void)
     {
         /* A microcontroller's workload: 1,000 triangles, 160x120, the maps' and the GEARS
          * grid's limits at 128 (k = 8 costs no arena); then with frames that keep no
-         * positions and normals (PN_LIMITS_NO_SURFACE), and with that and GEARS' grid at 32
-         * and its pairs at 1 a pixel, MCSM's map at 64. */
+         * positions and normals (PN_LIMITS_NO_SURFACE), and with that and MCSM's map at 64
+         * (its N-buffer at 128 alone is 1.5 MiB). */
         printf("\nA microcontroller's workload: 1,000 triangles, 160x120, the maps' and GEARS grid's limits at 128 "
                "(bytes, pn_arena_size); then with `flags = PN_LIMITS_NO_SURFACE`; then with that and "
-               "`gears_grid_max = 32`, `gears_pairs = 19200` (1 a pixel), `mc_map_max = 64`:\n\n"
-               "| algorithm | bytes | of 1 MiB | no surface | of 1 MiB | no surface, smaller GEARS grid and pairs, "
-               "MCSM map | of 1 MiB |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+               "`mc_map_max = 64`:\n\n"
+               "| algorithm | bytes | of 1 MiB | no surface | of 1 MiB | no surface, MCSM map 64 | of 1 MiB |\n"
+               "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
         for (a = first; a <= PN_ALGO_COUNT; a++) {
             int algo = a == PN_ALGO_COUNT ? -1 : a, v;
             if (algo >= 0 && !(pn_build_info() & (1u << algo))) continue;
@@ -135,11 +135,7 @@ int main(void)
 #else
                 if (v > 0) break;
 #endif
-                if (v > 1) {
-                    l.gears_grid_max = 32;
-                    l.gears_pairs = 19200;
-                    l.mc_map_max = 64;
-                }
+                if (v > 1) l.mc_map_max = 64;
                 if (pn_arena_size(&l, &bytes) == PN_OK)
                     printf(" %zu | %.2f |", bytes, (double)bytes / 1048576.0);
                 else

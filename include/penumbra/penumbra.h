@@ -120,9 +120,10 @@ typedef struct pn_limits {
     uint32_t max_triangles;
     uint32_t max_width;
     uint32_t max_height;
-    uint32_t gears_pairs;    /* GEARS (triangle, cell) pair pool; 0: 16 a pixel of
-                                max_width x max_height, at least max_triangles and
-                                65536, at most PN_GEARS_PAIRS */
+    uint32_t gears_pairs;    /* GEARS (triangle, cell) pair pool; 0: 4 max_triangles +
+                                max_width x max_height + gears_grid_max^2, at most 16 a
+                                pixel, at least max_triangles, at most PN_GEARS_PAIRS (a
+                                frame that needs more runs in tiles, same bytes) */
     uint32_t gears_grid_max; /* largest GEARS grid resolution; 0: PN_GEARS_GRID_MAX */
     uint32_t srt_map_max;    /* largest SRT shadow map per axis; 0: PN_SRT_MAP_MAX */
     uint32_t occ_map_max;    /* largest occlusion texture per axis; 0: PN_OCCTEX_MAP_MAX */
@@ -288,21 +289,24 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
 #define PN_SRT_BYTES_MAX(t, w, h) ((size_t)0)
 #endif
 #if PN_ENABLE_GEARS
-/* GEARS frame pools at the default pair pool p (16 a pixel, at least t and 65536, at most
- * PN_GEARS_PAIRS) and grid maximum g: the grid cameras (at
- * most 576 bytes); per triangle 6 cell rectangles (48) and a pair offset (4); per pixel its
- * cell (4); per row an origin box (32); per cell (6 g^2) offsets, counts and cursors (12)
- * and per (grid row, column + 1) a prefix (4); per grid row its pair count (8); per pair
- * 8 + 4, a 24-byte box per 8 pairs and per 64 (src/pn_gears.c's chunk and superchunk
- * boxes), plus one of each. */
-#define PN_GEARS_C_ (6u * (size_t)PN_GEARS_GRID_MAX * (size_t)PN_GEARS_GRID_MAX)
+/* GEARS frame pools at the default pair pool p (4 t + pixels + g^2, at most 16 a pixel,
+ * at least t, at most PN_GEARS_PAIRS) and grid maximum g: the grid cameras (at
+ * most 576 bytes); per triangle a cell rectangle (8); per pixel its
+ * cell (4); per row an origin box (32); per cell of one face (g^2) offsets, counts and
+ * cursors (12); per grid row of six faces (6 g) W = ceil(g / 32) words of occupancy bits,
+ * W + 1 prefixes (4 each) and its pair count (8); per pair 4, a 24-byte box per 8 pairs
+ * and per 64 (src/pn_gears.c's chunk and superchunk boxes), plus one of each. */
+#define PN_GEARS_C_ ((size_t)PN_GEARS_GRID_MAX * (size_t)PN_GEARS_GRID_MAX)
+#define PN_GEARS_R_ (6u * (size_t)PN_GEARS_GRID_MAX)
+#define PN_GEARS_W_ (((size_t)PN_GEARS_GRID_MAX + 31u) / 32u)
 #define PN_GEARS_P_(t, w, h)                                                                  \
-    PN_MIN_(PN_MAX_(PN_MAX_(PN_PX_(w, h) * 16u, (size_t)(t)), (size_t)65536u), (size_t)PN_GEARS_PAIRS)
+    PN_MIN_(PN_MAX_(PN_MIN_((size_t)(t) * 4u + PN_PX_(w, h) + PN_GEARS_C_, PN_PX_(w, h) * 16u), (size_t)(t)), \
+            (size_t)PN_GEARS_PAIRS)
 #define PN_GEARS_BYTES_MAX(t, w, h)                                                           \
-    (PN_POOL_(576u) + PN_POOL_((size_t)(t) * 48u) + PN_POOL_((size_t)(t) * 4u + 4u) +              \
-     PN_POOL_(PN_PX_(w, h) * 4u) + PN_POOL_((size_t)(h) * 32u) + PN_POOL_(PN_GEARS_C_ * 4u + 4u) +  \
-     2u * PN_POOL_(PN_GEARS_C_ * 4u) + PN_POOL_(6u * (size_t)PN_GEARS_GRID_MAX * ((size_t)PN_GEARS_GRID_MAX + 1u) * 4u) + \
-     PN_POOL_(6u * (size_t)PN_GEARS_GRID_MAX * 8u) + PN_POOL_(PN_GEARS_P_(t, w, h) * 8u) +                \
+    (PN_POOL_(576u) + PN_POOL_((size_t)(t) * 8u) +                                               \
+     PN_POOL_(PN_PX_(w, h) * 4u) + PN_POOL_((size_t)(h) * 32u) + PN_POOL_(PN_GEARS_R_ * PN_GEARS_W_ * 4u) + \
+     PN_POOL_(PN_GEARS_R_ * (PN_GEARS_W_ + 1u) * 4u) + PN_POOL_(PN_GEARS_C_ * 4u + 4u) +             \
+     2u * PN_POOL_(PN_GEARS_C_ * 4u) + PN_POOL_(PN_GEARS_R_ * 8u) +                             \
      PN_POOL_(PN_GEARS_P_(t, w, h) * 4u) + PN_POOL_((PN_GEARS_P_(t, w, h) / 8u + 1u) * 24u) +                  \
      PN_POOL_((PN_GEARS_P_(t, w, h) / 64u + 1u) * 24u))
 #else

@@ -118,6 +118,14 @@ static pn_status pn_cl_sort_pairs(pn_opencl *cl, const pn_devcmd *c)
     return PN_CL_PRIM_RUN(cl, PAIRS_SORT_RUNS, keys, &oo, &keys, &ov);
 }
 
+/* Each key's run of values sorted (the runs of a scatter by atomic cursors). */
+static pn_status pn_cl_sort_runs(pn_opencl *cl, const pn_devcmd *c)
+{
+    cl_ulong oo = pn_cl_offset(cl, c->c), ov = pn_cl_offset(cl, c->b);
+    cl_uint keys = c->keys;
+    return PN_CL_PRIM_RUN(cl, PAIRS_SORT_RUNS, keys, &oo, &keys, &ov);
+}
+
 static pn_status pn_cl_transfer(pn_opencl *cl, int write, const void *host, size_t bytes)
 {
     cl_int err;
@@ -141,6 +149,7 @@ pn_status pn_cl_exec(void *self, pn_context *ctx, const pn_devcmd *c)
     case PN_DEV_COPY: return pn_cl_copy(cl, c->a, c->b, c->bytes);
     case PN_DEV_SCAN: return pn_cl_scan(cl, (const uint32_t *)c->a, c->n);
     case PN_DEV_SORT_PAIRS: return pn_cl_sort_pairs(cl, c);
+    case PN_DEV_SORT_RUNS: return pn_cl_sort_runs(cl, c);
     case PN_DEV_TO_HOST: return pn_cl_transfer(cl, 0, c->a, c->bytes);
     case PN_DEV_TO_DEVICE: return pn_cl_transfer(cl, 1, c->a, c->bytes);
     case PN_DEV_FINISH:

@@ -8,6 +8,7 @@
 
 #include "pn_device.h"
 #include "pn_passes.h"
+#include "pn_sort.h"
 
 typedef struct pn_sc_launch {
     PN_GLOBAL uint8_t *A;
@@ -64,6 +65,15 @@ static void pn_sc_sort_pairs(const pn_devcmd *c)
     for (p = 0; p < c->n; p++) values[cur[pairs[(size_t)p * 2u]]++] = pairs[(size_t)p * 2u + 1u];
 }
 
+/* Each key's run, sorted ascending (pn_sort_u32: one pass over a run already in order,
+ * as a frame on one thread writes it). */
+static void pn_sc_sort_runs(const pn_devcmd *c)
+{
+    uint32_t *values = (uint32_t *)(uintptr_t)c->b, k;
+    const uint32_t *off = (const uint32_t *)c->c;
+    for (k = 0; k < c->keys; k++) pn_sort_u32(values + off[k], off[k + 1u] - off[k]);
+}
+
 static pn_status pn_sc_exec(void *self, pn_context *ctx, const pn_devcmd *c)
 {
     (void)self;
@@ -86,6 +96,7 @@ static pn_status pn_sc_exec(void *self, pn_context *ctx, const pn_devcmd *c)
         return PN_OK;
     }
     case PN_DEV_SORT_PAIRS: pn_sc_sort_pairs(c); return PN_OK;
+    case PN_DEV_SORT_RUNS: pn_sc_sort_runs(c); return PN_OK;
     case PN_DEV_TO_HOST:
     case PN_DEV_TO_DEVICE:
     case PN_DEV_FINISH: return PN_OK; /* the arena is the device memory */

@@ -147,19 +147,20 @@
 
 /* Largest grid resolution per axis a context reserves by default (pn_limits.gears_grid_max
  * 0; a context may ask for up to 1024). The frame option gears.grid, default 128, may be
- * any value up to the context's. Costs 6 faces x res^2 x 16 bytes of frame arena (cell
- * offsets, pixel counts, cursors, row prefixes; a point light uses a cube of 6 grids):
- * 1.5 MiB at 128. Range 1 .. 1024. */
+ * any value up to the context's. Costs res^2 x 12 bytes of frame arena (one face's cell
+ * offsets, pixel counts and cursors: a point light's cube of 6 grids is done a face at a
+ * time) and 6 x res x (res / 4 + 12) bytes for every face's grid rows (occupancy bits,
+ * their prefix counts, pairs per row): 0.22 MiB at 128. Range 1 .. 1024. */
 #ifndef PN_GEARS_GRID_MAX
 #define PN_GEARS_GRID_MAX 128u
 #endif
 
-/* Most (triangle, cell) pairs one pass can hold. A context reserves 16 a pixel of its
- * largest frame by default (pn_limits.gears_pairs 0), at least one a triangle and 65536,
- * at most this; a
- * frame that needs more is split into tiles of cells processed in turn (the result stays
- * exact); a single cell needing more returns PN_E_POOL_EXHAUSTED. Costs about 15 bytes a
- * pair (pair 8, cell-sorted copy 4, chunk boxes). Range 1 .. 2^28. */
+/* Most (triangle, cell) pairs one pass can hold. A context reserves by default
+ * (pn_limits.gears_pairs 0) 4 a triangle + 1 a pixel of its largest frame + the cells of
+ * its largest grid, at most 16 a pixel, at least one a triangle, at most this; a frame
+ * that needs more is split into tiles of cells processed in turn (the result stays
+ * exact); a single cell needing more returns PN_E_POOL_EXHAUSTED. Costs 7.4 bytes a pair
+ * (the cell-sorted entry 4, chunk and superchunk boxes). Range 1 .. 2^28. */
 #ifndef PN_GEARS_PAIRS
 #define PN_GEARS_PAIRS (1u << 22)
 #endif

@@ -54,7 +54,7 @@ typedef struct pn_gears_frame {
     uint32_t *cell_bits; /* [rows][W]: per global grid row, a bit a cell that holds pixels */
     uint32_t *cell_rank; /* [rows][W + 1]: per grid row, the set bits before each word */
     uint32_t *cell_off;  /* [res^2 + 1]: a tile's pairs per cell of its face, prefix-summed */
-    uint32_t *cell_pix;  /* [res^2]: pixels per cell of one face (face_counted) */
+    uint32_t *cell_pix;  /* [res^2]: pixels per cell of one face (face_ready) */
     uint32_t *cell_cur;  /* [res^2]: a tile's pairs per cell, then the scatter's cursors; the
                           * counts of a grid row being split */
     uint32_t *row_pairs; /* [rows * 2]: pairs per global grid row, low and high word */
@@ -381,7 +381,8 @@ static pn_status pn_gears_face(pn_frame_state *fs, pn_gears_frame_pools *g)
     uint32_t c, face = fs->K.tile.face, G = g->faces->res, T = fs->ctx->tri_count;
     pn_status st;
     g->face_ready = face;
-    if ((st = pn_dev_run(fs, PN_K_GEARS_TRI_RECTS, T)) != PN_OK || (st = pn_dev_run(fs, PN_K_GEARS_ROW_PAIRS, T)) != PN_OK ||
+    if ((st = pn_dev_run(fs, PN_K_GEARS_TRI_RECTS, T)) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_GEARS_ROW_PAIRS, T)) != PN_OK ||
         (st = pn_dev_to_host(fs, g->row_pairs + (size_t)face * G * 2u, (size_t)G * 8u)) != PN_OK ||
         (st = pn_dev_fill(fs, g->cell_pix, g->cells, 0u)) != PN_OK ||
         (st = pn_dev_run(fs, PN_K_GEARS_FACE_PIXELS, fs->width * fs->height)) != PN_OK ||
@@ -410,14 +411,6 @@ static void pn_gears_end(pn_context *ctx, const pn_gears_frame_pools *g)
     ctx->stats.gears.pairs_high_water = g->pairs_high;
 }
 
-/* One tile: pairs per cell (differences per row, then their running sums) -> exclusive
- * prefix sum (the offsets, to the host) -> each triangle into its cells' next slots ->
- * each cell's run sorted -> chunk and superchunk boxes -> masks. The runs come out in
- * raster order (work item r: the triangle rindex[r], entry r) on every port and thread
- * count: a sorted run of distinct values is unique; the chunk pass turns the entries into
- * triangle ids. The per-cell steps cover the tile's grid rows, [c0, c0 + C) of its face,
- * whose offsets start from 0 (a tile's list is the pool from its start): the cells of a
- * face cost once a frame, not once a tile. */
 /* The pairs of each cell of the tile's grid rows into cell_cur (cells of its face):
  * each triangle's rectangle as differences per row, then each row's running sums, kept
  * where a cell holds pixels. */
@@ -432,6 +425,14 @@ static pn_status pn_gears_count_cells(pn_frame_state *fs, pn_gears_frame_pools *
     return pn_dev_run(fs, PN_K_GEARS_CELL_ROWS, rows);
 }
 
+/* One tile: pairs per cell (differences per row, then their running sums) -> exclusive
+ * prefix sum (the offsets, to the host) -> each triangle into its cells' next slots ->
+ * each cell's run sorted -> chunk and superchunk boxes -> masks. The runs come out in
+ * raster order (work item r: the triangle rindex[r], entry r) on every port and thread
+ * count: a sorted run of distinct values is unique; the chunk pass turns the entries into
+ * triangle ids. The per-cell steps cover the tile's grid rows, [c0, c0 + C) of its face,
+ * whose offsets start from 0 (a tile's list is the pool from its start): the cells of a
+ * face cost once a frame, not once a tile. */
 static pn_status pn_gears_tile(pn_frame_state *fs, pn_gears_frame_pools *g)
 {
     const pn_ktile *tl = &fs->K.tile;
@@ -439,18 +440,20 @@ static pn_status pn_gears_tile(pn_frame_state *fs, pn_gears_frame_pools *g)
     uint32_t c0 = tl->r0 * g->faces->res, C = (tl->r1 - tl->r0 + 1u) * g->faces->res, n;
     uint32_t *cur = g->cell_cur + c0, *off = g->cell_off + c0;
     pn_status st;
-    if ((st = pn_gears_count_cells(fs, g)) != PN_OK || (st = pn_dev_copy(fs, off, cur, (size_t)C * 4u)) != PN_OK || (st = pn_dev_scan(fs, off, C)) != PN_OK ||
+    if ((st = pn_gears_count_cells(fs, g)) != PN_OK || (st = pn_dev_copy(fs, off, cur, (size_t)C * 4u)) != PN_OK ||
+        (st = pn_dev_scan(fs, off, C)) != PN_OK ||
         (st = pn_dev_to_host(fs, off, ((size_t)C + 1u) * 4u)) != PN_OK ||
         (st = pn_gears_tile_pairs(fs->ctx, g, off[C])) != PN_OK)
         return st;
     n = off[C];
     if ((st = pn_dev_copy(fs, cur, off, (size_t)C * 4u)) != PN_OK ||
-        (st = pn_dev_run(fs, PN_K_GEARS_SCATTER, R)) != PN_OK || (st = pn_dev_sort_runs(fs, g->sorted, off, C)) != PN_OK)
+        (st = pn_dev_run(fs, PN_K_GEARS_SCATTER, R)) != PN_OK ||
+        (st = pn_dev_sort_runs(fs, g->sorted, off, C)) != PN_OK)
         return st;
     pn_gears_tile_cells(g, c0, c0 + C);
     fs->K.tile.pairs = n;
-    if ((st = pn_dev_run(fs, PN_K_GEARS_CHUNKS, (n + PN_GEARS_CHUNK * PN_GEARS_SUPER - 1u) / (PN_GEARS_CHUNK * PN_GEARS_SUPER))) !=
-        PN_OK)
+    if ((st = pn_dev_run(fs, PN_K_GEARS_CHUNKS, (n + PN_GEARS_CHUNK * PN_GEARS_SUPER - 1u) /
+                                                    (PN_GEARS_CHUNK * PN_GEARS_SUPER))) != PN_OK)
         return st;
     return pn_dev_run(fs, PN_K_GEARS_MASKS, fs->width * fs->height);
 }

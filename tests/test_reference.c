@@ -560,42 +560,72 @@ static void test_point_and_one_sided(void)
 
 /* The same bytes whatever order the work items run in: the library's own serial loop
  * against one item a call forward, backward and shuffled, and uneven ranges from the end
- * (pn_test_parallel_for; test_reference_models runs it on 1, 2 and 7 threads). */
+ * (pn_test_parallel_for; test_reference_models runs it on 1, 2 and 7 threads). The
+ * reference, and GEARS in tiles of a small pair pool: its cells' entries take their slots
+ * by atomic cursors in the order the items run, and each cell's run is sorted after, so
+ * the chunks' boxes, the boxes a pixel tests (shadow_nodes) and the triangles it hands to
+ * the predicate are the same too (its visibility alone would not show a wrong order: the
+ * masks are a union). */
 static void test_schedule_determinism(void)
 {
     pn_test_schedule schedules[4] = {{PN_TEST_ITEMS_FORWARD, 0, 0}, {PN_TEST_ITEMS_BACKWARD, 0, 0},
                                      {PN_TEST_ITEMS_SHUFFLED, 0, 0}, {PN_TEST_CHUNKS_UNEVEN, 0, 0}};
+    static const pn_algo algos[2] = {PN_ALGO_REFERENCE, PN_ALGO_GEARS};
     pn_test_scene s;
-    pn_test_host h;
     float *vis0;
     uint8_t *rgba0;
-    int r;
+    int r, a;
     const size_t n = 96u * 72u;
     REQUIRE(pn_test_scene_load(&s, "spheres") == 0);
-    REQUIRE(pn_test_open(&h, s.mesh.triangle_count, 96, 72) == 0);
-    REQUIRE(pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) == PN_OK);
     vis0 = (float *)malloc(n * sizeof(float));
     rgba0 = (uint8_t *)malloc(n * 4u);
     REQUIRE(vis0 && rgba0);
-    for (r = 0; r <= 4; r++) {
-        pn_frame fr;
-        if (r > 0) REQUIRE(pn_set_parallel_for(h.ctx, pn_test_parallel_for, &schedules[r - 1]) == PN_OK);
-        REQUIRE(render(h.ctx, &s, &s.camera, &s.light, 96, 72, 8, &fr) == 0);
-        if (r > 0) /* the schedule ran the frame's passes, split into several ranges */
-            CHECK_MSG(schedules[r - 1].jobs > 0u && schedules[r - 1].ranges > 2u * schedules[r - 1].jobs,
-                      "schedule %d: %u jobs, %llu ranges", r - 1, schedules[r - 1].jobs,
-                      (unsigned long long)schedules[r - 1].ranges);
-        if (r == 0) {
-            memcpy(vis0, fr.visibility, n * sizeof(float));
-            memcpy(rgba0, fr.rgba, n * 4u);
-            continue;
+    for (a = 0; a < 2; a++) {
+        pn_test_host h;
+        pn_limits lim;
+        pn_stats st0;
+        if (!(pn_build_info() & (1u << algos[a]))) continue;
+        memset(&lim, 0, sizeof(lim));
+        lim.max_triangles = s.mesh.triangle_count;
+        lim.max_width = 96;
+        lim.max_height = 72;
+        lim.gears_pairs = 20000; /* the frame needs several times this */
+        REQUIRE(pn_test_open_limits(&h, &lim) == 0);
+        REQUIRE(pn_scene_set(h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) ==
+                PN_OK);
+        for (r = 0; r <= 4; r++) {
+            pn_frame fr;
+            pn_stats st;
+            if (r > 0) {
+                schedules[r - 1].jobs = 0u;
+                schedules[r - 1].ranges = 0u;
+                REQUIRE(pn_set_parallel_for(h.ctx, pn_test_parallel_for, &schedules[r - 1]) == PN_OK);
+            }
+            REQUIRE(render_algo(h.ctx, &s, &s.camera, &s.light, 96, 72, 8, algos[a], 0u, &fr) == 0);
+            REQUIRE(pn_get_stats(h.ctx, &st) == PN_OK);
+            if (r > 0) /* the schedule ran the frame's passes, split into several ranges */
+                CHECK_MSG(schedules[r - 1].jobs > 0u && schedules[r - 1].ranges > 2u * schedules[r - 1].jobs,
+                          "schedule %d: %u jobs, %llu ranges", r - 1, schedules[r - 1].jobs,
+                          (unsigned long long)schedules[r - 1].ranges);
+            if (r == 0) {
+                memcpy(vis0, fr.visibility, n * sizeof(float));
+                memcpy(rgba0, fr.rgba, n * 4u);
+                st0 = st;
+                if (algos[a] == PN_ALGO_GEARS) CHECK_MSG(st.gears.tiles > 1u, "GEARS: %u tiles", st.gears.tiles);
+                continue;
+            }
+            CHECK_MSG(memcmp(vis0, fr.visibility, n * sizeof(float)) == 0, "%s, schedule %d: other visibility",
+                      pn_algo_name(algos[a]), r - 1);
+            CHECK_MSG(memcmp(rgba0, fr.rgba, n * 4u) == 0, "%s, schedule %d: other image", pn_algo_name(algos[a]), r - 1);
+            CHECK_MSG(st.shadow_nodes == st0.shadow_nodes && st.shadow_candidates == st0.shadow_candidates,
+                      "%s, schedule %d: %llu boxes and %llu candidates, %llu and %llu in order", pn_algo_name(algos[a]),
+                      r - 1, (unsigned long long)st.shadow_nodes, (unsigned long long)st.shadow_candidates,
+                      (unsigned long long)st0.shadow_nodes, (unsigned long long)st0.shadow_candidates);
         }
-        CHECK_MSG(memcmp(vis0, fr.visibility, n * sizeof(float)) == 0, "schedule %d: other visibility", r - 1);
-        CHECK_MSG(memcmp(rgba0, fr.rgba, n * 4u) == 0, "schedule %d: other image", r - 1);
+        pn_test_close(&h);
     }
     free(vis0);
     free(rgba0);
-    pn_test_close(&h);
     pn_test_scene_free(&s);
 }
 

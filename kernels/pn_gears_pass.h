@@ -192,10 +192,10 @@ PN_KFN uint32_t pn_gears_row_count(PN_CONST uint32_t *occ, PN_CONST uint32_t *oc
     return pn_gears_rank(occ, occ_pre, res, r, x1 + 1u) - pn_gears_rank(occ, occ_pre, res, r, x0);
 }
 
-/* Triangle t: its pairs added to each grid row of face `face` (global row face * res +
- * row) it covers, as a
- * 64-bit count in two words (low, high) per row: row_pairs[2 r], row_pairs[2 r + 1].
- * The carry goes with the add that wrapped the low word, so the sum is exact in any order. */
+/* Triangle t: its pairs added to each grid row of face `face` it covers (global row r =
+ * face * res + row), as a 64-bit count in two words (low, high) per row: row_pairs[2 r],
+ * row_pairs[2 r + 1]. The carry goes with the add that wrapped the low word, so the sum is
+ * exact in any order. */
 PN_KFN void pn_gears_tri_row_pairs(uint32_t res, PN_CONST pn_cellrect *rects, PN_CONST uint32_t *occ,
                                    PN_CONST uint32_t *occ_pre, uint32_t face, uint32_t t, PN_GLOBAL uint32_t *row_pairs)
 {
@@ -349,12 +349,14 @@ PN_KFN void pn_gears_boxes4(PN_CONST float *boxes, uint32_t first, uint32_t last
 /* Chunk q of a cell's list sorted[e0 .. e1), whose footprint is rc (the whole light with
  * `exact`): its triangles into mask m by pn_tris_block4, with their boxes against the
  * frustum first (the reference's conservative test). Returns 1 when the mask is full
- * (never with `exact`). */
+ * (never with `exact`). Inlined always: its one caller is the pixel's loop, and when GCC
+ * kept it apart (b6cff78's smaller tile test changed its sums) the canopy's GEARS frame
+ * took 5.8% more instructions. */
 PN_KFN_HOT uint32_t pn_gears_chunk_mask(uint32_t q, pn_rect rc, uint32_t e0, uint32_t e1, uint32_t own,
-                                    PN_CONST uint32_t *sorted, PN_CONST float *tris, uint32_t exact,
-                                    const pn_frustum *fr, const pn_foot *fp, pn_v3 O, const pn_klight *L,
-                                    const pn_ray_origin *X, pn_ray_cache *RC, uint32_t *m, uint32_t *any,
-                                    pn_shadow_counters *cnt)
+                                        PN_CONST uint32_t *sorted, PN_CONST float *tris, uint32_t exact,
+                                        const pn_frustum *fr, const pn_foot *fp, pn_v3 O, const pn_klight *L,
+                                        const pn_ray_origin *X, pn_ray_cache *RC, uint32_t *m, uint32_t *any,
+                                        pn_shadow_counters *cnt)
 {
     uint32_t e = pn_kmaxu(e0, q * PN_GEARS_CHUNK), end = pn_kminu(q * PN_GEARS_CHUNK + PN_GEARS_CHUNK, e1);
     /* No open sample in the chunk's footprint: none of its triangles can block. (The
@@ -401,8 +403,8 @@ PN_KFN int pn_gears_in_tile(const pn_ktile *tl, uint32_t res, uint32_t cell)
 }
 
 /* Pixel pix, if its cell is in the tile: the mask of the cell's triangles
- * sorted[cell_off[c] .. cell_off[c + 1]) (in raster order; c the cell within its face), stopping at a full mask
- * unless `exact`; returns 1 and the visibility in *vis_out, else 0. A superchunk or a
+ * sorted[cell_off[c] .. cell_off[c + 1]) (in raster order; c the cell within its face),
+ * stopping at a full mask unless `exact`; returns 1 and the visibility in *vis_out, else 0. A superchunk or a
  * chunk of the list (PN_GEARS_SUPER, PN_GEARS_CHUNK) whose box is outside the pixel's
  * light frustum, or (unless `exact`, and once a sample is blocked) whose footprint holds
  * no open sample, is skipped whole: none of its triangles can block a sample still open,

@@ -13,7 +13,8 @@
  *   PN_CONST    read-only pointer into the arena
  *   pn_katomic_add(p, v)   32-bit unsigned atomic add into the arena, returns the old value:
  *               for order-independent reductions (counts, histograms) only, never for
- *               anything whose result depends on which work item came first
+ *               anything whose result depends on which work item came first (a cursor's
+ *               slots only when a sort of each run follows: GEARS' cell lists)
  *   pn_katomic_or(p, v)    32-bit atomic or into the arena (bit sets: order-independent)
  *   pn_katomic_imin(p, v), pn_katomic_imax(p, v)   32-bit signed atomic min / max into the
  *               arena, return the old value: order-independent; on the bits of floats

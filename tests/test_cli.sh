@@ -92,6 +92,21 @@ printf '{"v": [1, 2' > bad_views3.json
 check test $r -eq 2
 check grep -q 'bad_views3.json: unexpected end of file at byte' err.txt
 
+# --gears-pairs: GEARS' pair pool (0: the library's default, which tiles thin at 96x96; a
+# small pool, more tiles), the same bytes as the one-pass pool of the CLI's default.
+"$bin" render --builtin thin --size 96x96 --k 8 --algo gears --threads 1 --out g.png --vis g.pfm --stats g.json 2>err.txt
+check test $? -eq 0
+check grep -q '"gears_tiles": 1,' g.json
+for p in 0 3000; do
+  "$bin" render --builtin thin --size 96x96 --k 8 --algo gears --threads 1 --gears-pairs $p --out g$p.png --vis g$p.pfm \
+    --stats g$p.json 2>err.txt
+  check test $? -eq 0
+  check cmp -s g.pfm g$p.pfm
+  check test "$(grep -c '"gears_tiles": 1,' g$p.json)" -eq 0
+done
+"$bin" render --builtin thin --algo gears --gears-pairs -1 --out x.png 2>err.txt; r=$?
+check test $r -eq 2
+
 # Bad input: non-zero exit and a message, no crash.
 "$bin" render "$work/missing.glb" --out x.png 2>err.txt; r=$?
 check test $r -eq 1

@@ -7,7 +7,9 @@
 # the others from the CLI's default view; both binaries get the same flags. With --compare,
 # BEFORE_CLI is the baseline and the table has before, after (PENUMBRA_CLI) and after/before;
 # rows outside 0.99-1.01 are marked. ALGOS="gears mcsm" limits the algorithms (default: every
-# one the CLI lists). Each run: one thread, collection on only inside
+# one the CLI lists); BEFORE_FLAGS and AFTER_FLAGS add render options to the baseline's and
+# to PENUMBRA_CLI's runs (the same CLI twice with two settings: BEFORE_FLAGS="--gears-pairs
+# 262144" AFTER_FLAGS="--gears-pairs 0"). Each run: one thread, collection on only inside
 # pn_render_with (the scalar pn_render is a tail jump to it in src/pn_frame.c, so the toggle
 # must name pn_render_with), the count from the out file's totals line. Instruction counts do
 # not move with the machine's load; build both CLIs with the same flags and no -march=native
@@ -28,17 +30,17 @@ trap 'rm -rf "$work"' EXIT
 algos=${ALGOS:-$("$cli" --help 2>&1 | sed -n 's/^algorithms: //p' | head -n 1)}
 [ -n "$algos" ] || algos="reference gears raytrace srt occtex mcsm wedges"
 
-# frame_ir CLI SCENE ALGO: the Ir of the frame, on stdout.
+# frame_ir CLI SCENE ALGO [FLAGS]: the Ir of the frame, on stdout.
 frame_ir() {
   if [ -f "$scenes/$2.glb" ]; then src="$scenes/$2.glb"; else src="--builtin $2"; fi
   view=
   grep -q "\"$2\"[[:space:]]*:" "$scenes/views.json" 2>/dev/null && view="--view $2 --views $scenes/views.json"
-  echo "callgrind_frames: $1 $2 $3 ${size}x$size" >&2
+  echo "callgrind_frames: $1 $2 $3 ${size}x$size ${4:-}" >&2
   rm -f "$work/cg.out"
   # shellcheck disable=SC2086
   valgrind --tool=callgrind --callgrind-out-file="$work/cg.out" --collect-atstart=no \
     --toggle-collect=pn_render_with "$1" render $src $view --algo "$3" --size "${size}x$size" \
-    --threads 1 --out "$work/frame.png" > /dev/null 2> "$work/log" || { cat "$work/log" >&2; exit 1; }
+    --threads 1 ${4:-} --out "$work/frame.png" > /dev/null 2> "$work/log" || { cat "$work/log" >&2; exit 1; }
   awk '/^(summary|totals):/ { t = $2 } END { if (t == "") exit 1; print t }' "$work/cg.out"
 }
 
@@ -51,9 +53,9 @@ else
 fi
 for s in "$@"; do
   for a in $algos; do
-    after_ir=$(frame_ir "$cli" "$s" "$a")
+    after_ir=$(frame_ir "$cli" "$s" "$a" "${AFTER_FLAGS:-}")
     if [ -z "$before" ]; then echo "| $s | $a | $after_ir |"; continue; fi
-    before_ir=$(frame_ir "$before" "$s" "$a")
+    before_ir=$(frame_ir "$before" "$s" "$a" "${BEFORE_FLAGS:-}")
     awk -v s="$s" -v a="$a" -v b="$before_ir" -v n="$after_ir" 'BEGIN {
       r = n / b; flag = (r < 0.99 || r > 1.01) ? " **outside 1%**" : ""
       printf "| %s | %s | %.0f | %.0f | %.4f%s |\n", s, a, b, n, r, flag }'

@@ -39,7 +39,7 @@ static void usage(FILE *f)
             "                  [--view NAME [--views FILE]]\n"
             "                  [--eye x,y,z --target x,y,z --up x,y,z --fov DEG]\n"
             "                  [--light-center x,y,z --light-u x,y,z --light-v x,y,z]\n"
-            "                  [--ground on|off] [--eps E] [--grid N] [--exact-stats] [--threads N]\n"
+            "                  [--ground on|off] [--eps E] [--grid N] [--gears-pairs N] [--exact-stats] [--threads N]\n"
             "                  [--srt-map N] [--srt-delta D] [--srt-no-conservative] [--srt-force-pip]\n"
             "                  [--occ-slices N] [--occ-map N] [--occ-filter nbuffer|sat|mipmap]\n"
             "                  [--occ-combine product|max|sum] [--occ-leak-fix]\n"
@@ -348,7 +348,9 @@ static int cmd_render(int argc, char **argv, int bake)
     pn_status rs;
     char err[512];
     int ground = -1, threads = 0, i, user_view = 0, user_light = 0, have_size = 0;
+    long gears_pairs = -1; /* --gears-pairs: -1 the host's (PN_GEARS_PAIRS), 0 the library's default */
     float eps_rel = -1.0f;
+    pn_limits lim;
     pn_camera cam;
     pn_light light;
     int have[7] = {0};
@@ -409,6 +411,11 @@ static int cmd_render(int argc, char **argv, int bake)
             else BAD("--ground");
         } else if (strcmp(a, "--eps") == 0) { NEED_ARG; eps_rel = strtof(v, NULL); }
         else if (strcmp(a, "--grid") == 0) { NEED_ARG; opt.gears.grid = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--gears-pairs") == 0) {
+            NEED_ARG;
+            gears_pairs = strtol(v, NULL, 10);
+            if (gears_pairs < 0 || gears_pairs > (1L << 28)) BAD("--gears-pairs");
+        }
         else if (strcmp(a, "--exact-stats") == 0) opt.exact_stats = 1;
         else if (strcmp(a, "--srt-map") == 0) { NEED_ARG; opt.srt.map = (uint32_t)strtoul(v, NULL, 10); }
         else if (strcmp(a, "--srt-delta") == 0) { NEED_ARG; opt.srt.delta = strtof(v, NULL); }
@@ -519,8 +526,9 @@ static int cmd_render(int argc, char **argv, int bake)
     opt.eps = s.eps;
 
     if (bake && !have_size) opt.width = opt.height = 256u;
-    if (pn_host_open(&h, s.mesh.triangle_count, opt.width > 0 ? opt.width : 1, opt.height > 0 ? opt.height : 1,
-                     threads, err, sizeof(err)) != 0) {
+    pn_host_limits(&lim, s.mesh.triangle_count, opt.width > 0 ? opt.width : 1, opt.height > 0 ? opt.height : 1);
+    if (gears_pairs >= 0) lim.gears_pairs = (uint32_t)gears_pairs;
+    if (pn_host_open_limits(&h, &lim, threads, err, sizeof(err)) != 0) {
         fprintf(stderr, "penumbra: %s\n", err);
         pn_setup_free(&s);
         return 1;

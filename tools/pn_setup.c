@@ -160,24 +160,29 @@ pn_status pn_setup_upload(pn_context *ctx, const pn_setup *s)
     return pn_scene_set_receivers(ctx, s->mesh.receiver_first, s->mesh.receiver_count);
 }
 
-int pn_host_open(pn_host *h, uint32_t max_triangles, uint32_t max_w, uint32_t max_h, int threads,
-                 char *err, size_t err_size)
+void pn_host_limits(pn_limits *lim, uint32_t max_triangles, uint32_t max_w, uint32_t max_h)
 {
-    pn_limits lim;
-    memset(&lim, 0, sizeof(lim));
-    lim.max_triangles = max_triangles;
-    lim.max_width = max_w;
-    lim.max_height = max_h;
+    memset(lim, 0, sizeof(*lim));
+    lim->max_triangles = max_triangles;
+    lim->max_width = max_w;
+    lim->max_height = max_h;
     {
         /* A host has the memory: reserve the split references (the library reserves them
          * only on request), with which the exact algorithms trace slivers faster. */
         uint64_t refs = (uint64_t)max_triangles + PN_BVH_SPLIT_EXTRA(max_triangles), most = 1u << 26;
-        lim.bvh_refs = (uint32_t)(refs <= most ? refs : max_triangles > most ? max_triangles : most);
+        lim->bvh_refs = (uint32_t)(refs <= most ? refs : max_triangles > most ? max_triangles : most);
     }
     /* ...GEARS grids up to 256 (the benchmark's grid sweep, the CLI's --grid), and GEARS'
      * largest pair pool (frames in one pass where the default would tile them). */
-    lim.gears_grid_max = 256;
-    lim.gears_pairs = PN_GEARS_PAIRS;
+    lim->gears_grid_max = 256;
+    lim->gears_pairs = PN_GEARS_PAIRS;
+}
+
+int pn_host_open(pn_host *h, uint32_t max_triangles, uint32_t max_w, uint32_t max_h, int threads,
+                 char *err, size_t err_size)
+{
+    pn_limits lim;
+    pn_host_limits(&lim, max_triangles, max_w, max_h);
     return pn_host_open_limits(h, &lim, threads, err, err_size);
 }
 

@@ -101,6 +101,10 @@ typedef struct pn_host {
     pn_threads threads;
 } pn_host;
 
+/* A host's limits for max_triangles at max_w x max_h: the library's defaults but the split
+ * BVH references reserved, GEARS grids up to 256 and GEARS' pair pool at PN_GEARS_PAIRS
+ * (frames in one pass). pn_host_open opens a context with them. */
+void pn_host_limits(pn_limits *lim, uint32_t max_triangles, uint32_t max_w, uint32_t max_h);
 int pn_host_open(pn_host *h, uint32_t max_triangles, uint32_t max_w, uint32_t max_h, int threads,
                  char *err, size_t err_size);
 /* The same with the caller's limits (every field). */

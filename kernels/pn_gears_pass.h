@@ -96,12 +96,6 @@ PN_KFN void pn_gears_project_row(const pn_klight *L, const pn_kgrid *g, uint32_t
 /* Words of a grid row's occupancy bits. */
 PN_KFN uint32_t pn_gears_row_words(uint32_t res) { return (res + 31u) >> 5; }
 
-/* Whether cell x of global grid row r holds a pixel. */
-PN_KFN uint32_t pn_gears_occupied(PN_CONST uint32_t *occ, uint32_t res, uint32_t r, uint32_t x)
-{
-    return (occ[(size_t)r * pn_gears_row_words(res) + (x >> 5)] >> (x & 31u)) & 1u;
-}
-
 /* Pixel pix: its global cell (face * res^2 + cell) or PN_CELL_NONE, and that cell's
  * occupancy bit set (occ zeroed beforehand). */
 PN_KFN void pn_gears_pixel_cell(const pn_klight *L, PN_CONST pn_kfaces *F, const pn_ksurf *S, size_t pix,
@@ -248,9 +242,10 @@ PN_KFN void pn_gears_cell_row(PN_CONST uint32_t *occ, uint32_t res, const pn_kti
 {
     uint32_t x, run = 0u;
     PN_GLOBAL uint32_t *c = counts + (size_t)y * res;
+    PN_CONST uint32_t *bits = occ + (size_t)(tl->face * res + y) * pn_gears_row_words(res);
     for (x = 0; x < res; x++) {
         run += c[x];
-        c[x] = pn_gears_occupied(occ, res, tl->face * res + y, x) ? run : 0u;
+        c[x] = (bits[x >> 5] >> (x & 31u)) & 1u ? run : 0u;
     }
 }
 

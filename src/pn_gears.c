@@ -179,7 +179,7 @@ static float pn_u64_to_f32(uint64_t v)
 static void pn_gears_carve(pn_carver *c, const pn_limits *l, uint32_t w, uint32_t h, pn_gears_frame_pools *g)
 {
     uint64_t px = (uint64_t)w * h, gmax = pn_gears_grid_max(l), cmax = gmax * gmax, rmax = 6u * gmax;
-    uint64_t W = (gmax + 31u) / 32u, pool = pn_gears_pairs_max(l);
+    uint64_t W = pn_gears_row_words((uint32_t)gmax), pool = pn_gears_pairs_max(l);
     g->pool = (uint32_t)pool;
     g->faces = (pn_kfaces *)pn_pool(c, 1u, sizeof(pn_kfaces), "gears grid cameras");
     g->rects = (pn_cellrect *)pn_pool(c, l->max_triangles, 8u, "gears cell rects");
@@ -481,7 +481,7 @@ pn_status pn_gears_frame(pn_frame_state *fs)
         pn_gears_grid(fs, &g);
         if ((st = pn_dev_to_device(fs, g.faces, sizeof(pn_kfaces))) != PN_OK) return st;
     }
-    if ((st = pn_dev_fill(fs, g.cell_bits, g.rows * ((g.faces->res + 31u) / 32u), 0u)) != PN_OK ||
+    if ((st = pn_dev_fill(fs, g.cell_bits, g.rows * pn_gears_row_words(g.faces->res), 0u)) != PN_OK ||
         (st = pn_dev_run(fs, PN_K_GEARS_PIXEL_CELLS, fs->width * H)) != PN_OK ||
         (st = pn_dev_run(fs, PN_K_GEARS_ROW_PREFIX, g.rows)) != PN_OK)
         return st;

@@ -51,11 +51,13 @@ PN_KFN void pn_e_wg_sblock_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const p
     pn_wg_block_box(PN_POOL(const pn_wsil, wg_sil), K->wg.sils, k, PN_WG_SBLOCK, PN_POOL(float, wg_sbox));
 }
 
-/* Screen tile: the light-space box of its pixels' shadow origins. */
+/* Screen tile: the light-space box of its pixels' shadow origins and whether its centre
+ * segments are clear. */
 PN_KFN void pn_e_wg_tile_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
 {
     pn_ksurf S = pn_surf_of(A, P, K);
-    pn_wg_tile_box(&K->view, &K->light, t % K->wg.tiles_x, t / K->wg.tiles_x, &S, PN_POOL(float, wg_tbox) + (size_t)t * PN_WG_BOX);
+    pn_wg_tile_box(&K->view, &K->light, t % K->wg.tiles_x, t / K->wg.tiles_x, &S, PN_POOL(const float, tris),
+                   PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), PN_POOL(float, wg_tbox) + (size_t)t * PN_WG_BOX);
 }
 
 /* Silhouette: the count of its (tile, silhouette) pairs in the band (with wg.count_rows,
@@ -84,8 +86,9 @@ PN_KFN void pn_e_wg_runs(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
                PN_POOL(uint32_t, wg_pairs));
 }
 
-/* Pixel pix0 + i (of the band's rows; the band's columns only): its centre ray and its
- * tile's wedges, blended object by object, times its horizon's fraction; or, in its own
+/* Pixel pix0 + i (of the band's rows; the band's columns only): its centre ray (none in a
+ * clear tile; the tiles' boxes are made only when there are silhouettes) and its tile's
+ * wedges, blended object by object, times its horizon's fraction; or, in its own
  * object's self-shadow penumbra (PN_WG_EXACT), the reference's visibility over the
  * PN_WG_EXACT_K^2 samples (fewer when k is smaller). */
 PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
@@ -109,7 +112,8 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     tile = (pix / W / PN_WG_TILE) * K->wg.tiles_x + tx;
     v = pn_wg_pixel(O, id, &K->light, K->wg.mode, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
                     PN_POOL(const uint32_t, index), PN_POOL(const uint32_t, wg_tcomp), PN_POOL(const uint32_t, wg_tcast), PN_POOL(const pn_wsil, wg_sil),
-                    K->wg.sils, PN_POOL(const float, wg_bbox), PN_POOL(const float, wg_sbox), PN_POOL(const uint32_t, wg_sorted), PN_POOL(const uint32_t, wg_pairs), toff[tile], toff[tile + 1u], &c);
+                    K->wg.sils, PN_POOL(const float, wg_bbox), PN_POOL(const float, wg_sbox), PN_POOL(const uint32_t, wg_sorted), PN_POOL(const uint32_t, wg_pairs), toff[tile], toff[tile + 1u],
+                    K->wg.sils > 0u && PN_POOL(const float, wg_tbox)[(size_t)tile * PN_WG_BOX + PN_WG_CLEAR] > 0.0f, &c);
     if (v == PN_WG_EXACT) {
         pn_shadow_counters ce = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
         pn_klight Lk = K->light;

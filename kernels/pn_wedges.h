@@ -412,35 +412,179 @@ PN_KFN void pn_wg_block_box(PN_CONST pn_wsil *sil, uint32_t nsil, uint32_t k, ui
 
 /* A tile's box (PN_WG_BOX floats): the least and greatest u, v and h (pn_wg_light) of the
  * shadow origins O of its pixels that have one, the very values pn_wg_pixel computes; u0 > u1
- * when no pixel of the tile has one. */
-#define PN_WG_BOX 6u
+ * when no pixel of the tile has one. Then PN_WG_CLEAR: 1 when no triangle meets a segment
+ * from one of those origins to the light centre (pn_wg_cone_clear), so that its pixels need
+ * no centre ray; else 0. */
+#define PN_WG_BOX 7u
+#define PN_WG_CLEAR 6u
+
+/* The cone of a tile's centre segments: with apex the light centre c (light coordinates
+ * (u, v, h) = (0, 0, 0)), a segment from origin O to c is the points s O, s in [0, 1], along
+ * which u / h and v / h stay O's; so every such segment of the tile lies in
+ *     h >= 0,  a0 h <= u <= a1 h,  b0 h <= v <= b1 h,  m . (X - c) <= D,
+ * [a0, a1] x [b0, b1] the box of the origins' u / h and v / h, and the last (the cap) a
+ * plane facing away from the light, m the sum of the receivers' normals turned away from it
+ * and D the origins' greatest m . (O - c) (c is inside: every receiver faces it). Where the
+ * receivers lie on one plane (a floor, a wall) the cap is that plane moved eps toward the
+ * light: their own triangles, behind it, are outside. Each bound as a plane
+ * n . (X - c) <= d in world coordinates, pl[4 i ..] = n, d; the cone's four sides and
+ * its base from light coordinates: */
+#define PN_WG_CONE_PLANES 6u
+PN_KFN void pn_wg_cone_plane(const pn_klight *L, float A, float B, float C, float d, float *pl)
+{
+    pn_v3 U = pn_light_U(L), V = pn_light_V(L), N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
+    pn_v3 n = pn_v3_add(pn_v3_add(pn_v3_scale(U, A * (1.0f / pn_v3_dot(U, U))), pn_v3_scale(V, B * (1.0f / pn_v3_dot(V, V)))),
+                        pn_v3_scale(N, C));
+    pl[0] = n.x;
+    pl[1] = n.y;
+    pl[2] = n.z;
+    pl[3] = d;
+}
+
+/* Whether every point of box [lo, hi] (or of the triangle's three vertices, lo = hi = each
+ * in turn) is beyond plane pl by more than its slack: 1e-5 of the magnitudes the plane's
+ * terms reach there, a hundred times the rounding of the planes and of these sums. */
+PN_KFN int pn_wg_cone_beyond(const float *pl, pn_v3 c, const float *lo, const float *hi)
+{
+    float f = -pl[3], m = pn_kfabs(pl[3]);
+    uint32_t k;
+    for (k = 0; k < 3u; k++) {
+        float n = pl[k], x = (n >= 0.0f ? lo[k] : hi[k]) - (k == 0u ? c.x : k == 1u ? c.y : c.z);
+        f += n * x;
+        m += pn_kfabs(n) * (pn_kfabs(lo[k] - (k == 0u ? c.x : k == 1u ? c.y : c.z)) +
+                            pn_kfabs(hi[k] - (k == 0u ? c.x : k == 1u ? c.y : c.z)));
+    }
+    return f > 1e-5f * m + PN_KTINY;
+}
+
+/* Whether no triangle of the BVH meets the cone pl (PN_WG_CONE_PLANES planes): a walk that
+ * drops a box or a triangle wholly beyond one plane and stops at the first triangle that is
+ * not. A full stack says no (the walk would lose a subtree). */
+PN_KFN int pn_wg_cone_clear(const float *pl, pn_v3 c, PN_CONST float *tris, PN_CONST pn_kbvh4 *wnodes,
+                            PN_CONST uint32_t *tri_index)
+{
+    uint32_t stack[PN_BVH_STACK], sp = 0u, cur = 0u, ch, i, q, a;
+    for (;;) {
+        PN_CONST pn_kbvh4 *w = wnodes + cur;
+        for (ch = 0; ch < w->n; ch++) {
+            float lo[3], hi[3];
+            int out = 0;
+            for (a = 0; a < 3u; a++) {
+                lo[a] = w->lo[a][ch];
+                hi[a] = w->hi[a][ch];
+            }
+            for (i = 0; i < PN_WG_CONE_PLANES && !out; i++) out = pn_wg_cone_beyond(pl + 4u * i, c, lo, hi);
+            if (out) continue;
+            if (w->child[ch] & PN_W4_LEAF) {
+                uint32_t first, count = pn_w4_word_refs(w->child[ch], &first);
+                for (q = 0; q < count; q++) {
+                    PN_CONST float *tp = tris + (size_t)(tri_index[first + q] & PN_REF_TRI) * 9u;
+                    float p[9];
+                    for (a = 0; a < 9u; a++) p[a] = tp[a];
+                    for (i = 0, out = 0; i < PN_WG_CONE_PLANES && !out; i++)
+                        out = pn_wg_cone_beyond(pl + 4u * i, c, p, p) && pn_wg_cone_beyond(pl + 4u * i, c, p + 3, p + 3) &&
+                              pn_wg_cone_beyond(pl + 4u * i, c, p + 6, p + 6);
+                    if (!out) return 0;
+                }
+            } else {
+                if (sp == PN_BVH_STACK) return 0;
+                stack[sp++] = w->child[ch];
+            }
+        }
+        if (sp == 0u) return 1;
+        cur = stack[--sp];
+    }
+}
+
+/* A cone in the making: its ratios' box, the cap's normal m and offset D. Each origin O
+ * (of receiver point P, normal n) is added twice: first to the ratios and m
+ * (pn_wg_cone_add), then to D (pn_wg_cone_cap); pn_wg_cone_planes gives the planes, or 0
+ * when an origin is not below the light plane (h <= 0) or there is none. */
+typedef struct pn_wcone {
+    float r[4], D;
+    pn_v3 m;
+    int ok;
+} pn_wcone;
+
+PN_KFN void pn_wg_cone_init(pn_wcone *C)
+{
+    C->r[0] = C->r[2] = PN_KINF;
+    C->r[1] = C->r[3] = -PN_KINF;
+    C->D = -PN_KINF;
+    C->m = pn_v3_make(0.0f, 0.0f, 0.0f);
+    C->ok = 1;
+}
+
+PN_KFN void pn_wg_cone_add(pn_wcone *C, const pn_klight *L, pn_v3 O, pn_v3 P, pn_v3 n)
+{
+    float u, v, h;
+    pn_wg_light(L, O, &u, &v, &h);
+    if (!(h > 0.0f)) C->ok = 0;
+    C->r[0] = pn_kminf(C->r[0], u / h);
+    C->r[1] = pn_kmaxf(C->r[1], u / h);
+    C->r[2] = pn_kminf(C->r[2], v / h);
+    C->r[3] = pn_kmaxf(C->r[3], v / h);
+    C->m = pn_v3_sub(C->m, pn_v3_dot(n, pn_v3_sub(pn_light_c(L), P)) < 0.0f ? pn_v3_scale(n, -1.0f) : n);
+}
+
+PN_KFN void pn_wg_cone_cap(pn_wcone *C, const pn_klight *L, pn_v3 O)
+{
+    C->D = pn_kmaxf(C->D, pn_v3_dot(C->m, pn_v3_sub(O, pn_light_c(L))));
+}
+
+PN_KFN int pn_wg_cone_planes(const pn_wcone *C, const pn_klight *L, float *pl)
+{
+    if (!C->ok || L->is_point || !(C->D >= 0.0f) ||
+        !(C->r[0] > -PN_KINF && C->r[1] < PN_KINF && C->r[2] > -PN_KINF && C->r[3] < PN_KINF))
+        return 0;
+    pn_wg_cone_plane(L, 0.0f, 0.0f, -1.0f, 0.0f, pl);
+    pn_wg_cone_plane(L, -1.0f, 0.0f, C->r[0], 0.0f, pl + 4);
+    pn_wg_cone_plane(L, 1.0f, 0.0f, -C->r[1], 0.0f, pl + 8);
+    pn_wg_cone_plane(L, 0.0f, -1.0f, C->r[2], 0.0f, pl + 12);
+    pn_wg_cone_plane(L, 0.0f, 1.0f, -C->r[3], 0.0f, pl + 16);
+    pl[20] = C->m.x;
+    pl[21] = C->m.y;
+    pl[22] = C->m.z;
+    pl[23] = C->D;
+    return 1;
+}
 
 PN_KFN void pn_wg_tile_box(const pn_kview *v, const pn_klight *L, uint32_t tx, uint32_t ty, const pn_ksurf *S,
-                           PN_GLOBAL float *box)
+                           PN_CONST float *tris, PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index, PN_GLOBAL float *box)
 {
-    float b[PN_WG_BOX];
-    uint32_t x, y, x1 = (tx + 1u) * PN_WG_TILE, y1 = (ty + 1u) * PN_WG_TILE, i;
+    float b[PN_WG_BOX], pl[4u * PN_WG_CONE_PLANES];
+    uint32_t x, y, x1 = (tx + 1u) * PN_WG_TILE, y1 = (ty + 1u) * PN_WG_TILE, i, pass;
+    pn_wcone C;
     b[0] = b[2] = b[4] = PN_KINF;
     b[1] = b[3] = b[5] = -PN_KINF;
+    pn_wg_cone_init(&C);
     if (x1 > v->width) x1 = v->width;
     if (y1 > v->height) y1 = v->height;
-    for (y = ty * PN_WG_TILE; y < y1; y++)
-        for (x = tx * PN_WG_TILE; x < x1; x++) {
-            size_t pix = (size_t)y * v->width + x;
-            pn_v3 O, P, n;
-            float u, vv, h;
-            if (S->tri_id[pix] == PN_NO_PIXEL_TRIANGLE) continue;
-            pn_surf_at(S, pix, &P, &n);
-            if (!pn_shadow_origin(P, n, L, &O)) continue;
-            pn_wg_light(L, O, &u, &vv, &h);
-            b[0] = pn_kminf(b[0], u);
-            b[1] = pn_kmaxf(b[1], u);
-            b[2] = pn_kminf(b[2], vv);
-            b[3] = pn_kmaxf(b[3], vv);
-            b[4] = pn_kminf(b[4], h);
-            b[5] = pn_kmaxf(b[5], h);
-        }
-    for (i = 0; i < PN_WG_BOX; i++) box[i] = b[i];
+    /* Pass 0: the box and the cone's ratios and cap normal; pass 1: the cap's offset. */
+    for (pass = 0; pass < 2u && (pass == 0u || C.ok); pass++)
+        for (y = ty * PN_WG_TILE; y < y1; y++)
+            for (x = tx * PN_WG_TILE; x < x1; x++) {
+                size_t pix = (size_t)y * v->width + x;
+                pn_v3 O, P, n;
+                float u, vv, h;
+                if (S->tri_id[pix] == PN_NO_PIXEL_TRIANGLE) continue;
+                pn_surf_at(S, pix, &P, &n);
+                if (!pn_shadow_origin(P, n, L, &O)) continue;
+                if (pass == 1u) {
+                    pn_wg_cone_cap(&C, L, O);
+                    continue;
+                }
+                pn_wg_light(L, O, &u, &vv, &h);
+                b[0] = pn_kminf(b[0], u);
+                b[1] = pn_kmaxf(b[1], u);
+                b[2] = pn_kminf(b[2], vv);
+                b[3] = pn_kmaxf(b[3], vv);
+                b[4] = pn_kminf(b[4], h);
+                b[5] = pn_kmaxf(b[5], h);
+                pn_wg_cone_add(&C, L, O, P, n);
+            }
+    for (i = 0; i < 6u; i++) box[i] = b[i];
+    box[PN_WG_CLEAR] = pn_wg_cone_planes(&C, L, pl) && pn_wg_cone_clear(pl, pn_light_c(L), tris, wnodes, tri_index) ? 1.0f : 0.0f;
 }
 
 /* Whether silhouette e is nothing to every shadow origin in box B: pn_wg_project returns 0
@@ -904,10 +1048,11 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
                          PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index,
                          PN_CONST uint32_t *tcomp, PN_CONST uint32_t *tcast,
                          PN_CONST pn_wsil *sil, uint32_t nsil, PN_CONST float *bbox, PN_CONST float *sbox,
-                         PN_CONST uint32_t *list, PN_CONST uint32_t *next, uint32_t lo, uint32_t hi, pn_shadow_counters *cnt)
+                         PN_CONST uint32_t *list, PN_CONST uint32_t *next, uint32_t lo, uint32_t hi, int clear,
+                         pn_shadow_counters *cnt)
 {
     uint32_t hard[PN_WG_HARD_MAX], hn[PN_WG_HARD_MAX], htri[PN_WG_HARD_MAX], nhard = 0u, ntri = 0u, t, i, q;
-    uint32_t kb = PN_WG_ANY;
+    uint32_t kb = PN_WG_ANY, hc = 0u;
     int kmiss = 0;
     float af[4];
     pn_wbox bf[4];
@@ -918,13 +1063,16 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
     pn_wframe F;
     float occ;
 
-    /* The centre: which objects block it (exactly). */
+    /* The centre: which objects block it (exactly); none in a tile whose cone is clear
+     * (pn_wg_cone_clear: no triangle meets any of its centre segments). */
     Lc.k = 1u;
-    pn_tri_block_origin(O, &Lc, wnodes, &X);
-    pn_ray_chain(&X, wnodes);
-    pn_ray_make(&X, &Lc, 0, 0, &R);
-    pn_ray_walk_begin(&W, &X, &R, wnodes);
-    for (;;) {
+    if (!clear) {
+        pn_tri_block_origin(O, &Lc, wnodes, &X);
+        pn_ray_chain(&X, wnodes);
+        pn_ray_make(&X, &Lc, 0, 0, &R);
+        pn_ray_walk_begin(&W, &X, &R, wnodes);
+    }
+    while (!clear) {
         pn_shadow_counters rc = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
         uint32_t s, j;
         t = pn_ray_walk_next(&W, &R, own, tris, wnodes, tri_index, &Lc, &rc);
@@ -959,6 +1107,17 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
         }
     }
     if (L->is_point) return 1.0f;
+    /* The blockers in ascending order (insertion sort, at most PN_WG_HARD_MAX): the list
+     * visits objects in ascending order, so one cursor (hc) finds each in turn. */
+    for (i = 1u; i < nhard; i++) {
+        uint32_t hs = hard[i], hk = hn[i], m = i;
+        for (; m > 0u && hard[m - 1u] > hs; m--) {
+            hard[m] = hard[m - 1u];
+            hn[m] = hn[m - 1u];
+        }
+        hard[m] = hs;
+        hn[m] = hk;
+    }
 
     pn_wg_frame(L, O, &F);
     for (q = 0; q < 4u; q++) {
@@ -967,7 +1126,7 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
     }
     i = lo;
     while (i < hi) {
-        uint32_t s = sil[list[i]].comp, o0, oend, j, k = list[i] / PN_WG_SBLOCK;
+        uint32_t s = sil[list[i]].comp, o0, oend, k = list[i] / PN_WG_SBLOCK;
         int h = 0, started = 0;
         float a0 = 0.0f;
         pn_wpart parts[4];
@@ -978,21 +1137,22 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
         if (k != kb) {
             kb = k;
             kmiss = pn_wg_obj_misses(&F, sbox + (size_t)k * 6u);
-            if (kmiss && nhard > 0u) {
+            if (kmiss && hc < nhard) { /* objects before c0 are behind the list's cursor */
                 uint32_t c0 = sil[k * PN_WG_SBLOCK].comp;
                 uint32_t c1 = sil[((k + 1u) * PN_WG_SBLOCK < nsil ? (k + 1u) * PN_WG_SBLOCK : nsil) - 1u].comp;
-                for (j = 0; j < nhard && kmiss; j++) kmiss = hard[j] < c0 || hard[j] > c1;
+                while (hc < nhard && hard[hc] < c0) hc++;
+                kmiss = hc == nhard || hard[hc] > c1;
             }
         }
         if (kmiss) {
             i = pn_wg_lower_bound(list, i, hi, (k + 1u) * PN_WG_SBLOCK);
             continue;
         }
-        for (j = 0; j < nhard; j++)
-            if (hard[j] == s) {
-                h = 1;
-                a0 = hn[j] > 1u ? (float)hn[j] : 1.0f;
-            }
+        while (hc < nhard && hard[hc] < s) hc++;
+        if (hc < nhard && hard[hc] == s) {
+            h = 1;
+            a0 = hn[hc] > 1u ? (float)hn[hc] : 1.0f;
+        }
         if (!h && pn_wg_obj_misses(&F, sil[list[i]].ob)) { /* none of its edges reaches the light */
             i = next[2u * (size_t)i + 1u];
             continue;

@@ -104,7 +104,7 @@ pn_status pn_wedges_prepare(pn_frame_state *fs, const pn_frame_options *opt)
 
 typedef char pn_wg_consts_agree[PN_WG_M_BLEND == PN_WG_MODE_BLEND && PN_WG_M_ADD == PN_WG_MODE_ADDITIVE ? 1 : -1];
 /* PN_WEDGES_BYTES_MAX (penumbra.h) counts these sizes. */
-typedef char pn_wg_sizes_agree[sizeof(pn_wsil) == 96u && PN_WG_BOX == 6u && PN_WG_TILE == 16u && PN_WG_BLOCK == 16u &&
+typedef char pn_wg_sizes_agree[sizeof(pn_wsil) == 96u && PN_WG_BOX == 7u && PN_WG_TILE == 16u && PN_WG_BLOCK == 16u &&
                                         PN_WG_SBLOCK == 128u ? 1 : -1];
 
 typedef struct pn_wg_pools {

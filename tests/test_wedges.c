@@ -24,7 +24,11 @@
  * 8. A wedge's screen reach (pn_wg_reach, pn_wg_row: the tiles it is binned to) holds every
  *    pixel its edge covers light from: random edges, lights and receiver planes, every
  *    pixel of a screen whose size is no multiple of the tile, the pixel's point taken where
- *    its centre's ray meets the plane; and it is tighter than its tile box. */
+ *    its centre's ray meets the plane; and it is tighter than its tile box.
+ * 9. The culls of tiles in depth and of objects lose no edge that reaches the light.
+ * 10. A tile's centre cone (pn_wg_cone_clear: the tile's pixels skip their centre rays)
+ *    is clear only when no segment from one of its origins to the light centre meets a
+ *    triangle, and it is clear of the receivers' own plane. */
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -895,6 +899,103 @@ static void test_culls(void)
     CHECK(obj_culls > CASES * PTS / 10u && reach > CASES);
 }
 
+/* ---- 10. A tile's centre cone: clear only when no segment to the centre is blocked ------- */
+
+/* Whether segment o -> c meets triangle p (double precision, edges included). */
+static int seg_hits(pn_v3 o, pn_v3 c, const float *p)
+{
+    double e1[3], e2[3], d[3], s[3], q[3], h[3], a, f, u, v, t;
+    int k;
+    for (k = 0; k < 3; k++) {
+        e1[k] = (double)p[3 + k] - p[k];
+        e2[k] = (double)p[6 + k] - p[k];
+        d[k] = (double)(k == 0 ? c.x - o.x : k == 1 ? c.y - o.y : c.z - o.z);
+        s[k] = (double)(k == 0 ? o.x : k == 1 ? o.y : o.z) - p[k];
+    }
+    h[0] = d[1] * e2[2] - d[2] * e2[1], h[1] = d[2] * e2[0] - d[0] * e2[2], h[2] = d[0] * e2[1] - d[1] * e2[0];
+    a = e1[0] * h[0] + e1[1] * h[1] + e1[2] * h[2];
+    if (fabs(a) < 1e-300) return 0;
+    f = 1.0 / a;
+    u = f * (s[0] * h[0] + s[1] * h[1] + s[2] * h[2]);
+    q[0] = s[1] * e1[2] - s[2] * e1[1], q[1] = s[2] * e1[0] - s[0] * e1[2], q[2] = s[0] * e1[1] - s[1] * e1[0];
+    v = f * (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]);
+    t = f * (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]);
+    return u >= -1e-9 && v >= -1e-9 && u + v <= 1.0 + 1e-9 && t >= -1e-9 && t <= 1.0 + 1e-9;
+}
+
+/* Random lights, receiver patches on random planes (a tile's points) and triangles near
+ * their centre segments, on the receivers' plane and anywhere, each alone in a one-leaf
+ * BVH: a cone said clear (pn_wg_cone_clear) meets no segment from an origin to the light
+ * centre; and the receivers' own plane, eps behind the origins, is clear of almost every
+ * cone (what lets a floor's tiles skip their centre rays). */
+static void test_cone(void)
+{
+    enum { CASES = 3000, PTS = 16, TRIS = 12 };
+    uint32_t st = 4242u, cs, i, j, wrong = 0u, clear = 0u, blocked = 0u, plane = 0u, plane_clear = 0u, cones = 0u;
+    for (cs = 0; cs < CASES; cs++) {
+        pn_klight L;
+        pn_v3 c = random_light(&st, &L), n, P0, t1, t2, O[PTS];
+        pn_wcone C;
+        float pl[4u * PN_WG_CONE_PLANES], spread = frand(&st, 0.01f, 1.0f);
+        L.eps = frand(&st, 1e-4f, 1e-2f);
+        /* The receivers' plane: through P0, normal n (tilted up to nearly edge-on). */
+        n = unit(pn_v3_make(frand(&st, -1.0f, 1.0f), frand(&st, 0.05f, 1.0f), frand(&st, -1.0f, 1.0f)));
+        P0 = pn_v3_make(frand(&st, -5.0f, 5.0f), frand(&st, 0.0f, 3.0f), frand(&st, -5.0f, 5.0f));
+        t1 = unit(pn_v3_cross(n, pn_v3_make(0.3f, 0.1f, 1.0f)));
+        t2 = pn_v3_cross(n, t1);
+        pn_wg_cone_init(&C);
+        for (i = 0; i < PTS; i++) {
+            pn_v3 P = pn_v3_add(P0, pn_v3_add(pn_v3_scale(t1, frand(&st, -spread, spread)), pn_v3_scale(t2, frand(&st, -spread, spread))));
+            if (!pn_shadow_origin(P, n, &L, &O[i])) O[i] = pn_v3_make(0.0f, 99.0f, 0.0f);
+            pn_wg_cone_add(&C, &L, O[i], P, n);
+        }
+        for (i = 0; i < PTS; i++) pn_wg_cone_cap(&C, &L, O[i]);
+        if (!pn_wg_cone_planes(&C, &L, pl)) continue;
+        cones++;
+        for (j = 0; j < TRIS; j++) {
+            float tri[9];
+            pn_kbvh4 node;
+            uint32_t idx = 0u, k, hit = 0u, a, ok;
+            pn_v3 cen;
+            if (j < 2u) { /* on the receivers' plane, around the patch */
+                cen = pn_v3_add(P0, pn_v3_add(pn_v3_scale(t1, frand(&st, -spread, spread)), pn_v3_scale(t2, frand(&st, -spread, spread))));
+                for (k = 0; k < 3u; k++) {
+                    pn_v3 q = pn_v3_add(cen, pn_v3_add(pn_v3_scale(t1, frand(&st, -3.0f, 3.0f) * spread),
+                                                       pn_v3_scale(t2, frand(&st, -3.0f, 3.0f) * spread)));
+                    tri[3 * k] = q.x, tri[3 * k + 1] = q.y, tri[3 * k + 2] = q.z;
+                }
+            } else {
+                float sz = frand(&st, 0.001f, 1.0f);
+                if (j < 8u) { /* near a segment */
+                    pn_v3 o = O[j % PTS];
+                    cen = pn_v3_add(o, pn_v3_scale(pn_v3_sub(c, o), frand(&st, -0.05f, 1.05f)));
+                } else {
+                    cen = pn_v3_make(frand(&st, -6.0f, 6.0f), frand(&st, -1.0f, 6.0f), frand(&st, -6.0f, 6.0f));
+                }
+                for (k = 0; k < 9u; k++) tri[k] = (k % 3u == 0u ? cen.x : k % 3u == 1u ? cen.y : cen.z) + frand(&st, -sz, sz);
+            }
+            memset(&node, 0, sizeof(node));
+            node.n = 1u;
+            node.child[0] = PN_W4_LEAF;
+            for (a = 0; a < 3u; a++) {
+                node.lo[a][0] = fminf(tri[a], fminf(tri[3 + a], tri[6 + a]));
+                node.hi[a][0] = fmaxf(tri[a], fmaxf(tri[3 + a], tri[6 + a]));
+            }
+            for (i = 0; i < PTS; i++) hit |= (uint32_t)seg_hits(O[i], c, tri);
+            ok = (uint32_t)pn_wg_cone_clear(pl, c, tri, &node, &idx);
+            wrong += ok & hit;
+            clear += ok;
+            blocked += hit;
+            if (j < 2u) plane++, plane_clear += ok;
+        }
+    }
+    fprintf(stderr, "cone: %u cones; %u of %u triangles clear, %u block a segment; the receivers' plane clear %u of %u\n",
+            cones, clear, cones * TRIS, blocked, plane_clear, plane);
+    CHECK_MSG(wrong == 0u, "%u triangles meet a centre segment of a cone said clear", wrong);
+    CHECK(cones > CASES / 2u && blocked > cones && clear > cones * 3u);
+    CHECK_MSG(plane_clear * 100u >= plane * 95u, "the receivers' own plane is clear of only %u of %u cones", plane_clear, plane);
+}
+
 int main(void)
 {
     if (!(pn_build_info() & PN_BUILD_WEDGES)) {
@@ -914,5 +1015,6 @@ int main(void)
     RUN(test_short_pool);
     RUN(test_reach);
     RUN(test_culls);
+    RUN(test_cone);
     return pn_test_summary();
 }

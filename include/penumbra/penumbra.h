@@ -249,7 +249,7 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
      PN_POOL_(PN_WG_SIL_(t) * 4u + 4u) + PN_POOL_(PN_WG_PAIRS_(t, w, h) * 8u) +                 \
      PN_POOL_(PN_WG_PAIRS_(t, w, h) * 4u) + PN_POOL_(PN_WG_TILES_(w, h) * 4u + 4u) +              \
      PN_POOL_((((size_t)(h) + 15u) / 16u) * 4u) +                                                \
-     PN_POOL_(PN_WG_TILES_(w, h) * 4u) + PN_POOL_(PN_WG_TILES_(w, h) * 24u))
+     PN_POOL_(PN_WG_TILES_(w, h) * 4u) + PN_POOL_(PN_WG_TILES_(w, h) * 28u))
 #else
 #define PN_WEDGES_BYTES_MAX(t, w, h) ((size_t)0)
 #endif

@@ -426,82 +426,16 @@ PN_KFN void pn_wg_block_box(PN_CONST pn_wsil *sil, uint32_t nsil, uint32_t k, ui
  * plane facing away from the light, m the sum of the receivers' normals turned away from it
  * and D the origins' greatest m . (O - c) (c is inside: every receiver faces it). Where the
  * receivers lie on one plane (a floor, a wall) the cap is that plane moved eps toward the
- * light: their own triangles, behind it, are outside. Each bound as a plane
- * n . (X - c) <= d in world coordinates, pl[4 i ..] = n, d; the cone's four sides and
- * its base from light coordinates: */
-#define PN_WG_CONE_PLANES 6u
-PN_KFN void pn_wg_cone_plane(const pn_klight *L, float A, float B, float C, float d, float *pl)
-{
-    pn_v3 U = pn_light_U(L), V = pn_light_V(L), N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
-    pn_v3 n = pn_v3_add(pn_v3_add(pn_v3_scale(U, A * (1.0f / pn_v3_dot(U, U))), pn_v3_scale(V, B * (1.0f / pn_v3_dot(V, V)))),
-                        pn_v3_scale(N, C));
-    pl[0] = n.x;
-    pl[1] = n.y;
-    pl[2] = n.z;
-    pl[3] = d;
-}
+ * light: their own triangles, behind it, are outside. The six planes make a pn_frustum
+ * (unit normals, moved out by its slack), which the reference's culls test boxes against. */
 
-/* Whether every point of box [lo, hi] (or of the triangle's three vertices, lo = hi = each
- * in turn) is beyond plane pl by more than its slack: 1e-5 of the magnitudes the plane's
- * terms reach there, a hundred times the rounding of the planes and of these sums. */
-PN_KFN int pn_wg_cone_beyond(const float *pl, pn_v3 c, const float *lo, const float *hi)
-{
-    float f = -pl[3], m = pn_kfabs(pl[3]);
-    uint32_t k;
-    for (k = 0; k < 3u; k++) {
-        float n = pl[k], x = (n >= 0.0f ? lo[k] : hi[k]) - (k == 0u ? c.x : k == 1u ? c.y : c.z);
-        f += n * x;
-        m += pn_kfabs(n) * (pn_kfabs(lo[k] - (k == 0u ? c.x : k == 1u ? c.y : c.z)) +
-                            pn_kfabs(hi[k] - (k == 0u ? c.x : k == 1u ? c.y : c.z)));
-    }
-    return f > 1e-5f * m + PN_KTINY;
-}
-
-/* Whether no triangle of the BVH meets the cone pl (PN_WG_CONE_PLANES planes): a walk that
- * drops a box or a triangle wholly beyond one plane and stops at the first triangle that is
- * not. A full stack says no (the walk would lose a subtree). */
-PN_KFN int pn_wg_cone_clear(const float *pl, pn_v3 c, PN_CONST float *tris, PN_CONST pn_kbvh4 *wnodes,
-                            PN_CONST uint32_t *tri_index)
-{
-    uint32_t stack[PN_BVH_STACK], sp = 0u, cur = 0u, ch, i, q, a;
-    for (;;) {
-        PN_CONST pn_kbvh4 *w = wnodes + cur;
-        for (ch = 0; ch < w->n; ch++) {
-            float lo[3], hi[3];
-            int out = 0;
-            for (a = 0; a < 3u; a++) {
-                lo[a] = w->lo[a][ch];
-                hi[a] = w->hi[a][ch];
-            }
-            for (i = 0; i < PN_WG_CONE_PLANES && !out; i++) out = pn_wg_cone_beyond(pl + 4u * i, c, lo, hi);
-            if (out) continue;
-            if (w->child[ch] & PN_W4_LEAF) {
-                uint32_t first, count = pn_w4_word_refs(w->child[ch], &first);
-                for (q = 0; q < count; q++) {
-                    PN_CONST float *tp = tris + (size_t)(tri_index[first + q] & PN_REF_TRI) * 9u;
-                    float p[9];
-                    for (a = 0; a < 9u; a++) p[a] = tp[a];
-                    for (i = 0, out = 0; i < PN_WG_CONE_PLANES && !out; i++)
-                        out = pn_wg_cone_beyond(pl + 4u * i, c, p, p) && pn_wg_cone_beyond(pl + 4u * i, c, p + 3, p + 3) &&
-                              pn_wg_cone_beyond(pl + 4u * i, c, p + 6, p + 6);
-                    if (!out) return 0;
-                }
-            } else {
-                if (sp == PN_BVH_STACK) return 0;
-                stack[sp++] = w->child[ch];
-            }
-        }
-        if (sp == 0u) return 1;
-        cur = stack[--sp];
-    }
-}
-
-/* A cone in the making: its ratios' box, the cap's normal m and offset D. Each origin O
- * (of receiver point P, normal n) is added twice: first to the ratios and m
- * (pn_wg_cone_add), then to D (pn_wg_cone_cap); pn_wg_cone_planes gives the planes, or 0
- * when an origin is not below the light plane (h <= 0) or there is none. */
+/* A cone in the making: its ratios' box, the cap's normal m and offset D, and the origins'
+ * greatest L1 distance to c (the slack's). Each origin O (of receiver point P, normal n) is
+ * added twice: first to the ratios, m and the distance (pn_wg_cone_add), then to D
+ * (pn_wg_cone_cap); pn_wg_cone_frustum makes the frustum, or says 0 when an origin is not
+ * below the light plane (h <= 0) or there is none. */
 typedef struct pn_wcone {
-    float r[4], D;
+    float r[4], D, l1;
     pn_v3 m;
     int ok;
 } pn_wcone;
@@ -511,6 +445,7 @@ PN_KFN void pn_wg_cone_init(pn_wcone *C)
     C->r[0] = C->r[2] = PN_KINF;
     C->r[1] = C->r[3] = -PN_KINF;
     C->D = -PN_KINF;
+    C->l1 = 0.0f;
     C->m = pn_v3_make(0.0f, 0.0f, 0.0f);
     C->ok = 1;
 }
@@ -524,6 +459,7 @@ PN_KFN void pn_wg_cone_add(pn_wcone *C, const pn_klight *L, pn_v3 O, pn_v3 P, pn
     C->r[1] = pn_kmaxf(C->r[1], u / h);
     C->r[2] = pn_kminf(C->r[2], v / h);
     C->r[3] = pn_kmaxf(C->r[3], v / h);
+    C->l1 = pn_kmaxf(C->l1, pn_v3_l1(pn_v3_sub(pn_light_c(L), O)));
     C->m = pn_v3_sub(C->m, pn_v3_dot(n, pn_v3_sub(pn_light_c(L), P)) < 0.0f ? pn_v3_scale(n, -1.0f) : n);
 }
 
@@ -532,27 +468,86 @@ PN_KFN void pn_wg_cone_cap(pn_wcone *C, const pn_klight *L, pn_v3 O)
     C->D = pn_kmaxf(C->D, pn_v3_dot(C->m, pn_v3_sub(O, pn_light_c(L))));
 }
 
-PN_KFN int pn_wg_cone_planes(const pn_wcone *C, const pn_klight *L, float *pl)
+/* Plane q of fr: n . (X - c) <= d in world coordinates, n = A U / |U|^2 + B V / |V|^2 + C N
+ * (a bound in light coordinates) or given; as a unit normal and an offset moved out by
+ * fr->tol. */
+PN_KFN void pn_wg_cone_plane(const pn_klight *L, pn_v3 n, float d, uint32_t q, pn_frustum *fr)
 {
-    if (!C->ok || L->is_point || !(C->D >= 0.0f) ||
+    float len = pn_ksqrt(pn_v3_dot(n, n));
+    fr->n[q] = pn_v3_scale(n, 1.0f / len);
+    fr->d[q] = pn_v3_dot(fr->n[q], pn_light_c(L)) + d / len + fr->tol;
+}
+
+PN_KFN pn_v3 pn_wg_light_dir(const pn_klight *L, float A, float B, float C)
+{
+    pn_v3 U = pn_light_U(L), V = pn_light_V(L), N = pn_v3_make(L->N[0], L->N[1], L->N[2]);
+    return pn_v3_add(pn_v3_add(pn_v3_scale(U, A * (1.0f / pn_v3_dot(U, U))), pn_v3_scale(V, B * (1.0f / pn_v3_dot(V, V)))),
+                     pn_v3_scale(N, C));
+}
+
+PN_KFN int pn_wg_cone_frustum(const pn_wcone *C, const pn_klight *L, pn_frustum *fr)
+{
+    if (!C->ok || L->is_point || !(C->D >= 0.0f) || !(pn_v3_dot(C->m, C->m) > 0.0f) ||
         !(C->r[0] > -PN_KINF && C->r[1] < PN_KINF && C->r[2] > -PN_KINF && C->r[3] < PN_KINF))
         return 0;
-    pn_wg_cone_plane(L, 0.0f, 0.0f, -1.0f, 0.0f, pl);
-    pn_wg_cone_plane(L, -1.0f, 0.0f, C->r[0], 0.0f, pl + 4);
-    pn_wg_cone_plane(L, 1.0f, 0.0f, -C->r[1], 0.0f, pl + 8);
-    pn_wg_cone_plane(L, 0.0f, -1.0f, C->r[2], 0.0f, pl + 12);
-    pn_wg_cone_plane(L, 0.0f, 1.0f, -C->r[3], 0.0f, pl + 16);
-    pl[20] = C->m.x;
-    pl[21] = C->m.y;
-    pl[22] = C->m.z;
-    pl[23] = C->D;
+    /* pn_frustum_make's slack, with the tile's farthest origin. */
+    fr->tol = L->cull_tol + 1e-5f * (C->l1 + pn_v3_l1(pn_light_U(L)) + pn_v3_l1(pn_light_V(L)));
+    fr->is_point = 0u;
+    fr->seg_o = pn_light_c(L);
+    fr->seg_d = pn_v3_make(0.0f, 0.0f, 0.0f);
+    pn_wg_cone_plane(L, pn_wg_light_dir(L, 0.0f, 0.0f, -1.0f), 0.0f, 0u, fr);
+    pn_wg_cone_plane(L, pn_wg_light_dir(L, -1.0f, 0.0f, C->r[0]), 0.0f, 1u, fr);
+    pn_wg_cone_plane(L, pn_wg_light_dir(L, 1.0f, 0.0f, -C->r[1]), 0.0f, 2u, fr);
+    pn_wg_cone_plane(L, pn_wg_light_dir(L, 0.0f, -1.0f, C->r[2]), 0.0f, 3u, fr);
+    pn_wg_cone_plane(L, pn_wg_light_dir(L, 0.0f, 1.0f, -C->r[3]), 0.0f, 4u, fr);
+    pn_wg_cone_plane(L, C->m, C->D, 5u, fr);
     return 1;
+}
+
+/* Whether no triangle of the BVH meets frustum fr (an area light's six planes): a walk
+ * that drops the boxes pn_frustum_box4p drops and the triangles whose three vertices lie
+ * beyond one plane, and stops at the first triangle it keeps. A full stack says no (the
+ * walk would lose a subtree). */
+PN_KFN int pn_wg_cone_clear(const pn_frustum *fr, PN_CONST float *tris, PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index)
+{
+    uint32_t stack[PN_BVH_STACK], sp = 0u, cur = 0u, c, q, a, bits;
+    for (;;) {
+        PN_CONST pn_kbvh4 *w = wnodes + cur;
+        float blo[12], bhi[12];
+        for (a = 0; a < 3u; a++)
+            for (c = 0; c < 4u; c++) {
+                blo[a * 4u + c] = w->lo[a][c];
+                bhi[a * 4u + c] = w->hi[a][c];
+            }
+        bits = pn_frustum_box4p(fr, blo, bhi) & ((1u << w->n) - 1u);
+        for (c = 0; c < 4u; c++) {
+            if (!((bits >> c) & 1u)) continue;
+            if (w->child[c] & PN_W4_LEAF) {
+                uint32_t first, count = pn_w4_word_refs(w->child[c], &first), t;
+                for (t = 0; t < count; t++) {
+                    PN_CONST float *p = tris + (size_t)(tri_index[first + t] & PN_REF_TRI) * 9u;
+                    pn_v3 v0 = pn_v3_make(p[0], p[1], p[2]), v1 = pn_v3_make(p[3], p[4], p[5]), v2 = pn_v3_make(p[6], p[7], p[8]);
+                    int out = 0;
+                    for (q = 0; q < 6u && !out; q++)
+                        out = pn_v3_dot(fr->n[q], v0) > fr->d[q] && pn_v3_dot(fr->n[q], v1) > fr->d[q] &&
+                              pn_v3_dot(fr->n[q], v2) > fr->d[q];
+                    if (!out) return 0;
+                }
+            } else {
+                if (sp == PN_BVH_STACK) return 0;
+                stack[sp++] = w->child[c];
+            }
+        }
+        if (sp == 0u) return 1;
+        cur = stack[--sp];
+    }
 }
 
 PN_KFN void pn_wg_tile_box(const pn_kview *v, const pn_klight *L, uint32_t tx, uint32_t ty, const pn_ksurf *S,
                            PN_CONST float *tris, PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index, PN_GLOBAL float *box)
 {
-    float b[PN_WG_BOX], pl[4u * PN_WG_CONE_PLANES];
+    float b[PN_WG_BOX];
+    pn_frustum fr;
     uint32_t x, y, x1 = (tx + 1u) * PN_WG_TILE, y1 = (ty + 1u) * PN_WG_TILE, i, pass;
     pn_wcone C;
     b[0] = b[2] = b[4] = PN_KINF;
@@ -584,7 +579,7 @@ PN_KFN void pn_wg_tile_box(const pn_kview *v, const pn_klight *L, uint32_t tx, u
                 pn_wg_cone_add(&C, L, O, P, n);
             }
     for (i = 0; i < 6u; i++) box[i] = b[i];
-    box[PN_WG_CLEAR] = pn_wg_cone_planes(&C, L, pl) && pn_wg_cone_clear(pl, pn_light_c(L), tris, wnodes, tri_index) ? 1.0f : 0.0f;
+    box[PN_WG_CLEAR] = pn_wg_cone_frustum(&C, L, &fr) && pn_wg_cone_clear(&fr, tris, wnodes, tri_index) ? 1.0f : 0.0f;
 }
 
 /* Whether silhouette e is nothing to every shadow origin in box B: pn_wg_project returns 0

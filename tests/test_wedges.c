@@ -936,8 +936,10 @@ static void test_cone(void)
         pn_klight L;
         pn_v3 c = random_light(&st, &L), n, P0, t1, t2, O[PTS];
         pn_wcone C;
-        float pl[4u * PN_WG_CONE_PLANES], spread = frand(&st, 0.01f, 1.0f);
-        L.eps = frand(&st, 1e-4f, 1e-2f);
+        pn_frustum fr;
+        float spread = frand(&st, 0.01f, 1.0f);
+        L.eps = frand(&st, 1e-3f, 1e-2f); /* the frame's: 1e-4 of the scene's diagonal (about 20 here) and up */
+        L.cull_tol = 2e-4f;                 /* the frame's: 1e-5 of that diagonal */
         /* The receivers' plane: through P0, normal n (tilted up to nearly edge-on). */
         n = unit(pn_v3_make(frand(&st, -1.0f, 1.0f), frand(&st, 0.05f, 1.0f), frand(&st, -1.0f, 1.0f)));
         P0 = pn_v3_make(frand(&st, -5.0f, 5.0f), frand(&st, 0.0f, 3.0f), frand(&st, -5.0f, 5.0f));
@@ -950,7 +952,7 @@ static void test_cone(void)
             pn_wg_cone_add(&C, &L, O[i], P, n);
         }
         for (i = 0; i < PTS; i++) pn_wg_cone_cap(&C, &L, O[i]);
-        if (!pn_wg_cone_planes(&C, &L, pl)) continue;
+        if (!pn_wg_cone_frustum(&C, &L, &fr)) continue;
         cones++;
         for (j = 0; j < TRIS; j++) {
             float tri[9];
@@ -982,7 +984,7 @@ static void test_cone(void)
                 node.hi[a][0] = fmaxf(tri[a], fmaxf(tri[3 + a], tri[6 + a]));
             }
             for (i = 0; i < PTS; i++) hit |= (uint32_t)seg_hits(O[i], c, tri);
-            ok = (uint32_t)pn_wg_cone_clear(pl, c, tri, &node, &idx);
+            ok = (uint32_t)pn_wg_cone_clear(&fr, tri, &node, &idx);
             wrong += ok & hit;
             clear += ok;
             blocked += hit;

@@ -296,7 +296,8 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
         uint32_t li[PN_MD5R_LANES], lj[PN_MD5R_LANES], eat[PN_MD5R_LANES];
         int ah[PN_MD5R_LANES], eout[PN_MD5R_LANES];
 #if PN_MC_LANE_REGIONS
-        uint32_t rn[PN_MD5R_LANES], ra[4][PN_MD5R_LANES]; /* box b of lane l's region at ra[b][l] */
+        uint32_t rn[PN_MD5R_LANES], ra[4][PN_MD5R_LANES], rl[PN_MD5R_LANES]; /* box b of lane l's region at
+                                                                                 ra[b][l], of level rl[l] */
         int rbey[PN_MD5R_LANES];
 #endif
         float xs[PN_MD5R_LANES], ys[PN_MD5R_LANES], te[PN_MD5R_LANES], lt0[PN_MD5R_LANES], lt1[PN_MD5R_LANES];
@@ -343,7 +344,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
 #if PN_MC_LANE_REGIONS
             {
                 uint32_t at4[4], b;
-                rn[l] = pn_mc_region_at(m, ax[l], ay[l], bx[l], by[l], at4, &rbey[l]);
+                rn[l] = pn_mc_region_at(m, ax[l], ay[l], bx[l], by[l], at4, &rl[l], &rbey[l]);
                 for (b = 0; b < 4u; b++) ra[b][l] = at4[b];
             }
 #endif
@@ -377,7 +378,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
 #if PN_MC_LANE_REGIONS
                 uint32_t at4[4], b;
                 for (b = 0; b < 4u; b++) at4[b] = ra[b][l];
-                pn_mc_region_get(m, at4, rn[l], rbey[l], q);
+                pn_mc_region_get(m, at4, rn[l], rl[l], rbey[l], q);
 #else
                 pn_mc_region(m, ax[l], ay[l], bx[l], by[l], q);
 #endif

@@ -244,7 +244,7 @@ PN_KFN int pn_mc_hier(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
             }
             te = pn_kminf(te, tr > t ? tr : t + step);
         }
-        pn_nb_mm_box(m->nb, mc->res, l, X0, Y0, v);
+        pn_nb_mm_box(m->nb, mc, l, X0, Y0, v);
         m->steps++;
         zlo = t * r->ze;
         zhi = te * r->ze;
@@ -279,32 +279,33 @@ PN_KFN int pn_mc_hier(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
  * for rounding). Texels beyond the map are empty (the window holds every occluder): they
  * leave the smallest near and largest far depths as they are and make the largest near
  * depth +inf, as an empty texel of the map does. pn_mc_region_at: where the lookup reads
- * (pn_nb_mm_rect_at's boxes) and whether the box reaches beyond the map. The image
+ * (pn_nb_mm_rect_at's boxes and their level) and whether the box reaches beyond the map. The image
  * coordinates are clamped to [-(res + 2), res + 2] before their conversion: a side beyond
  * the map only counts as beyond it (*beyond compares with 0 and res, pn_nb_mm_rect_at
  * clamps to [0, res], a box wholly beyond is empty either way), so every bound past res + 1
  * gives the same lookup; one the compiler cannot fold to a constant keeps GCC's loop over
  * eight rays vectorized (with constant bounds it keeps a branch there). */
-PN_KFN uint32_t pn_mc_region_at(const pn_mc_ctx *m, float ax, float ay, float bx, float by, uint32_t *at, int *beyond)
+PN_KFN uint32_t pn_mc_region_at(const pn_mc_ctx *m, float ax, float ay, float bx, float by, uint32_t *at, uint32_t *lev,
+                                int *beyond)
 {
     int32_t R = (int32_t)m->mc->res, lim = R + 2;
     int32_t x0 = pn_kfloor_clamp(pn_kminf(ax, bx), -lim, lim) - 1, y0 = pn_kfloor_clamp(pn_kminf(ay, by), -lim, lim) - 1;
     int32_t x1 = pn_kceil_clamp(pn_kmaxf(ax, bx), -lim, lim) + 1, y1 = pn_kceil_clamp(pn_kmaxf(ay, by), -lim, lim) + 1;
     *beyond = (x0 < 0) | (y0 < 0) | (x1 > R) | (y1 > R);
-    return pn_nb_mm_rect_at(m->mc->res, m->mc->levels, x0, y0, x1, y1, at);
+    return pn_nb_mm_rect_at(m->mc, x0, y0, x1, y1, at, lev);
 }
 /* The bounds of a region whose boxes pn_mc_region_at gave. */
-PN_KFN void pn_mc_region_get(const pn_mc_ctx *m, const uint32_t *at, uint32_t n, int beyond, float *v)
+PN_KFN void pn_mc_region_get(const pn_mc_ctx *m, const uint32_t *at, uint32_t n, uint32_t lev, int beyond, float *v)
 {
-    pn_nb_mm_rect_get(m->nb, at, n, v);
+    pn_nb_mm_rect_get(m->nb, m->mc, at, n, lev, v);
     if (beyond) v[2] = PN_KINF;
 }
 PN_KFN void pn_mc_region(const pn_mc_ctx *m, float ax, float ay, float bx, float by, float *v)
 {
-    uint32_t at[4], n;
+    uint32_t at[4], n, lev;
     int beyond;
-    n = pn_mc_region_at(m, ax, ay, bx, by, at, &beyond);
-    pn_mc_region_get(m, at, n, beyond, v);
+    n = pn_mc_region_at(m, ax, ay, bx, by, at, &lev, &beyond);
+    pn_mc_region_get(m, at, n, lev, beyond, v);
 }
 
 /* The box, in continuous texel coordinates b = {x0, y0, x1, y1}, that the images of the

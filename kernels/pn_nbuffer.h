@@ -2,47 +2,33 @@
  * the occlusion textures pre-filter a slice with it (integer counts, summed), the Monte
  * Carlo shadow maps search their depth layers with it (min / max per channel).
  *
- * Layout. Level l of a res x res texture holds, at texel x (per axis), the reduction over
- * the box of level-0 texels [x, x + 1) (l = 0) or [x + 1 - 2^(l-1), x + 1 + 2^(l-1))
- * (l >= 1): boxes of side 2^l centred on lattice point x + 1 (Curtis 2009 §3.5 moves
- * Decoret's lower-left texels to the centre, which keeps information near the edges).
- * Level l >= 1 is built from level l - 1 by four lookups at offsets a, b per axis
- * (pn_nb_offsets); lookups at texels outside the texture give the reduction's identity.
- * Levels are stored one after another, res^2 texels each.
+ * Counts (the occlusion textures). Level l of a res x res texture holds, at texel x (per
+ * axis), the sum over the box of level-0 texels [x, x + 1) (l = 0) or
+ * [x + 1 - 2^(l-1), x + 1 + 2^(l-1)) (l >= 1): boxes of side 2^l centred on lattice point
+ * x + 1 (Curtis 2009 §3.5 moves Decoret's lower-left texels to the centre, which keeps
+ * information near the edges). Level l >= 1 is built from level l - 1 by four lookups at
+ * offsets a, b per axis (pn_nb_offsets); lookups at texels outside the texture give 0.
+ * Levels are stored one after another, res^2 texels each. A texel whose box lies inside
+ * the texture holds exactly that box; one whose box reaches beyond an edge holds less than
+ * the texture's part of it (a lower box whose index lies outside is skipped though its box
+ * may reach in: level 2's texel 0 holds [1, 3), not column 0), so within 2^(l-1) texels of
+ * an edge the N-buffer filter's level-l means count less than the kernel holds (an
+ * approximation of that filter, on top of its bilinear one).
  *
- * Edges. A texel whose box lies inside the texture holds exactly that box. One whose box
- * reaches beyond an edge holds less than the texture's part of it: a lower box whose index
- * lies outside is skipped though its box may reach in (level 2's texel 0 holds [1, 3), not
- * column 0; texel res - 2 of level 3 misses column res - 1). The Monte Carlo shadow maps
- * read boxes inside the texture only (pn_nb_mm_box, pn_nb_mm_rect_at); the occlusion
- * textures' N-buffer filter reads the edge texels as they are, so within 2^(l-1) texels of
- * an edge its level-l means count less than the kernel holds (an approximation of that
- * filter, on top of its bilinear one).
- *
- * Lookups. pn_nb_index gives the texel of level l whose box starts at level-0 texel X,
- * exact for boxes inside the texture. pn_nb_mm_rect_at bounds any rectangle with four
- * boxes inside the texture, pn_nb_mm_box any box by the one inside against the edge. */
+ * Min / max (the Monte Carlo shadow maps), which read boxes inside the texture only
+ * (pn_nb_mm_box, pn_nb_mm_rect_at): each level keeps those boxes alone, at their lower
+ * left texel, and a context may keep every third level only (see pn_nb_mm_w). */
 #ifndef PN_NBUFFER_H
 #define PN_NBUFFER_H
 
 #include "pn_kmath.h"
+#include "pn_ktypes.h"
 
 /* Offsets of the four level-(l-1) boxes that make the level-l box of texel x (l >= 1). */
 PN_KFN void pn_nb_offsets(uint32_t l, int32_t *a, int32_t *b)
 {
     *a = l == 1u ? 0 : -(int32_t)(1u << (l - 2u));
     *b = l == 1u ? 1 : (int32_t)(1u << (l - 2u));
-}
-
-/* Level l's texel whose box starts at level-0 texel X, clamped to [0, res). Texel i of
- * level l >= 1 holds the box [i + 1 - 2^(l-1), i + 1 + 2^(l-1)) where that box lies inside
- * the texture; nearer the edges it holds less than the texture's part of it (the builder
- * skips lower boxes whose index lies outside, though their boxes reach in: texel 0 of
- * level 2 holds [1, 3), not column 0). Exact for 0 <= X <= res - 2^l, the boxes inside. */
-PN_KFN int32_t pn_nb_index(uint32_t l, int32_t X, uint32_t res)
-{
-    int32_t i = l == 0u ? X : X - 1 + (int32_t)(1u << (l - 1u));
-    return pn_kmaxi(0, pn_kmini(i, (int32_t)res - 1));
 }
 
 /* Row y of summed level l >= 1 (uint32 counts, levels of res^2 in lv). */
@@ -95,6 +81,14 @@ PN_KFN void pn_nb_mm_add(float *v, PN_CONST float *t)
     v[2] = pn_kmaxf(v[2], t[2]);
 }
 
+/* The same max of a texel in private memory (an accumulation). */
+PN_KFN void pn_nb_mm_add_p(float *v, const float *t)
+{
+    v[0] = pn_kmaxf(v[0], t[0]);
+    v[1] = pn_kmaxf(v[1], t[1]);
+    v[2] = pn_kmaxf(v[2], t[2]);
+}
+
 /* The bounds {min near, max far, max near} of stored texel (or accumulation) t. */
 PN_KFN void pn_nb_mm_get(PN_CONST float *t, float *v)
 {
@@ -103,88 +97,148 @@ PN_KFN void pn_nb_mm_get(PN_CONST float *t, float *v)
     v[2] = t[2];
 }
 
-/* Floats [0, n) of a level row's run of columns: out[i] the max, in order, of the k
- * sources' (k = 0: the identity). Loops with no test inside (the compilers vectorize them). */
-PN_KFN void pn_nb_mm_run(PN_GLOBAL float *out, size_t n, PN_CONST float *s0, PN_CONST float *s1, PN_CONST float *s2,
-                         PN_CONST float *s3, uint32_t k)
+/* Min / max layout (the Monte Carlo shadow maps: the searches read boxes inside the map
+ * only). Level l keeps the boxes that lie inside: W_l = res + 1 - 2^l texels per axis
+ * (W_0 = res), texel X holding the box [X, X + 2^l) (Decoret's lower-left corner; the same
+ * boxes as the centred layout above keeps inside, 0.74x its texels at a map of 512). Level
+ * l >= 1 is the max of the four level-(l-1) boxes at X, X + 2^(l-1) per axis: row Y's two
+ * columns, then row Y + 2^(l-1)'s. A context may keep every third level only (mc->nb_step
+ * 3, pn_limits.flags PN_LIMITS_SPARSE_NBUFFER: levels 0, 3, 6, 9): a lookup of another
+ * level rebuilds its box from the level kept below it in that same order (pn_nb_mm_tree),
+ * so every lookup gives the same bits either way. The kept levels lie one after another. */
+PN_KFN uint32_t pn_nb_mm_w(uint32_t res, uint32_t l) { return l == 0u ? res : res + 1u - (1u << l); }
+
+/* The kept level a lookup of level l reads: l rounded down to a multiple of nb_step (1 or
+ * 3; l / 3 is (11 l) >> 5 for l < 32), without a division in the lookups' lane loop. */
+PN_KFN uint32_t pn_nb_mm_src(const pn_kmc *mc, uint32_t l)
 {
-    size_t i;
-    if (k == 0u)
-        for (i = 0; i < n; i++) out[i] = -PN_KINF;
-    else if (k == 1u)
-        for (i = 0; i < n; i++) out[i] = s0[i];
-    else if (k == 2u)
-        for (i = 0; i < n; i++) out[i] = pn_kmaxf(s0[i], s1[i]);
-    else if (k == 3u)
-        for (i = 0; i < n; i++) out[i] = pn_kmaxf(pn_kmaxf(s0[i], s1[i]), s2[i]);
-    else
-        for (i = 0; i < n; i++) out[i] = pn_kmaxf(pn_kmaxf(pn_kmaxf(s0[i], s1[i]), s2[i]), s3[i]);
+    return ((l * (mc->nb_step == 1u ? 32u : 11u)) >> 5u) * mc->nb_step;
 }
 
-/* Row y of min / max level l >= 1 (levels of res^2 texels of PN_NB_MM floats in lv). Texel
- * x is the max of the level below at rows y + a, y + b and columns x + a, x + b, in that
- * order (row a's two columns, then row b's), of those inside the texture. The row splits
- * at columns -a and res - b into runs where the same lookups are inside, and each run is
- * one max over a flat float array (every channel a max): a first max with the identity
- * -inf gives the lookup itself, NaN included, so a run starts from its first lookup. */
-PN_KFN void pn_nb_mm_row(uint32_t res, uint32_t l, uint32_t y, PN_GLOBAL float *lv)
+/* The float offset of kept level s: the texels of the kept levels below it, res^2 and
+ * (R - 2^k)^2 for k = step, 2 step, .. < s (R = res + 1). With b = 2^step and n = s / step
+ * - 1 those sum to res^2 + n R^2 - 2 R (b + .. + b^n) + (b^2 + .. + b^2n), and each power
+ * sum is a bit mask: the bits of nb_m1 (every step-th bit from step on) up to bit step n,
+ * of nb_m2 (every 2 step-th) up to bit 2 step n. Exact in 32 bits for res <= 2048 (12
+ * levels: PN_MCSM_MAP_MAX). */
+PN_KFN uint32_t pn_nb_mm_off(const pn_kmc *mc, uint32_t s)
 {
-    int32_t a, b, ya, yb, R = (int32_t)res, cut[4], i;
-    PN_CONST float *lo = lv + (size_t)(l - 1u) * res * res * PN_NB_MM;
-    PN_GLOBAL float *out = lv + ((size_t)l * res * res + (size_t)y * res) * PN_NB_MM;
-    PN_CONST float *ra, *rb;
-    pn_nb_offsets(l, &a, &b);
-    ya = (int32_t)y + a;
-    yb = (int32_t)y + b;
-    ra = ya >= 0 && ya < R ? lo + (size_t)ya * res * PN_NB_MM : 0;
-    rb = yb >= 0 && yb < R ? lo + (size_t)yb * res * PN_NB_MM : 0;
-    /* Runs [cut[i], cut[i + 1]): x + a >= 0 from -a on, x + b < res up to res - b. */
-    cut[0] = 0;
-    cut[1] = pn_kmaxi(0, pn_kmini(-a, R - b));
-    cut[2] = pn_kmini(R, pn_kmaxi(-a, R - b));
-    cut[3] = R;
-    for (i = 0; i < 3; i++) {
-        int32_t x0 = cut[i], x1 = pn_kmaxi(cut[i + 1], x0);
-        PN_CONST float *s[4];
-        uint32_t k = 0u;
-        if (x1 <= x0) continue;
-        s[0] = s[1] = s[2] = s[3] = lo;
-        if (ra && x0 + a >= 0) s[k++] = ra + (size_t)(x0 + a) * PN_NB_MM;
-        if (ra && x0 + b < R) s[k++] = ra + (size_t)(x0 + b) * PN_NB_MM;
-        if (rb && x0 + a >= 0) s[k++] = rb + (size_t)(x0 + a) * PN_NB_MM;
-        if (rb && x0 + b < R) s[k++] = rb + (size_t)(x0 + b) * PN_NB_MM;
-        pn_nb_mm_run(out + (size_t)x0 * PN_NB_MM, (size_t)(x1 - x0) * PN_NB_MM, s[0], s[1], s[2], s[3], k);
+    uint32_t R = mc->res + 1u, q = (s * (mc->nb_step == 1u ? 32u : 11u)) >> 5u, n = q > 0u ? q - 1u : 0u;
+    uint32_t g1 = mc->nb_m1 & ((2u << (mc->nb_step * n)) - 1u);
+    uint32_t g2 = mc->nb_m2 & ((2u << (2u * mc->nb_step * n)) - 1u);
+    uint32_t t = mc->res * mc->res + n * R * R + g2 - 2u * R * g1;
+    return s == 0u ? 0u : t * PN_NB_MM;
+}
+
+/* mc's layout for a map of mc->res texels keeping every mc->nb_step-th level (1 or 3):
+ * sets levels and the masks; returns the kept texels in all. */
+PN_KFN uint32_t pn_nb_mm_layout(pn_kmc *mc)
+{
+    uint32_t l, n = 0u, L = 1u, k;
+    while ((2u << (L - 1u)) <= mc->res) L++;
+    mc->levels = L;
+    mc->nb_m1 = mc->nb_m2 = 0u;
+    for (k = mc->nb_step; k < 32u; k += mc->nb_step) mc->nb_m1 |= 1u << k;
+    for (k = 2u * mc->nb_step; k < 32u; k += 2u * mc->nb_step) mc->nb_m2 |= 1u << k;
+    for (l = 0; l < L; l += mc->nb_step) n += pn_nb_mm_w(mc->res, l) * pn_nb_mm_w(mc->res, l);
+    return n;
+}
+
+/* Into acc (stored form), the level-l box whose first level-(l - d) texel is at float `at`
+ * of a level w texels wide: its 4^d texels folded in the builder's order (each box the max
+ * of its four halves, row Y's two columns then the next row's, a fold starting from the
+ * identity, which gives the first value itself, NaN included), then one max into acc: the
+ * bits a kept level l's texel gives. d <= 3. No recursion: the partial maxima of the boxes
+ * on the path, a digit of the texel's index in base 4 a level. */
+PN_KFN void pn_nb_mm_tree(PN_CONST float *lv, uint32_t at, uint32_t w, uint32_t l, uint32_t d, float *acc)
+{
+    float part[3][PN_NB_MM];
+    uint32_t k, j, n = 1u << (2u * d);
+    for (j = 0; j < d; j++) pn_nb_mm_empty(part[j]);
+    for (k = 0; k < n; k++) {
+        uint32_t o = at;
+        for (j = 0; j < d; j++) {
+            uint32_t q = (k >> (2u * (d - 1u - j))) & 3u;
+            o += ((q >> 1u) * w + (q & 1u)) * (1u << (l - 1u - j)) * PN_NB_MM;
+        }
+        pn_nb_mm_add(part[d - 1u], lv + o);
+        for (j = d - 1u; j > 0u && ((k >> (2u * (d - 1u - j))) & 3u) == 3u; j--) {
+            pn_nb_mm_add_p(part[j - 1u], part[j]);
+            pn_nb_mm_empty(part[j]);
+        }
     }
+    pn_nb_mm_add_p(acc, part[0]);
+}
+
+/* Row Y < W_l of kept level l >= 1 (mc's layout, lv the levels). From the kept level just
+ * below (d = 1: each texel one max over a flat float array, which the compilers vectorize),
+ * else by pn_nb_mm_tree from the kept level step below. */
+PN_KFN void pn_nb_mm_row(const pn_kmc *mc, uint32_t l, uint32_t Y, PN_GLOBAL float *lv)
+{
+    uint32_t s = pn_nb_mm_src(mc, l - 1u), ws = pn_nb_mm_w(mc->res, s), w = pn_nb_mm_w(mc->res, l), X;
+    PN_GLOBAL float *out = lv + pn_nb_mm_off(mc, l) + (size_t)Y * w * PN_NB_MM;
+    if (l - s == 1u) {
+        size_t i, h = (size_t)1u << (l - 1u), n = (size_t)w * PN_NB_MM;
+        PN_CONST float *r0 = lv + pn_nb_mm_off(mc, s) + (size_t)Y * ws * PN_NB_MM;
+        PN_CONST float *r1 = r0 + h * ws * PN_NB_MM, *r0b = r0 + h * PN_NB_MM, *r1b = r1 + h * PN_NB_MM;
+        for (i = 0; i < n; i++) out[i] = pn_kmaxf(pn_kmaxf(pn_kmaxf(r0[i], r0b[i]), r1[i]), r1b[i]);
+        return;
+    }
+    for (X = 0; X < w; X++) {
+        float v[PN_NB_MM];
+        pn_nb_mm_empty(v);
+        pn_nb_mm_tree(lv, pn_nb_mm_off(mc, s) + (Y * ws + X) * PN_NB_MM, ws, l, l - s, v);
+        out[X * PN_NB_MM] = v[0];
+        out[X * PN_NB_MM + 1u] = v[1];
+        out[X * PN_NB_MM + 2u] = v[2];
+    }
+}
+
+/* Into acc, the level-l box whose texel in level pn_nb_mm_src(l) is at float `at`. */
+PN_KFN void pn_nb_mm_box_add(PN_CONST float *lv, const pn_kmc *mc, uint32_t l, uint32_t at, float *acc)
+{
+    uint32_t s = pn_nb_mm_src(mc, l);
+    if (s == l)
+        pn_nb_mm_add(acc, lv + at);
+    else
+        pn_nb_mm_tree(lv, at, pn_nb_mm_w(mc->res, s), l, l - s, acc);
 }
 
 /* Bounds of the min / max box of level l starting at level-0 texel (X, Y), of its part
  * inside the texture: a box reaching beyond an edge is looked up as the one of its size
- * inside against that edge, which holds that part (pn_nb_index is exact only inside: with
- * the index clamped instead, MCSM's search skipped occluders on the map's first and last
- * columns and rows: room, 512x512, 3 pixels). */
-PN_KFN void pn_nb_mm_box(PN_CONST float *lv, uint32_t res, uint32_t l, int32_t X, int32_t Y, float *v)
+ * inside against that edge, which holds that part (with the index clamped instead, MCSM's
+ * search skipped occluders on the map's first and last columns and rows: room, 512x512,
+ * 3 pixels). */
+PN_KFN void pn_nb_mm_box(PN_CONST float *lv, const pn_kmc *mc, uint32_t l, int32_t X, int32_t Y, float *v)
 {
-    int32_t hi = (int32_t)res - (1 << l);
-    size_t i = (size_t)l * res * res + (size_t)pn_nb_index(l, pn_kmaxi(0, pn_kmini(Y, hi)), res) * res +
-               (size_t)pn_nb_index(l, pn_kmaxi(0, pn_kmini(X, hi)), res);
-    pn_nb_mm_get(lv + i * PN_NB_MM, v);
+    int32_t hi = (int32_t)mc->res - (1 << l);
+    uint32_t s = pn_nb_mm_src(mc, l), ws = pn_nb_mm_w(mc->res, s);
+    float a[PN_NB_MM];
+    pn_nb_mm_empty(a);
+    pn_nb_mm_box_add(lv, mc, l,
+                     pn_nb_mm_off(mc, s) + ((uint32_t)pn_kmaxi(0, pn_kmini(Y, hi)) * ws +
+                                      (uint32_t)pn_kmaxi(0, pn_kmini(X, hi))) * PN_NB_MM,
+                     a);
+    v[0] = -a[0]; /* the bounds, as pn_nb_mm_get's */
+    v[1] = a[1];
+    v[2] = a[2];
 }
 
 /* The four boxes that bound the texel rectangle [x0, x1) x [y0, y1) (clamped to the
- * texture): offsets in floats of their texels in lv, those of the smallest level l with
- * 2^(l+1) >= the longer side (at most the top level, whose four boxes cover the texture);
- * 0 when the clamped rectangle is empty, else 4 (the offsets are then of some texels, not
- * to be read). A superset, so the bounds are conservative; exact when both sides are
- * 2^l .. 2^(l+1). The level from the exponent of a float, the boxes' two columns and two
- * rows indexed once, and no branch: the searches' hot path, which the Monte Carlo pixel
- * pass computes for eight rays at once in a loop the compilers vectorize. Offsets in 32
- * bits: levels res^2 PN_NB_MM floats fit for res up to 9000 (PN_MCSM_MAP_MAX is at most
- * 2048). */
-PN_KFN uint32_t pn_nb_mm_rect_at(uint32_t res, uint32_t levels, int32_t x0, int32_t y0, int32_t x1, int32_t y1,
-                                 uint32_t *at)
+ * texture): offsets in floats of their texels in lv (in the kept level a lookup of their
+ * level reads), their level in *lev: the smallest level l with 2^(l+1) >= the longer side
+ * (at most the top level, whose four boxes cover the texture); 0 when the clamped rectangle
+ * is empty, else 4 (the offsets are then of some texels, not to be read). A superset, so
+ * the bounds are conservative; exact when both sides are 2^l .. 2^(l+1). The level from
+ * the exponent of a float, the boxes' two columns and two rows indexed once, and no
+ * branch: the searches' hot path, which the Monte Carlo pixel pass computes for eight
+ * rays at once in a loop the compilers vectorize. Offsets in 32 bits: levels of res^2
+ * PN_NB_MM floats fit for res up to 9000 (PN_MCSM_MAP_MAX is at most 2048). */
+PN_KFN uint32_t pn_nb_mm_rect_at(const pn_kmc *mc, int32_t x0, int32_t y0, int32_t x1, int32_t y1, uint32_t *at,
+                                 uint32_t *lev)
 {
-    int32_t m, s, R = (int32_t)res;
-    uint32_t l, n, ca, cb, ra, rb, L;
+    int32_t m, s, R = (int32_t)mc->res;
+    uint32_t l, n, ca, cb, ra, rb, L, w, src;
     x0 = pn_kmaxi(x0, 0);
     y0 = pn_kmaxi(y0, 0);
     x1 = pn_kmini(x1, R);
@@ -194,43 +248,50 @@ PN_KFN uint32_t pn_nb_mm_rect_at(uint32_t res, uint32_t levels, int32_t x0, int3
     /* The smallest l with 2 << l >= m: 0 up to m = 2, else floor(log2(m - 1)), the
      * exponent of m - 1 as a float (exact: m <= res < 2^24). */
     l = m <= 2 ? 0u : (pn_kfbits((float)(m - 1)) >> 23) - 127u;
-    l = pn_kminu(l, levels - 1u);
+    l = pn_kminu(l, mc->levels - 1u);
     s = 1 << l;
-    /* Boxes inside the texture, where pn_nb_index is exact: a first box starting after
-     * res - s moves back to it (it still holds [x0, x1)'s start; the second its end). */
+    src = pn_nb_mm_src(mc, l);
+    w = pn_nb_mm_w(mc->res, src);
+    /* Boxes inside the texture: a first box starting after res - s moves back to it (it
+     * still holds [x0, x1)'s start; the second its end). */
     x0 = pn_kmini(x0, R - s);
     y0 = pn_kmini(y0, R - s);
-    ca = (uint32_t)pn_nb_index(l, x0, res) * PN_NB_MM;
-    cb = (uint32_t)pn_nb_index(l, pn_kmaxi(x1 - s, x0), res) * PN_NB_MM;
-    ra = (uint32_t)pn_nb_index(l, y0, res) * res * PN_NB_MM;
-    rb = (uint32_t)pn_nb_index(l, pn_kmaxi(y1 - s, y0), res) * res * PN_NB_MM;
-    L = l * res * res * PN_NB_MM;
+    ca = (uint32_t)x0 * PN_NB_MM;
+    cb = (uint32_t)pn_kmaxi(x1 - s, x0) * PN_NB_MM;
+    ra = (uint32_t)y0 * w * PN_NB_MM;
+    rb = (uint32_t)pn_kmaxi(y1 - s, y0) * w * PN_NB_MM;
+    L = pn_nb_mm_off(mc, src);
     at[0] = L + ra + ca;
     at[1] = L + ra + cb;
     at[2] = L + rb + ca;
     at[3] = L + rb + cb;
+    *lev = l;
     return n;
 }
 
-/* Bounds {min near, max far, max near} of the n boxes at (pn_nb_mm_rect_at; empty:
- * {+inf, -inf, -inf}). */
-PN_KFN void pn_nb_mm_rect_get(PN_CONST float *lv, const uint32_t *at, uint32_t n, float *v)
+/* Bounds {min near, max far, max near} of the n boxes of level l at (pn_nb_mm_rect_at;
+ * empty: {+inf, -inf, -inf}). */
+PN_KFN void pn_nb_mm_rect_get(PN_CONST float *lv, const pn_kmc *mc, const uint32_t *at, uint32_t n, uint32_t l,
+                              float *v)
 {
     uint32_t i;
     float s[PN_NB_MM]; /* a local sum: through v, the compilers store and reload at each box */
     pn_nb_mm_empty(s);
-    for (i = 0; i < n; i++) pn_nb_mm_add(s, lv + at[i]);
+    if (pn_nb_mm_src(mc, l) == l)
+        for (i = 0; i < n; i++) pn_nb_mm_add(s, lv + at[i]);
+    else
+        for (i = 0; i < n; i++) pn_nb_mm_box_add(lv, mc, l, at[i], s);
     v[0] = -s[0]; /* the bounds, as pn_nb_mm_get's */
     v[1] = s[1];
     v[2] = s[2];
 }
 
 /* Bounds over the texel rectangle [x0, x1) x [y0, y1) from pn_nb_mm_rect_at's boxes. */
-PN_KFN void pn_nb_mm_rect(PN_CONST float *lv, uint32_t res, uint32_t levels, int32_t x0, int32_t y0, int32_t x1,
-                          int32_t y1, float *v)
+PN_KFN void pn_nb_mm_rect(PN_CONST float *lv, const pn_kmc *mc, int32_t x0, int32_t y0, int32_t x1, int32_t y1,
+                          float *v)
 {
-    uint32_t at[4], n = pn_nb_mm_rect_at(res, levels, x0, y0, x1, y1, at);
-    pn_nb_mm_rect_get(lv, at, n, v);
+    uint32_t at[4], l, n = pn_nb_mm_rect_at(mc, x0, y0, x1, y1, at, &l);
+    pn_nb_mm_rect_get(lv, mc, at, n, l, v);
 }
 
 #endif

@@ -76,7 +76,7 @@ pn_status pn_carve(const pn_limits *l, pn_layout *out)
     if (l->max_triangles < 1u || l->max_triangles > PN_MAX_TRIANGLES || l->max_width < 1u ||
         l->max_width > PN_MAX_WIDTH || l->max_height < 1u || l->max_height > PN_MAX_HEIGHT ||
         (l->bvh_refs != 0u && (l->bvh_refs < l->max_triangles || l->bvh_refs > pn_bvh_refs_cap(l))) ||
-        (l->algos & ~PN_ALGO_FLAGS) != 0u || (l->flags & ~PN_LIMITS_NO_SURFACE) != 0u)
+        (l->algos & ~PN_ALGO_FLAGS) != 0u || (l->flags & ~(PN_LIMITS_NO_SURFACE | PN_LIMITS_SPARSE_NBUFFER)) != 0u)
         return PN_E_LIMIT;
     /* Each algorithm's own fields (an algorithm not compiled in ignores its). */
 #define PN_ALGO_LIMITS(ID, name)                                                               \

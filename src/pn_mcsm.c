@@ -54,23 +54,31 @@ typedef char pn_mc_consts_agree[PN_MC_S_LINEAR == PN_MC_SEARCH_LINEAR && PN_MC_S
                                         PN_MC_RAYS_MAX == 8u && PN_MC_BLUR_MAX + 1u <= 12u &&
                                         PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS && PN_MC_WORDS == 6u &&
                                         PN_MC_ROW_WORDS == 16u /* 64 bytes a row (pn_mc_carve) */
-                                        && PN_MCSM_MAP_MAX <= 2048u /* N-buffer offsets in 32 bits (pn_nb_mm_rect_at) */
+                                        && PN_MCSM_MAP_MAX <= 2048u /* N-buffer offsets in 32 bits (pn_nb_mm_off) */
                                     ? 1
                                     : -1];
 
 typedef struct pn_mc_pools {
     float *box;      /* [height * PN_LVIEW_BOX]: row bounds (kernels/pn_lview.h) */
-    float *nb;       /* [levels * res^2 * PN_NB_MM]: the N-buffer, level 0 the layers */
+    float *nb;       /* [kept texels * PN_NB_MM]: the N-buffer (pn_nb_mm_layout), level 0 the layers */
     float *tmp;      /* [width * height]: the blur's other buffer */
     uint32_t *words; /* [height * PN_MC_ROW_WORDS]: class counters per row */
 } pn_mc_pools;
 
+/* The N-buffer keeps every level, or every third with PN_LIMITS_SPARSE_NBUFFER. */
+static uint32_t pn_mc_nb_step(const pn_limits *l) { return (l->flags & PN_LIMITS_SPARSE_NBUFFER) ? 3u : 1u; }
+
 /* The frame's pools at w x h with a res^2 map: run by the frame on the frame region and
  * by pn_mcsm_query at the limits' maxima. */
-static void pn_mc_carve(pn_carver *c, uint32_t w, uint32_t h, uint32_t res, pn_mc_pools *s)
+static void pn_mc_carve(pn_carver *c, const pn_limits *l, uint32_t w, uint32_t h, uint32_t res, pn_mc_pools *s)
 {
+    pn_kmc mc;
+    uint32_t texels;
+    mc.res = res;
+    mc.nb_step = pn_mc_nb_step(l);
+    texels = pn_nb_mm_layout(&mc);
     s->box = (float *)pn_pool(c, h, 4u * PN_LVIEW_BOX_FLOATS, "mcsm row bounds");
-    s->nb = (float *)pn_pool(c, (uint64_t)pn_nb_levels(res) * res * res, 4u * PN_NB_MM, "mcsm N-buffer");
+    s->nb = (float *)pn_pool(c, texels, 4u * PN_NB_MM, "mcsm N-buffer");
     s->tmp = (float *)pn_pool(c, (uint64_t)w * h, 4u, "mcsm blur buffer");
     s->words = (uint32_t *)pn_pool(c, h, 4u * PN_MC_ROW_WORDS, "mcsm counters");
 }
@@ -78,7 +86,7 @@ static void pn_mc_carve(pn_carver *c, uint32_t w, uint32_t h, uint32_t res, pn_m
 void pn_mcsm_query(pn_carver *c, const pn_limits *l)
 {
     pn_mc_pools s;
-    pn_mc_carve(c, l->max_width, l->max_height, pn_mc_map_max(l), &s);
+    pn_mc_carve(c, l, l->max_width, l->max_height, pn_mc_map_max(l), &s);
 }
 
 static pn_status pn_mc_begin(pn_frame_state *fs, pn_mc_pools *s, uint32_t res)
@@ -87,7 +95,7 @@ static pn_status pn_mc_begin(pn_frame_state *fs, pn_mc_pools *s, uint32_t res)
     pn_kpools *P = &fs->P;
     pn_carver c;
     pn_carver_frame(&c, ctx);
-    pn_mc_carve(&c, fs->width, fs->height, res, s);
+    pn_mc_carve(&c, &ctx->limits, fs->width, fs->height, res, s);
     if (!c.ok) return PN_E_POOL_EXHAUSTED;
     P->lview_box = pn_dev_off(ctx, s->box);
     P->mc_nb = pn_dev_off(ctx, s->nb);
@@ -98,18 +106,20 @@ static pn_status pn_mc_begin(pn_frame_state *fs, pn_mc_pools *s, uint32_t res)
 }
 
 /* The N-buffer's bound over the whole map, which every pixel's classification starts from:
- * pn_nb_mm_rect's boxes, read back once a frame instead of looked up per pixel. */
+ * pn_nb_mm_rect's boxes, read back once a frame instead of looked up per pixel (their
+ * texels, or the kept level they are rebuilt from). */
 static pn_status pn_mc_whole(pn_frame_state *fs, const float *nb, pn_kmc *mc)
 {
-    uint32_t at[4], i, n = pn_nb_mm_rect_at(mc->res, mc->levels, 0, 0, (int32_t)mc->res, (int32_t)mc->res, at);
-    float s[PN_NB_MM];
+    uint32_t at[4], i, l, n = pn_nb_mm_rect_at(mc, 0, 0, (int32_t)mc->res, (int32_t)mc->res, at, &l);
+    uint32_t s = pn_nb_mm_src(mc, l), w = pn_nb_mm_w(mc->res, s);
     pn_status st;
-    pn_nb_mm_empty(s);
-    for (i = 0; i < n; i++) {
-        if ((st = pn_dev_to_host(fs, nb + at[i], 4u * PN_NB_MM)) != PN_OK) return st;
-        pn_nb_mm_add(s, nb + at[i]);
+    if (s != l) {
+        if ((st = pn_dev_to_host(fs, nb + pn_nb_mm_off(mc, s), (size_t)w * w * 4u * PN_NB_MM)) != PN_OK) return st;
+    } else {
+        for (i = 0; i < n; i++)
+            if ((st = pn_dev_to_host(fs, nb + at[i], 4u * PN_NB_MM)) != PN_OK) return st;
     }
-    pn_nb_mm_get(s, mc->whole);
+    pn_nb_mm_rect_get(nb, mc, at, n, l, mc->whole);
     return PN_OK;
 }
 
@@ -143,7 +153,8 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
     pn_light_view(ctx, &K->light, res, &K->lview);
     pn_light_halves(&K->light, &K->lview_ha, &K->lview_hb);
     mc->res = res;
-    mc->levels = pn_nb_levels(res);
+    mc->nb_step = pn_mc_nb_step(&ctx->limits);
+    (void)pn_nb_mm_layout(mc);
     mc->blur_depth = 100.0f; /* 1% of the centre's depth away: half the weight */
     pn_mc_weights(mc);
     ctx->stats.mcsm.map = res;
@@ -168,9 +179,9 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
         t1 = pn_dev_timestamp(fs);
         ctx->stats.mcsm.ns_layers = t1 - t0;
         t0 = t1;
-        for (l = 1; l < mc->levels; l++) {
+        for (l = mc->nb_step; l < mc->levels; l += mc->nb_step) {
             mc->level = l;
-            if ((st = pn_dev_run(fs, PN_K_MC_NBUF, res)) != PN_OK) return st;
+            if ((st = pn_dev_run(fs, PN_K_MC_NBUF, pn_nb_mm_w(res, l))) != PN_OK) return st;
         }
         if ((st = pn_mc_whole(fs, s.nb, mc)) != PN_OK) return st;
         t1 = pn_dev_timestamp(fs);

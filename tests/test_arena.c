@@ -161,19 +161,16 @@ static void test_no_surface(void)
 }
 
 /* A microcontroller's workload (issue 47): one algorithm, 1,000 triangles, 160x120, the
- * maps' and GEARS grid's limits at 128, frames without surfaces: pn_arena_size at most 1
- * MiB for every algorithm but MCSM, whose N-buffer at 128 alone is 1.5 MiB (8 levels of
- * 128^2 texels of 12 bytes; a smaller hierarchy changes its bytes: issue 48), and which
- * fits at a map of 64. Then each renders `thin` (2,002 triangles) in such a context, k =
- * 8, GEARS in tiles of its default pool: the same visibility as in a context of default
- * limits. */
+ * maps' and GEARS grid's limits at 128, frames without surfaces and MCSM's N-buffer
+ * sparse: pn_arena_size at most 1 MiB for every algorithm. Then each renders `thin`
+ * (2,002 triangles) in such a context, k = 8, maps of 128, GEARS in tiles of its default
+ * pool: the same visibility as in a context of default limits. */
 static pn_limits mcu_limits(uint32_t t, uint32_t a)
 {
     pn_limits l = lim3(t, 160, 120);
     l.algos = 1u << a;
     l.srt_map_max = l.occ_map_max = l.mc_map_max = l.gears_grid_max = 128;
-    if (a == PN_ALGO_MCSM) l.mc_map_max = 64;
-    l.flags = PN_LIMITS_NO_SURFACE;
+    l.flags = PN_LIMITS_NO_SURFACE | PN_LIMITS_SPARSE_NBUFFER;
     return l;
 }
 
@@ -205,8 +202,7 @@ static void test_microcontroller(void)
         o.k = 8;
         o.eps = sc.eps;
         o.algo = (pn_algo)a;
-        o.srt.map = o.occtex.map = 128;
-        o.mcsm.map = 64;
+        o.srt.map = o.occtex.map = o.mcsm.map = 128;
         CHECK_MSG(pn_render(small.ctx, &sc.camera, &sc.light, &o, &fs) == PN_OK, "%s: %s", pn_algo_name((pn_algo)a),
                   pn_last_error(small.ctx));
         vis = (float *)malloc(px * sizeof(float));
@@ -241,7 +237,7 @@ static void test_bad_limits(void)
     l[6].mc_map_max = PN_MCSM_MAP_MAX + 1u;
     l[7].mc_map_max = 7;
     l[8].wg_pairs = PN_WEDGES_PAIRS + 1u;
-    l[9].flags = PN_LIMITS_NO_SURFACE << 1; /* a flag the library does not know */
+    l[9].flags = PN_LIMITS_SPARSE_NBUFFER << 1; /* a flag the library does not know */
     static const uint32_t owner[10] = {0, 0, 0, 0, PN_BUILD_GEARS, PN_BUILD_GEARS, PN_BUILD_MCSM, PN_BUILD_MCSM,
                                        PN_BUILD_WEDGES, 0};
     CHECK(pn_arena_size(NULL, &bytes) == PN_E_INVALID_ARG);

@@ -298,7 +298,7 @@ static int list_scenes(pn_xscene *out)
 }
 
 static pn_xrig g_rig;
-static pn_xrig g_lean;   /* the same limits with PN_LIMITS_NO_SURFACE */
+static pn_xrig g_lean;   /* the same limits with PN_LIMITS_NO_SURFACE | PN_LIMITS_SPARSE_NBUFFER */
 static pn_xframe g_kept; /* a frame kept while the rig renders others */
 
 /* The rig's scalar frame of n pixels into g_kept. */
@@ -338,7 +338,8 @@ static void same_lean(const char *what, const pn_xframe *a, const pn_xframe *b, 
 }
 
 /* The frame just rendered on both ports (kept in g_kept) again on a context whose frames keep no
- * positions and normals, on both ports: the same visibility, RGBA, depth, ids and stats;
+ * positions and normals and whose MCSM N-buffer keeps every third level, on both ports: the
+ * same visibility, RGBA, depth, ids and stats;
  * with the caller's G-buffer too. Its points (batches of a quarter of the rows) agree
  * across the ports, and for the exact algorithms, whose answer per point does not depend
  * on the batch, with the frame. (va, vb: room for the points' answers) */
@@ -947,7 +948,7 @@ int main(void)
         CHECK_MSG(0, "cannot open the OpenCL port (see above)");
         return pn_test_summary();
     }
-    lim.flags = PN_LIMITS_NO_SURFACE;
+    lim.flags = PN_LIMITS_NO_SURFACE | PN_LIMITS_SPARSE_NBUFFER;
     if (rig_open(&g_lean, &lim, NULL) != 0) {
         CHECK_MSG(0, "cannot open the OpenCL port on a context without surfaces (see above)");
         return pn_test_summary();

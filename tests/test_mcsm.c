@@ -639,34 +639,53 @@ static void test_window_and_clip(void)
 }
 
 /* The N-buffer's boxes against brute force: over random layers (a third of the texels
- * empty) of 16, 32 and 64 texels a side, every box of every level that the searches can ask
- * for (pn_nb_mm_box, starting anywhere from 2^l - 1 texels before the map to its last
- * texel), and random rectangles (pn_nb_mm_rect), bound the texels of theirs inside the map:
- * min near no larger, max far and max near no smaller. */
+ * empty, a tenth holding a signed zero) of 16, 32, 48, 64, 100 and 128 texels a side,
+ * every box of every level that the searches can ask for (pn_nb_mm_box, starting anywhere
+ * from 2^l - 1 texels before the map to its last texel), and random rectangles
+ * (pn_nb_mm_rect), bound the texels of theirs inside the map: min near no larger, max far
+ * and max near no smaller; a box inside the map holds its texels' bounds exactly. The same
+ * levels kept sparse (every third, PN_LIMITS_SPARSE_NBUFFER) give the same bits for every
+ * box and rectangle: the lookups rebuild a level not kept in the order the builder makes
+ * it (signed zeros tell that order apart: max(+0, -0) is -0, max(-0, +0) is +0). */
 static void test_nbuffer_boxes(void)
 {
-    enum { RMAX = 64, LMAX = 7 };
-    static float nb[LMAX * RMAX * RMAX * PN_NB_MM];
-    static const uint32_t sizes[3] = {16u, 32u, 64u};
-    uint32_t si, boxes = 0u, bad = 0u, rects = 0u, bad_rects = 0u;
-    for (si = 0; si < 3u; si++) {
-        uint32_t res = sizes[si], levels = 1u, l, y, i;
-        while ((2u << (levels - 1u)) <= res) levels++;
+    enum { RMAX = 128, LMAX = 8 };
+    static float nb[LMAX * RMAX * RMAX * PN_NB_MM], sp[LMAX * RMAX * RMAX * PN_NB_MM];
+    static const uint32_t sizes[6] = {16u, 32u, 48u, 64u, 100u, 128u};
+    uint32_t si, boxes = 0u, bad = 0u, rects = 0u, bad_rects = 0u, inexact = 0u, differ = 0u, zeros = 0u;
+    uint64_t dense_texels = 0u, sparse_texels = 0u;
+    for (si = 0; si < 6u; si++) {
+        uint32_t res = sizes[si], l, y, i, kept[2];
+        pn_kmc D, S;
+        memset(&D, 0, sizeof(D));
+        D.res = res;
+        D.nb_step = 1u;
+        S = D;
+        S.nb_step = 3u;
+        kept[0] = pn_nb_mm_layout(&D);
+        kept[1] = pn_nb_mm_layout(&S);
+        dense_texels += kept[0];
+        sparse_texels += kept[1];
         for (i = 0; i < res * res; i++) {
             float *T = nb + (size_t)i * PN_NB_MM, near = urand(0.1f, 1.0f), far = near + urand(0.0f, 0.5f);
             if (urand(0.0f, 1.0f) < 0.33f) near = PN_KINF, far = -PN_KINF;
+            if (urand(0.0f, 1.0f) < 0.1f) near = urand(0.0f, 1.0f) < 0.5f ? 0.0f : -0.0f, far = -near, zeros++;
             T[0] = -near; /* stored as pn_mc_band leaves it */
             T[1] = far;
             T[2] = near;
+            memcpy(sp + (size_t)i * PN_NB_MM, T, sizeof(float) * PN_NB_MM);
         }
-        for (l = 1; l < levels; l++)
-            for (y = 0; y < res; y++) pn_nb_mm_row(res, l, y, nb);
-        for (l = 0; l < levels; l++) {
-            int32_t B = 1 << l, X, Y, step = res == 64u ? 3 : 1;
+        for (l = 1; l < D.levels; l++)
+            for (y = 0; y < pn_nb_mm_w(res, l); y++) pn_nb_mm_row(&D, l, y, nb);
+        for (l = S.nb_step; l < S.levels; l += S.nb_step)
+            for (y = 0; y < pn_nb_mm_w(res, l); y++) pn_nb_mm_row(&S, l, y, sp);
+        for (l = 0; l < D.levels; l++) {
+            int32_t B = 1 << l, X, Y, step = res >= 64u ? 3 : 1;
             for (Y = 1 - B; Y < (int32_t)res; Y += step)
                 for (X = 1 - B; X < (int32_t)res; X += step) {
-                    float v[PN_NB_MM], mn = PN_KINF, mf = -PN_KINF, mxn = -PN_KINF;
+                    float v[PN_NB_MM], w[PN_NB_MM], mn = PN_KINF, mf = -PN_KINF, mxn = -PN_KINF;
                     int32_t a, b;
+                    int inside = X >= 0 && Y >= 0 && X + B <= (int32_t)res && Y + B <= (int32_t)res;
                     for (b = Y < 0 ? 0 : Y; b < Y + B && b < (int32_t)res; b++)
                         for (a = X < 0 ? 0 : X; a < X + B && a < (int32_t)res; a++) {
                             const float *T = nb + ((size_t)b * res + (size_t)a) * PN_NB_MM;
@@ -674,7 +693,8 @@ static void test_nbuffer_boxes(void)
                             mf = pn_kmaxf(mf, T[1]);
                             mxn = pn_kmaxf(mxn, T[2]);
                         }
-                    pn_nb_mm_box(nb, res, l, X, Y, v);
+                    pn_nb_mm_box(nb, &D, l, X, Y, v);
+                    pn_nb_mm_box(sp, &S, l, X, Y, w);
                     boxes++;
                     if (!(v[0] <= mn && v[1] >= mf && v[2] >= mxn)) {
                         if (bad < 5u)
@@ -682,12 +702,19 @@ static void test_nbuffer_boxes(void)
                                     v[0], v[1], v[2], mn, mf, mxn);
                         bad++;
                     }
+                    if (inside && !(v[0] == mn && v[1] == mf && v[2] == mxn)) inexact++;
+                    if (memcmp(v, w, sizeof(v)) != 0) {
+                        if (differ < 5u)
+                            fprintf(stderr, "res %u level %u box at (%d, %d): kept %a %a %a, sparse %a %a %a\n", res, l, X,
+                                    Y, v[0], v[1], v[2], w[0], w[1], w[2]);
+                        differ++;
+                    }
                 }
         }
-        for (i = 0; i < 2000u; i++) {
+        for (i = 0; i < 4000u; i++) {
             int32_t x0 = (int32_t)urand(-8.0f, (float)res), y0 = (int32_t)urand(-8.0f, (float)res);
             int32_t x1 = x0 + 1 + (int32_t)urand(0.0f, (float)res), y1 = y0 + 1 + (int32_t)urand(0.0f, (float)res), a, b;
-            float v[PN_NB_MM], mn = PN_KINF, mf = -PN_KINF, mxn = -PN_KINF;
+            float v[PN_NB_MM], w[PN_NB_MM], mn = PN_KINF, mf = -PN_KINF, mxn = -PN_KINF;
             for (b = y0 < 0 ? 0 : y0; b < y1 && b < (int32_t)res; b++)
                 for (a = x0 < 0 ? 0 : x0; a < x1 && a < (int32_t)res; a++) {
                     const float *T = nb + ((size_t)b * res + (size_t)a) * PN_NB_MM;
@@ -695,7 +722,8 @@ static void test_nbuffer_boxes(void)
                     mf = pn_kmaxf(mf, T[1]);
                     mxn = pn_kmaxf(mxn, T[2]);
                 }
-            pn_nb_mm_rect(nb, res, levels, x0, y0, x1, y1, v);
+            pn_nb_mm_rect(nb, &D, x0, y0, x1, y1, v);
+            pn_nb_mm_rect(sp, &S, x0, y0, x1, y1, w);
             rects++;
             if (!(v[0] <= mn && v[1] >= mf && v[2] >= mxn)) {
                 if (bad < 5u)
@@ -704,11 +732,56 @@ static void test_nbuffer_boxes(void)
                 bad++;
                 bad_rects++;
             }
+            if (memcmp(v, w, sizeof(v)) != 0) {
+                if (differ < 5u)
+                    fprintf(stderr, "res %u rect [%d, %d) x [%d, %d): kept %a %a %a, sparse %a %a %a\n", res, x0, x1, y0,
+                            y1, v[0], v[1], v[2], w[0], w[1], w[2]);
+                differ++;
+            }
         }
     }
-    fprintf(stderr, "N-buffer: %u boxes and %u rectangles against their texels, %u boxes and %u rectangles not bounded\n",
-            boxes, rects, bad - bad_rects, bad_rects);
+    fprintf(stderr,
+            "N-buffer: %u boxes and %u rectangles against their texels (%u signed zeros), %u boxes and %u rectangles "
+            "not bounded, %u boxes inside not exact, %u lookups of the sparse levels not the same bits; texels kept "
+            "%llu, sparse %llu\n",
+            boxes, rects, zeros, bad - bad_rects, bad_rects, inexact, differ, (unsigned long long)dense_texels,
+            (unsigned long long)sparse_texels);
     CHECK_MSG(bad == 0u, "%u of %u boxes and rectangles do not bound their texels", bad, boxes + rects);
+    CHECK_MSG(inexact == 0u, "%u boxes inside the map do not hold their texels' bounds", inexact);
+    CHECK_MSG(differ == 0u, "%u lookups of the sparse N-buffer differ from the kept levels'", differ);
+    CHECK_MSG(sparse_texels * 2u < dense_texels, "sparse levels keep %llu texels of %llu",
+              (unsigned long long)sparse_texels, (unsigned long long)dense_texels);
+}
+
+/* The N-buffer's closed-form level offsets (pn_nb_mm_off) against the kept levels' texels
+ * summed one by one, for every map size 8 .. 2048 and both steps; and every lookup level
+ * reads the kept level at or below it. */
+static void test_nbuffer_layout(void)
+{
+    uint32_t res, step, wrong = 0u, checked = 0u;
+    for (step = 1u; step <= 3u; step += 2u)
+        for (res = 8u; res <= 2048u; res++) {
+            pn_kmc mc;
+            uint32_t l, sum = 0u, total;
+            memset(&mc, 0, sizeof(mc));
+            mc.res = res;
+            mc.nb_step = step;
+            total = pn_nb_mm_layout(&mc);
+            for (l = 0; l < mc.levels; l++) {
+                uint32_t s = pn_nb_mm_src(&mc, l);
+                checked++;
+                if (s != l - l % step || (s == l && pn_nb_mm_off(&mc, l) != sum * PN_NB_MM)) {
+                    if (wrong < 5u)
+                        fprintf(stderr, "res %u step %u level %u: reads %u at %u, the levels below hold %u floats\n", res,
+                                step, l, s, pn_nb_mm_off(&mc, s), sum * PN_NB_MM);
+                    wrong++;
+                }
+                if (s == l) sum += pn_nb_mm_w(res, l) * pn_nb_mm_w(res, l);
+            }
+            if (sum != total) wrong++;
+        }
+    fprintf(stderr, "N-buffer layout: %u levels of 2 x 2041 maps, %u wrong\n", checked, wrong);
+    CHECK_MSG(wrong == 0u, "%u levels laid out wrong", wrong);
 }
 
 int main(void)
@@ -719,6 +792,7 @@ int main(void)
     }
     RUN(test_hash);
     RUN(test_window_and_clip);
+    RUN(test_nbuffer_layout);
     RUN(test_nbuffer_boxes);
     RUN(test_square);
     RUN(test_interior_and_sheets);

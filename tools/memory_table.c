@@ -115,12 +115,12 @@ int main(void)
     {
         /* A microcontroller's workload: 1,000 triangles, 160x120, the maps' and the GEARS
          * grid's limits at 128 (k = 8 costs no arena); then with frames that keep no
-         * positions and normals (PN_LIMITS_NO_SURFACE), and with that and MCSM's map at 64
-         * (its N-buffer at 128 alone is 1.5 MiB). */
+         * positions and normals (PN_LIMITS_NO_SURFACE), and with that and MCSM's N-buffer
+         * keeping every third level (PN_LIMITS_SPARSE_NBUFFER; the same bytes). */
         printf("\nA microcontroller's workload: 1,000 triangles, 160x120, the maps' and GEARS grid's limits at 128 "
-               "(bytes, pn_arena_size); then with `flags = PN_LIMITS_NO_SURFACE`; then with that and "
-               "`mc_map_max = 64`:\n\n"
-               "| algorithm | bytes | of 1 MiB | no surface | of 1 MiB | no surface, MCSM map 64 | of 1 MiB |\n"
+               "(bytes, pn_arena_size); then with `flags = PN_LIMITS_NO_SURFACE`; then with "
+               "`flags = PN_LIMITS_NO_SURFACE | PN_LIMITS_SPARSE_NBUFFER`:\n\n"
+               "| algorithm | bytes | of 1 MiB | no surface | of 1 MiB | no surface, sparse N-buffer | of 1 MiB |\n"
                "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
         for (a = first; a <= PN_ALGO_COUNT; a++) {
             int algo = a == PN_ALGO_COUNT ? -1 : a, v;
@@ -135,7 +135,11 @@ int main(void)
 #else
                 if (v > 0) break;
 #endif
-                if (v > 1) l.mc_map_max = 64;
+#ifdef PN_LIMITS_SPARSE_NBUFFER
+                if (v > 1) l.flags |= PN_LIMITS_SPARSE_NBUFFER;
+#else
+                if (v > 1) break;
+#endif
                 if (pn_arena_size(&l, &bytes) == PN_OK)
                     printf(" %zu | %.2f |", bytes, (double)bytes / 1048576.0);
                 else

@@ -44,7 +44,7 @@ static void usage(FILE *f)
             "                  [--occ-slices N] [--occ-map N] [--occ-filter nbuffer|sat|mipmap]\n"
             "                  [--occ-combine product|max|sum] [--occ-leak-fix]\n"
             "                  [--mc-layers 1|2|3] [--mc-search linear|hier] [--mc-rays N] [--mc-blur N|off]\n"
-            "                  [--mc-map N] [--mc-no-bias] [--mc-no-classify] [--mc-seed N]\n"
+            "                  [--mc-map N] [--mc-no-bias] [--mc-no-classify] [--mc-seed N] [--mc-sparse-nbuffer]\n"
             "                  [--wg-mode blend|additive]\n"
             "                  --out image.png [--vis vis.pfm] [--ids ids.bin] [--stats stats.json]\n"
             "  penumbra bake [the scene, view, light and algorithm options of render]\n"
@@ -349,6 +349,7 @@ static int cmd_render(int argc, char **argv, int bake)
     char err[512];
     int ground = -1, threads = 0, i, user_view = 0, user_light = 0, have_size = 0;
     long gears_pairs = -1; /* --gears-pairs: -1 the host's (PN_GEARS_PAIRS), 0 the library's default */
+    uint32_t lim_flags = 0u; /* --mc-sparse-nbuffer: PN_LIMITS_SPARSE_NBUFFER */
     float eps_rel = -1.0f;
     pn_limits lim;
     pn_camera cam;
@@ -451,6 +452,7 @@ static int cmd_render(int argc, char **argv, int bake)
             opt.mcsm.blur = strcmp(v, "off") == 0 ? PN_MC_BLUR_OFF : (uint32_t)strtoul(v, NULL, 10);
         }
         else if (strcmp(a, "--mc-map") == 0) { NEED_ARG; opt.mcsm.map = (uint32_t)strtoul(v, NULL, 10); }
+        else if (strcmp(a, "--mc-sparse-nbuffer") == 0) lim_flags |= PN_LIMITS_SPARSE_NBUFFER;
         else if (strcmp(a, "--mc-no-bias") == 0) opt.mcsm.flags |= PN_MC_NO_BIAS;
         else if (strcmp(a, "--mc-no-classify") == 0) opt.mcsm.flags |= PN_MC_NO_CLASSIFY;
         else if (strcmp(a, "--mc-seed") == 0) { NEED_ARG; opt.mcsm.seed = (uint32_t)strtoul(v, NULL, 10); }
@@ -528,6 +530,7 @@ static int cmd_render(int argc, char **argv, int bake)
     if (bake && !have_size) opt.width = opt.height = 256u;
     pn_host_limits(&lim, s.mesh.triangle_count, opt.width > 0 ? opt.width : 1, opt.height > 0 ? opt.height : 1);
     if (gears_pairs >= 0) lim.gears_pairs = (uint32_t)gears_pairs;
+    lim.flags |= lim_flags;
     if (pn_host_open_limits(&h, &lim, threads, err, sizeof(err)) != 0) {
         fprintf(stderr, "penumbra: %s\n", err);
         pn_setup_free(&s);

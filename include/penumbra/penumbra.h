@@ -157,6 +157,12 @@ typedef struct pn_limits {
  * NULL. pn_visibility_points then takes its points in batches of width x ceil(height / 4)
  * (not width x height), which the approximate algorithms' light-space maps are fit to. */
 #define PN_LIMITS_NO_SURFACE 0x1u
+/* PN_LIMITS_SPARSE_NBUFFER: the Monte Carlo shadow maps' N-buffer keeps levels 0, 3, 6, ...
+ * only, and a lookup of another level rebuilds its box from the 4 or 16 texels of the
+ * level kept below, in the order the level would have been built: the same bytes in every
+ * frame, 0.27x the N-buffer's memory at a map of 128 (423,000 bytes instead of 1,070,196),
+ * slower searches (docs/bench/MEMORY.md). For targets where memory, not time, is short. */
+#define PN_LIMITS_SPARSE_NBUFFER 0x2u
 
 /* Limits equal to the compile-time maxima. */
 void pn_limits_max(pn_limits *limits);
@@ -255,11 +261,15 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
 #endif
 #if PN_ENABLE_MCSM
 /* Monte Carlo shadow-map frame pools at the default map maximum r: per row its bounds
- * (32) and counters (64); 12 bytes a texel per N-buffer level; per pixel the blur's
- * buffer (4). */
+ * (32) and counters (64); 12 bytes a texel of the N-buffer, r^2 at level 0 and
+ * (r + 1 - 2^l)^2 at levels l = 1 .. L - 1 (L = PN_LEVELS_(r)), whose sum is
+ * (L - 1)(r + 1)^2 + (4^L - 4) / 3 - 2 (r + 1)(2^L - 2); per pixel the blur's buffer (4). */
+#define PN_MC_NB_TEXELS_(r, L)                                                                \
+    ((size_t)(r) * (r) + ((size_t)(L) - 1u) * ((size_t)(r) + 1u) * ((size_t)(r) + 1u) +          \
+     (((size_t)1 << (2u * (L))) - 4u) / 3u - 2u * ((size_t)(r) + 1u) * (((size_t)1 << (L)) - 2u))
 #define PN_MCSM_BYTES_MAX(t, w, h)                                                            \
     (PN_POOL_((size_t)(h) * 32u) +                                                             \
-     PN_POOL_((size_t)PN_MCSM_MAP_MAX * (size_t)PN_MCSM_MAP_MAX * 12u * PN_LEVELS_(PN_MCSM_MAP_MAX)) + \
+     PN_POOL_(PN_MC_NB_TEXELS_(PN_MCSM_MAP_MAX, PN_LEVELS_(PN_MCSM_MAP_MAX)) * 12u) +            \
      PN_POOL_(PN_PX_(w, h) * 4u) + PN_POOL_((size_t)(h) * 64u))
 #else
 #define PN_MCSM_BYTES_MAX(t, w, h) ((size_t)0)

@@ -148,8 +148,9 @@ typedef struct pn_kmc {
     uint32_t blur;    /* blur radius in pixels, 0 .. 8 (0: off) */
     uint32_t flags;   /* PN_MC_F_* */
     uint32_t seed;    /* frame key of the sample hash */
-    uint32_t nb_step; /* the N-buffer keeps levels 0, nb_step, 2 nb_step, ... (1 or 3) */
-    uint32_t nb_m1, nb_m2; /* its layout's bit masks (pn_nb_mm_layout, kernels/pn_nbuffer.h) */
+    uint32_t nb_step; /* the N-buffer keeps levels 0, nb_step, 2 nb_step, ... (1 or 3;
+                         kernels/pn_nbuffer.h) */
+    uint32_t pad5, pad6;
     float blur_w[12]; /* binomial weights C(2r, r + i), i = 0 .. r */
 } pn_kmc;
 

@@ -12,6 +12,7 @@ typedef struct pn_mc_ctx {
     const pn_klight *L;
     const pn_kmc *mc;
     PN_CONST float *nb;    /* N-buffer levels */
+    pn_nb_mm_lay nb_lay;   /* their layout */
     PN_CONST float *depth; /* G-buffer depth (third layer) */
     PN_CONST uint8_t *flags; /* triangle flags (PN_TRI_SHEET) */
     float tx, ty;          /* the layers' window half-tans (pn_project_camera's factors) */
@@ -42,6 +43,7 @@ PN_KFN void pn_mc_ctx_init(pn_mc_ctx *m, const pn_kview *view, const pn_kview *l
     m->L = L;
     m->mc = mc;
     m->nb = nb;
+    (void)pn_nb_mm_lay_init(mc, &m->nb_lay);
     m->depth = depth;
     m->flags = flags;
     m->tx = lv->tan_half * lv->aspect;
@@ -244,7 +246,7 @@ PN_KFN int pn_mc_hier(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
             }
             te = pn_kminf(te, tr > t ? tr : t + step);
         }
-        pn_nb_mm_box(m->nb, mc, l, X0, Y0, v);
+        pn_nb_mm_box(m->nb, &m->nb_lay, l, X0, Y0, v);
         m->steps++;
         zlo = t * r->ze;
         zhi = te * r->ze;
@@ -292,12 +294,12 @@ PN_KFN uint32_t pn_mc_region_at(const pn_mc_ctx *m, float ax, float ay, float bx
     int32_t x0 = pn_kfloor_clamp(pn_kminf(ax, bx), -lim, lim) - 1, y0 = pn_kfloor_clamp(pn_kminf(ay, by), -lim, lim) - 1;
     int32_t x1 = pn_kceil_clamp(pn_kmaxf(ax, bx), -lim, lim) + 1, y1 = pn_kceil_clamp(pn_kmaxf(ay, by), -lim, lim) + 1;
     *beyond = (x0 < 0) | (y0 < 0) | (x1 > R) | (y1 > R);
-    return pn_nb_mm_rect_at(m->mc, x0, y0, x1, y1, at, lev);
+    return pn_nb_mm_rect_at(&m->nb_lay, x0, y0, x1, y1, at, lev);
 }
 /* The bounds of a region whose boxes pn_mc_region_at gave. */
 PN_KFN void pn_mc_region_get(const pn_mc_ctx *m, const uint32_t *at, uint32_t n, uint32_t lev, int beyond, float *v)
 {
-    pn_nb_mm_rect_get(m->nb, m->mc, at, n, lev, v);
+    pn_nb_mm_rect_get(m->nb, &m->nb_lay, at, n, lev, v);
     if (beyond) v[2] = PN_KINF;
 }
 PN_KFN void pn_mc_region(const pn_mc_ctx *m, float ax, float ay, float bx, float by, float *v)

@@ -108,78 +108,92 @@ PN_KFN void pn_nb_mm_get(PN_CONST float *t, float *v)
  * so every lookup gives the same bits either way. The kept levels lie one after another. */
 PN_KFN uint32_t pn_nb_mm_w(uint32_t res, uint32_t l) { return l == 0u ? res : res + 1u - (1u << l); }
 
-/* The kept level a lookup of level l reads: l rounded down to a multiple of nb_step (1 or
- * 3; l / 3 is (11 l) >> 5 for l < 32), without a division in the lookups' lane loop. */
-PN_KFN uint32_t pn_nb_mm_src(const pn_kmc *mc, uint32_t l)
-{
-    return ((l * (mc->nb_step == 1u ? 32u : 11u)) >> 5u) * mc->nb_step;
-}
+/* Where each level's lookups read, worked out once per work item (private memory; the
+ * frame's parameters have no room for tables): for level l the kept level src[l] at or
+ * below it, its width w[l] and its first float off[l]. At most 12 levels (res <= 2048,
+ * PN_MCSM_MAP_MAX; offsets then fit 32 bits). */
+typedef struct pn_nb_mm_lay {
+    uint32_t res, levels;
+    uint32_t src[12], w[12], off[12];
+} pn_nb_mm_lay;
 
-/* The float offset of kept level s: the texels of the kept levels below it, res^2 and
- * (R - 2^k)^2 for k = step, 2 step, .. < s (R = res + 1). With b = 2^step and n = s / step
- * - 1 those sum to res^2 + n R^2 - 2 R (b + .. + b^n) + (b^2 + .. + b^2n), and each power
- * sum is a bit mask: the bits of nb_m1 (every step-th bit from step on) up to bit step n,
- * of nb_m2 (every 2 step-th) up to bit 2 step n. Exact in 32 bits for res <= 2048 (12
- * levels: PN_MCSM_MAP_MAX). */
-PN_KFN uint32_t pn_nb_mm_off(const pn_kmc *mc, uint32_t s)
+/* The layout of mc's map (mc->res, mc->nb_step: 1 or 3); returns the kept texels. */
+PN_KFN uint32_t pn_nb_mm_lay_init(const pn_kmc *mc, pn_nb_mm_lay *ly)
 {
-    uint32_t R = mc->res + 1u, q = (s * (mc->nb_step == 1u ? 32u : 11u)) >> 5u, n = q > 0u ? q - 1u : 0u;
-    uint32_t g1 = mc->nb_m1 & ((2u << (mc->nb_step * n)) - 1u);
-    uint32_t g2 = mc->nb_m2 & ((2u << (2u * mc->nb_step * n)) - 1u);
-    uint32_t t = mc->res * mc->res + n * R * R + g2 - 2u * R * g1;
-    return s == 0u ? 0u : t * PN_NB_MM;
-}
-
-/* mc's layout for a map of mc->res texels keeping every mc->nb_step-th level (1 or 3):
- * sets levels and the masks; returns the kept texels in all. */
-PN_KFN uint32_t pn_nb_mm_layout(pn_kmc *mc)
-{
-    uint32_t l, n = 0u, L = 1u, k;
+    uint32_t l, n = 0u, L = 1u;
     while ((2u << (L - 1u)) <= mc->res) L++;
-    mc->levels = L;
-    mc->nb_m1 = mc->nb_m2 = 0u;
-    for (k = mc->nb_step; k < 32u; k += mc->nb_step) mc->nb_m1 |= 1u << k;
-    for (k = 2u * mc->nb_step; k < 32u; k += 2u * mc->nb_step) mc->nb_m2 |= 1u << k;
-    for (l = 0; l < L; l += mc->nb_step) n += pn_nb_mm_w(mc->res, l) * pn_nb_mm_w(mc->res, l);
+    ly->res = mc->res;
+    ly->levels = L;
+    for (l = 0; l < L; l++) {
+        uint32_t s = l - l % mc->nb_step;
+        ly->src[l] = s;
+        ly->w[l] = pn_nb_mm_w(mc->res, s);
+        if (s == l) {
+            ly->off[l] = n * PN_NB_MM;
+            n += ly->w[l] * ly->w[l];
+        } else {
+            ly->off[l] = ly->off[s];
+        }
+    }
     return n;
 }
 
-/* Into acc (stored form), the level-l box whose first level-(l - d) texel is at float `at`
- * of a level w texels wide: its 4^d texels folded in the builder's order (each box the max
- * of its four halves, row Y's two columns then the next row's, a fold starting from the
- * identity, which gives the first value itself, NaN included), then one max into acc: the
- * bits a kept level l's texel gives. d <= 3. No recursion: the partial maxima of the boxes
- * on the path, a digit of the texel's index in base 4 a level. */
-PN_KFN void pn_nb_mm_tree(PN_CONST float *lv, uint32_t at, uint32_t w, uint32_t l, uint32_t d, float *acc)
+/* Into acc (private, stored form), the max of the four texels at float at, at + dx,
+ * at + dy, at + dy + dx of lv, in that order: a level's box from its four halves' boxes
+ * (row Y's two columns, then the next row's) as the builder folds them. */
+PN_KFN void pn_nb_mm_fold4(PN_CONST float *lv, uint32_t at, uint32_t dx, uint32_t dy, float *acc)
 {
-    float part[3][PN_NB_MM];
-    uint32_t k, j, n = 1u << (2u * d);
-    for (j = 0; j < d; j++) pn_nb_mm_empty(part[j]);
-    for (k = 0; k < n; k++) {
-        uint32_t o = at;
-        for (j = 0; j < d; j++) {
-            uint32_t q = (k >> (2u * (d - 1u - j))) & 3u;
-            o += ((q >> 1u) * w + (q & 1u)) * (1u << (l - 1u - j)) * PN_NB_MM;
-        }
-        pn_nb_mm_add(part[d - 1u], lv + o);
-        for (j = d - 1u; j > 0u && ((k >> (2u * (d - 1u - j))) & 3u) == 3u; j--) {
-            pn_nb_mm_add_p(part[j - 1u], part[j]);
-            pn_nb_mm_empty(part[j]);
-        }
-    }
-    pn_nb_mm_add_p(acc, part[0]);
+    PN_CONST float *a = lv + at, *b = a + dx, *c = a + dy, *d = c + dx;
+    acc[0] = pn_kmaxf(acc[0], pn_kmaxf(pn_kmaxf(pn_kmaxf(a[0], b[0]), c[0]), d[0]));
+    acc[1] = pn_kmaxf(acc[1], pn_kmaxf(pn_kmaxf(pn_kmaxf(a[1], b[1]), c[1]), d[1]));
+    acc[2] = pn_kmaxf(acc[2], pn_kmaxf(pn_kmaxf(pn_kmaxf(a[2], b[2]), c[2]), d[2]));
 }
 
-/* Row Y < W_l of kept level l >= 1 (mc's layout, lv the levels). From the kept level just
+/* Into acc (stored form), the level-l box whose first level-(l - d) texel is at float `at`
+ * of a level w texels wide (1 <= d <= 3): its 4^d texels folded in the builder's order,
+ * each box the max of its four halves' boxes (pn_nb_mm_fold4 at the bottom, a fold of
+ * four such folds a level above, a fold starting from the identity, which gives the first
+ * value itself, NaN included), then one max into acc: the bits a kept level l's texel
+ * gives. Written out per depth (no recursion). */
+PN_KFN_COLD void pn_nb_mm_tree(PN_CONST float *lv, uint32_t at, uint32_t w, uint32_t l, uint32_t d, float *acc)
+{
+    uint32_t h = 1u << (l - 1u), dx = h * PN_NB_MM, dy = dx * w, i, j;
+    float top[PN_NB_MM];
+    if (d == 1u) {
+        pn_nb_mm_empty(top);
+        pn_nb_mm_fold4(lv, at, dx, dy, top);
+    } else {
+        pn_nb_mm_empty(top);
+        for (i = 0; i < 4u; i++) { /* the four halves, level l - 1 */
+            uint32_t a1 = at + (i >> 1u) * dy + (i & 1u) * dx;
+            float mid[PN_NB_MM];
+            pn_nb_mm_empty(mid);
+            if (d == 2u) {
+                pn_nb_mm_fold4(lv, a1, dx >> 1u, dy >> 1u, mid);
+            } else {
+                for (j = 0; j < 4u; j++) { /* their halves, level l - 2, from level l - 3 */
+                    float low[PN_NB_MM];
+                    pn_nb_mm_empty(low);
+                    pn_nb_mm_fold4(lv, a1 + (j >> 1u) * (dy >> 1u) + (j & 1u) * (dx >> 1u), dx >> 2u, dy >> 2u, low);
+                    pn_nb_mm_add_p(mid, low);
+                }
+            }
+            pn_nb_mm_add_p(top, mid);
+        }
+    }
+    pn_nb_mm_add_p(acc, top);
+}
+
+/* Row Y < W_l of kept level l >= 1 (ly's layout, lv the levels). From the kept level just
  * below (d = 1: each texel one max over a flat float array, which the compilers vectorize),
  * else by pn_nb_mm_tree from the kept level step below. */
-PN_KFN void pn_nb_mm_row(const pn_kmc *mc, uint32_t l, uint32_t Y, PN_GLOBAL float *lv)
+PN_KFN void pn_nb_mm_row(const pn_nb_mm_lay *ly, uint32_t l, uint32_t Y, PN_GLOBAL float *lv)
 {
-    uint32_t s = pn_nb_mm_src(mc, l - 1u), ws = pn_nb_mm_w(mc->res, s), w = pn_nb_mm_w(mc->res, l), X;
-    PN_GLOBAL float *out = lv + pn_nb_mm_off(mc, l) + (size_t)Y * w * PN_NB_MM;
+    uint32_t s = ly->src[l - 1u], ws = ly->w[l - 1u], w = ly->w[l], X;
+    PN_GLOBAL float *out = lv + ly->off[l] + (size_t)Y * w * PN_NB_MM;
     if (l - s == 1u) {
         size_t i, h = (size_t)1u << (l - 1u), n = (size_t)w * PN_NB_MM;
-        PN_CONST float *r0 = lv + pn_nb_mm_off(mc, s) + (size_t)Y * ws * PN_NB_MM;
+        PN_CONST float *r0 = lv + ly->off[s] + (size_t)Y * ws * PN_NB_MM;
         PN_CONST float *r1 = r0 + h * ws * PN_NB_MM, *r0b = r0 + h * PN_NB_MM, *r1b = r1 + h * PN_NB_MM;
         for (i = 0; i < n; i++) out[i] = pn_kmaxf(pn_kmaxf(pn_kmaxf(r0[i], r0b[i]), r1[i]), r1b[i]);
         return;
@@ -187,21 +201,20 @@ PN_KFN void pn_nb_mm_row(const pn_kmc *mc, uint32_t l, uint32_t Y, PN_GLOBAL flo
     for (X = 0; X < w; X++) {
         float v[PN_NB_MM];
         pn_nb_mm_empty(v);
-        pn_nb_mm_tree(lv, pn_nb_mm_off(mc, s) + (Y * ws + X) * PN_NB_MM, ws, l, l - s, v);
+        pn_nb_mm_tree(lv, ly->off[s] + (Y * ws + X) * PN_NB_MM, ws, l, l - s, v);
         out[X * PN_NB_MM] = v[0];
         out[X * PN_NB_MM + 1u] = v[1];
         out[X * PN_NB_MM + 2u] = v[2];
     }
 }
 
-/* Into acc, the level-l box whose texel in level pn_nb_mm_src(l) is at float `at`. */
-PN_KFN void pn_nb_mm_box_add(PN_CONST float *lv, const pn_kmc *mc, uint32_t l, uint32_t at, float *acc)
+/* Into acc, the level-l box whose texel in kept level ly->src[l] is at float `at`. */
+PN_KFN void pn_nb_mm_box_add(PN_CONST float *lv, const pn_nb_mm_lay *ly, uint32_t l, uint32_t at, float *acc)
 {
-    uint32_t s = pn_nb_mm_src(mc, l);
-    if (s == l)
+    if (ly->src[l] == l)
         pn_nb_mm_add(acc, lv + at);
     else
-        pn_nb_mm_tree(lv, at, pn_nb_mm_w(mc->res, s), l, l - s, acc);
+        pn_nb_mm_tree(lv, at, ly->w[l], l, l - ly->src[l], acc);
 }
 
 /* Bounds of the min / max box of level l starting at level-0 texel (X, Y), of its part
@@ -209,15 +222,14 @@ PN_KFN void pn_nb_mm_box_add(PN_CONST float *lv, const pn_kmc *mc, uint32_t l, u
  * inside against that edge, which holds that part (with the index clamped instead, MCSM's
  * search skipped occluders on the map's first and last columns and rows: room, 512x512,
  * 3 pixels). */
-PN_KFN void pn_nb_mm_box(PN_CONST float *lv, const pn_kmc *mc, uint32_t l, int32_t X, int32_t Y, float *v)
+PN_KFN void pn_nb_mm_box(PN_CONST float *lv, const pn_nb_mm_lay *ly, uint32_t l, int32_t X, int32_t Y, float *v)
 {
-    int32_t hi = (int32_t)mc->res - (1 << l);
-    uint32_t s = pn_nb_mm_src(mc, l), ws = pn_nb_mm_w(mc->res, s);
+    int32_t hi = (int32_t)ly->res - (1 << l);
     float a[PN_NB_MM];
     pn_nb_mm_empty(a);
-    pn_nb_mm_box_add(lv, mc, l,
-                     pn_nb_mm_off(mc, s) + ((uint32_t)pn_kmaxi(0, pn_kmini(Y, hi)) * ws +
-                                      (uint32_t)pn_kmaxi(0, pn_kmini(X, hi))) * PN_NB_MM,
+    pn_nb_mm_box_add(lv, ly, l,
+                     ly->off[l] + ((uint32_t)pn_kmaxi(0, pn_kmini(Y, hi)) * ly->w[l] +
+                                   (uint32_t)pn_kmaxi(0, pn_kmini(X, hi))) * PN_NB_MM,
                      a);
     v[0] = -a[0]; /* the bounds, as pn_nb_mm_get's */
     v[1] = a[1];
@@ -232,13 +244,12 @@ PN_KFN void pn_nb_mm_box(PN_CONST float *lv, const pn_kmc *mc, uint32_t l, int32
  * the bounds are conservative; exact when both sides are 2^l .. 2^(l+1). The level from
  * the exponent of a float, the boxes' two columns and two rows indexed once, and no
  * branch: the searches' hot path, which the Monte Carlo pixel pass computes for eight
- * rays at once in a loop the compilers vectorize. Offsets in 32 bits: levels of res^2
- * PN_NB_MM floats fit for res up to 9000 (PN_MCSM_MAP_MAX is at most 2048). */
-PN_KFN uint32_t pn_nb_mm_rect_at(const pn_kmc *mc, int32_t x0, int32_t y0, int32_t x1, int32_t y1, uint32_t *at,
-                                 uint32_t *lev)
+ * rays at once in a loop the compilers vectorize. */
+PN_KFN uint32_t pn_nb_mm_rect_at(const pn_nb_mm_lay *ly, int32_t x0, int32_t y0, int32_t x1, int32_t y1,
+                                 uint32_t *at, uint32_t *lev)
 {
-    int32_t m, s, R = (int32_t)mc->res;
-    uint32_t l, n, ca, cb, ra, rb, L, w, src;
+    int32_t m, s, R = (int32_t)ly->res;
+    uint32_t l, n, ca, cb, ra, rb, L, w;
     x0 = pn_kmaxi(x0, 0);
     y0 = pn_kmaxi(y0, 0);
     x1 = pn_kmini(x1, R);
@@ -248,10 +259,9 @@ PN_KFN uint32_t pn_nb_mm_rect_at(const pn_kmc *mc, int32_t x0, int32_t y0, int32
     /* The smallest l with 2 << l >= m: 0 up to m = 2, else floor(log2(m - 1)), the
      * exponent of m - 1 as a float (exact: m <= res < 2^24). */
     l = m <= 2 ? 0u : (pn_kfbits((float)(m - 1)) >> 23) - 127u;
-    l = pn_kminu(l, mc->levels - 1u);
+    l = pn_kminu(l, ly->levels - 1u);
     s = 1 << l;
-    src = pn_nb_mm_src(mc, l);
-    w = pn_nb_mm_w(mc->res, src);
+    w = ly->w[l];
     /* Boxes inside the texture: a first box starting after res - s moves back to it (it
      * still holds [x0, x1)'s start; the second its end). */
     x0 = pn_kmini(x0, R - s);
@@ -260,7 +270,7 @@ PN_KFN uint32_t pn_nb_mm_rect_at(const pn_kmc *mc, int32_t x0, int32_t y0, int32
     cb = (uint32_t)pn_kmaxi(x1 - s, x0) * PN_NB_MM;
     ra = (uint32_t)y0 * w * PN_NB_MM;
     rb = (uint32_t)pn_kmaxi(y1 - s, y0) * w * PN_NB_MM;
-    L = pn_nb_mm_off(mc, src);
+    L = ly->off[l];
     at[0] = L + ra + ca;
     at[1] = L + ra + cb;
     at[2] = L + rb + ca;
@@ -271,27 +281,27 @@ PN_KFN uint32_t pn_nb_mm_rect_at(const pn_kmc *mc, int32_t x0, int32_t y0, int32
 
 /* Bounds {min near, max far, max near} of the n boxes of level l at (pn_nb_mm_rect_at;
  * empty: {+inf, -inf, -inf}). */
-PN_KFN void pn_nb_mm_rect_get(PN_CONST float *lv, const pn_kmc *mc, const uint32_t *at, uint32_t n, uint32_t l,
-                              float *v)
+PN_KFN void pn_nb_mm_rect_get(PN_CONST float *lv, const pn_nb_mm_lay *ly, const uint32_t *at, uint32_t n,
+                              uint32_t l, float *v)
 {
     uint32_t i;
     float s[PN_NB_MM]; /* a local sum: through v, the compilers store and reload at each box */
     pn_nb_mm_empty(s);
-    if (pn_nb_mm_src(mc, l) == l)
+    if (ly->src[l] == l)
         for (i = 0; i < n; i++) pn_nb_mm_add(s, lv + at[i]);
     else
-        for (i = 0; i < n; i++) pn_nb_mm_box_add(lv, mc, l, at[i], s);
+        for (i = 0; i < n; i++) pn_nb_mm_box_add(lv, ly, l, at[i], s);
     v[0] = -s[0]; /* the bounds, as pn_nb_mm_get's */
     v[1] = s[1];
     v[2] = s[2];
 }
 
 /* Bounds over the texel rectangle [x0, x1) x [y0, y1) from pn_nb_mm_rect_at's boxes. */
-PN_KFN void pn_nb_mm_rect(PN_CONST float *lv, const pn_kmc *mc, int32_t x0, int32_t y0, int32_t x1, int32_t y1,
+PN_KFN void pn_nb_mm_rect(PN_CONST float *lv, const pn_nb_mm_lay *ly, int32_t x0, int32_t y0, int32_t x1, int32_t y1,
                           float *v)
 {
-    uint32_t at[4], l, n = pn_nb_mm_rect_at(mc, x0, y0, x1, y1, at, &l);
-    pn_nb_mm_rect_get(lv, mc, at, n, l, v);
+    uint32_t at[4], l, n = pn_nb_mm_rect_at(ly, x0, y0, x1, y1, at, &l);
+    pn_nb_mm_rect_get(lv, ly, at, n, l, v);
 }
 
 #endif

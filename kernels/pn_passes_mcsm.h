@@ -33,7 +33,9 @@ PN_KFN void pn_e_mc_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
 /* Row of N-buffer level K->mc.level. */
 PN_KFN void pn_e_mc_nbuf(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
 {
-    pn_nb_mm_row(&K->mc, K->mc.level, y, PN_POOL(float, mc_nb));
+    pn_nb_mm_lay ly;
+    (void)pn_nb_mm_lay_init(&K->mc, &ly);
+    pn_nb_mm_row(&ly, K->mc.level, y, PN_POOL(float, mc_nb));
 }
 
 /* Pixel row y: each pixel's rays through the layers, its visibility and class; the row's

@@ -54,13 +54,13 @@ typedef char pn_mc_consts_agree[PN_MC_S_LINEAR == PN_MC_SEARCH_LINEAR && PN_MC_S
                                         PN_MC_RAYS_MAX == 8u && PN_MC_BLUR_MAX + 1u <= 12u &&
                                         PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS && PN_MC_WORDS == 6u &&
                                         PN_MC_ROW_WORDS == 16u /* 64 bytes a row (pn_mc_carve) */
-                                        && PN_MCSM_MAP_MAX <= 2048u /* N-buffer offsets in 32 bits (pn_nb_mm_off) */
+                                        && PN_MCSM_MAP_MAX <= 2048u /* N-buffer offsets in 32 bits, 12 levels (pn_nb_mm_lay) */
                                     ? 1
                                     : -1];
 
 typedef struct pn_mc_pools {
     float *box;      /* [height * PN_LVIEW_BOX]: row bounds (kernels/pn_lview.h) */
-    float *nb;       /* [kept texels * PN_NB_MM]: the N-buffer (pn_nb_mm_layout), level 0 the layers */
+    float *nb;       /* [kept texels * PN_NB_MM]: the N-buffer (pn_nb_mm_lay_init), level 0 the layers */
     float *tmp;      /* [width * height]: the blur's other buffer */
     uint32_t *words; /* [height * PN_MC_ROW_WORDS]: class counters per row */
 } pn_mc_pools;
@@ -73,10 +73,11 @@ static uint32_t pn_mc_nb_step(const pn_limits *l) { return (l->flags & PN_LIMITS
 static void pn_mc_carve(pn_carver *c, const pn_limits *l, uint32_t w, uint32_t h, uint32_t res, pn_mc_pools *s)
 {
     pn_kmc mc;
+    pn_nb_mm_lay ly;
     uint32_t texels;
     mc.res = res;
     mc.nb_step = pn_mc_nb_step(l);
-    texels = pn_nb_mm_layout(&mc);
+    texels = pn_nb_mm_lay_init(&mc, &ly);
     s->box = (float *)pn_pool(c, h, 4u * PN_LVIEW_BOX_FLOATS, "mcsm row bounds");
     s->nb = (float *)pn_pool(c, texels, 4u * PN_NB_MM, "mcsm N-buffer");
     s->tmp = (float *)pn_pool(c, (uint64_t)w * h, 4u, "mcsm blur buffer");
@@ -110,16 +111,18 @@ static pn_status pn_mc_begin(pn_frame_state *fs, pn_mc_pools *s, uint32_t res)
  * texels, or the kept level they are rebuilt from). */
 static pn_status pn_mc_whole(pn_frame_state *fs, const float *nb, pn_kmc *mc)
 {
-    uint32_t at[4], i, l, n = pn_nb_mm_rect_at(mc, 0, 0, (int32_t)mc->res, (int32_t)mc->res, at, &l);
-    uint32_t s = pn_nb_mm_src(mc, l), w = pn_nb_mm_w(mc->res, s);
+    pn_nb_mm_lay ly;
+    uint32_t at[4], i, l, n;
     pn_status st;
-    if (s != l) {
-        if ((st = pn_dev_to_host(fs, nb + pn_nb_mm_off(mc, s), (size_t)w * w * 4u * PN_NB_MM)) != PN_OK) return st;
+    (void)pn_nb_mm_lay_init(mc, &ly);
+    n = pn_nb_mm_rect_at(&ly, 0, 0, (int32_t)mc->res, (int32_t)mc->res, at, &l);
+    if (ly.src[l] != l) {
+        if ((st = pn_dev_to_host(fs, nb + ly.off[l], (size_t)ly.w[l] * ly.w[l] * 4u * PN_NB_MM)) != PN_OK) return st;
     } else {
         for (i = 0; i < n; i++)
             if ((st = pn_dev_to_host(fs, nb + at[i], 4u * PN_NB_MM)) != PN_OK) return st;
     }
-    pn_nb_mm_rect_get(nb, mc, at, n, l, mc->whole);
+    pn_nb_mm_rect_get(nb, &ly, at, n, l, mc->whole);
     return PN_OK;
 }
 
@@ -154,7 +157,7 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
     pn_light_halves(&K->light, &K->lview_ha, &K->lview_hb);
     mc->res = res;
     mc->nb_step = pn_mc_nb_step(&ctx->limits);
-    (void)pn_nb_mm_layout(mc);
+    mc->levels = pn_nb_levels(res);
     mc->blur_depth = 100.0f; /* 1% of the centre's depth away: half the weight */
     pn_mc_weights(mc);
     ctx->stats.mcsm.map = res;

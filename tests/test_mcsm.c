@@ -656,14 +656,14 @@ static void test_nbuffer_boxes(void)
     uint64_t dense_texels = 0u, sparse_texels = 0u;
     for (si = 0; si < 6u; si++) {
         uint32_t res = sizes[si], l, y, i, kept[2];
-        pn_kmc D, S;
-        memset(&D, 0, sizeof(D));
-        D.res = res;
-        D.nb_step = 1u;
-        S = D;
-        S.nb_step = 3u;
-        kept[0] = pn_nb_mm_layout(&D);
-        kept[1] = pn_nb_mm_layout(&S);
+        pn_kmc mc;
+        pn_nb_mm_lay D, S;
+        memset(&mc, 0, sizeof(mc));
+        mc.res = res;
+        mc.nb_step = 1u;
+        kept[0] = pn_nb_mm_lay_init(&mc, &D);
+        mc.nb_step = 3u;
+        kept[1] = pn_nb_mm_lay_init(&mc, &S);
         dense_texels += kept[0];
         sparse_texels += kept[1];
         for (i = 0; i < res * res; i++) {
@@ -677,7 +677,7 @@ static void test_nbuffer_boxes(void)
         }
         for (l = 1; l < D.levels; l++)
             for (y = 0; y < pn_nb_mm_w(res, l); y++) pn_nb_mm_row(&D, l, y, nb);
-        for (l = S.nb_step; l < S.levels; l += S.nb_step)
+        for (l = 3u; l < S.levels; l += 3u)
             for (y = 0; y < pn_nb_mm_w(res, l); y++) pn_nb_mm_row(&S, l, y, sp);
         for (l = 0; l < D.levels; l++) {
             int32_t B = 1 << l, X, Y, step = res >= 64u ? 3 : 1;
@@ -753,35 +753,42 @@ static void test_nbuffer_boxes(void)
               (unsigned long long)sparse_texels, (unsigned long long)dense_texels);
 }
 
-/* The N-buffer's closed-form level offsets (pn_nb_mm_off) against the kept levels' texels
- * summed one by one, for every map size 8 .. 2048 and both steps; and every lookup level
- * reads the kept level at or below it. */
+/* The N-buffer's layout (pn_nb_mm_lay_init) against the public header's closed form of its
+ * texels (PN_MC_NB_TEXELS_, which PN_ARENA_BYTES_MAX sums) for every map of 8 .. 2048
+ * texels; and, kept sparse, each level reads the kept level at or below it, whose texels
+ * lie inside the kept ones. */
 static void test_nbuffer_layout(void)
 {
-    uint32_t res, step, wrong = 0u, checked = 0u;
-    for (step = 1u; step <= 3u; step += 2u)
-        for (res = 8u; res <= 2048u; res++) {
-            pn_kmc mc;
-            uint32_t l, sum = 0u, total;
-            memset(&mc, 0, sizeof(mc));
-            mc.res = res;
-            mc.nb_step = step;
-            total = pn_nb_mm_layout(&mc);
-            for (l = 0; l < mc.levels; l++) {
-                uint32_t s = pn_nb_mm_src(&mc, l);
-                checked++;
-                if (s != l - l % step || (s == l && pn_nb_mm_off(&mc, l) != sum * PN_NB_MM)) {
-                    if (wrong < 5u)
-                        fprintf(stderr, "res %u step %u level %u: reads %u at %u, the levels below hold %u floats\n", res,
-                                step, l, s, pn_nb_mm_off(&mc, s), sum * PN_NB_MM);
-                    wrong++;
-                }
-                if (s == l) sum += pn_nb_mm_w(res, l) * pn_nb_mm_w(res, l);
-            }
-            if (sum != total) wrong++;
+    uint32_t res, wrong = 0u, checked = 0u;
+    for (res = 8u; res <= 2048u; res++) {
+        pn_kmc mc;
+        pn_nb_mm_lay D, S;
+        uint32_t l, dense, sparse;
+        memset(&mc, 0, sizeof(mc));
+        mc.res = res;
+        mc.nb_step = 1u;
+        dense = pn_nb_mm_lay_init(&mc, &D);
+        mc.nb_step = 3u;
+        sparse = pn_nb_mm_lay_init(&mc, &S);
+        checked++;
+        if ((size_t)dense != PN_MC_NB_TEXELS_(res, PN_LEVELS_(res)) || D.levels != PN_LEVELS_(res) ||
+            S.levels != D.levels) {
+            if (wrong < 5u)
+                fprintf(stderr, "res %u: %u texels, %u levels; the header's %zu, %u\n", res, dense, D.levels,
+                        (size_t)PN_MC_NB_TEXELS_(res, PN_LEVELS_(res)), (unsigned)PN_LEVELS_(res));
+            wrong++;
         }
-    fprintf(stderr, "N-buffer layout: %u levels of 2 x 2041 maps, %u wrong\n", checked, wrong);
-    CHECK_MSG(wrong == 0u, "%u levels laid out wrong", wrong);
+        for (l = 0; l < S.levels; l++) {
+            uint32_t s = S.src[l];
+            if (D.src[l] != l || D.w[l] != pn_nb_mm_w(res, l) || s != l - l % 3u || S.w[l] != pn_nb_mm_w(res, s) ||
+                S.off[l] != S.off[s] || S.off[s] + S.w[s] * S.w[s] * PN_NB_MM > sparse * PN_NB_MM) {
+                if (wrong < 5u) fprintf(stderr, "res %u level %u: laid out wrong\n", res, l);
+                wrong++;
+            }
+        }
+    }
+    fprintf(stderr, "N-buffer layout: %u maps, %u wrong\n", checked, wrong);
+    CHECK_MSG(wrong == 0u, "%u maps laid out wrong", wrong);
 }
 
 int main(void)

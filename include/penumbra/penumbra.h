@@ -160,7 +160,7 @@ typedef struct pn_limits {
 /* PN_LIMITS_SPARSE_NBUFFER: the Monte Carlo shadow maps' N-buffer keeps levels 0, 3, 6, ...
  * only, and a lookup of another level rebuilds its box from the 4 or 16 texels of the
  * level kept below, in the order the level would have been built: the same bytes in every
- * frame, 0.27x the N-buffer's memory at a map of 128 (423,000 bytes instead of 1,070,196),
+ * frame, 0.40x the N-buffer's memory at a map of 128 (423,000 bytes instead of 1,070,196),
  * slower searches (docs/bench/MEMORY.md). For targets where memory, not time, is short. */
 #define PN_LIMITS_SPARSE_NBUFFER 0x2u
 

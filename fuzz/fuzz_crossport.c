@@ -49,7 +49,8 @@ static float num(rd *r)
 }
 
 /* One context and one OpenCL port per pair-pool size, and one with the default pool whose
- * frames keep no surfaces (rig 4), made on first use. */
+ * frames keep no surfaces and whose MCSM N-buffer keeps every third level (rig 4), made on
+ * first use. */
 typedef struct rig {
     void *mem;
     pn_context *ctx;
@@ -63,7 +64,7 @@ static rig *get_rig(uint32_t pool_sel)
     rig *r = &rigs[pool_sel];
     if (!r->ctx) {
         pn_limits lim = {MAX_T, MAX_W, MAX_H, pools[pool_sel], 64u, 64u, 64u, 64u, 0u, 0u, 0u, 0u}; /* light-space maps: 64^2 at most */
-        if (pool_sel == 4u) lim.flags = PN_LIMITS_NO_SURFACE;
+        if (pool_sel == 4u) lim.flags = PN_LIMITS_NO_SURFACE | PN_LIMITS_SPARSE_NBUFFER;
         size_t bytes;
         pn_status st;
         FUZZ_CHECK(pn_arena_size(&lim, &bytes) == PN_OK, "arena size");

@@ -159,11 +159,10 @@ PN_KFN_COLD void pn_nb_mm_tree(PN_CONST float *lv, uint32_t at, uint32_t w, uint
 {
     uint32_t h = 1u << (l - 1u), dx = h * PN_NB_MM, dy = dx * w, i, j;
     float top[PN_NB_MM];
+    pn_nb_mm_empty(top);
     if (d == 1u) {
-        pn_nb_mm_empty(top);
         pn_nb_mm_fold4(lv, at, dx, dy, top);
     } else {
-        pn_nb_mm_empty(top);
         for (i = 0; i < 4u; i++) { /* the four halves, level l - 1 */
             uint32_t a1 = at + (i >> 1u) * dy + (i & 1u) * dx;
             float mid[PN_NB_MM];

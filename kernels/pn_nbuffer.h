@@ -117,11 +117,11 @@ typedef struct pn_nb_mm_lay {
     uint32_t src[12], w[12], off[12];
 } pn_nb_mm_lay;
 
-/* The layout of mc's map (mc->res, mc->nb_step: 1 or 3); returns the kept texels. */
+/* The layout of mc's map (mc->res, mc->levels, mc->nb_step: 1 or 3); returns the kept
+ * texels. */
 PN_KFN uint32_t pn_nb_mm_lay_init(const pn_kmc *mc, pn_nb_mm_lay *ly)
 {
-    uint32_t l, n = 0u, L = 1u;
-    while ((2u << (L - 1u)) <= mc->res) L++;
+    uint32_t l, n = 0u, L = mc->levels;
     ly->res = mc->res;
     ly->levels = L;
     for (l = 0; l < L; l++) {

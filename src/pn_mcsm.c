@@ -76,6 +76,7 @@ static void pn_mc_carve(pn_carver *c, const pn_limits *l, uint32_t w, uint32_t h
     pn_nb_mm_lay ly;
     uint32_t texels;
     mc.res = res;
+    mc.levels = pn_nb_levels(res);
     mc.nb_step = pn_mc_nb_step(l);
     texels = pn_nb_mm_lay_init(&mc, &ly);
     s->box = (float *)pn_pool(c, h, 4u * PN_LVIEW_BOX_FLOATS, "mcsm row bounds");

@@ -660,6 +660,7 @@ static void test_nbuffer_boxes(void)
         pn_nb_mm_lay D, S;
         memset(&mc, 0, sizeof(mc));
         mc.res = res;
+        mc.levels = pn_nb_levels(res);
         mc.nb_step = 1u;
         kept[0] = pn_nb_mm_lay_init(&mc, &D);
         mc.nb_step = 3u;
@@ -753,8 +754,9 @@ static void test_nbuffer_boxes(void)
               (unsigned long long)sparse_texels, (unsigned long long)dense_texels);
 }
 
-/* The N-buffer's layout (pn_nb_mm_lay_init) against the public header's closed form of its
- * texels (PN_MC_NB_TEXELS_, which PN_ARENA_BYTES_MAX sums) for every map of 8 .. 2048
+/* The N-buffer's layout (pn_nb_mm_lay_init, from pn_nb_levels) against the public header's
+ * closed forms of its levels and texels (PN_LEVELS_, PN_MC_NB_TEXELS_, which
+ * PN_ARENA_BYTES_MAX sums) for every map of 8 .. 2048
  * texels; and, kept sparse, each level reads the kept level at or below it, whose texels
  * lie inside the kept ones. */
 static void test_nbuffer_layout(void)
@@ -766,6 +768,7 @@ static void test_nbuffer_layout(void)
         uint32_t l, dense, sparse;
         memset(&mc, 0, sizeof(mc));
         mc.res = res;
+        mc.levels = pn_nb_levels(res);
         mc.nb_step = 1u;
         dense = pn_nb_mm_lay_init(&mc, &D);
         mc.nb_step = 3u;

@@ -190,9 +190,14 @@ typedef struct pn_kwg {
 #define PN_RASTER_CHUNK 32u
 #define PN_RASTER_CHUNKS(n) (((n) + PN_RASTER_CHUNK - 1u) / PN_RASTER_CHUNK)
 
+/* Side in pixels of the screen tiles the per-pixel shadow passes take their pixels in
+ * (pn_pix_tiled, kernels/pn_passes.h). */
+#define PN_PIX_TILE 16u
+
 /* Side in pixels of the penumbra wedges' screen tiles (kernels/pn_wedges.h; the arena sizes
- * their pools by it). */
-#define PN_WG_TILE 16u
+ * their pools by it): the tiles the pixel passes run in, so that a tile's pixels, which
+ * read one list, run one after another. */
+#define PN_WG_TILE PN_PIX_TILE
 #define PN_WG_TILES(n) (((n) + PN_WG_TILE - 1u) / PN_WG_TILE) /* tiles over n pixels */
 
 #endif

@@ -7,12 +7,13 @@
 
 /* ---- Shadow passes of one item per pixel: the reference and per-sample ray tracing ----- */
 
-/* Pixel: its mask through the BVH (pn_reference.h), or with `rays` its k^2 single shadow
- * rays (pn_raytrace.h); its counters into its row's. */
-PN_KFN void pn_pixel_shadow(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix, int rays)
+/* Pixel of item i (in tiles: pn_pix_tiled): its mask through the BVH (pn_reference.h), or
+ * with `rays` its k^2 single shadow rays (pn_raytrace.h); its counters into its tile's
+ * slot (pn_pix_slot). */
+PN_KFN void pn_pixel_shadow(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i, int rays)
 {
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
-    uint32_t id = PN_POOL(const uint32_t, tri_id)[pix];
+    uint32_t pix = pn_pix_tiled(i, K->view.width, K->view.height), id = PN_POOL(const uint32_t, tri_id)[pix];
     pn_v3 pos, nrm;
     float v;
     if (id == PN_NO_PIXEL_TRIANGLE) {
@@ -30,19 +31,19 @@ PN_KFN void pn_pixel_shadow(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
                                PN_POOL(const uint32_t, index), &K->light, &c);
     (void)rays;
     PN_POOL(float, vis)[pix] = v;
-    pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);
+    pn_counters_add(&PN_POOL(pn_row_counters, counters)[pn_pix_slot(i, K->view.height)].c, &c);
 }
 
 #if PN_ENABLE_REFERENCE
-PN_KFN void pn_e_reference(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+PN_KFN void pn_e_reference(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
 {
-    pn_pixel_shadow(A, P, K, pix, 0);
+    pn_pixel_shadow(A, P, K, i, 0);
 }
 #endif
 #if PN_ENABLE_RAYTRACE
-PN_KFN void pn_e_raytrace(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
+PN_KFN void pn_e_raytrace(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
 {
-    pn_pixel_shadow(A, P, K, pix, 1);
+    pn_pixel_shadow(A, P, K, i, 1);
 }
 #endif
 

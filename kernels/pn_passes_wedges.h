@@ -86,7 +86,7 @@ PN_KFN void pn_e_wg_runs(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
                PN_POOL(uint32_t, wg_pairs));
 }
 
-/* Pixel pix0 + i (of the band's rows; the band's columns only): its centre ray (none in a
+/* Pixel i of the band's rows in tiles (pix0 + pn_pix_tiled; the band's columns only): its centre ray (none in a
  * clear tile; the tiles' boxes are made only when there are silhouettes) and its tile's
  * wedges, blended object by object, times its horizon's fraction; or, in its own
  * object's self-shadow penumbra (PN_WG_EXACT), the reference's visibility over the
@@ -94,7 +94,9 @@ PN_KFN void pn_e_wg_runs(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
 PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
 {
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
-    uint32_t pix = K->wg.pix0 + i, W = K->view.width, tx = (pix % W) / PN_WG_TILE, tile, id;
+    uint32_t W = K->view.width, y1 = pn_kminu(K->wg.by1 * PN_WG_TILE, K->view.height), tx, tile, id;
+    uint32_t pix = K->wg.pix0 + pn_pix_tiled(i, W, y1 - K->wg.by0 * PN_WG_TILE);
+    tx = (pix % W) / PN_WG_TILE;
     PN_CONST uint32_t *toff = PN_POOL(const uint32_t, wg_toff);
     pn_v3 pos, nrm, O;
     float v;
@@ -131,7 +133,7 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     }
     PN_POOL(float, vis)[pix] = v;
     c.lit = 1u;
-    pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / W].c, &c);
+    pn_counters_add(&PN_POOL(pn_row_counters, counters)[pn_pix_slot(i, K->view.height)].c, &c);
 }
 #endif
 

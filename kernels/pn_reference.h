@@ -221,8 +221,9 @@ typedef struct pn_shadow_counters {
                             wedges' self-shadow penumbrae) */
 } pn_shadow_counters;
 
-/* One row's counters in the counters pool: pn_shadow_counters padded to 64 bytes, a cache
- * line, so that threads adding into neighbouring rows do not share one. Measured with
+/* One slot of the counters pool (a row's, or for the passes in tiles a tile's:
+ * pn_pix_slot): pn_shadow_counters padded to 64 bytes, a cache line, so that threads
+ * adding into neighbouring slots do not share one. Measured with
  * MCSM's per-row words padded alike (PN_MC_ROW_WORDS): its rays stage on spot, 512x512, 2
  * threads, medians of alternating runs 46.7 -> 42.2 .. 43.5 ms. */
 #define PN_ROW_COUNTERS_PAD 9

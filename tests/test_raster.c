@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "penumbra/penumbra.h"
+#include "pn_passes.h" /* pn_pix_tiled */
 #include "pn_raster.h"
 #include "pn_test.h"
 #include "pn_test_geom.h"
@@ -549,8 +550,43 @@ static void test_span(void)
     CHECK(rows > 100000u && set_rows > 10000u);
 }
 
+/* pn_pix_tiled: for every image of 1..40 columns and 1..40 rows, and a few large ones
+ * (the wedges' bands: a multiple of PN_PIX_TILE rows but the last), item i runs over
+ * every pixel exactly once, and the items of one tile (each PN_PIX_TILE^2 run, the
+ * last tiles of a row and the last tile row narrower) stay in one tile. */
+static void test_pixel_order(void)
+{
+    static uint8_t seen[1000u * 1000u];
+    const uint32_t big[][2] = {{512u, 512u}, {1000u, 37u}, {17u, 1000u}, {1920u, 16u}, {129u, 257u}};
+    uint32_t cases = 0u, bad = 0u, W, R, c, i;
+    for (c = 0; c < 40u * 40u + 5u; c++) {
+        W = c < 1600u ? c % 40u + 1u : big[c - 1600u][0];
+        R = c < 1600u ? c / 40u + 1u : big[c - 1600u][1];
+        memset(seen, 0, (size_t)W * R);
+        for (i = 0; i < W * R; i++) {
+            uint32_t p = pn_pix_tiled(i, W, R), x = p % W, y = p / W;
+            if (p >= W * R || seen[p]++) {
+                bad++;
+                continue;
+            }
+            /* the tile of item i: its tile row from i alone, its column from the items
+             * before it in that tile row (full tiles hold PN_PIX_TILE x h) */
+            {
+                uint32_t y0 = i / (PN_PIX_TILE * W) * PN_PIX_TILE, h = R - y0 < PN_PIX_TILE ? R - y0 : PN_PIX_TILE;
+                uint32_t tx = (i - y0 * W) / (PN_PIX_TILE * h);
+                if (y / PN_PIX_TILE != y0 / PN_PIX_TILE || x / PN_PIX_TILE != (tx < W / PN_PIX_TILE ? tx : W / PN_PIX_TILE))
+                    bad++;
+            }
+        }
+        cases++;
+    }
+    fprintf(stderr, "pixel order: %u images, %u wrong items\n", cases, bad);
+    CHECK(bad == 0u && cases == 1605u);
+}
+
 int main(void)
 {
+    RUN(test_pixel_order);
     RUN(test_spheres);
     RUN(test_closed_sphere);
     RUN(test_near_clip);

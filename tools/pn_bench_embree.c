@@ -87,7 +87,7 @@ void pn_embree_close(pn_embree *e)
     free(e);
 }
 
-int pn_embree_build(pn_embree *e, const pn_mesh *mesh, int robust, double *build_ms, char *err,
+int pn_embree_build(pn_embree *e, const pn_mesh *mesh, int flags, double *build_ms, char *err,
                     size_t err_size)
 {
     RTCGeometry geom;
@@ -96,7 +96,8 @@ int pn_embree_build(pn_embree *e, const pn_mesh *mesh, int robust, double *build
     uint64_t t0;
     if (e->scene) rtcReleaseScene(e->scene);
     e->scene = rtcNewScene(e->device);
-    rtcSetSceneFlags(e->scene, robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+    rtcSetSceneFlags(e->scene, (flags & PN_EMBREE_ROBUST) ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+    if (flags & PN_EMBREE_HIGH) rtcSetSceneBuildQuality(e->scene, RTC_BUILD_QUALITY_HIGH);
     geom = rtcNewGeometry(e->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     vb = (float *)rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
                                           mesh->vertex_count);
@@ -197,40 +198,50 @@ static void pn_emb_pixel16(pn_emb_task *tk, pn_emb_ctx *ctx, pn_v3 O, uint32_t *
     }
 }
 
-static void pn_emb_rows(void *task, uint32_t begin, uint32_t end)
+/* Pixel pix: its k^2 rays (the shadow origin as the library places it). */
+static void pn_emb_pixel(pn_emb_task *tk, pn_emb_ctx *ctx, size_t pix)
+{
+    const pn_gbuf *g = tk->g;
+    uint32_t m[PN_MASK_WORDS_MAX];
+    pn_v3 O;
+    if (g->tri[pix] == PN_NO_TRIANGLE) {
+        tk->vis[pix] = 1.0f;
+        return;
+    }
+    if (!pn_shadow_origin(pn_v3_load(g->pos + pix * 3u), pn_v3_load(g->nrm + pix * 3u), &tk->light, &O)) {
+        tk->vis[pix] = 0.0f;
+        return;
+    }
+    pn_mask_clear(m);
+    /* The receiver's own triangle is not excluded (issue 13): a sample behind its
+     * plane is blocked by it, as our horizon blocks it. The filter stays for the
+     * exclusion experiment; PN_NO_TRIANGLE matches no primID. */
+    ctx->own = PN_NO_TRIANGLE;
+    if (tk->api == PN_EMBREE_OCCLUDED16) pn_emb_pixel16(tk, ctx, O, m);
+    else pn_emb_pixel1(tk, ctx, O, m);
+    tk->vis[pix] = pn_mask_visibility(m, tk->light.k);
+    if (tk->masks) {
+        tk->masks->lit[pix] = 1;
+        memcpy(tk->masks->bits + pix * tk->masks->words, m, tk->masks->words * sizeof(uint32_t));
+    }
+}
+
+/* Screen tiles [begin, end) (PN_PIX_TILE square, row-major over the image), each tile's
+ * pixels row by row: the order the library's per-pixel passes take (pn_pix_tiled), so
+ * that both sides meet the same locality. */
+static void pn_emb_tiles(void *task, uint32_t begin, uint32_t end)
 {
     pn_emb_task *tk = (pn_emb_task *)task;
     const pn_gbuf *g = tk->g;
-    uint32_t y, x, k = tk->light.k;
+    uint32_t t, x, y, tw = (g->width + PN_PIX_TILE - 1u) / PN_PIX_TILE;
     pn_emb_ctx ctx;
     rtcInitIntersectContext(&ctx.rc);
     if (tk->api == PN_EMBREE_OCCLUDED16) ctx.rc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    for (y = begin; y < end; y++)
-        for (x = 0; x < g->width; x++) {
-            size_t pix = (size_t)y * g->width + x;
-            uint32_t m[PN_MASK_WORDS_MAX];
-            pn_v3 O;
-            if (g->tri[pix] == PN_NO_TRIANGLE) {
-                tk->vis[pix] = 1.0f;
-                continue;
-            }
-            if (!pn_shadow_origin(pn_v3_load(g->pos + pix * 3u), pn_v3_load(g->nrm + pix * 3u), &tk->light, &O)) {
-                tk->vis[pix] = 0.0f;
-                continue;
-            }
-            pn_mask_clear(m);
-            /* The receiver's own triangle is not excluded (issue 13): a sample behind its
-             * plane is blocked by it, as our horizon blocks it. The filter stays for the
-             * exclusion experiment; PN_NO_TRIANGLE matches no primID. */
-            ctx.own = PN_NO_TRIANGLE;
-            if (tk->api == PN_EMBREE_OCCLUDED16) pn_emb_pixel16(tk, &ctx, O, m);
-            else pn_emb_pixel1(tk, &ctx, O, m);
-            tk->vis[pix] = pn_mask_visibility(m, k);
-            if (tk->masks) {
-                tk->masks->lit[pix] = 1;
-                memcpy(tk->masks->bits + pix * tk->masks->words, m, tk->masks->words * sizeof(uint32_t));
-            }
-        }
+    for (t = begin; t < end; t++) {
+        uint32_t x0 = t % tw * PN_PIX_TILE, y0 = t / tw * PN_PIX_TILE;
+        for (y = y0; y < y0 + PN_PIX_TILE && y < g->height; y++)
+            for (x = x0; x < x0 + PN_PIX_TILE && x < g->width; x++) pn_emb_pixel(tk, &ctx, (size_t)y * g->width + x);
+    }
 }
 
 int pn_embree_shadow(pn_embree *e, pn_embree_api api, const pn_gbuf *g, const pn_light *light,
@@ -254,7 +265,9 @@ int pn_embree_shadow(pn_embree *e, pn_embree_api api, const pn_gbuf *g, const pn
     tk.tfar = 1.0f - 1e-6f;
     pn_bench_klight(light, k, eps, 0.0f, &tk.light);
     t0 = pn_threads_now_ns(NULL);
-    pn_threads_parallel_for(threads, g->height, pn_emb_rows, &tk);
+    pn_threads_parallel_for(threads,
+                            ((g->width + PN_PIX_TILE - 1u) / PN_PIX_TILE) * ((g->height + PN_PIX_TILE - 1u) / PN_PIX_TILE),
+                            pn_emb_tiles, &tk);
     *ms = (double)(pn_threads_now_ns(NULL) - t0) / 1e6;
     if (rtcGetDeviceError(e->device) != RTC_ERROR_NONE) {
         pn_tools_err(err, err_size, "Embree: occlusion queries failed");
@@ -283,12 +296,12 @@ const char *pn_embree_info(const pn_embree *e)
 
 void pn_embree_close(pn_embree *e) { (void)e; }
 
-int pn_embree_build(pn_embree *e, const pn_mesh *mesh, int robust, double *build_ms, char *err,
+int pn_embree_build(pn_embree *e, const pn_mesh *mesh, int flags, double *build_ms, char *err,
                     size_t err_size)
 {
     (void)e;
     (void)mesh;
-    (void)robust;
+    (void)flags;
     (void)build_ms;
     pn_tools_err(err, err_size, "built without Embree");
     return 1;

@@ -106,10 +106,16 @@ int pn_embree_open(pn_embree **e, int threads, char *err, size_t err_size);
 const char *pn_embree_info(const pn_embree *e);
 void pn_embree_close(pn_embree *e);
 
+/* pn_embree_build's flags: RTC_SCENE_FLAG_ROBUST, and RTC_BUILD_QUALITY_HIGH (Embree's
+ * SAH build with spatial splits) instead of the default quality (MEDIUM for a static
+ * scene). */
+#define PN_EMBREE_ROBUST 1
+#define PN_EMBREE_HIGH 2
+
 /* (Re)builds the scene from the mesh (one triangle geometry, default build quality and
- * scene flags unless robust != 0: RTC_SCENE_FLAG_ROBUST). *build_ms is the commit alone
+ * scene flags unless flags say otherwise: PN_EMBREE_*). *build_ms is the commit alone
  * (the BVH build), not the buffer copy. */
-int pn_embree_build(pn_embree *e, const pn_mesh *mesh, int robust, double *build_ms, char *err,
+int pn_embree_build(pn_embree *e, const pn_mesh *mesh, int flags, double *build_ms, char *err,
                     size_t err_size);
 
 /* The shadow pass: per pixel, k^2 occlusion rays from O to the samples (tnear 0, tfar

@@ -206,19 +206,20 @@ void job_run(scene_state *ss, job *j, const pn_light *light, int rep)
         j->n++;
         return;
     }
-    if (j->kind == JOB_EMBREE_BUILD) {
+    if (j->kind == JOB_EMBREE_BUILD || j->kind == JOB_EMBREE_BUILD_HIGH) {
         double ms;
+        int high = j->kind == JOB_EMBREE_BUILD_HIGH;
         if (!ss->emb) {
             snprintf(j->err, sizeof(j->err), "%s", ss->emb_err);
             j->ok = 0;
             return;
         }
-        if (pn_embree_build(ss->emb, &ss->s.mesh, 0, &ms, err, sizeof(err)) != 0) {
+        if (pn_embree_build(ss->emb, &ss->s.mesh, high ? PN_EMBREE_HIGH : 0, &ms, err, sizeof(err)) != 0) {
             snprintf(j->err, sizeof(j->err), "%s", err);
             j->ok = 0;
             return;
         }
-        ss->emb_built = 1;
+        ss->emb_built = !high; /* the passes trace the default build's tree */
         j->pass[j->n] = j->total[j->n] = ms;
         j->n++;
         return;

@@ -24,10 +24,19 @@
  *          against 64 a task: MCSM's pixel pass 16% faster on chess_set; the reference 1%
  *          and GEARS 3% faster there, 7-8% on square, where a pixel costs least.
  *
+ *          PN_ONE_TASK: the whole pass one task, on one thread: GEARS' scatter, which then
+ *          writes every cell's run in raster order, so that sorting the runs
+ *          (PN_DEV_SORT_RUNS) is one pass over each; scattered from two threads the runs
+ *          came out interleaved, and their heapsort cost the dragon's frame at 512x512 more
+ *          than the scatter's second thread saved (2 threads: 2,380 ms; the scatter on one
+ *          and the sort on both 1,390 ms).
+ *
  * Items write disjoint memory or add integers atomically (pn_katomic_add), so no result
  * depends on the order they run in. */
 #ifndef PN_PASSES_H
 #define PN_PASSES_H
+
+#define PN_ONE_TASK 0x40000000u /* grain: the pass in one task (the list's columns, below) */
 
 #include "pn_kpools.h"
 #include "pn_raster.h"

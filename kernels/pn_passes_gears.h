@@ -126,7 +126,7 @@ PN_KFN void pn_e_gears_masks(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
     X(GEARS_ROW_PAIRS, gears_row_pairs, 64, 4096)   \
     X(GEARS_COUNT, gears_count, 64, 4096)           \
     X(GEARS_CELL_ROWS, gears_cell_rows, 64, 16)     \
-    X(GEARS_SCATTER, gears_scatter, 64, 4096)       \
+    X(GEARS_SCATTER, gears_scatter, 64, PN_ONE_TASK) \
     X(GEARS_CHUNKS, gears_chunks, 64, 4096)         \
     X(GEARS_MASKS, gears_masks, 16, 1024)
 #else

@@ -1,8 +1,8 @@
 /* pn_scalar.c - the scalar port: the device queue of src/pn_device.h in C, on the arena
  * itself. A pass is a loop over its work items calling the kernels/ entry function
  * compiled as C, in tasks of `grain` items (kernels/pn_passes.h) handed to the caller's
- * parallel-for if there is one; the prefix sum and the sort by key run on the calling
- * thread. Items write disjoint memory or add integers atomically, so the result does not
+ * parallel-for if there is one, and so is the sort of each key's run; the prefix sum and
+ * the sort by key run on the calling thread. Items write disjoint memory or add integers atomically, so the result does not
  * depend on how tasks are scheduled. Knows no algorithm: the pass table is generated. */
 #include <string.h>
 
@@ -66,12 +66,24 @@ static void pn_sc_sort_pairs(const pn_devcmd *c)
 }
 
 /* Each key's run, sorted ascending (pn_sort_u32: one pass over a run already in order,
- * as a frame on one thread writes it). */
-static void pn_sc_sort_runs(const pn_devcmd *c)
+ * as a frame on one thread writes it), in tasks of PN_SC_SORT_KEYS keys on the caller's
+ * parallel-for: the runs are disjoint, so any schedule sorts them alike. With two threads
+ * GEARS' scatter hands out its cells' slots in no order, and sorting every run on the
+ * calling thread was the serial part of the frame: the dragon at 512x512 took 2,380 ms on
+ * two threads against 2,537 on one. */
+#define PN_SC_SORT_KEYS 64u
+static void pn_sc_sort_task(void *task, uint32_t begin, uint32_t end)
 {
-    uint32_t *values = (uint32_t *)(uintptr_t)c->b, k;
+    const pn_devcmd *c = (const pn_devcmd *)task;
+    uint32_t *values = (uint32_t *)(uintptr_t)c->b, k, e = end * PN_SC_SORT_KEYS;
     const uint32_t *off = (const uint32_t *)c->c;
-    for (k = 0; k < c->keys; k++) pn_sort_u32(values + off[k], off[k + 1u] - off[k]);
+    if (e > c->keys) e = c->keys;
+    for (k = begin * PN_SC_SORT_KEYS; k < e; k++) pn_sort_u32(values + off[k], off[k + 1u] - off[k]);
+}
+
+static void pn_sc_sort_runs(pn_context *ctx, const pn_devcmd *c)
+{
+    pn_run(ctx, (c->keys + PN_SC_SORT_KEYS - 1u) / PN_SC_SORT_KEYS, pn_sc_sort_task, (void *)(uintptr_t)c);
 }
 
 static pn_status pn_sc_exec(void *self, pn_context *ctx, const pn_devcmd *c)
@@ -96,7 +108,7 @@ static pn_status pn_sc_exec(void *self, pn_context *ctx, const pn_devcmd *c)
         return PN_OK;
     }
     case PN_DEV_SORT_PAIRS: pn_sc_sort_pairs(c); return PN_OK;
-    case PN_DEV_SORT_RUNS: pn_sc_sort_runs(c); return PN_OK;
+    case PN_DEV_SORT_RUNS: pn_sc_sort_runs(ctx, c); return PN_OK;
     case PN_DEV_TO_HOST:
     case PN_DEV_TO_DEVICE:
     case PN_DEV_FINISH: return PN_OK; /* the arena is the device memory */

@@ -49,13 +49,11 @@
  * (pn_ray_tri, the filter's bound from the triangle's own box); more: pn_tri_mask_in over
  * r's rows. Either way each sample gets the
  * predicate's exact answer, so m is the same. */
-PN_KFN uint32_t pn_tri_block(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, PN_CONST float *p, const pn_klight *L,
-                             const pn_ray_origin *X, pn_ray_cache *RC, uint32_t *m, pn_rect r)
+PN_KFN uint32_t pn_tri_block_few(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, PN_CONST float *p, const pn_klight *L,
+                                 const pn_ray_origin *X, pn_ray_cache *RC, uint32_t *m, pn_rect r, uint32_t nf,
+                                 const int32_t *si, const int32_t *sj)
 {
-    int32_t si[PN_REF_RAYS], sj[PN_REF_RAYS];
-    uint32_t k = L->k, nf, s, hit = 0u;
-    if (pn_rect_empty(r)) return 0u;
-    nf = pn_rect_few(m, k, r, PN_REF_RAYS, si, sj);
+    uint32_t k = L->k, s, hit = 0u;
     if (nf > PN_REF_RAYS) return pn_tri_mask_in(O, A, B, C, L, m, r.i0, r.i1, r.j0, r.j1);
     for (s = 0; s < nf; s++) {
         const pn_ray *R = &RC->r[pn_ray_cache_get(RC, X, L, si[s], sj[s])];
@@ -65,6 +63,16 @@ PN_KFN uint32_t pn_tri_block(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, PN_CONST float 
         }
     }
     return hit;
+}
+
+/* pn_tri_block_few with r's open samples found here (nf, si, sj: pn_rect_few's, up to
+ * PN_REF_RAYS); a caller that has just looked for them passes them instead. */
+PN_KFN uint32_t pn_tri_block(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, PN_CONST float *p, const pn_klight *L,
+                             const pn_ray_origin *X, pn_ray_cache *RC, uint32_t *m, pn_rect r)
+{
+    int32_t si[PN_REF_RAYS], sj[PN_REF_RAYS];
+    if (pn_rect_empty(r)) return 0u;
+    return pn_tri_block_few(O, A, B, C, p, L, X, RC, m, r, pn_rect_few(m, L->k, r, PN_REF_RAYS, si, sj), si, sj);
 }
 
 /* The rays' set-up for origin O over the BVH's box (no chain: the callers of
@@ -266,14 +274,24 @@ PN_KFN_HOT uint32_t pn_tris_block4(PN_CONST uint32_t *list, uint32_t n, uint32_t
         }
         for (l = 0; l < nt; l++) {
             pn_v3 A, B, C;
-            if (!((bits >> l) & 1u) || (!exact && !pn_rect_open(m, k, r[l]))) continue;
+            int32_t si[PN_REF_RAYS], sj[PN_REF_RAYS];
+            uint32_t nf = 0u, hit;
+            if (!((bits >> l) & 1u)) continue;
+            /* r[l]'s open samples, looked for once: none, and the triangle is skipped;
+             * a few, and pn_tri_block_few takes them as they are */
+            if (!exact && (pn_rect_empty(r[l]) || (nf = pn_rect_few(m, k, r[l], PN_REF_RAYS, si, sj)) == 0u)) continue;
             pn_tri_load(tris, ts[l], &A, &B, &C);
             cnt->candidates++;
             /* With `exact`, the triangle's whole mask on its own (tm), ORed into m:
              * "blocking" then counts the triangles that block any sample (paper Table 6's
              * necessary assignments), whatever the others blocked before them. */
-            if (exact) pn_mask_clear(tm);
-            if (pn_tri_block(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, exact ? tm : m, r[l])) {
+            if (exact) {
+                pn_mask_clear(tm);
+                hit = pn_tri_block(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, tm, r[l]);
+            } else {
+                hit = pn_tri_block_few(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, m, r[l], nf, si, sj);
+            }
+            if (hit) {
                 cnt->blocking++;
                 *any = 1u;
                 if (exact)
@@ -344,20 +362,22 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
         pn_rect rb;
         sp--;
         rb = pn_rect_unpack(rects[sp]);
-        if (!pn_rect_open(m, k, rb)) continue; /* blocked since the push */
         e = stack[sp];
+        if (pn_rect_empty(rb)) continue;
         if (!(e & PN_W4_LEAF)) { /* wide node: its children, O's side last pushed */
             PN_CONST pn_kbvh4 *w = wnodes + e;
             int32_t si[PN_REF_NODE_RAYS], sj[PN_REF_NODE_RAYS];
             uint32_t bits, c, j, n_in = 0u, id[4], pk[4], nf;
             float key[4], blo[12], bhi[12];
             pn_rect r4[4];
+            /* its rectangle's open samples, looked for once (none: blocked since the push) */
+            nf = any ? pn_rect_few(m, k, rb, PN_REF_NODE_RAYS, si, sj) : PN_REF_NODE_RAYS + 1u;
+            if (nf == 0u) continue;
             cnt->nodes += w->n;
             for (c = 0; c < 12u; c++) {
                 blo[c] = w->lo[c >> 2][c & 3u];
                 bhi[c] = w->hi[c >> 2][c & 3u];
             }
-            nf = any ? pn_rect_few(m, k, rb, PN_REF_NODE_RAYS, si, sj) : PN_REF_NODE_RAYS + 1u;
             if (nf <= PN_REF_NODE_RAYS) {
                 /* A few open samples: their rays' slab tests (the per-ray walk's, from the
                  * pixel's cache) pick the children, and a child's rectangle is the one
@@ -417,7 +437,9 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
             }
         } else {
             int32_t si[PN_REF_RAYS], sj[PN_REF_RAYS];
-            uint32_t first, count = pn_w4_leaf_refs(wnodes, e, &first), q, nf = pn_rect_few(m, k, rb, PN_REF_RAYS, si, sj);
+            uint32_t first, count, q, nf = pn_rect_few(m, k, rb, PN_REF_RAYS, si, sj);
+            if (nf == 0u) continue; /* blocked since the push */
+            count = pn_w4_leaf_refs(wnodes, e, &first);
             if (nf <= PN_REF_RAYS) {
                 /* A few open samples in the leaf's rectangle: each one's ray (from the
                  * pixel's cache) against the leaf's triangles until one blocks it, with

@@ -275,22 +275,19 @@ PN_KFN_HOT uint32_t pn_tris_block4(PN_CONST uint32_t *list, uint32_t n, uint32_t
         for (l = 0; l < nt; l++) {
             pn_v3 A, B, C;
             int32_t si[PN_REF_RAYS], sj[PN_REF_RAYS];
-            uint32_t nf = 0u, hit;
-            if (!((bits >> l) & 1u)) continue;
-            /* r[l]'s open samples, looked for once: none, and the triangle is skipped;
-             * a few, and pn_tri_block_few takes them as they are */
-            if (!exact && (pn_rect_empty(r[l]) || (nf = pn_rect_few(m, k, r[l], PN_REF_RAYS, si, sj)) == 0u)) continue;
-            pn_tri_load(tris, ts[l], &A, &B, &C);
-            cnt->candidates++;
+            uint32_t nf, hit;
+            if (!((bits >> l) & 1u) || pn_rect_empty(r[l])) continue;
             /* With `exact`, the triangle's whole mask on its own (tm), ORed into m:
              * "blocking" then counts the triangles that block any sample (paper Table 6's
              * necessary assignments), whatever the others blocked before them. */
-            if (exact) {
-                pn_mask_clear(tm);
-                hit = pn_tri_block(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, tm, r[l]);
-            } else {
-                hit = pn_tri_block_few(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, m, r[l], nf, si, sj);
-            }
+            if (exact) pn_mask_clear(tm);
+            /* r[l]'s open samples, looked for once: none, and the triangle is skipped; a
+             * few, and pn_tri_block_few takes them as they are */
+            nf = pn_rect_few(exact ? tm : m, k, r[l], PN_REF_RAYS, si, sj);
+            if (nf == 0u) continue;
+            pn_tri_load(tris, ts[l], &A, &B, &C);
+            cnt->candidates++;
+            hit = pn_tri_block_few(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, exact ? tm : m, r[l], nf, si, sj);
             if (hit) {
                 cnt->blocking++;
                 *any = 1u;

@@ -36,7 +36,8 @@
 #ifndef PN_PASSES_H
 #define PN_PASSES_H
 
-#define PN_ONE_TASK 0x40000000u /* grain: the pass in one task (the list's columns, below) */
+/* grain: the pass in one task (the list's columns, below; for passes of under 2^31 items) */
+#define PN_ONE_TASK 0x40000000u
 
 #include "pn_kpools.h"
 #include "pn_raster.h"

@@ -86,11 +86,11 @@ PN_KFN void pn_e_wg_runs(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
                PN_POOL(uint32_t, wg_pairs));
 }
 
-/* Pixel i of the band's rows in tiles (pix0 + pn_pix_tiled; the band's columns only): its centre ray (none in a
- * clear tile; the tiles' boxes are made only when there are silhouettes) and its tile's
- * wedges, blended object by object, times its horizon's fraction; or, in its own
- * object's self-shadow penumbra (PN_WG_EXACT), the reference's visibility over the
- * PN_WG_EXACT_K^2 samples (fewer when k is smaller). */
+/* Pixel i of the band's rows, in tiles (pix0 + pn_pix_tiled; the band's columns only): its
+ * centre ray (none in a clear tile; the tiles' boxes are made only when there are
+ * silhouettes) and its tile's wedges, blended object by object, times its horizon's
+ * fraction; or, in its own object's self-shadow penumbra (PN_WG_EXACT), the reference's
+ * visibility over the PN_WG_EXACT_K^2 samples (fewer when k is smaller). */
 PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
 {
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};

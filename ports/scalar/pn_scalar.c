@@ -2,8 +2,8 @@
  * itself. A pass is a loop over its work items calling the kernels/ entry function
  * compiled as C, in tasks of `grain` items (kernels/pn_passes.h) handed to the caller's
  * parallel-for if there is one, and so is the sort of each key's run; the prefix sum and
- * the sort by key run on the calling thread. Items write disjoint memory or add integers atomically, so the result does not
- * depend on how tasks are scheduled. Knows no algorithm: the pass table is generated. */
+ * the sort by key run on the calling thread. Items write disjoint memory or add integers
+ * atomically, so the result does not depend on how tasks are scheduled. Knows no algorithm: the pass table is generated. */
 #include <string.h>
 
 #include "pn_device.h"
@@ -65,12 +65,12 @@ static void pn_sc_sort_pairs(const pn_devcmd *c)
     for (p = 0; p < c->n; p++) values[cur[pairs[(size_t)p * 2u]]++] = pairs[(size_t)p * 2u + 1u];
 }
 
-/* Each key's run, sorted ascending (pn_sort_u32: one pass over a run already in order,
- * as a frame on one thread writes it), in tasks of PN_SC_SORT_KEYS keys on the caller's
- * parallel-for: the runs are disjoint, so any schedule sorts them alike. With two threads
- * GEARS' scatter hands out its cells' slots in no order, and sorting every run on the
- * calling thread was the serial part of the frame: the dragon at 512x512 took 2,380 ms on
- * two threads against 2,537 on one. */
+/* Each key's run, sorted ascending (pn_sort_u32: one pass over a run already in order, as
+ * GEARS' scatter in one task writes it, PN_ONE_TASK), in tasks of PN_SC_SORT_KEYS keys on
+ * the caller's parallel-for: the runs are disjoint, so any schedule sorts them alike. When
+ * the scatter ran in tasks on two threads, its runs came out interleaved and their sort on
+ * the calling thread was the frame's serial part (the dragon at 512x512: 2,380 ms on two
+ * threads, 2,537 on one). */
 #define PN_SC_SORT_KEYS 64u
 static void pn_sc_sort_task(void *task, uint32_t begin, uint32_t end)
 {

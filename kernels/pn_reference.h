@@ -48,10 +48,12 @@
  * from it. Returns 1 if it blocked one. Up to PN_REF_RAYS open samples: a ray each
  * (pn_ray_tri, the filter's bound from the triangle's own box); more: pn_tri_mask_in over
  * r's rows. Either way each sample gets the
- * predicate's exact answer, so m is the same. */
-PN_KFN uint32_t pn_tri_block_few(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, PN_CONST float *p, const pn_klight *L,
-                                 const pn_ray_origin *X, pn_ray_cache *RC, uint32_t *m, pn_rect r, uint32_t nf,
-                                 const int32_t *si, const int32_t *sj)
+ * predicate's exact answer, so m is the same. nf, si, sj: r's open samples as
+ * pn_rect_few(m, k, r, PN_REF_RAYS, si, sj) finds them (r not empty), which the caller has
+ * just looked for to skip a triangle with none. */
+PN_KFN uint32_t pn_tri_block(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, PN_CONST float *p, const pn_klight *L,
+                             const pn_ray_origin *X, pn_ray_cache *RC, uint32_t *m, pn_rect r, uint32_t nf,
+                             const int32_t *si, const int32_t *sj)
 {
     uint32_t k = L->k, s, hit = 0u;
     if (nf > PN_REF_RAYS) return pn_tri_mask_in(O, A, B, C, L, m, r.i0, r.i1, r.j0, r.j1);
@@ -63,16 +65,6 @@ PN_KFN uint32_t pn_tri_block_few(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, PN_CONST fl
         }
     }
     return hit;
-}
-
-/* pn_tri_block_few with r's open samples found here (nf, si, sj: pn_rect_few's, up to
- * PN_REF_RAYS); a caller that has just looked for them passes them instead. */
-PN_KFN uint32_t pn_tri_block(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, PN_CONST float *p, const pn_klight *L,
-                             const pn_ray_origin *X, pn_ray_cache *RC, uint32_t *m, pn_rect r)
-{
-    int32_t si[PN_REF_RAYS], sj[PN_REF_RAYS];
-    if (pn_rect_empty(r)) return 0u;
-    return pn_tri_block_few(O, A, B, C, p, L, X, RC, m, r, pn_rect_few(m, L->k, r, PN_REF_RAYS, si, sj), si, sj);
 }
 
 /* The rays' set-up for origin O over the BVH's box (no chain: the callers of
@@ -282,12 +274,12 @@ PN_KFN_HOT uint32_t pn_tris_block4(PN_CONST uint32_t *list, uint32_t n, uint32_t
              * necessary assignments), whatever the others blocked before them. */
             if (exact) pn_mask_clear(tm);
             /* r[l]'s open samples, looked for once: none, and the triangle is skipped; a
-             * few, and pn_tri_block_few takes them as they are */
+             * few, and pn_tri_block takes them as they are */
             nf = pn_rect_few(exact ? tm : m, k, r[l], PN_REF_RAYS, si, sj);
             if (nf == 0u) continue;
             pn_tri_load(tris, ts[l], &A, &B, &C);
             cnt->candidates++;
-            hit = pn_tri_block_few(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, exact ? tm : m, r[l], nf, si, sj);
+            hit = pn_tri_block(O, A, B, C, tris + (size_t)ts[l] * 9u, L, X, RC, exact ? tm : m, r[l], nf, si, sj);
             if (hit) {
                 cnt->blocking++;
                 *any = 1u;

@@ -230,7 +230,11 @@ static void ray_check(pn_v3 O, const float *T, const pn_klight *L, float grow, r
             }
             memcpy(m2, m1, sizeof(m1));
             st->block_rays += n - pn_mask_count(m1, L->k) <= PN_REF_RAYS;
-            h1 = pn_tri_block(O, A, B, C, T, L, &X, &RC, m1, full);
+            {
+                int32_t si[PN_REF_RAYS], sj[PN_REF_RAYS];
+                uint32_t nf = pn_rect_few(m1, L->k, full, PN_REF_RAYS, si, sj);
+                h1 = pn_tri_block(O, A, B, C, T, L, &X, &RC, m1, full, nf, si, sj);
+            }
             h2 = pn_tri_mask_in(O, A, B, C, L, m2, full.i0, full.i1, full.j0, full.j1);
             st->block_tests++;
             st->block_hits += h2;

@@ -384,25 +384,39 @@ PN_KFN uint32_t pn_tri_sample(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_kligh
 /* Bits s4 <= i < n4 (multiples of 4, n4 <= k rounded up to one) of one row that can pass: with plane value
  * vp = pb + a_i*phu (bound ep) and edge values v_q = b_q + a_i*h_q (bounds r_q), a lane can
  * pass when vp >= -ep and all v_q >= -r_q or all v_q <= r_q (pn_filter's tests; a lane that
- * fails them certainly does not pass). Four lanes at a time in pn_f4 (coordinate
- * a_i = (2i+1)*(1/k) - 1, which equals pn_sample_coord() exactly: k is a power of two and
- * 2*i0 + (1, 3, 5, 7) is an exact integer in float), no branches. The row is most of the
- * predicate's cost (issue 5 profile). Written as a loop over lanes for the compilers to
- * vectorize, GCC 12 did not at -O3 with -march=native (AVX-512: it vectorized the loop
- * over groups sixteen groups at a time, more than a row of k <= 32 has, and ran the
- * scalar remainder): the reference took 1.6x Clang's time on `thin`. */
+ * fails them certainly does not pass). Four lanes at a time, no branches; coordinate
+ * a_i = (2i+1)*(1/k) - 1, which equals pn_sample_coord() exactly (k is a power of two and
+ * 2*i0 + 1, 3, 5, 7 are exact integers in float). The row is most of the predicate's cost
+ * (issue 5 profile). In C the lanes are a pn_f4: written as a loop over lanes, GCC 12 at
+ * -O3 -march=native (AVX-512) vectorized the loop over groups sixteen groups wide, more
+ * than a row of k <= 32 holds, and ran its scalar remainder (the reference took 1.6x
+ * Clang's time on `thin`); in OpenCL a loop over lanes, which PoCL vectorizes across work
+ * items (float4 measured slower there). The same operations on the same values: the same
+ * bits either way (test_crossport). */
 PN_KFN_HOT uint32_t pn_row_bits(float rk, int32_t s4, int32_t n4, float pb, float phu, float ep, float b0,
                                 float h0, float b1, float h1, float b2, float h2, float r0, float r1, float r2)
 {
     uint32_t bits = 0u;
     int32_t i0;
     for (i0 = s4; i0 < n4; i0 += 4) {
+#if PN_KVEC4
         pn_f4 a = (pn_f4_splat((float)(2 * i0)) + pn_f4_make(1.0f, 3.0f, 5.0f, 7.0f)) * pn_f4_splat(rk) - pn_f4_splat(1.0f);
         pn_f4 vp = pn_f4_splat(pb) + a * pn_f4_splat(phu), v0 = pn_f4_splat(b0) + a * pn_f4_splat(h0),
               v1 = pn_f4_splat(b1) + a * pn_f4_splat(h1), v2 = pn_f4_splat(b2) + a * pn_f4_splat(h2);
         pn_i4 pos = (v0 >= pn_f4_splat(-r0)) & (v1 >= pn_f4_splat(-r1)) & (v2 >= pn_f4_splat(-r2));
         pn_i4 neg = (v0 <= pn_f4_splat(r0)) & (v1 <= pn_f4_splat(r1)) & (v2 <= pn_f4_splat(r2));
         bits |= pn_i4_bits((vp >= pn_f4_splat(-ep)) & (pos | neg)) << (uint32_t)i0;
+#else
+        int32_t l;
+        for (l = 0; l < 4; l++) {
+            float a = (float)(2 * (i0 + l) + 1) * rk - 1.0f;
+            float vp = pb + a * phu, v0 = b0 + a * h0, v1 = b1 + a * h1, v2 = b2 + a * h2;
+            int32_t pos = (v0 >= -r0) & (v1 >= -r1) & (v2 >= -r2);
+            int32_t neg = (v0 <= r0) & (v1 <= r1) & (v2 <= r2);
+            int32_t ok = (vp >= -ep) & (pos | neg);
+            bits |= (0u - (uint32_t)ok) & ((1u << (uint32_t)l) << (uint32_t)i0);
+        }
+#endif
     }
     return bits;
 }

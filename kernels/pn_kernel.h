@@ -97,10 +97,15 @@ PN_KFN int32_t pn_katomic_iext(int32_t *p, int32_t v, int up)
  * ARMv7-M): no library call either. */
 #define pn_kclz(x) ((uint32_t)__builtin_clz((unsigned)(x)))
 /* Four float lanes (GCC/Clang vector extension: + - * and the comparisons lane by lane,
- * correctly rounded like the scalar operations, a comparison giving -1 or 0 per lane;
- * SSE on x86-64, NEON where there is one, scalar code where there is none), for the loops
- * a compiler may not vectorize well by itself (PN_KVEC4). */
+ * correctly rounded like the scalar operations, a comparison giving -1 or 0 per lane), for
+ * the loops a compiler may not vectorize well by itself: PN_KVEC4 where the target has
+ * four-lane float SIMD (SSE on x86-64, NEON); elsewhere (Cortex-M) the plain loops, which
+ * the vector code would only lower to the same scalar operations in more code. */
+#if defined(__SSE2__) || defined(__ARM_NEON) || defined(__ARM_NEON__)
 #define PN_KVEC4 1
+#else
+#define PN_KVEC4 0
+#endif
 typedef float pn_f4 __attribute__((vector_size(16)));
 typedef int32_t pn_i4 __attribute__((vector_size(16)));
 #define pn_f4_make(a, b, c, d) ((pn_f4){(a), (b), (c), (d)})

@@ -20,8 +20,12 @@
  *               arena, return the old value: order-independent; on the bits of floats
  *               that are >= 0 or -inf (pn_kfbits) the signed order is the floats' order
  *
- * Kernel code uses only + - * / and pn_ksqrt on float, 32-bit integers, fixed-size
- * arrays, loops and no recursion, no function pointers, no double, no libc: both
+ *   pn_f4, pn_i4   (C only, where PN_KVEC4 is 1) four float / int32 lanes, operated on
+ *               lane by lane: for a loop that must run four lanes at a time whatever the
+ *               compiler's vectorizer makes of it; the OpenCL side keeps the loop over lanes
+ *
+ * Kernel code uses only + - * / and pn_ksqrt on float (in lanes or not), 32-bit integers,
+ * fixed-size arrays, loops and no recursion, no function pointers, no double, no libc: both
  * compilers then produce correctly rounded IEEE results in the same order, which is what
  * makes the two ports bit-identical (with contraction off on both sides). */
 #ifndef PN_KERNEL_H

@@ -390,7 +390,7 @@ PN_KFN uint32_t pn_tri_sample(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_kligh
  * (issue 5 profile). In C the lanes are a pn_f4: written as a loop over lanes, GCC 12 at
  * -O3 -march=native (AVX-512) vectorized the loop over groups sixteen groups wide, more
  * than a row of k <= 32 holds, and ran its scalar remainder (the reference took 1.6x
- * Clang's time on `thin`); in OpenCL a loop over lanes, which PoCL vectorizes across work
+ * Clang's time on `thin`; at the default target it vectorized neither loop); in OpenCL a loop over lanes, which PoCL vectorizes across work
  * items (float4 measured slower there). The same operations on the same values: the same
  * bits either way (test_crossport). */
 PN_KFN_HOT uint32_t pn_row_bits(float rk, int32_t s4, int32_t n4, float pb, float phu, float ep, float b0,

@@ -7,15 +7,15 @@
 # Each (scene, algorithm) is one valgrind run of the CLI with collection on only inside
 # the shadow pass (src/pn_frame.c pn_shadow, kept out of line for this), one thread,
 # k = 16; the counters come from the same frame's --stats. A scene is a built-in's name or
-# a .glb in SCENES_DIR. Instruction counts do not move with the machine's load; they are
-# those of the library as the CLI was built (use a default-target build: valgrind has no
-# AVX-512).
+# a .glb in SCENES_DIR (from its view when SCENES_DIR/views.json has one). Instruction
+# counts do not move with the machine's load; they are those of the library as the CLI was
+# built (use a default-target build: valgrind has no AVX-512).
 set -eu
 [ $# -ge 2 ] || { echo "usage: $0 PENUMBRA_CLI SCENES_DIR [SIZE] [SCENE ...]" >&2; exit 2; }
 cli=$1 scenes=$2 size=${3:-128}
 [ $# -ge 3 ] && shift 3 || shift $#
-[ $# -gt 0 ] || set -- square spheres elongated-cube thin room cad_infineon_easypim2b chess_set \
-  happy_buddha_100k spot stanford_bunny stanford_dragon
+[ $# -gt 0 ] || set -- square spheres elongated-cube thin room canopy colonnade spot chess_set stanford_bunny \
+  cad_infineon_easypim2b grey_white_room happy_buddha_100k stanford_dragon copper_beech
 command -v valgrind >/dev/null 2>&1 || { echo "exact_profile: valgrind is not installed" >&2; exit 1; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -26,6 +26,8 @@ echo "| scene | lit pixels | reference: instructions / lit pixel | boxes / lit p
 echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
 for s in "$@"; do
   if [ -f "$scenes/$s.glb" ]; then src="$scenes/$s.glb"; else src="--builtin $s"; fi
+  # a scene with an entry in SCENES_DIR/views.json is rendered from that view
+  grep -q "\"$s\"[[:space:]]*:" "$scenes/views.json" 2>/dev/null && src="$src --view $s --views $scenes/views.json"
   for a in reference gears; do
     echo "exact_profile: $s $a ${size}x$size" >&2
     # shellcheck disable=SC2086

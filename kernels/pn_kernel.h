@@ -107,9 +107,6 @@ PN_KFN int32_t pn_katomic_iext(int32_t *p, int32_t v, int up)
  * the vector code would only lower to the same scalar operations in more code. */
 #if defined(__SSE2__) || defined(__ARM_NEON) || defined(__ARM_NEON__)
 #define PN_KVEC4 1
-#else
-#define PN_KVEC4 0
-#endif
 typedef float pn_f4 __attribute__((vector_size(16)));
 typedef int32_t pn_i4 __attribute__((vector_size(16)));
 #define pn_f4_make(a, b, c, d) ((pn_f4){(a), (b), (c), (d)})
@@ -120,6 +117,9 @@ PN_KFN uint32_t pn_i4_bits(pn_i4 m)
     m = m & (pn_i4){1, 2, 4, 8};
     return (uint32_t)(m[0] | m[1] | m[2] | m[3]);
 }
+#else
+#define PN_KVEC4 0
+#endif
 #endif
 
 #endif

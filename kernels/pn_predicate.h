@@ -387,12 +387,13 @@ PN_KFN uint32_t pn_tri_sample(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_kligh
  * fails them certainly does not pass). Four lanes at a time, no branches; coordinate
  * a_i = (2i+1)*(1/k) - 1, which equals pn_sample_coord() exactly (k is a power of two and
  * 2*i0 + 1, 3, 5, 7 are exact integers in float). The row is most of the predicate's cost
- * (issue 5 profile). In C the lanes are a pn_f4: written as a loop over lanes, GCC 12 at
- * -O3 -march=native (AVX-512) vectorized the loop over groups sixteen groups wide, more
- * than a row of k <= 32 holds, and ran its scalar remainder (the reference took 1.6x
- * Clang's time on `thin`; at the default target it vectorized neither loop); in OpenCL a loop over lanes, which PoCL vectorizes across work
- * items (float4 measured slower there). The same operations on the same values: the same
- * bits either way (test_crossport). */
+ * (issue 5 profile). In C on a SIMD target the lanes are a pn_f4 (PN_KVEC4): written as a
+ * loop over lanes, GCC 12 at -O3 -march=native (AVX-512) vectorized the loop over groups
+ * sixteen groups wide, more than a row of k <= 32 holds, and ran its scalar remainder (the
+ * reference took 1.6x Clang's time on `thin`; at the default target it vectorized neither
+ * loop). Elsewhere, and in OpenCL (PoCL vectorizes it across work items; float4 measured
+ * slower there), the loop over lanes. The same operations on the same values: the same
+ * bits either way (test_crossport, firmware_same_bytes). */
 PN_KFN_HOT uint32_t pn_row_bits(float rk, int32_t s4, int32_t n4, float pb, float phu, float ep, float b0,
                                 float h0, float b1, float h1, float b2, float h2, float r0, float r1, float r2)
 {
@@ -400,7 +401,8 @@ PN_KFN_HOT uint32_t pn_row_bits(float rk, int32_t s4, int32_t n4, float pb, floa
     int32_t i0;
     for (i0 = s4; i0 < n4; i0 += 4) {
 #if PN_KVEC4
-        pn_f4 a = (pn_f4_splat((float)(2 * i0)) + pn_f4_make(1.0f, 3.0f, 5.0f, 7.0f)) * pn_f4_splat(rk) - pn_f4_splat(1.0f);
+        pn_f4 a = (pn_f4_splat((float)(2 * i0)) + pn_f4_make(1.0f, 3.0f, 5.0f, 7.0f)) * pn_f4_splat(rk) -
+                  pn_f4_splat(1.0f);
         pn_f4 vp = pn_f4_splat(pb) + a * pn_f4_splat(phu), v0 = pn_f4_splat(b0) + a * pn_f4_splat(h0),
               v1 = pn_f4_splat(b1) + a * pn_f4_splat(h1), v2 = pn_f4_splat(b2) + a * pn_f4_splat(h2);
         pn_i4 pos = (v0 >= pn_f4_splat(-r0)) & (v1 >= pn_f4_splat(-r1)) & (v2 >= pn_f4_splat(-r2));
@@ -492,8 +494,8 @@ PN_KFN uint32_t pn_tri_mask_in(pn_v3 O, pn_v3 A, pn_v3 B, pn_v3 C, const pn_klig
             /* The lanes that certainly pass: the same test with the bounds negated (vp >= ep
              * and all v_q >= r_q or all v_q <= -r_q), run only for the rows where some lane
              * can pass (a few percent of the rows on scanned models). */
-            sure = bits & pn_row_bits(rk, s4, e4, pb, plane.hu, -ep, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu, -F.e_err[0],
-                                      -F.e_err[1], -F.e_err[2]);
+            sure = bits & pn_row_bits(rk, s4, e4, pb, plane.hu, -ep, b0, e[0].hu, b1, e[1].hu, b2, e[2].hu,
+                                      -F.e_err[0], -F.e_err[1], -F.e_err[2]);
             bits &= ~sure; /* band samples not already blocked */
             while (bits) {
                 uint32_t lane = pn_kctz(bits);

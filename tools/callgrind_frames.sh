@@ -24,6 +24,7 @@ if [ $# -ge 3 ]; then shift 3; else shift $#; fi
 [ $# -gt 0 ] || set -- spot chess_set
 command -v valgrind >/dev/null 2>&1 || { echo "callgrind_frames: valgrind is not installed" >&2; exit 1; }
 work=$(mktemp -d)
+. "$(dirname "$0")/pn_stats.sh" # scene_src SCENES_DIR NAME
 trap 'rm -rf "$work"' EXIT
 
 # The algorithms as the CLI's help lists them ("algorithms: ..."); the fallback is the list of 195dced.
@@ -32,14 +33,12 @@ algos=${ALGOS:-$("$cli" --help 2>&1 | sed -n 's/^algorithms: //p' | head -n 1)}
 
 # frame_ir CLI SCENE ALGO [FLAGS]: the Ir of the frame, on stdout.
 frame_ir() {
-  if [ -f "$scenes/$2.glb" ]; then src="$scenes/$2.glb"; else src="--builtin $2"; fi
-  view=
-  grep -q "\"$2\"[[:space:]]*:" "$scenes/views.json" 2>/dev/null && view="--view $2 --views $scenes/views.json"
+  src=$(scene_src "$scenes" "$2")
   echo "callgrind_frames: $1 $2 $3 ${size}x$size ${4:-}" >&2
   rm -f "$work/cg.out"
   # shellcheck disable=SC2086
   valgrind --tool=callgrind --callgrind-out-file="$work/cg.out" --collect-atstart=no \
-    --toggle-collect=pn_render_with "$1" render $src $view --algo "$3" --size "${size}x$size" \
+    --toggle-collect=pn_render_with "$1" render $src --algo "$3" --size "${size}x$size" \
     --threads 1 ${4:-} --out "$work/frame.png" > /dev/null 2> "$work/log" || { cat "$work/log" >&2; exit 1; }
   awk '/^(summary|totals):/ { t = $2 } END { if (t == "") exit 1; print t }' "$work/cg.out"
 }

@@ -25,9 +25,7 @@ trap 'rm -rf "$work"' EXIT
 echo "| scene | lit pixels | reference: instructions / lit pixel | boxes / lit pixel | predicate calls / lit pixel | GEARS: instructions / lit pixel | of which the per-pixel step | boxes / lit pixel | cell triangles / lit pixel | predicate calls / lit pixel | GEARS vs reference (instructions) |"
 echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
 for s in "$@"; do
-  if [ -f "$scenes/$s.glb" ]; then src="$scenes/$s.glb"; else src="--builtin $s"; fi
-  # a scene with an entry in SCENES_DIR/views.json is rendered from that view
-  grep -q "\"$s\"[[:space:]]*:" "$scenes/views.json" 2>/dev/null && src="$src --view $s --views $scenes/views.json"
+  src=$(scene_src "$scenes" "$s")
   for a in reference gears; do
     echo "exact_profile: $s $a ${size}x$size" >&2
     # shellcheck disable=SC2086

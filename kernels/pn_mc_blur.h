@@ -8,19 +8,22 @@
 /* Pixels of a row the blur takes at a time (pn_mc_blur_row). */
 #define PN_MC_BLUR_RUN 64u
 
-/* Tap q of one pixel of the blur (centre normal nc, depth dc, depth factor k; wi: the
- * tap's binomial weight), added to its sums: a tap in the image (in), not background, and
+/* Tap q of one pixel of the blur (centre normal nc, depth dc, depth factor k, value vc; wi:
+ * the tap's binomial weight), added to its sums: a tap in the image (in), not background,
  * within PN_MC_BLUR_COS of the centre's normal (the thesis' "robust implementation": no
- * blur across a crease) adds w src[q] and w, w = wi / (1 + |depth[q] - dc| k); any other
- * adds +0 to each (the sums start at +0 and only grow: the same bytes as adding nothing). */
-PN_KFN void pn_mc_blur_tap(float wi, size_t q, int in, float ncx, float ncy, float ncz, float dc, float k,
+ * blur across a crease) and within PN_MC_BLUR_JUMP of its value (no blur across a hard
+ * shadow edge) adds w src[q] and w, w = wi / (1 + |depth[q] - dc| k); any other adds +0 to
+ * each (the sums start at +0 and only grow: the same bytes as adding nothing). The centre
+ * tap counts whenever its own normal and depth do. */
+PN_KFN void pn_mc_blur_tap(float wi, size_t q, int in, float ncx, float ncy, float ncz, float dc, float k, float vc,
                            const pn_ksurf *S, PN_CONST float *src, float *sum, float *wsum)
 {
     PN_CONST uint32_t *ids = S->tri_id;
     PN_CONST float *depth = S->depth;
     pn_v3 nq = pn_surf_normal(S, q);
     /* & rather than &&: every load made (q is in the image), no branch on any of them */
-    int inc = in & (ids[q] != 0xFFFFFFFFu) & (pn_v3_dot(pn_v3_make(ncx, ncy, ncz), nq) >= PN_MC_BLUR_COS);
+    int inc = in & (ids[q] != 0xFFFFFFFFu) & (pn_v3_dot(pn_v3_make(ncx, ncy, ncz), nq) >= PN_MC_BLUR_COS) &
+              (pn_kfabs(src[q] - vc) <= PN_MC_BLUR_JUMP);
     float w = wi / (1.0f + pn_kfabs(depth[q] - dc) * k), ws = w * src[q];
     *sum += inc ? ws : 0.0f;
     *wsum += inc ? w : 0.0f;
@@ -45,7 +48,7 @@ PN_KFN void pn_mc_blur_row(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t y,
     for (x0 = 0; x0 < W; x0 += PN_MC_BLUR_RUN) {
         uint32_t n = pn_kminu(PN_MC_BLUR_RUN, W - x0), l;
         float sum[PN_MC_BLUR_RUN], wsum[PN_MC_BLUR_RUN], k[PN_MC_BLUR_RUN], dc[PN_MC_BLUR_RUN];
-        float ncx[PN_MC_BLUR_RUN], ncy[PN_MC_BLUR_RUN], ncz[PN_MC_BLUR_RUN];
+        float ncx[PN_MC_BLUR_RUN], ncy[PN_MC_BLUR_RUN], ncz[PN_MC_BLUR_RUN], vc[PN_MC_BLUR_RUN];
         size_t pix0 = (size_t)y * W + x0;
         for (l = 0; l < n; l++) {
             pn_v3 nc = pn_surf_normal(S, pix0 + l);
@@ -53,6 +56,7 @@ PN_KFN void pn_mc_blur_row(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t y,
             ncy[l] = nc.y;
             ncz[l] = nc.z;
             dc[l] = depth[pix0 + l];
+            vc[l] = src[pix0 + l];
             k[l] = mc->blur_depth / dc[l];
             sum[l] = 0.0f;
             wsum[l] = 0.0f;
@@ -105,19 +109,19 @@ PN_KFN void pn_mc_blur_row(const pn_kmc *mc, uint32_t W, uint32_t H, uint32_t y,
                 if ((int32_t)y + i < 0 || (int32_t)y + i >= (int32_t)H) continue; /* adds nothing */
                 base = (size_t)((int32_t)y + i) * W + x0;
                 for (l = 0; l < n; l++)
-                    pn_mc_blur_tap(wi, base + l, 1, ncx[l], ncy[l], ncz[l], dc[l], k[l], S, src, &sum[l],
+                    pn_mc_blur_tap(wi, base + l, 1, ncx[l], ncy[l], ncz[l], dc[l], k[l], vc[l], S, src, &sum[l],
                                    &wsum[l]);
             } else if ((int32_t)x0 + i >= 0 && (int32_t)(x0 + n) + i <= (int32_t)W) {
                 size_t base = (size_t)y * W + (size_t)((int32_t)x0 + i);
                 for (l = 0; l < n; l++)
-                    pn_mc_blur_tap(wi, base + l, 1, ncx[l], ncy[l], ncz[l], dc[l], k[l], S, src, &sum[l],
+                    pn_mc_blur_tap(wi, base + l, 1, ncx[l], ncy[l], ncz[l], dc[l], k[l], vc[l], S, src, &sum[l],
                                    &wsum[l]);
             } else {
                 for (l = 0; l < n; l++) {
                     int32_t xx = (int32_t)(x0 + l) + i;
                     int in = xx >= 0 && xx < (int32_t)W;
-                    pn_mc_blur_tap(wi, (size_t)y * W + (in ? (uint32_t)xx : x0 + l), in, ncx[l], ncy[l], ncz[l], dc[l],
-                                   k[l], S, src, &sum[l], &wsum[l]);
+                    pn_mc_blur_tap(wi, (size_t)y * W + (in ? (uint32_t)xx : x0 + l), in, ncx[l], ncy[l], ncz[l],
+                                   dc[l], k[l], vc[l], S, src, &sum[l], &wsum[l]);
                 }
             }
         }

@@ -448,7 +448,7 @@ typedef struct pn_mcsm_options { /* PN_ALGO_MCSM (0 everywhere is the recommende
                               the eye's depth, Algorithm 1); 0: 2 */
     uint32_t search;       /* PN_MC_SEARCH_*; 0: PN_MC_SEARCH_HIER */
     uint32_t rays;         /* n: n x n jittered rays per pixel, 1 .. 8; 0: 3 */
-    uint32_t blur;         /* depth- and normal-aware blur radius in pixels, 1 .. 8, or
+    uint32_t blur;         /* depth-, normal- and edge-aware blur radius in pixels, 1 .. 8, or
                               PN_MC_BLUR_OFF; 0: 1 */
     uint32_t map;          /* depth-layer texels per axis, 8 .. limits.mc_map_max; 0: the
                               smaller of 512 and the limit */

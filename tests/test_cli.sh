@@ -167,6 +167,21 @@ check test $r -eq 1
 check grep -q 'PN_E_UNSUPPORTED' err.txt
 "$bin" bake "$scenes/spot.glb" --ground off --out lm_x.pfm 2>err.txt; r=$?
 check test $r -eq 2
+# A built-in scene bakes its own ground (the last two triangles; no plane appended under
+# it): square's ground holds texels in full light and in the occluder's umbra, and the
+# exact algorithms agree. (Until this was checked, a plane appended under the built-in's
+# own ground gave the exact algorithms a light map of zeros.)
+"$bin" bake --builtin square --size 24x16 --k 8 --out lm_sq.pfm 2>err.txt
+check test $? -eq 0
+"$bin" bake --builtin square --size 24x16 --k 8 --algo gears --out lm_sq_gears.pfm 2>err.txt
+check cmp -s lm_sq.pfm lm_sq_gears.pfm
+hdr=$(head -n 3 lm_sq.pfm | wc -c)
+tail -c +$((hdr + 1)) lm_sq.pfm | od -An -v -f | tr -s ' ' '\n' | grep -v '^$' >lm_sq.txt
+check test "$(wc -l <lm_sq.txt)" -eq 384
+check test "$(grep -c '^1$' lm_sq.txt)" -gt 192
+check test "$(grep -c '^0$' lm_sq.txt)" -gt 0
+"$bin" bake --builtin square --ground on --out lm_x.pfm 2>err.txt; r=$?
+check test $r -eq 2
 
 # The demo at a small size: every image and the sheet.
 "$bin" demo --out demo --size 48x48 --k 4 > demo.txt 2>err.txt

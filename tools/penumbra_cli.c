@@ -49,8 +49,9 @@ static void usage(FILE *f)
             "                  --out image.png [--vis vis.pfm] [--ids ids.bin] [--stats stats.json]\n"
             "  penumbra bake [the scene, view, light and algorithm options of render]\n"
             "                --out lightmap.pfm [--size WxH]\n"
-            "      the light map of the ground plane under the scene: visibility at the centres of\n"
-            "      WxH texels (default 256x256) over the scene's x,z extent, +x right, +z down\n"
+            "      the light map of the ground plane under the scene (a built-in: its own ground):\n"
+            "      visibility at the centres of WxH texels (default 256x256) over the scene's x,z\n"
+            "      extent (a built-in: its ground's), +x right, +z down\n"
             "  penumbra demo [--out DIR] [--size WxH] [--k K] [--threads N]\n"
             "  penumbra info [--no-build]\n"
             "algorithms:");
@@ -134,36 +135,71 @@ static pn_status cli_port_points(cli_port *p, pn_context *ctx, const pn_light *l
     return pn_visibility_points(ctx, light, opt, pts, nrm, ids, n, out);
 }
 
-/* The light map's points: the centres of w x h texels over the x,z extent of the scene
- * without its ground (s->ground: the last two triangles, (v0, v3, v2) and (v0, v2, v1) of
- * the quad pn_mesh_add_ground appends), on the ground plane, each on the ground triangle
- * that holds it, normal +y. Row r at z = zmin + (r + 0.5) dz. */
+/* The light map's points: the centres of w x h texels over an x,z extent, on the ground
+ * plane (the last two triangles: the quad pn_mesh_add_ground appends, s->ground, or a
+ * built-in scene's own ground, tools/pn_scenes.h), each on the ground triangle that holds
+ * it, with that triangle's normal as the scene winds it (pn_visibility_points' contract).
+ * The extent: with an appended ground, the scene's without it (the ground reaches far
+ * beyond); a built-in's ground, its own. Row r at z = zmin + (r + 0.5) dz. */
 static void ground_points(const pn_setup *s, uint32_t w, uint32_t h, float *pts, float *nrm, uint32_t *ids)
 {
     const pn_mesh *m = &s->mesh;
-    uint32_t tg = m->triangle_count - 2u, v0 = m->indices[(size_t)tg * 3u], v, x, y;
-    float lo[2] = {m->positions[0], m->positions[2]}, hi[2] = {m->positions[0], m->positions[2]};
-    float gx = m->positions[(size_t)v0 * 3u], gy = m->positions[(size_t)v0 * 3u + 1u], gz = m->positions[(size_t)v0 * 3u + 2u];
-    for (v = 0; v + 4u < m->vertex_count; v++) {
+    uint32_t tg = m->triangle_count - 2u, v, x, y, c;
+    const uint32_t *gi = m->indices + (size_t)tg * 3u; /* the two ground triangles' corners */
+    float lo[2] = {0.0f, 0.0f}, hi[2] = {0.0f, 0.0f}, n[2][3], gy = m->positions[(size_t)gi[0] * 3u + 1u];
+    int first = 1;
+    for (v = 0; v < m->vertex_count; v++) {
         const float *p = m->positions + (size_t)v * 3u;
+        int in_ground = 0;
+        for (c = 0; c < 6u; c++) in_ground |= gi[c] == v;
+        if (s->ground ? in_ground : !in_ground) continue; /* appended: the scene's; own: the ground's */
+        if (first) {
+            lo[0] = hi[0] = p[0];
+            lo[1] = hi[1] = p[2];
+            first = 0;
+        }
         lo[0] = p[0] < lo[0] ? p[0] : lo[0];
         hi[0] = p[0] > hi[0] ? p[0] : hi[0];
         lo[1] = p[2] < lo[1] ? p[2] : lo[1];
         hi[1] = p[2] > hi[1] ? p[2] : hi[1];
+    }
+    for (c = 0; c < 2u; c++) { /* unit winding normals: (B - A) x (C - A) */
+        const float *A = m->positions + (size_t)gi[c * 3u] * 3u, *B = m->positions + (size_t)gi[c * 3u + 1u] * 3u,
+                    *C = m->positions + (size_t)gi[c * 3u + 2u] * 3u;
+        double e1[3], e2[3], q[3], l;
+        uint32_t k;
+        for (k = 0; k < 3u; k++) {
+            e1[k] = (double)B[k] - A[k];
+            e2[k] = (double)C[k] - A[k];
+        }
+        q[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        q[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        q[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        l = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+        for (k = 0; k < 3u; k++) n[c][k] = (float)(q[k] / l);
     }
     for (y = 0; y < h; y++)
         for (x = 0; x < w; x++) {
             size_t i = (size_t)y * w + x;
             float px = lo[0] + (hi[0] - lo[0]) * ((float)x + 0.5f) / (float)w;
             float pz = lo[1] + (hi[1] - lo[1]) * ((float)y + 0.5f) / (float)h;
+            /* the first triangle when (px, pz) lies on no edge's outer side of it (x,z) */
+            double side[3];
+            uint32_t e, t;
+            for (e = 0; e < 3u; e++) {
+                const float *A = m->positions + (size_t)gi[e] * 3u, *B = m->positions + (size_t)gi[(e + 1u) % 3u] * 3u;
+                side[e] = ((double)B[2] - A[2]) * ((double)px - A[0]) - ((double)B[0] - A[0]) * ((double)pz - A[2]);
+            }
+            t = (side[0] >= 0.0 && side[1] >= 0.0 && side[2] >= 0.0) || (side[0] <= 0.0 && side[1] <= 0.0 && side[2] <= 0.0)
+                    ? 0u
+                    : 1u;
             pts[i * 3u] = px;
             pts[i * 3u + 1u] = gy;
             pts[i * 3u + 2u] = pz;
-            nrm[i * 3u] = 0.0f;
-            nrm[i * 3u + 1u] = 1.0f;
-            nrm[i * 3u + 2u] = 0.0f;
-            /* (v0, v3, v2) holds the side of the diagonal v0-v2 toward v3 (-x, +z). */
-            ids[i] = pz - gz >= px - gx ? tg : tg + 1u;
+            nrm[i * 3u] = n[t][0];
+            nrm[i * 3u + 1u] = n[t][1];
+            nrm[i * 3u + 2u] = n[t][2];
+            ids[i] = tg + t;
         }
 }
 
@@ -480,8 +516,11 @@ static int cmd_render(int argc, char **argv, int bake)
     }
     if (!out) { fprintf(stderr, "penumbra: --out %s is required\n", bake ? "lightmap.pfm" : "image.png"); return 2; }
     if (bake && ground == 0) { fprintf(stderr, "penumbra: bake bakes the ground plane: --ground off is not allowed\n"); return 2; }
+    if (bake && builtin && ground > 0) {
+        fprintf(stderr, "penumbra: bake: a built-in scene bakes its own ground; --ground is for glTF scenes\n");
+        return 2;
+    }
     if (bake && (vis || ids)) { fprintf(stderr, "penumbra: bake writes the light map only (--out)\n"); return 2; }
-    if (bake) ground = 1;
     if (views_file && !view_name) { fprintf(stderr, "penumbra: --views FILE needs --view NAME\n"); return 2; }
     /* A named view: the camera, light, size and ground of views.json; explicit flags still
      * override its fields one by one below. */
@@ -500,6 +539,11 @@ static int cmd_render(int argc, char **argv, int bake)
             return 2;
         }
         if (ground < 0) ground = view.ground;
+        if (bake && ground == 0) { /* an interior: its floor is no plane the CLI can name */
+            fprintf(stderr, "penumbra: bake: view %s has no ground plane (\"ground\": false); give --ground on to bake "
+                            "a plane under the scene\n", view_name);
+            return 2;
+        }
         if (!have_size && view.width > 0 && !bake) {
             opt.width = view.width;
             opt.height = view.height;

@@ -31,8 +31,8 @@ static uint32_t pn_gears_pairs_max(const pn_limits *l)
     return (uint32_t)(n > PN_GEARS_PAIRS ? PN_GEARS_PAIRS : n);
 }
 
-/* PN_ALGO_GEARS's options (pn_algorithms.h): the grid; 0 is the default, 128 cells per axis
- * or the context's limit if smaller. */
+/* PN_ALGO_GEARS's options (pn_algorithms.h): the grid; 0 is the default,
+ * PN_GEARS_GRID_DEFAULT cells per axis or the context's limit if smaller. */
 pn_status pn_gears_prepare(pn_frame_state *fs, const pn_frame_options *opt)
 {
     pn_context *ctx = fs->ctx;
@@ -40,7 +40,7 @@ pn_status pn_gears_prepare(pn_frame_state *fs, const pn_frame_options *opt)
     if (opt->gears.grid > gmax)
         return pn_fail(ctx, PN_E_INVALID_ARG, "gears.grid = %u; it must be 0 or in 1 .. %u (pn_limits.gears_grid_max)",
                        opt->gears.grid, gmax);
-    fs->res = opt->gears.grid ? opt->gears.grid : gmax < 128u ? gmax : 128u;
+    fs->res = opt->gears.grid ? opt->gears.grid : gmax < PN_GEARS_GRID_DEFAULT ? gmax : PN_GEARS_GRID_DEFAULT;
     return PN_OK;
 }
 

@@ -59,6 +59,9 @@
 #if PN_GEARS_GRID_MAX < 1 || PN_GEARS_GRID_MAX > 1024
 #error "PN_GEARS_GRID_MAX must be in 1 .. 1024"
 #endif
+#if PN_GEARS_GRID_DEFAULT < 1 || PN_GEARS_GRID_DEFAULT > 1024
+#error "PN_GEARS_GRID_DEFAULT must be in 1 .. 1024"
+#endif
 
 #if PN_GEARS_PAIRS < 1 || PN_GEARS_PAIRS > (1u << 28)
 #error "PN_GEARS_PAIRS must be in 1 .. 2^28"

@@ -146,13 +146,25 @@
 /* ---- GEARS ---------------------------------------------------------------------------- */
 
 /* Largest grid resolution per axis a context reserves by default (pn_limits.gears_grid_max
- * 0; a context may ask for up to 1024). The frame option gears.grid, default 128, may be
+ * 0; a context may ask for up to 1024). The frame option gears.grid, default
+ * PN_GEARS_GRID_DEFAULT, may be
  * any value up to the context's. Costs res^2 x 12 bytes of frame arena (one face's cell
  * offsets, pixel counts and cursors: a point light's cube of 6 grids is done a face at a
  * time) and 6 x res x (res / 4 + 12) bytes for every face's grid rows (occupancy bits,
  * their prefix counts, pairs per row): 0.22 MiB at 128. Range 1 .. 1024. */
 #ifndef PN_GEARS_GRID_MAX
 #define PN_GEARS_GRID_MAX 128u
+#endif
+
+/* The grid GEARS renders with when the frame option gears.grid is 0 (at most the
+ * context's gears_grid_max). A cost, never a result: the frames are the same bytes at
+ * any grid. Chosen from every built-in and shared scene (tools/gears_grid_sweep.sh,
+ * 512x512 and 256x256, k = 16, 2 threads): 64 is within 5% of the fastest of 32, 64,
+ * 128 and 256 on every scene at 512x512 (128 was up to 1.16x slower: the living room;
+ * the dragon 1.07x) and within 7% at 256x256 but on elongated-cube, a 3 ms frame
+ * (docs/gears-vs-reference.md). Range 1 .. 1024. */
+#ifndef PN_GEARS_GRID_DEFAULT
+#define PN_GEARS_GRID_DEFAULT 64u
 #endif
 
 /* Most (triangle, cell) pairs one pass can hold. A context reserves by default

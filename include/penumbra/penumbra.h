@@ -529,7 +529,7 @@ typedef struct pn_gbuffer {
 
 /* 512x512, k = 16, the reference (in a build without it, the first algorithm compiled in,
  * in pn_algo order), eps = 1e-4, albedo 0.8, ambient 0.1, dark blue background; every
- * algorithm's sub-struct zero (its defaults: GEARS' grid 128, at most the limit). */
+ * algorithm's sub-struct zero (its defaults: GEARS' grid PN_GEARS_GRID_DEFAULT, 64, at most the limit). */
 void pn_frame_options_default(pn_frame_options *opt);
 
 #define PN_NO_TRIANGLE 0xFFFFFFFFu

@@ -95,7 +95,7 @@ int main(int argc, char **argv)
     o.nports = 2;
     o.size = 512;
     o.k = 16;
-    o.grid = 128;
+    o.grid = PN_GEARS_GRID_DEFAULT;
     o.sweep_scenes = "thin,chess_set,cad_infineon_easypim2b";
     o.srt_big = 1024;
     for (i = 1; i < argc; i++) {

@@ -418,7 +418,7 @@ typedef enum pn_algo {
  * (opt.srt, opt.mcsm, ...): all zero is every default of that algorithm. */
 typedef struct pn_gears_options {
     uint32_t grid;         /* GEARS grid cells per axis, 1 .. limits.gears_grid_max; 0: the
-                              smaller of 128 and the limit */
+                              smaller of PN_GEARS_GRID_DEFAULT (64) and the limit */
 } pn_gears_options;
 
 typedef struct pn_srt_options { /* PN_ALGO_SRT (0 everywhere is the recommended configuration) */

@@ -403,6 +403,7 @@ static void pn_gears_end(pn_context *ctx, const pn_gears_frame_pools *g)
     ctx->stats.gears.assignments = g->assignments;
     ctx->stats.gears.tiles = g->tiles;
     ctx->stats.gears.faces = g->faces->n;
+    ctx->stats.gears.grid = g->faces->res;
     ctx->stats.gears.cells_used = used;
     ctx->stats.gears.max_tris_per_cell = g->max_tris_cell;
     ctx->stats.gears.max_pixels_per_cell = max_pix;

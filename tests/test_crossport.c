@@ -122,6 +122,7 @@ static int same_frame(const char *what, const pn_xframe *a, const pn_xframe *b)
     SAME_STAT(gears.max_tris_per_cell);
     SAME_STAT(gears.max_pixels_per_cell);
     SAME_STAT(gears.pairs_high_water);
+    SAME_STAT(gears.grid);
     SAME_STAT(shadow_nodes);
     SAME_STAT(srt.map);
     SAME_STAT(srt.pip);

@@ -104,6 +104,15 @@ static void test_tiling(void)
     REQUIRE(a && b);
     REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_GEARS, w, hh, 16, 64, a, &st) == 0);
     CHECK(st.gears.tiles == 1u);
+    CHECK(st.gears.grid == 64u);
+    {
+        /* grid 0: the default (PN_GEARS_GRID_DEFAULT, at most the context's limit, here
+         * PN_GEARS_GRID_MAX), named in the stats; the same bytes as any grid */
+        pn_stats s0;
+        REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_GEARS, w, hh, 16, 0, b, &s0) == 0);
+        CHECK(s0.gears.grid == (PN_GEARS_GRID_MAX < PN_GEARS_GRID_DEFAULT ? PN_GEARS_GRID_MAX : PN_GEARS_GRID_DEFAULT));
+        CHECK(count_diff(a, b, (size_t)w * hh, "default grid") == 0u);
+    }
     fprintf(stderr, "spheres: %llu pairs in one pass; most triangles in a cell %u\n", (unsigned long long)st.gears.pairs,
             st.gears.max_tris_per_cell);
     /* Pool: a fifth of the frame's pairs, but at least the largest cell. */

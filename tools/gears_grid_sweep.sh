@@ -7,7 +7,8 @@
 # A round runs the reference, then GEARS at every grid (32 64 128 256, or $GRIDS), one after
 # the other, so that the machine's drift falls on every column alike; k = 16, 2 threads
 # ($THREADS). A scene is a built-in's name or a .glb in SCENES_DIR, from its view when
-# SCENES_DIR/views.json has one. The default grid is 128 (include/penumbra/penumbra.h).
+# SCENES_DIR/views.json has one. The default grid is the one the CLI's stats name for a frame
+# without --grid (PN_GEARS_GRID_DEFAULT, include/penumbra/config.h); it joins the grids.
 set -eu
 [ $# -ge 2 ] || { echo "usage: $0 PENUMBRA_CLI SCENES_DIR [SIZE] [REPS] [SCENE ...]" >&2; exit 2; }
 cli=$1 scenes=$2 size=${3:-512} reps=${4:-3}
@@ -26,13 +27,18 @@ median() {
   sort -g "$1" | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'
 }
 
+# The library's default grid, as a frame without --grid reports it (gears_grid).
+"$cli" render --builtin square --algo gears --size 8x8 --out "$work/x.png" --stats "$work/st.json" >/dev/null 2>&1
+dg=$(json "$work/st.json" gears_grid)
+case " $grids " in *" $dg "*) ;; *) grids="$grids $dg" ;; esac
+
 head="| scene | reference ms |"
 rule="| --- | ---: |"
 for g in $grids; do
   head="$head grid $g ms |"
   rule="$rule ---: |"
 done
-echo "$head fastest grid | grid 128 vs the fastest | GEARS (grid 128) vs reference | GEARS (fastest grid) vs reference |"
+echo "$head fastest grid | grid $dg (default) vs the fastest | GEARS (grid $dg) vs reference | GEARS (fastest grid) vs reference |"
 echo "$rule ---: | ---: | ---: | ---: |"
 for s in "$@"; do
   src=$(scene_src "$scenes" "$s")
@@ -57,6 +63,6 @@ for s in "$@"; do
     row="$row $m |"
     if [ -z "$best" ] || awk "BEGIN { exit !($m < $best) }"; then best=$m bestg=$g; fi
   done
-  d=$(median "$work/128.ms")
+  d=$(median "$work/$dg.ms")
   echo "$row $bestg | $(awk "BEGIN { printf \"%.2fx\", $d / $best }") | $(awk "BEGIN { printf \"%.2fx\", $ref / $d }") | $(awk "BEGIN { printf \"%.2fx\", $ref / $best }") |"
 done

@@ -289,10 +289,7 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
                "  \"gears_max_tris_per_cell\": %u,\n  \"gears_mean_tris_per_cell\": %.3f,\n"
                "  \"gears_max_pixels_per_cell\": %u,\n  \"gears_mean_pixels_per_cell\": %.3f,\n"
                "  \"gears_pairs_high_water\": %u,\n",
-            /* the grid rendered: 0 is the default, at most the limit (the CLI's context has the default) */
-            opt->gears.grid                                ? opt->gears.grid
-            : PN_GEARS_GRID_MAX < PN_GEARS_GRID_DEFAULT ? PN_GEARS_GRID_MAX
-                                                          : PN_GEARS_GRID_DEFAULT,
+            st->gears.grid, /* the grid rendered: gears.grid, or the library's default */
             (unsigned long long)st->gears.pairs, (unsigned long long)st->gears.assignments,
             st->gears.tiles, st->gears.faces, st->gears.cells_used, st->gears.max_tris_per_cell,
             st->gears.mean_tris_per_cell, st->gears.max_pixels_per_cell, st->gears.mean_pixels_per_cell,

@@ -147,8 +147,7 @@
 
 /* Largest grid resolution per axis a context reserves by default (pn_limits.gears_grid_max
  * 0; a context may ask for up to 1024). The frame option gears.grid, default
- * PN_GEARS_GRID_DEFAULT, may be
- * any value up to the context's. Costs res^2 x 12 bytes of frame arena (one face's cell
+ * PN_GEARS_GRID_DEFAULT, may be any value up to the context's. Costs res^2 x 12 bytes of frame arena (one face's cell
  * offsets, pixel counts and cursors: a point light's cube of 6 grids is done a face at a
  * time) and 6 x res x (res / 4 + 12) bytes for every face's grid rows (occupancy bits,
  * their prefix counts, pairs per row): 0.22 MiB at 128. Range 1 .. 1024. */

@@ -607,6 +607,7 @@ typedef struct pn_gears_stats { /* GEARS (paper Tables 5 and 6), last frame */
     uint32_t max_tris_per_cell, max_pixels_per_cell;
     float mean_tris_per_cell, mean_pixels_per_cell; /* over cells with pixels */
     uint32_t pairs_high_water;   /* most pairs held at once */
+    uint32_t grid;               /* cells per axis the frame used (gears.grid, or its default) */
 } pn_gears_stats;
 
 typedef struct pn_srt_stats { /* Selective ray tracing, last frame */

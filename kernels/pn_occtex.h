@@ -27,9 +27,12 @@
  * wholly above the slice holding P count fully, the slice holding P not at all (its own
  * surface is in it, Fig. 7), and the one just above it fades in with P's distance below
  * its lower plane, so that the shadow is continuous where geometry crosses a plane.
- * Visibility = the combination of the w_k I_k (product, eq. 5; or max, or clamped sum),
- * times the fraction of light samples in front of P's own plane (the horizon of invariant
- * 6, the same mask every algorithm uses).
+ * What the fade leaves out - the slice holding P above P, and 1 - w of the slice above -
+ * comes by default from a depth map of the slicing view (pn_occ_own; the paper's fade
+ * alone with PN_OCC_FLAG_PAPER_FADE). Visibility = the combination of the w_k I_k
+ * (product, eq. 5; or max, or clamped sum) and the depth map's occlusion, times the
+ * fraction of light samples in front of P's own plane (the horizon of invariant 6, the
+ * same mask every algorithm uses).
  *
  * Filters (paper §3.2), of one slice at a time, over integer occupancy counts (so every
  * table is exact, and the ports agree):
@@ -58,6 +61,9 @@
 #define PN_OCC_C_MAX 2u
 #define PN_OCC_C_SUM 3u
 #define PN_OCC_FLAG_LEAK_FIX 1u
+#define PN_OCC_FLAG_PAPER_FADE 2u
+/* pn_kocc.slice of the depth map's lookup pass (pn_occ_own). */
+#define PN_OCC_SLICE_DEPTH 0xFFFFFFFFu
 /* Counter words (pool occ_words, PN_OCC_WORDS): bits set, then per slice its bits. */
 #define PN_OCC_WORD_TEXELS 0u
 #define PN_OCC_WORD_SLICE0 2u
@@ -69,6 +75,9 @@
 /* Smallest kernel side of the summed-area table, texels (a point sample below it). */
 #define PN_OCC_SAT_MIN 1e-3f
 
+/* Slice k's bottom plane's light depth. */
+PN_KFN float pn_occ_plane(const pn_kocc *o, uint32_t k) { return o->zmin + (float)k * o->h; }
+
 /* Slice of a fragment at light depth z: the k with z_b[k-1] < z <= z_b[k] (within the
  * tolerance), or -1 behind the light plane. */
 PN_KFN int32_t pn_occ_slice_of(const pn_kocc *o, float z)
@@ -77,30 +86,47 @@ PN_KFN int32_t pn_occ_slice_of(const pn_kocc *o, float z)
     return pn_kceil_clamp((z - o->zmin) / o->h - PN_OCC_PLANE_TOL, 0, (int32_t)o->slices - 1);
 }
 
-/* Band `band` of PN_RASTER_BAND texel rows: its words cleared, then every triangle's
- * fragments set their slices' bits (the G-buffer's set-up, band walk and coverage on the
- * slicing view); the bits the band holds added to words (all, and per slice). */
+/* The depth map's pool: three planes of res^2 floats, the nearest fragment's light depth
+ * (+inf: none) and its plane's slopes, the normal's components across the light axis over
+ * its component along it (the plane is z = z_t + gx (x - x_t) + gy (y - y_t) in the light
+ * frame, slopes bounded by PN_OCC_SLOPE_MAX). */
+#define PN_OCC_DEPTH_PLANES 3u
+#define PN_OCC_SLOPE_MAX 1e6f
+
+/* Band `band` of PN_RASTER_BAND texel rows: its words and depth map cleared, then every
+ * triangle's fragments set their slices' bits and keep the nearest fragment (the G-buffer's
+ * set-up, band walk and coverage on the slicing view); the bits the band holds added to
+ * words (all, and per slice). */
 PN_KFN void pn_occ_band(const pn_kview *v, const pn_kocc *o, PN_CONST float *tris, PN_CONST uint32_t *rows,
                         PN_CONST uint32_t *chunks, PN_CONST uint32_t *index, uint32_t tri_n, uint32_t band,
-                        PN_GLOBAL uint32_t *bits, PN_GLOBAL uint32_t *words)
+                        PN_GLOBAL uint32_t *bits, PN_GLOBAL float *depth, PN_GLOBAL uint32_t *words)
 {
     uint32_t y0 = band * PN_RASTER_BAND, y1 = y0 + PN_RASTER_BAND - 1u, t, y, x, n = 0u, k;
     pn_band_walk bw;
     uint32_t per[PN_OCC_SLICES_MAX];
     uint32_t last = o->slices - 1u;
+    size_t plane = (size_t)v->width * v->height;
     pn_v3 f = pn_v3_make(v->f[0], v->f[1], v->f[2]);
     /* Depths beyond it fall in the deepest slice (pn_occ_slice_of), with a margin of a
      * hundredth of a slice for the rounding of the fragments' depths. */
     float zdeep = o->zmin + ((float)last - 1.0f + PN_OCC_PLANE_TOL + 1e-2f) * o->h;
     if (y1 >= v->height) y1 = v->height - 1u;
     for (y = y0; y <= y1; y++)
-        for (x = 0; x < v->width; x++) bits[(size_t)y * v->width + x] = 0u;
+        for (x = 0; x < v->width; x++) {
+            size_t i = (size_t)y * v->width + x;
+            bits[i] = 0u;
+            depth[i] = PN_KINF;
+            depth[plane + i] = 0.0f;
+            depth[2u * plane + i] = 0.0f;
+        }
     pn_band_walk_begin(&bw, tri_n);
     while (pn_band_next(chunks, index, y0, y1, &bw, &t)) {
         pn_raster_tri rt;
+        float gx, gy;
+        int marks;
         if (rows[t] == PN_RASTER_EMPTY) continue;
-        /* Wholly within the deepest slice (a receiver below every occluder: a ground
-         * plane), or behind the light plane: none of its fragments marks a bit. */
+        /* Behind the light plane: nothing. Wholly within the deepest slice (a receiver
+         * below every occluder: a ground plane): no bit, only the depth map. */
         {
             PN_CONST float *p = tris + (size_t)t * 9u;
             pn_v3 eye = pn_view_eye(v);
@@ -108,9 +134,17 @@ PN_KFN void pn_occ_band(const pn_kview *v, const pn_kocc *o, PN_CONST float *tri
             float z1 = pn_v3_dot(pn_v3_sub(pn_v3_make(p[3], p[4], p[5]), eye), f);
             float z2 = pn_v3_dot(pn_v3_sub(pn_v3_make(p[6], p[7], p[8]), eye), f);
             float lo = pn_kminf(z0, pn_kminf(z1, z2)) - o->d, hi = pn_kmaxf(z0, pn_kmaxf(z1, z2)) - o->d;
-            if (lo > zdeep || !(hi > 0.0f)) continue;
+            if (!(hi > 0.0f)) continue;
+            marks = !(lo > zdeep);
         }
         if (!pn_raster_tri_setup(v, tris, rows, t, y0, y1, &rt)) continue;
+        {
+            float nx = pn_v3_dot(rt.n, pn_v3_make(v->r[0], v->r[1], v->r[2]));
+            float ny = pn_v3_dot(rt.n, pn_v3_make(v->u[0], v->u[1], v->u[2])), nz = pn_v3_dot(rt.n, f);
+            float lim = PN_OCC_SLOPE_MAX * pn_kfabs(nz);
+            gx = pn_kfabs(nx) < lim ? nx / nz : (nx * nz < 0.0f ? -PN_OCC_SLOPE_MAX : PN_OCC_SLOPE_MAX);
+            gy = pn_kfabs(ny) < lim ? ny / nz : (ny * nz < 0.0f ? -PN_OCC_SLOPE_MAX : PN_OCC_SLOPE_MAX);
+        }
         for (y = rt.y0; y <= rt.y1; y++) {
             int32_t xi, xa = rt.x0, xb = rt.x1;
             int run = pn_raster_span(&rt, y, &xa, &xb);
@@ -118,13 +152,21 @@ PN_KFN void pn_occ_band(const pn_kview *v, const pn_kocc *o, PN_CONST float *tri
                 float z;
                 int32_t sl;
                 uint32_t m;
+                size_t i = (size_t)y * v->width + (uint32_t)xi;
                 if (!pn_raster_tri_axial(v, &rt, run, (uint32_t)xi, y, &z)) continue;
-                sl = pn_occ_slice_of(o, z - o->d);
+                z -= o->d;
+                if (z > 0.0f && z < depth[i]) {
+                    depth[i] = z;
+                    depth[plane + i] = gx;
+                    depth[2u * plane + i] = gy;
+                }
+                if (!marks) continue;
+                sl = pn_occ_slice_of(o, z);
                 /* The deepest slice holds receivers only: no point lies below its plane. */
                 if (sl < 0 || (uint32_t)sl >= last) continue;
                 m = 1u << (uint32_t)sl;
                 if ((o->flags & PN_OCC_FLAG_LEAK_FIX) && (uint32_t)sl + 1u < last) m |= m << 1;
-                bits[(size_t)y * v->width + (uint32_t)xi] |= m;
+                bits[i] |= m;
             }
         }
     }
@@ -335,7 +377,7 @@ PN_KFN float pn_occ_sat_mean(const pn_kocc *o, PN_CONST uint32_t *sat, float px,
 }
 
 /* The weight of slice k for an origin at light depth z > 0 (<= 0: the slice is not above). */
-PN_KFN float pn_occ_weight(const pn_kocc *o, uint32_t k, float z) { return (z - (o->zmin + (float)k * o->h)) / o->h; }
+PN_KFN float pn_occ_weight(const pn_kocc *o, uint32_t k, float z) { return (z - pn_occ_plane(o, k)) / o->h; }
 
 /* Slice o->slice's occlusion of origin O, weighted, into *I; 0 when the slice does not
  * weigh in (not above O). */
@@ -344,7 +386,7 @@ PN_KFN int pn_occ_slice_occlusion(const pn_kview *lv, const pn_klight *L, const 
 {
     pn_v3 c = pn_lview_frame(lv, L, O);
     float x = c.x, y = c.y, z = c.z;
-    float zb = o->zmin + (float)o->slice * o->h, w, fr, q, sx, sy, px, py, v;
+    float zb = pn_occ_plane(o, o->slice), w, fr, q, sx, sy, px, py, v;
     *I = 0.0f;
     if (!(z > 0.0f)) return 0;
     w = pn_occ_weight(o, o->slice, z);
@@ -372,6 +414,96 @@ PN_KFN uint32_t pn_occ_lookups(const pn_kview *lv, const pn_klight *L, const pn_
     if (!(z > 0.0f)) return 0u;
     for (k = 0; k < o->slices; k++) n += ((o->live >> k) & 1u) && pn_occ_weight(o, k, z) > 0.0f;
     return n;
+}
+
+/* The depth map's occlusion of origin O (P: its surface point, O = P + eps n): what the
+ * fade of the slices leaves out (pn_occ_weight), the part of the slice holding O above O,
+ * wholly, and the slice above it with weight 1 - w, w that slice's fade. The texels of the
+ * rays from O to the light between those depths are walked (the box around O's texel and
+ * the light's image on the slice above's top plane; above PN_OCC_OWN_TAPS texels a side, a
+ * tap stands for a block of texels at its centre's depth). A texel whose nearest fragment
+ * X lies in that depth range and in front of the plane through O parallel to P's tangent
+ * plane is a small occluder: the square of its footprint at X's depth, projected from O
+ * onto the light plane, hides the part of the light rectangle it covers, times how much
+ * of the fragment's plane the square stands for as seen from O (|n . (X - O)| over the
+ * flat square's, at most PN_OCC_TILT_MAX: a patch O sees edge-on, a neighbour on O's own
+ * surface, hides nothing). A point light: 1 when a square holds the light centre. The
+ * parts of both ranges are summed, each at most 1, and combined as a product. */
+#define PN_OCC_OWN_TAPS 16
+#define PN_OCC_TILT_MAX 4.0f
+PN_KFN float pn_occ_own(const pn_kview *lv, const pn_klight *L, const pn_kocc *o, PN_CONST float *depth, pn_v3 P,
+                        pn_v3 O, float ha, float hb)
+{
+    pn_v3 oc = pn_lview_frame(lv, L, O), nl = pn_v3_sub(oc, pn_lview_frame(lv, L, P));
+    float oz = oc.z, zlo, zmid, wup, pox, poy, cx, cy, sx, sy, own = 0.0f, up = 0.0f, area = 4.0f * ha * hb;
+    float tx = lv->tan_half * lv->aspect, ty = lv->tan_half, W = (float)lv->width, H = (float)lv->height;
+    int32_t k, last = (int32_t)o->res - 1, ix0, ix1, iy0, iy1, stx, sty, i, j;
+    size_t pl = (size_t)o->res * o->res;
+    if (!(oz > 0.0f)) return 0.0f;
+    k = pn_occ_slice_of(o, oz);
+    zmid = k > 0 ? pn_occ_plane(o, (uint32_t)k - 1u) : 0.0f;
+    zlo = k > 1 ? pn_occ_plane(o, (uint32_t)k - 2u) : 0.0f;
+    wup = k > 0 ? 1.0f - pn_kclampf(pn_occ_weight(o, (uint32_t)k - 1u, oz), 0.0f, 1.0f) : 0.0f;
+    if (!(zlo < oz)) return 0.0f;
+    pn_project_camera(lv, pn_v3_make(oc.x, oc.y, oz + o->d), &pox, &poy);
+    if (L->is_point || !(zlo + o->d > 0.0f)) {
+        cx = pox;
+        cy = poy;
+        sx = sy = 0.0f;
+    } else {
+        float fr = zlo / oz, q = (oz - zlo) / (oz * (zlo + o->d));
+        pn_project_camera(lv, pn_v3_make(oc.x * fr, oc.y * fr, zlo + o->d), &cx, &cy);
+        sx = 0.5f * o->sfac_x * q;
+        sy = 0.5f * o->sfac_y * q;
+    }
+    ix0 = pn_kfloor_clamp(pn_kminf(pox, cx - sx), 0, last);
+    ix1 = pn_kfloor_clamp(pn_kmaxf(pox, cx + sx), 0, last);
+    iy0 = pn_kfloor_clamp(pn_kminf(poy, cy - sy), 0, last);
+    iy1 = pn_kfloor_clamp(pn_kmaxf(poy, cy + sy), 0, last);
+    stx = (ix1 - ix0 + PN_OCC_OWN_TAPS) / PN_OCC_OWN_TAPS;
+    sty = (iy1 - iy0 + PN_OCC_OWN_TAPS) / PN_OCC_OWN_TAPS;
+    for (j = iy0; j <= iy1; j += sty) {
+        int32_t bh = pn_kmini(sty, iy1 + 1 - j), tj = j + bh / 2;
+        for (i = ix0; i <= ix1; i += stx) {
+            int32_t bw = pn_kmini(stx, ix1 + 1 - i), ti = i + bw / 2;
+            size_t at = (size_t)tj * o->res + (uint32_t)ti;
+            float zt = depth[at], zc, t, X0, X1, Y0, Y1, cover_x, cover_y;
+            pn_v3 X;
+            if (!(zt > zlo && zt < oz)) continue;
+            zc = zt + o->d;
+            X = pn_v3_make((2.0f * ((float)ti + 0.5f) / W - 1.0f) * tx * zc,
+                           (1.0f - 2.0f * ((float)tj + 0.5f) / H) * ty * zc, zt);
+            if (!(pn_v3_dot(pn_v3_sub(X, oc), nl) > 0.0f)) continue;
+            /* The block [i, i + bw) x [j, j + bh) at depth zt, seen from O on the light plane. */
+            t = oz / (oz - zt);
+            X0 = oc.x + ((2.0f * (float)i / W - 1.0f) * tx * zc - oc.x) * t;
+            X1 = oc.x + ((2.0f * (float)(i + bw) / W - 1.0f) * tx * zc - oc.x) * t;
+            Y0 = oc.y + ((1.0f - 2.0f * (float)(j + bh) / H) * ty * zc - oc.y) * t;
+            Y1 = oc.y + ((1.0f - 2.0f * (float)j / H) * ty * zc - oc.y) * t;
+            if (L->is_point) {
+                if (X0 <= 0.0f && 0.0f <= X1 && Y0 <= 0.0f && 0.0f <= Y1) {
+                    if (zt > zmid) return 1.0f;
+                    up = wup;
+                }
+                continue;
+            }
+            cover_x = pn_kminf(X1, ha) - pn_kmaxf(X0, -ha);
+            cover_y = pn_kminf(Y1, hb) - pn_kmaxf(Y0, -hb);
+            if (cover_x > 0.0f && cover_y > 0.0f) {
+                float gx = depth[pl + at], gy = depth[2u * pl + at], dz = zt - oz;
+                float num = pn_kfabs(gx * (X.x - oc.x) + gy * (X.y - oc.y) + dz);
+                float den = pn_kfabs(gx * X.x / zc + gy * X.y / zc + 1.0f) * pn_kfabs(dz);
+                float tilt = num < PN_OCC_TILT_MAX * den ? num / den : PN_OCC_TILT_MAX, a = cover_x * cover_y * tilt;
+                if (zt > zmid) own += a;
+                else up += a;
+            }
+        }
+    }
+    if (!L->is_point) {
+        own = pn_kminf(own / area, 1.0f);
+        up = pn_kminf(up / area, 1.0f) * wup;
+    }
+    return 1.0f - (1.0f - own) * (1.0f - up);
 }
 
 /* One combination step: visibility v so far and one slice's occlusion I. */

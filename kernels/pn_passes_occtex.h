@@ -8,12 +8,12 @@
 /* ---- Occlusion textures (pn_occtex.h; the frame is src/pn_occtex.c) ---------------------- */
 
 #if PN_ENABLE_OCCTEX
-/* Band of texel rows: every fragment's slice bits. */
+/* Band of texel rows: every fragment's slice bits, and the depth map (in the filter pool). */
 PN_KFN void pn_e_occ_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t band)
 {
     pn_occ_band(&K->lview, &K->occ, PN_POOL(const float, tris), PN_POOL(const uint32_t, rows),
                 PN_POOL(const uint32_t, chunks), PN_POOL(const uint32_t, rindex), K->raster_tris, band,
-                PN_POOL(uint32_t, occ_bits), PN_POOL(uint32_t, occ_words));
+                PN_POOL(uint32_t, occ_bits), PN_POOL(float, occ_filt), PN_POOL(uint32_t, occ_words));
 }
 
 /* Texel: level 0 of the N-buffer or mipmap, the slice's bit. */
@@ -58,16 +58,24 @@ PN_KFN void pn_e_occ_init(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);
 }
 
-/* Pixel: slice K->occ.slice's occlusion combined into its visibility. */
+/* Pixel: slice K->occ.slice's occlusion combined into its visibility; for PN_OCC_SLICE_DEPTH,
+ * the depth map's (pn_occ_own; the filter pool holds the map until the first slice's filter). */
 PN_KFN void pn_e_occ_lookup(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
     pn_v3 O, Ps, ns;
     float I;
+    int in;
     if (PN_POOL(const uint32_t, tri_id)[pix] == PN_NO_PIXEL_TRIANGLE) return;
     pn_pix_surf(A, P, K, pix, &Ps, &ns);
     if (!pn_shadow_origin(Ps, ns, &K->light, &O)) return;
-    if (pn_occ_slice_occlusion(&K->lview, &K->light, &K->occ, PN_POOL(const uint32_t, occ_filt), O, &I) && I > 0.0f)
-        PN_POOL(float, vis)[pix] = pn_occ_combine(K->occ.combine, PN_POOL(const float, vis)[pix], I);
+    if (K->occ.slice == PN_OCC_SLICE_DEPTH) {
+        I = pn_occ_own(&K->lview, &K->light, &K->occ, PN_POOL(const float, occ_filt), Ps, O, K->lview_ha,
+                       K->lview_hb);
+        in = 1;
+    } else {
+        in = pn_occ_slice_occlusion(&K->lview, &K->light, &K->occ, PN_POOL(const uint32_t, occ_filt), O, &I);
+    }
+    if (in && I > 0.0f) PN_POOL(float, vis)[pix] = pn_occ_combine(K->occ.combine, PN_POOL(const float, vis)[pix], I);
 }
 
 /* Pixel: times the fraction of light samples in front of its own plane; its lookups (the

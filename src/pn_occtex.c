@@ -17,7 +17,8 @@ int pn_occtex_limits_ok(const pn_limits *l)
 }
 static uint32_t pn_occ_map_max(const pn_limits *l) { return l->occ_map_max ? l->occ_map_max : PN_OCCTEX_MAP_MAX; }
 /* Words of the one-slice filter pool: the largest of the three filters (N-buffer levels,
- * summed-area table, mipmap). */
+ * summed-area table, mipmap); the depth map's PN_OCC_DEPTH_PLANES res^2 fit (res >= 8: at
+ * least 4 levels). */
 static uint64_t pn_occ_filter_words(uint32_t res)
 {
     uint64_t nb = (uint64_t)pn_nb_levels(res) * res * res, sat = ((uint64_t)res + 1u) * (res + 1u);
@@ -40,7 +41,7 @@ pn_status pn_occtex_prepare(pn_frame_state *fs, const pn_frame_options *opt)
     if (opt->occtex.combine > PN_OCC_COMBINE_SUM)
         return pn_fail(ctx, PN_E_INVALID_ARG, "occtex.combine = %u; it must be 0 or a PN_OCC_COMBINE_*",
                        opt->occtex.combine);
-    if (opt->occtex.flags & ~PN_OCC_LEAK_FIX)
+    if (opt->occtex.flags & ~(PN_OCC_LEAK_FIX | PN_OCC_PAPER_FADE))
         return pn_fail(ctx, PN_E_INVALID_ARG, "occtex.flags = %u has unknown bits", opt->occtex.flags);
     /* Defaults: the configuration docs/bench/RESULTS.md recommends ("Occlusion textures"). */
     fs->res = opt->occtex.map ? opt->occtex.map : pn_occ_map_max(&ctx->limits);
@@ -57,15 +58,18 @@ typedef char pn_occ_consts_agree[PN_OCC_F_NBUFFER == PN_OCC_FILTER_NBUFFER && PN
                                          PN_OCC_F_MIPMAP == PN_OCC_FILTER_MIPMAP &&
                                          PN_OCC_C_PRODUCT == PN_OCC_COMBINE_PRODUCT &&
                                          PN_OCC_C_MAX == PN_OCC_COMBINE_MAX && PN_OCC_C_SUM == PN_OCC_COMBINE_SUM &&
-                                         PN_OCC_FLAG_LEAK_FIX == PN_OCC_LEAK_FIX && PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS &&
-                                         PN_OCC_WORD_SLICE0 + PN_OCC_SLICES_MAX <= PN_OCC_WORDS
+                                         PN_OCC_FLAG_LEAK_FIX == PN_OCC_LEAK_FIX &&
+                                         PN_OCC_FLAG_PAPER_FADE == PN_OCC_PAPER_FADE && PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS &&
+                                         PN_OCC_WORD_SLICE0 + PN_OCC_SLICES_MAX <= PN_OCC_WORDS &&
+                                         PN_OCC_DEPTH_PLANES <= 3u /* <= the N-buffer's levels, res >= 8 */
                                      ? 1
                                      : -1];
 
 typedef struct pn_occ_pools {
     float *box;      /* [height * PN_LVIEW_BOX]: row bounds (kernels/pn_lview.h) */
     uint32_t *bits;  /* [res^2]: bit k = the texel is covered in slice k */
-    uint32_t *filt;  /* [pn_occ_filter_words(res)]: one slice's filter */
+    uint32_t *filt;  /* [pn_occ_filter_words(res)]: the depth map (PN_OCC_DEPTH_PLANES res^2
+                        floats, kernels/pn_occtex.h), then one slice's filter at a time */
     uint32_t *words; /* [PN_OCC_WORDS]: bits set, and per slice */
 } pn_occ_pools;
 
@@ -208,6 +212,15 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
     t1 = pn_dev_timestamp(fs);
     ctx->stats.occtex.ns_slice = t1 - t0;
     ctx->stats.occtex.texels_set = s.words[PN_OCC_WORD_TEXELS];
+
+    /* The depth map's occlusion (a lookup), while the filter pool holds the map. */
+    if (!(o->flags & PN_OCC_FLAG_PAPER_FADE)) {
+        o->slice = PN_OCC_SLICE_DEPTH;
+        if ((st = pn_dev_run(fs, PN_K_OCC_LOOKUP, npix)) != PN_OK) return st;
+        t2 = pn_dev_timestamp(fs);
+        ctx->stats.occtex.ns_lookup += t2 - t1;
+        t1 = t2;
+    }
 
     /* Per slice: its filter, then its lookups. The deepest slice holds receivers only. */
     for (k = 0; k + 1u < o->slices; k++) {

@@ -42,7 +42,7 @@ static void usage(FILE *f)
             "                  [--ground on|off] [--eps E] [--grid N] [--gears-pairs N] [--exact-stats] [--threads N]\n"
             "                  [--srt-map N] [--srt-delta D] [--srt-no-conservative] [--srt-force-pip]\n"
             "                  [--occ-slices N] [--occ-map N] [--occ-filter nbuffer|sat|mipmap]\n"
-            "                  [--occ-combine product|max|sum] [--occ-leak-fix]\n"
+            "                  [--occ-combine product|max|sum] [--occ-leak-fix] [--occ-paper-fade]\n"
             "                  [--mc-layers 1|2|3] [--mc-search linear|hier] [--mc-rays N] [--mc-blur N|off]\n"
             "                  [--mc-map N] [--mc-no-bias] [--mc-no-classify] [--mc-seed N] [--mc-sparse-nbuffer]\n"
             "                  [--wg-mode blend|additive]\n"
@@ -474,6 +474,7 @@ static int cmd_render(int argc, char **argv, int bake)
             else BAD(a);
         }
         else if (strcmp(a, "--occ-leak-fix") == 0) opt.occtex.flags |= PN_OCC_LEAK_FIX;
+        else if (strcmp(a, "--occ-paper-fade") == 0) opt.occtex.flags |= PN_OCC_PAPER_FADE;
         else if (strcmp(a, "--mc-layers") == 0) { NEED_ARG; opt.mcsm.layers = (uint32_t)strtoul(v, NULL, 10); }
         else if (strcmp(a, "--mc-search") == 0) {
             NEED_ARG;

@@ -439,7 +439,7 @@ typedef struct pn_occtex_options { /* PN_ALGO_OCCTEX (0 everywhere is the recomm
     uint32_t combine;      /* PN_OCC_COMBINE_*; 0: PN_OCC_COMBINE_PRODUCT */
     uint32_t flags;        /* PN_OCC_LEAK_FIX: a fragment marks the next slice too (paper
                               §3.4; off by default: measured, it does not reduce leaks here
-                              and doubles planar occluders) */
+                              and doubles planar occluders); PN_OCC_PAPER_FADE */
 } pn_occtex_options;
 
 typedef struct pn_mcsm_options { /* PN_ALGO_MCSM (0 everywhere is the recommended
@@ -520,6 +520,8 @@ typedef struct pn_gbuffer {
 #define PN_OCC_COMBINE_MAX 2u     /* 1 - max I_k */
 #define PN_OCC_COMBINE_SUM 3u     /* max(0, 1 - sum I_k) */
 #define PN_OCC_LEAK_FIX 0x1u
+#define PN_OCC_PAPER_FADE 0x2u /* the paper's fade alone: no depth map for the slice holding a
+                                  point and the one above it */
 /* How a Monte Carlo ray is traced through the depth layers (Curtis 2009 §3.3, §3.5). */
 #define PN_MC_SEARCH_LINEAR 1u /* texel-spaced steps, binary refinement on transitions */
 #define PN_MC_SEARCH_HIER 2u   /* hierarchical search through the N-buffer (Algorithm 2) */

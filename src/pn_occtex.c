@@ -142,6 +142,7 @@ static int pn_occ_window(pn_frame_state *fs, const pn_occ_pools *s, uint32_t res
     if (!pn_lview_window(ctx, s->box, fs->height, res, L, K->lview_ha, K->lview_hb, lv, &w)) return 0;
     o->d = w.d;
     zmax = w.zmax;
+    ctx->stats.occtex.outside = w.outside;
     /* Kernel side in texels (pn_occtex.h): the light's half-edge over the window's half-tan,
      * times the texels. */
     o->sfac_x = L->is_point ? 0.0f : (float)res * K->lview_ha / w.tx;

@@ -132,6 +132,7 @@ static int same_frame(const char *what, const pn_xframe *a, const pn_xframe *b)
     SAME_STAT(occtex.map);
     SAME_STAT(occtex.slices);
     SAME_STAT(occtex.texels_set);
+    SAME_STAT(occtex.outside);
     SAME_STAT(occtex.lookups);
     SAME_STAT(mcsm.map);
     SAME_STAT(mcsm.lit);

@@ -103,6 +103,7 @@ static void test_exact_case(void)
     /* The slicing did its work: the occluder's bits and lookups are there. */
     CHECK(g_b.st.occtex.texels_set > 0u && g_b.st.occtex.lookups > 0u && g_b.st.occtex.lookups == g_b.st.shadow_candidates);
     CHECK(g_b.st.occtex.slices == 16u && g_b.st.occtex.map == 512u);
+    CHECK(g_b.st.occtex.outside == 0u); /* every origin well inside the light's frustum */
     REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 32, PN_OCC_FILTER_NBUFFER, 0, 0, &g_c) == 0);
     error_of(&g_a, &g_c, &nb_mean, &nb_max);
     REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 32, PN_OCC_FILTER_MIPMAP, 0, 0, &g_c) == 0);
@@ -159,6 +160,9 @@ static void test_depth_map(void)
     fprintf(stderr, "room: RMSE %.4f with the depth map, %.4f with the fade alone; brighter by 0.25: %.2f%% and %.2f%%\n",
             rmse_map, rmse_fade, 100.0 * hi_map, 100.0 * hi_fade);
     CHECK(g_b.st.occtex.texels_set == g_c.st.occtex.texels_set && g_b.st.occtex.lookups == g_c.st.occtex.lookups);
+    /* The walls' tops, beside the ceiling's light, lie beyond any slicing window: counted. */
+    CHECK_MSG(g_b.st.occtex.outside > 0u && g_b.st.occtex.outside < g_b.st.lit_pixels, "outside %u of %u lit",
+              g_b.st.occtex.outside, (unsigned)g_b.st.lit_pixels);
     CHECK_MSG(rmse_map < 0.75 * rmse_fade, "RMSE %.4f vs %.4f", rmse_map, rmse_fade);
     CHECK_MSG(hi_map < 0.5 * hi_fade, "brighter %.4f vs %.4f", hi_map, hi_fade);
     pn_host_close(&h);

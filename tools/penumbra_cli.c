@@ -299,8 +299,9 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
             st->srt.map, st->srt.pip, st->srt.thin, st->srt.cons_texels, st->srt.tiles_masked);
     fprintf(f, "  \"ms_srt_map\": %.3f,\n  \"ms_srt_classify\": %.3f,\n  \"ms_srt_exact\": %.3f,\n",
             (double)st->srt.ns_map * 1e-6, (double)st->srt.ns_classify * 1e-6, (double)st->srt.ns_exact * 1e-6);
-    fprintf(f, "  \"occ_map\": %u,\n  \"occ_slices\": %u,\n  \"occ_texels_set\": %llu,\n  \"occ_lookups\": %llu,\n",
-            st->occtex.map, st->occtex.slices, (unsigned long long)st->occtex.texels_set, (unsigned long long)st->occtex.lookups);
+    fprintf(f, "  \"occ_map\": %u,\n  \"occ_slices\": %u,\n  \"occ_outside\": %u,\n  \"occ_texels_set\": %llu,\n  \"occ_lookups\": %llu,\n",
+            st->occtex.map, st->occtex.slices, st->occtex.outside, (unsigned long long)st->occtex.texels_set,
+            (unsigned long long)st->occtex.lookups);
     fprintf(f, "  \"ms_occ_slice\": %.3f,\n  \"ms_occ_filter\": %.3f,\n  \"ms_occ_lookup\": %.3f,\n",
             (double)st->occtex.ns_slice * 1e-6, (double)st->occtex.ns_filter * 1e-6, (double)st->occtex.ns_lookup * 1e-6);
     fprintf(f, "  \"mc_map\": %u,\n  \"mc_lit\": %u,\n  \"mc_umbra\": %u,\n  \"mc_penumbra\": %u,\n",

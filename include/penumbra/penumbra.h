@@ -627,6 +627,9 @@ typedef struct pn_srt_stats { /* Selective ray tracing, last frame */
 typedef struct pn_occtex_stats { /* Occlusion textures, last frame */
     uint32_t map;                /* texels per axis */
     uint32_t slices;             /* slices */
+    uint32_t outside;            /* lit pixels whose shadow-ray origin the slicing view cannot
+                                    hold (closer to the light's plane, or further off its axis,
+                                    than 76 degrees): no slice or depth map occludes them */
     uint64_t texels_set;         /* (texel, slice) bits set, over all slices */
     uint64_t lookups;            /* filtered lookups: slices weighted > 0, over lit pixels */
     /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: slicing (window, depth range,

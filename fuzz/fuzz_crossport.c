@@ -175,7 +175,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     opt.occtex.filter = 1u + (grid - 1u) % 3u;
     opt.occtex.combine = 1u + ((grid - 1u) / 3u) % 3u;
     opt.occtex.slices = 2u + ((grid - 1u) / 9u) % 15u;
-    opt.occtex.flags = (flags >> 7) ? PN_OCC_LEAK_FIX : 0u;
+    opt.occtex.flags = ((flags >> 7) ? PN_OCC_LEAK_FIX : 0u) | (((grid - 1u) / 135u) & 1u ? PN_OCC_PAPER_FADE : 0u);
     /* Monte Carlo shadow maps: every layer count, search and ray count, blur radius and flag. */
     opt.mcsm.layers = 1u + (grid - 1u) % 3u;
     opt.mcsm.search = 1u + ((grid - 1u) / 3u) % 2u;

@@ -382,7 +382,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     opt.occtex.slices = h[11] % 18u;
     opt.occtex.filter = h[12] % 5u;
     opt.occtex.combine = h[13] % 5u;
-    opt.occtex.flags = h[14] & 3u;
+    opt.occtex.flags = h[14] & 7u;
 #endif
 #ifdef PN_BUILD_MCSM
     lim.mc_map_max = 8u + (uint32_t)(h[15] >> 1) % 57u;
@@ -495,7 +495,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 #endif
 #ifdef PN_BUILD_OCCTEX
     if (opt.algo == PN_ALGO_OCCTEX && (opt.occtex.slices == 1u || opt.occtex.slices > 16u || opt.occtex.filter > 3u ||
-                                       opt.occtex.combine > 3u || (opt.occtex.flags & ~PN_OCC_LEAK_FIX)))
+                                       opt.occtex.combine > 3u ||
+                                       (opt.occtex.flags & ~(PN_OCC_LEAK_FIX | PN_OCC_PAPER_FADE))))
         must |= BIT(PN_E_INVALID_ARG);
 #endif
 #ifdef PN_BUILD_WEDGES

@@ -421,7 +421,9 @@ PN_KFN uint32_t pn_occ_lookups(const pn_kview *lv, const pn_klight *L, const pn_
  * wholly, and the slice above it with weight 1 - w, w that slice's fade. The texels of the
  * rays from O to the light between those depths are walked (the box around O's texel and
  * the light's image on the slice above's top plane; above PN_OCC_OWN_TAPS texels a side, a
- * tap stands for a block of texels at its centre's depth). A texel whose nearest fragment
+ * tap stands for a block of texels at its centre's depth - but a block over O's own texel
+ * for its tap's texel alone, times the block's area, unless O's texel holds an occluder in
+ * the range: the rest of such a block may be O's own surface). A texel whose nearest fragment
  * X lies in that depth range and in front of the plane through O parallel to P's tangent
  * plane is a small occluder: the square of its footprint at X's depth, projected from O
  * onto the light plane, hides the part of the light rectangle it covers, times how much
@@ -437,7 +439,7 @@ PN_KFN float pn_occ_own(const pn_kview *lv, const pn_klight *L, const pn_kocc *o
     pn_v3 oc = pn_lview_frame(lv, L, O), nl = pn_v3_sub(oc, pn_lview_frame(lv, L, P));
     float oz = oc.z, zlo, zmid, wup, pox, poy, cx, cy, sx, sy, own = 0.0f, up = 0.0f, area = 4.0f * ha * hb;
     float tx = lv->tan_half * lv->aspect, ty = lv->tan_half, W = (float)lv->width, H = (float)lv->height;
-    int32_t k, last = (int32_t)o->res - 1, ix0, ix1, iy0, iy1, stx, sty, i, j;
+    int32_t k, last = (int32_t)o->res - 1, ix0, ix1, iy0, iy1, stx, sty, i, j, own_covered;
     size_t pl = (size_t)o->res * o->res;
     if (!(oz > 0.0f)) return 0.0f;
     k = pn_occ_slice_of(o, oz);
@@ -460,6 +462,11 @@ PN_KFN float pn_occ_own(const pn_kview *lv, const pn_klight *L, const pn_kocc *o
     ix1 = pn_kfloor_clamp(pn_kmaxf(pox, cx + sx), 0, last);
     iy0 = pn_kfloor_clamp(pn_kminf(poy, cy - sy), 0, last);
     iy1 = pn_kfloor_clamp(pn_kmaxf(poy, cy + sy), 0, last);
+    {
+        /* Whether O's own texel holds an occluder in range (then a block over it is one). */
+        float zo = depth[(size_t)pn_kfloor_clamp(poy, 0, last) * o->res + (uint32_t)pn_kfloor_clamp(pox, 0, last)];
+        own_covered = zo > zlo && zo < oz;
+    }
     stx = (ix1 - ix0 + PN_OCC_OWN_TAPS) / PN_OCC_OWN_TAPS;
     sty = (iy1 - iy0 + PN_OCC_OWN_TAPS) / PN_OCC_OWN_TAPS;
     for (j = iy0; j <= iy1; j += sty) {
@@ -467,7 +474,7 @@ PN_KFN float pn_occ_own(const pn_kview *lv, const pn_klight *L, const pn_kocc *o
         for (i = ix0; i <= ix1; i += stx) {
             int32_t bw = pn_kmini(stx, ix1 + 1 - i), ti = i + bw / 2;
             size_t at = (size_t)tj * o->res + (uint32_t)ti;
-            float zt = depth[at], zc, t, X0, X1, Y0, Y1, cover_x, cover_y;
+            float zt = depth[at], zc, t, X0, X1, Y0, Y1, cover_x, cover_y, scale;
             pn_v3 X;
             if (!(zt > zlo && zt < oz)) continue;
             zc = zt + o->d;
@@ -476,10 +483,18 @@ PN_KFN float pn_occ_own(const pn_kview *lv, const pn_klight *L, const pn_kocc *o
             if (!(pn_v3_dot(pn_v3_sub(X, oc), nl) > 0.0f)) continue;
             /* The block [i, i + bw) x [j, j + bh) at depth zt, seen from O on the light plane. */
             t = oz / (oz - zt);
-            X0 = oc.x + ((2.0f * (float)i / W - 1.0f) * tx * zc - oc.x) * t;
-            X1 = oc.x + ((2.0f * (float)(i + bw) / W - 1.0f) * tx * zc - oc.x) * t;
-            Y0 = oc.y + ((1.0f - 2.0f * (float)(j + bh) / H) * ty * zc - oc.y) * t;
-            Y1 = oc.y + ((1.0f - 2.0f * (float)j / H) * ty * zc - oc.y) * t;
+            {
+                /* A block over O's own texel: only the tap's texel, standing for the block's
+                 * area (its other texels may be O's own surface). */
+                int over = (bw > 1 || bh > 1) && pox >= (float)i && pox < (float)(i + bw) && poy >= (float)j &&
+                           poy < (float)(j + bh) && !own_covered;
+                int32_t a0 = over ? ti : i, a1 = over ? ti + 1 : i + bw, b0 = over ? tj : j, b1 = over ? tj + 1 : j + bh;
+                scale = over ? (float)(bw * bh) : 1.0f;
+                X0 = oc.x + ((2.0f * (float)a0 / W - 1.0f) * tx * zc - oc.x) * t;
+                X1 = oc.x + ((2.0f * (float)a1 / W - 1.0f) * tx * zc - oc.x) * t;
+                Y0 = oc.y + ((1.0f - 2.0f * (float)b1 / H) * ty * zc - oc.y) * t;
+                Y1 = oc.y + ((1.0f - 2.0f * (float)b0 / H) * ty * zc - oc.y) * t;
+            }
             if (L->is_point) {
                 if (X0 <= 0.0f && 0.0f <= X1 && Y0 <= 0.0f && 0.0f <= Y1) {
                     if (zt > zmid) return 1.0f;
@@ -493,7 +508,7 @@ PN_KFN float pn_occ_own(const pn_kview *lv, const pn_klight *L, const pn_kocc *o
                 float gx = depth[pl + at], gy = depth[2u * pl + at], dz = zt - oz;
                 float num = pn_kfabs(gx * (X.x - oc.x) + gy * (X.y - oc.y) + dz);
                 float den = pn_kfabs(gx * X.x / zc + gy * X.y / zc + 1.0f) * pn_kfabs(dz);
-                float tilt = num < PN_OCC_TILT_MAX * den ? num / den : PN_OCC_TILT_MAX, a = cover_x * cover_y * tilt;
+                float tilt = num < PN_OCC_TILT_MAX * den ? num / den : PN_OCC_TILT_MAX, a = cover_x * cover_y * tilt * scale;
                 if (zt > zmid) own += a;
                 else up += a;
             }

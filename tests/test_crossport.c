@@ -556,7 +556,7 @@ static void test_options(void)
             o.occtex.combine = 1u + (uint32_t)(i / 3) % 3u;
             o.occtex.slices = slices[(i / 9) % 3];
             o.occtex.map = maps[(i + i / 9) % 3];
-            o.occtex.flags = (i & 1) ? PN_OCC_LEAK_FIX : 0u;
+            o.occtex.flags = ((i & 1) ? PN_OCC_LEAK_FIX : 0u) | (i % 4 == 2 ? PN_OCC_PAPER_FADE : 0u);
             snprintf(what, sizeof(what), "spheres occtex filter %u combine %u slices %u map %u flags %u%s",
                      o.occtex.filter, o.occtex.combine, o.occtex.slices, o.occtex.map, o.occtex.flags, i % 9 == 4 ? " point light" : "");
             CHECK(cross(&g_rig, &s.camera, &light, &o, what) == PN_OK);

@@ -228,6 +228,7 @@ enum {
     SEC_OCC_CLAIMS,
     SEC_OCC_SPEED,
     SEC_OCC_LIGHT,
+    SEC_OCC_MAPS,
     SEC_MC_CLAIMS,
     SEC_MC_CONV,
     SEC_MC_LEAKS,
@@ -292,6 +293,8 @@ void job_run(scene_state *ss, job *j, const pn_light *light, int rep);
 int run_jobs(const bench_opts *o, scene_state *ss, job *jobs, int njobs, const pn_light *light);
 accuracy compare_vis(const float *a, const float *ref, size_t n);
 void write_data(const bench_opts *o, const char *name, const char *scene, const char *text);
+int heat_png(const bench_opts *o, const scene_state *ss, const char *file, const float *d, const float *ref,
+             uint32_t w, uint32_t h, double tol, const uint8_t pos[3], const uint8_t neg[3]);
 void scaled_light(const pn_light *l, float s, pn_light *out);
 int scene_open(const bench_opts *o, scene_state *ss, const char *source, int builtin, const bench_port *port,
                uint32_t max_size);

@@ -16,6 +16,7 @@
 #include "pn_cl_host.h"
 #endif
 #include "bench.h"
+#include "pn_image.h"
 
 /* ---- What is measured: algorithms and ports ------------------------------------------- */
 
@@ -351,6 +352,41 @@ accuracy compare_vis(const float *a, const float *ref, size_t n)
 }
 
 /* ---- Per-scene work ----------------------------------------------------------------------- */
+
+/* A signed per-pixel map as a PNG next to RESULTS.md (OUT/<file>_<scene>.png): where |d[i]| >
+ * tol, the colour pos (d > 0) or neg (channel weights 0 or 1), brighter with |d| (full at
+ * 0.25, as in the gallery's error maps); elsewhere the shaded k = 32 reference in grey (its
+ * visibility without one), so the coloured pixels can be placed in the scene. */
+int heat_png(const bench_opts *o, const scene_state *ss, const char *file, const float *d, const float *ref,
+             uint32_t w, uint32_t h, double tol, const uint8_t pos[3], const uint8_t neg[3])
+{
+    size_t n = (size_t)w * h, i;
+    uint8_t *img = (uint8_t *)malloc(n * 4);
+    char path[1400], err[256];
+    int rc, c;
+    if (!img || !d || !ref) {
+        free(img);
+        return 1;
+    }
+    if (!ss->ref32_rgba) pn_vis_to_rgba(ref, n, img);
+    for (i = 0; i < n; i++) {
+        double t = fabs((double)d[i]) * 4.0 > 1.0 ? 1.0 : fabs((double)d[i]) * 4.0;
+        uint8_t *p = img + 4 * i;
+        if (d[i] > tol || d[i] < -tol) {
+            uint8_t v = (uint8_t)(96.0 + 159.0 * t + 0.5);
+            for (c = 0; c < 3; c++) p[c] = (d[i] > 0.0f ? pos[c] : neg[c]) ? v : 0;
+        } else if (ss->ref32_rgba) {
+            const uint8_t *q = ss->ref32_rgba + 4 * i;
+            p[0] = p[1] = p[2] = (uint8_t)(0.299 * q[0] + 0.587 * q[1] + 0.114 * q[2] + 0.5);
+        }
+        p[3] = 255;
+    }
+    snprintf(path, sizeof(path), "%s/%s_%s.png", o->out_dir, file, ss->s.name);
+    rc = pn_write_png(path, img, w, h, err, sizeof(err));
+    if (rc != 0) progress("    heat map %s: %s", file, err);
+    free(img);
+    return rc;
+}
 
 void write_data(const bench_opts *o, const char *name, const char *scene, const char *text)
 {

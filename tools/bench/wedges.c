@@ -36,41 +36,23 @@ static void wg_stages(char *b, size_t n, const pn_stats *st)
     snprintf(b, n, "%s / %s / %s", c[0], c[1], c[2]);
 }
 
-/* Where blending helped, as a PNG next to RESULTS.md: per pixel d = |additive - ref| -
- * |blended - ref| against the k = 32 reference; green where d > WG_TOL, red where d < -WG_TOL
- * (brighter with |d|, full at 0.25 as in the gallery's error maps), elsewhere the shaded
- * reference in grey, so the coloured pixels can be placed in the scene. */
+/* Where blending helped, as a PNG next to RESULTS.md (heat_png): per pixel d = |additive -
+ * ref| - |blended - ref| against the k = 32 reference; green where d > WG_TOL, red where
+ * d < -WG_TOL. */
 static int wg_heat(const bench_opts *o, const scene_state *ss, const float *blend, const float *add, const float *ref,
                    uint32_t w, uint32_t h)
 {
+    static const uint8_t green[3] = {0, 1, 0}, red[3] = {1, 0, 0};
     size_t n = (size_t)w * h, i;
-    uint8_t *img = (uint8_t *)malloc(n * 4);
-    char path[1400], err[256];
+    float *d = (float *)malloc(n * sizeof(float));
     int rc;
-    if (!img || !blend || !add || !ref) {
-        free(img);
+    if (!d || !blend || !add || !ref) {
+        free(d);
         return 1;
     }
-    if (!ss->ref32_rgba) pn_vis_to_rgba(ref, n, img);
-    for (i = 0; i < n; i++) {
-        double d = fabs((double)add[i] - ref[i]) - fabs((double)blend[i] - ref[i]);
-        double t = fabs(d) * 4.0 > 1.0 ? 1.0 : fabs(d) * 4.0;
-        uint8_t *p = img + 4 * i;
-        if (d > WG_TOL || d < -WG_TOL) {
-            uint8_t v = (uint8_t)(96.0 + 159.0 * t + 0.5);
-            p[0] = d > 0.0 ? 0 : v;
-            p[1] = d > 0.0 ? v : 0;
-            p[2] = 0;
-        } else if (ss->ref32_rgba) {
-            const uint8_t *q = ss->ref32_rgba + 4 * i;
-            p[0] = p[1] = p[2] = (uint8_t)(0.299 * q[0] + 0.587 * q[1] + 0.114 * q[2] + 0.5);
-        }
-        p[3] = 255;
-    }
-    snprintf(path, sizeof(path), "%s/wg_heat_%s.png", o->out_dir, ss->s.name);
-    rc = pn_write_png(path, img, w, h, err, sizeof(err));
-    if (rc != 0) progress("    wedges heat map: %s", err);
-    free(img);
+    for (i = 0; i < n; i++) d[i] = (float)(fabs((double)add[i] - ref[i]) - fabs((double)blend[i] - ref[i]));
+    rc = heat_png(o, ss, "wg_heat", d, ref, w, h, WG_TOL, green, red);
+    free(d);
     return rc;
 }
 

@@ -126,7 +126,8 @@ PN_KFN void pn_occ_band(const pn_kview *v, const pn_kocc *o, PN_CONST float *tri
         int marks;
         if (rows[t] == PN_RASTER_EMPTY) continue;
         /* Behind the light plane: nothing. Wholly within the deepest slice (a receiver
-         * below every occluder: a ground plane): no bit, only the depth map. */
+         * below every occluder: a ground plane): no bit, only the depth map (none with the
+         * paper's fade alone). */
         {
             PN_CONST float *p = tris + (size_t)t * 9u;
             pn_v3 eye = pn_view_eye(v);
@@ -134,8 +135,8 @@ PN_KFN void pn_occ_band(const pn_kview *v, const pn_kocc *o, PN_CONST float *tri
             float z1 = pn_v3_dot(pn_v3_sub(pn_v3_make(p[3], p[4], p[5]), eye), f);
             float z2 = pn_v3_dot(pn_v3_sub(pn_v3_make(p[6], p[7], p[8]), eye), f);
             float lo = pn_kminf(z0, pn_kminf(z1, z2)) - o->d, hi = pn_kmaxf(z0, pn_kmaxf(z1, z2)) - o->d;
-            if (!(hi > 0.0f)) continue;
             marks = !(lo > zdeep);
+            if (!(hi > 0.0f) || (!marks && (o->flags & PN_OCC_FLAG_PAPER_FADE))) continue;
         }
         if (!pn_raster_tri_setup(v, tris, rows, t, y0, y1, &rt)) continue;
         {
@@ -155,7 +156,7 @@ PN_KFN void pn_occ_band(const pn_kview *v, const pn_kocc *o, PN_CONST float *tri
                 size_t i = (size_t)y * v->width + (uint32_t)xi;
                 if (!pn_raster_tri_axial(v, &rt, run, (uint32_t)xi, y, &z)) continue;
                 z -= o->d;
-                if (z > 0.0f && z < depth[i]) {
+                if (z > 0.0f && z < depth[i] && !(o->flags & PN_OCC_FLAG_PAPER_FADE)) {
                     depth[i] = z;
                     depth[plane + i] = gx;
                     depth[2u * plane + i] = gy;

@@ -75,39 +75,50 @@ static int open_scene(const char *name, pn_setup *s, pn_host *h, int threads)
     return 1;
 }
 
-static void error_of(const frame *ref, const frame *f, double *mean_abs, double *max_abs)
+/* The frame's error against ref: mean and largest |error|, RMSE, and the fraction of pixels
+ * more than 0.25 brighter. */
+typedef struct frame_error {
+    double mean, max, rmse, brighter;
+} frame_error;
+
+static frame_error error_of(const frame *ref, const frame *f)
 {
-    size_t i;
-    double sum = 0.0, mx = 0.0;
+    size_t i, hi = 0;
+    double sum = 0.0, se = 0.0;
+    frame_error e = {0.0, 0.0, 0.0, 0.0};
     for (i = 0; i < W * H; i++) {
-        double e = fabs((double)ref->vis[i] - (double)f->vis[i]);
-        sum += e;
-        if (e > mx) mx = e;
+        double d = (double)f->vis[i] - (double)ref->vis[i], a = fabs(d);
+        sum += a;
+        se += d * d;
+        hi += d > 0.25;
+        if (a > e.max) e.max = a;
     }
-    *mean_abs = sum / (double)(W * H);
-    *max_abs = mx;
+    e.mean = sum / (double)(W * H);
+    e.rmse = sqrt(se / (double)(W * H));
+    e.brighter = (double)hi / (double)(W * H);
+    return e;
 }
 
 static void test_exact_case(void)
 {
     pn_setup s;
     pn_host h;
-    double sat_mean, sat_max, nb_mean, nb_max, mip_mean, mip_max;
+    frame_error sat, nb, mip;
     if (!open_scene("square", &s, &h, 2)) return;
     REQUIRE(render(&h, &s, &s.light, PN_ALGO_REFERENCE, 32, 0, 0, 0, &g_a) == 0);
     REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 32, PN_OCC_FILTER_SAT, 0, 0, &g_b) == 0);
-    error_of(&g_a, &g_b, &sat_mean, &sat_max);
-    fprintf(stderr, "square, summed-area table: mean |error| %.5f, max %.4f\n", sat_mean, sat_max);
-    CHECK_MSG(sat_mean < 1.0 / 255.0, "mean |error| %.5f", sat_mean);
-    CHECK_MSG(sat_max <= 2.0 / 32.0, "max |error| %.4f", sat_max);
+    sat = error_of(&g_a, &g_b);
+    fprintf(stderr, "square, summed-area table: mean |error| %.5f, max %.4f\n", sat.mean, sat.max);
+    CHECK_MSG(sat.mean < 1.0 / 255.0, "mean |error| %.5f", sat.mean);
+    CHECK_MSG(sat.max <= 2.0 / 32.0, "max |error| %.4f", sat.max);
     /* The slicing did its work: the occluder's bits and lookups are there. */
     CHECK(g_b.st.occtex.texels_set > 0u && g_b.st.occtex.lookups > 0u && g_b.st.occtex.lookups == g_b.st.shadow_candidates);
     CHECK(g_b.st.occtex.slices == 16u && g_b.st.occtex.map == 512u);
     CHECK(g_b.st.occtex.outside == 0u); /* every origin well inside the light's frustum */
     REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 32, PN_OCC_FILTER_NBUFFER, 0, 0, &g_c) == 0);
-    error_of(&g_a, &g_c, &nb_mean, &nb_max);
+    nb = error_of(&g_a, &g_c);
     REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 32, PN_OCC_FILTER_MIPMAP, 0, 0, &g_c) == 0);
-    error_of(&g_a, &g_c, &mip_mean, &mip_max);
+    mip = error_of(&g_a, &g_c);
     {
         /* The leak fix marks each fragment's next slice too: the square's one slice is
          * doubled (its bits exactly), and the ground under it gets darker, not lighter. */
@@ -119,26 +130,12 @@ static void test_exact_case(void)
         for (i = 0; i < W * H; i++) lighter += g_b.vis[i] > g_c.vis[i];
         CHECK_MSG(lighter == 0u, "%zu pixels lighter with the leak fix", lighter);
     }
-    fprintf(stderr, "square, N-buffer: mean |error| %.5f, max %.4f; mipmap: %.5f, %.4f\n", nb_mean, nb_max, mip_mean,
-            mip_max);
-    CHECK_MSG(sat_mean < nb_mean && nb_mean < mip_mean, "mean |error| SAT %.5f, N-buffer %.5f, mipmap %.5f", sat_mean,
-              nb_mean, mip_mean);
+    fprintf(stderr, "square, N-buffer: mean |error| %.5f, max %.4f; mipmap: %.5f, %.4f\n", nb.mean, nb.max, mip.mean,
+            mip.max);
+    CHECK_MSG(sat.mean < nb.mean && nb.mean < mip.mean, "mean |error| SAT %.5f, N-buffer %.5f, mipmap %.5f", sat.mean,
+              nb.mean, mip.mean);
     pn_host_close(&h);
     pn_setup_free(&s);
-}
-
-/* RMSE against ref, and the fraction of pixels more than 0.25 brighter. */
-static void rmse_of(const frame *ref, const frame *f, double *rmse, double *brighter)
-{
-    size_t i, hi = 0;
-    double se = 0.0;
-    for (i = 0; i < W * H; i++) {
-        double d = (double)f->vis[i] - (double)ref->vis[i];
-        se += d * d;
-        hi += d > 0.25;
-    }
-    *rmse = sqrt(se / (double)(W * H));
-    *brighter = (double)hi / (double)(W * H);
 }
 
 /* 5. The depth map (the default) against the paper's fade alone (PN_OCC_PAPER_FADE): the
@@ -150,21 +147,21 @@ static void test_depth_map(void)
 {
     pn_setup s;
     pn_host h;
-    double rmse_map, rmse_fade, hi_map, hi_fade;
+    frame_error map, fade;
     if (!open_scene("room", &s, &h, 2)) return;
     REQUIRE(render(&h, &s, &s.light, PN_ALGO_REFERENCE, 16, 0, 0, 0, &g_a) == 0);
     REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 16, 0, 0, 0, &g_b) == 0);
     REQUIRE(render(&h, &s, &s.light, PN_ALGO_OCCTEX, 16, 0, 0, PN_OCC_PAPER_FADE, &g_c) == 0);
-    rmse_of(&g_a, &g_b, &rmse_map, &hi_map);
-    rmse_of(&g_a, &g_c, &rmse_fade, &hi_fade);
+    map = error_of(&g_a, &g_b);
+    fade = error_of(&g_a, &g_c);
     fprintf(stderr, "room: RMSE %.4f with the depth map, %.4f with the fade alone; brighter by 0.25: %.2f%% and %.2f%%\n",
-            rmse_map, rmse_fade, 100.0 * hi_map, 100.0 * hi_fade);
+            map.rmse, fade.rmse, 100.0 * map.brighter, 100.0 * fade.brighter);
     CHECK(g_b.st.occtex.texels_set == g_c.st.occtex.texels_set && g_b.st.occtex.lookups == g_c.st.occtex.lookups);
     /* The walls' tops, beside the ceiling's light, lie beyond any slicing window: counted. */
     CHECK_MSG(g_b.st.occtex.outside > 0u && g_b.st.occtex.outside < g_b.st.lit_pixels, "outside %u of %u lit",
               g_b.st.occtex.outside, (unsigned)g_b.st.lit_pixels);
-    CHECK_MSG(rmse_map < 0.75 * rmse_fade, "RMSE %.4f vs %.4f", rmse_map, rmse_fade);
-    CHECK_MSG(hi_map < 0.5 * hi_fade, "brighter %.4f vs %.4f", hi_map, hi_fade);
+    CHECK_MSG(map.rmse < 0.75 * fade.rmse, "RMSE %.4f vs %.4f", map.rmse, fade.rmse);
+    CHECK_MSG(map.brighter < 0.5 * fade.brighter, "brighter %.4f vs %.4f", map.brighter, fade.brighter);
     pn_host_close(&h);
     pn_setup_free(&s);
 }

@@ -8,7 +8,6 @@
 #include <string.h>
 
 #include "bench.h"
-#include "pn_image.h"
 
 /* ---- Penumbra wedges with overlap blending (Forest et al. 2006) ------------------------------ */
 

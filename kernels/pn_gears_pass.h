@@ -431,8 +431,7 @@ PN_KFN int pn_gears_pixel_mask(const pn_klight *L, uint32_t exact, const pn_ktil
     /* The horizon first, as the reference does (a cell is in exactly one tile, so this runs
      * once per pixel). */
     pn_horizon_of(Ps, ns, own, tris, L, &H);
-    pn_horizon_mask(&H, L, m);
-    any = pn_mask_count(m, k) != 0u;
+    any = pn_horizon_mask(&H, L, m) != 0u;
     pn_frustum_make(O, L, &fr);
     pn_foot_make(O, L, &fp);
     pn_tri_block_origin(O, L, wnodes, &X);

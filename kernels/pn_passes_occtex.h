@@ -91,8 +91,8 @@ PN_KFN void pn_e_occ_finish(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
     if (!pn_shadow_origin(pos, nrm, &K->light, &O)) return;
     pn_mask_clear(m);
     pn_horizon_of(pos, nrm, id, PN_POOL(const float, tris), &K->light, &H);
-    pn_horizon_mask(&H, &K->light, m);
-    PN_POOL(float, vis)[pix] = PN_POOL(const float, vis)[pix] * pn_mask_visibility(m, K->light.k);
+    if (pn_horizon_mask(&H, &K->light, m))
+        PN_POOL(float, vis)[pix] = PN_POOL(const float, vis)[pix] * pn_mask_visibility(m, K->light.k);
     c.candidates = pn_occ_lookups(&K->lview, &K->light, &K->occ, O);
     if (c.candidates) pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);
 }

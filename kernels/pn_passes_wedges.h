@@ -68,11 +68,14 @@ PN_KFN void pn_e_wg_count(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
                                               PN_POOL(const float, wg_tbox), s, 0u, PN_WG_BIN_COUNT, PN_POOL(uint32_t, wg_rowc));
 }
 
-/* Silhouette: its (tile, silhouette) pairs in the band from its prefix-summed offset. */
+/* Silhouette: its (tile, silhouette) pairs in the band from its prefix-summed offset (none
+ * when it counted none: the same reach and tests would find none again). */
 PN_KFN void pn_e_wg_scatter(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t s)
 {
+    PN_CONST uint32_t *poff = PN_POOL(const uint32_t, wg_poff);
+    if (poff[s + 1u] == poff[s]) return;
     (void)pn_wg_bin(&K->view, &K->light, &K->wg, PN_POOL(const float, tris), PN_POOL(const pn_wsil, wg_sil),
-                    PN_POOL(const float, wg_tbox), s, PN_POOL(const uint32_t, wg_poff)[s], PN_WG_BIN_WRITE,
+                    PN_POOL(const float, wg_tbox), s, poff[s], PN_WG_BIN_WRITE,
                     PN_POOL(uint32_t, wg_pairs));
 }
 
@@ -128,8 +131,7 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
         pn_horizon H;
         pn_mask_clear(m);
         pn_horizon_of(pos, nrm, id, PN_POOL(const float, tris), &K->light, &H);
-        pn_horizon_mask(&H, &K->light, m);
-        v = v * pn_mask_visibility(m, K->light.k);
+        if (pn_horizon_mask(&H, &K->light, m)) v = v * pn_mask_visibility(m, K->light.k);
     }
     PN_POOL(float, vis)[pix] = v;
     c.lit = 1u;

@@ -560,16 +560,21 @@ PN_KFN uint32_t pn_horizon_at(const pn_horizon *H, const pn_klight *L, float a, 
     return (uint32_t)(s <= 0);
 }
 
-/* ORs the samples below the horizon into m. Most pixels see the whole light in front:
- * the form's smallest float value over the grid (at a corner) above the bound. */
-PN_KFN void pn_horizon_mask(const pn_horizon *H, const pn_klight *L, uint32_t *m)
+/* ORs the samples below the horizon into m; returns the count it set (0: m untouched, so
+ * a caller that multiplies by the mask's visibility may skip it: a factor of exactly 1).
+ * Most pixels see the whole light in front: the form's smallest float value over the grid
+ * (at a corner) above the bound. */
+PN_KFN uint32_t pn_horizon_mask(const pn_horizon *H, const pn_klight *L, uint32_t *m)
 {
-    uint32_t k = L->k, i, j;
-    if (-pn_lin_max(pn_lin_neg(H->f), k) >= H->err) return;
+    uint32_t k = L->k, i, j, n = 0u;
+    if (-pn_lin_max(pn_lin_neg(H->f), k) >= H->err) return 0u;
     for (j = 0; j < k; j++)
         for (i = 0; i < k; i++)
-            if (pn_horizon_at(H, L, pn_sample_coord((int32_t)i, k), pn_sample_coord((int32_t)j, k)))
+            if (pn_horizon_at(H, L, pn_sample_coord((int32_t)i, k), pn_sample_coord((int32_t)j, k))) {
                 pn_mask_set(m, k, (int32_t)i, (int32_t)j);
+                n++;
+            }
+    return n;
 }
 
 /* The horizon of the pixel whose own triangle is `own` in tris (9 floats a triangle). */

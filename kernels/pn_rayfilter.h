@@ -226,6 +226,15 @@ PN_KFN int pn_ray_holds_origin(const pn_ray_origin *X, PN_CONST pn_kbvh4 *w, uin
            X->O.y <= w->hi[1][c] + X->tol && w->lo[2][c] - X->tol <= X->O.z && X->O.z <= w->hi[2][c] + X->tol;
 }
 
+/* No chain: the walk starts at the root. The chain repays itself over a pixel's k^2 rays
+ * (per-sample ray tracing); a single ray from the origin (the penumbra wedges' centre ray)
+ * meets the same boxes from the root, and the chain's descent would cost it a third more. */
+PN_KFN void pn_ray_root(pn_ray_origin *X)
+{
+    X->chain_len = 1u;
+    X->chain[0] = 0u;
+}
+
 /* X->chain: the walk is the same whatever it takes as hit (taking a box as hit only adds
  * tests, and each test is exact), so the chain needs no rounding argument. */
 PN_KFN void pn_ray_chain(pn_ray_origin *X, PN_CONST pn_kbvh4 *wnodes)

@@ -323,7 +323,7 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
                                 pn_shadow_counters *cnt)
 {
     uint32_t m[PN_MASK_WORDS_MAX], stack[PN_BVH_STACK], rects[PN_BVH_STACK];
-    uint32_t k = L->k, sp = 0u, any;
+    uint32_t k = L->k, sp = 0u, any, n;
     pn_ray_origin X;
     pn_ray_cache RC;
     pn_frustum fr;
@@ -336,9 +336,9 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
     cnt->lit++;
     pn_mask_clear(m);
     pn_horizon_of(P, nrm, own, tris, L, &H);
-    pn_horizon_mask(&H, L, m);
-    if (pn_mask_full(m, k)) return 0.0f;
-    any = pn_mask_count(m, k) != 0u;
+    n = pn_horizon_mask(&H, L, m);
+    if (n == k * k) return 0.0f;
+    any = n != 0u;
     pn_frustum_make(O, L, &fr);
     pn_foot_make(O, L, &fp);
     pn_tri_block_origin(O, L, wnodes, &X);

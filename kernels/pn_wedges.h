@@ -423,21 +423,21 @@ PN_KFN void pn_wg_block_box(PN_CONST pn_wsil *sil, uint32_t nsil, uint32_t k, ui
  * which u / h and v / h stay O's; so every such segment of the tile lies in
  *     h >= 0,  a0 h <= u <= a1 h,  b0 h <= v <= b1 h,  m . (X - c) <= D,
  * [a0, a1] x [b0, b1] the box of the origins' u / h and v / h, and the last (the cap) a
- * plane facing away from the light, m the sum of the receivers' normals turned away from it
- * and D the origins' greatest m . (O - c) (c is inside: every receiver faces it). Where the
- * receivers lie on one plane (a floor, a wall) the cap is that plane moved eps toward the
- * light: their own triangles, behind it, are outside. The six planes make a pn_frustum
- * (unit normals, moved out by its slack), which the reference's culls test boxes against. */
+ * plane facing away from the light, m the normal of the tile's first receiver turned away
+ * from it and D the origins' greatest m . (O - c) (c is inside: that receiver faces it, so
+ * D > 0; any m would do, the cap only holds all of the segments). Where the receivers lie
+ * on one plane (a floor, a wall) the cap is that plane moved eps toward the light: their
+ * own triangles, behind it, are outside. The six planes make a pn_frustum (unit normals,
+ * moved out by its slack), which the reference's culls test boxes against. */
 
-/* A cone in the making: its ratios' box, the cap's normal m and offset D, and the origins'
- * greatest L1 distance to c (the slack's). Each origin O (of receiver point P, normal n) is
- * added twice: first to the ratios, m and the distance (pn_wg_cone_add), then to D
- * (pn_wg_cone_cap); pn_wg_cone_frustum makes the frustum, or says 0 when an origin is not
- * below the light plane (h <= 0) or there is none. */
+/* A cone in the making: its ratios' box, the cap's normal m (none yet: ok == 1 and m zero)
+ * and offset D, and the origins' greatest L1 distance to c (the slack's). Each origin O (of
+ * receiver point P, normal n) is added once (pn_wg_cone_add); pn_wg_cone_frustum makes the
+ * frustum, or says 0 when an origin is not below the light plane (h <= 0) or there is none. */
 typedef struct pn_wcone {
     float r[4], D, l1;
     pn_v3 m;
-    int ok;
+    int ok, has_m;
 } pn_wcone;
 
 PN_KFN void pn_wg_cone_init(pn_wcone *C)
@@ -448,6 +448,7 @@ PN_KFN void pn_wg_cone_init(pn_wcone *C)
     C->l1 = 0.0f;
     C->m = pn_v3_make(0.0f, 0.0f, 0.0f);
     C->ok = 1;
+    C->has_m = 0;
 }
 
 PN_KFN void pn_wg_cone_add(pn_wcone *C, const pn_klight *L, pn_v3 O, pn_v3 P, pn_v3 n)
@@ -460,11 +461,10 @@ PN_KFN void pn_wg_cone_add(pn_wcone *C, const pn_klight *L, pn_v3 O, pn_v3 P, pn
     C->r[2] = pn_kminf(C->r[2], v / h);
     C->r[3] = pn_kmaxf(C->r[3], v / h);
     C->l1 = pn_kmaxf(C->l1, pn_v3_l1(pn_v3_sub(pn_light_c(L), O)));
-    C->m = pn_v3_sub(C->m, pn_v3_dot(n, pn_v3_sub(pn_light_c(L), P)) < 0.0f ? pn_v3_scale(n, -1.0f) : n);
-}
-
-PN_KFN void pn_wg_cone_cap(pn_wcone *C, const pn_klight *L, pn_v3 O)
-{
+    if (!C->has_m) {
+        C->m = pn_v3_dot(n, pn_v3_sub(pn_light_c(L), P)) < 0.0f ? n : pn_v3_scale(n, -1.0f);
+        C->has_m = 1;
+    }
     C->D = pn_kmaxf(C->D, pn_v3_dot(C->m, pn_v3_sub(O, pn_light_c(L))));
 }
 
@@ -548,36 +548,30 @@ PN_KFN void pn_wg_tile_box(const pn_kview *v, const pn_klight *L, uint32_t tx, u
 {
     float b[PN_WG_BOX];
     pn_frustum fr;
-    uint32_t x, y, x1 = (tx + 1u) * PN_WG_TILE, y1 = (ty + 1u) * PN_WG_TILE, i, pass;
+    uint32_t x, y, x1 = (tx + 1u) * PN_WG_TILE, y1 = (ty + 1u) * PN_WG_TILE, i;
     pn_wcone C;
     b[0] = b[2] = b[4] = PN_KINF;
     b[1] = b[3] = b[5] = -PN_KINF;
     pn_wg_cone_init(&C);
     if (x1 > v->width) x1 = v->width;
     if (y1 > v->height) y1 = v->height;
-    /* Pass 0: the box and the cone's ratios and cap normal; pass 1: the cap's offset. */
-    for (pass = 0; pass < 2u && (pass == 0u || C.ok); pass++)
-        for (y = ty * PN_WG_TILE; y < y1; y++)
-            for (x = tx * PN_WG_TILE; x < x1; x++) {
-                size_t pix = (size_t)y * v->width + x;
-                pn_v3 O, P, n;
-                float u, vv, h;
-                if (S->tri_id[pix] == PN_NO_PIXEL_TRIANGLE) continue;
-                pn_surf_at(S, pix, &P, &n);
-                if (!pn_shadow_origin(P, n, L, &O)) continue;
-                if (pass == 1u) {
-                    pn_wg_cone_cap(&C, L, O);
-                    continue;
-                }
-                pn_wg_light(L, O, &u, &vv, &h);
-                b[0] = pn_kminf(b[0], u);
-                b[1] = pn_kmaxf(b[1], u);
-                b[2] = pn_kminf(b[2], vv);
-                b[3] = pn_kmaxf(b[3], vv);
-                b[4] = pn_kminf(b[4], h);
-                b[5] = pn_kmaxf(b[5], h);
-                pn_wg_cone_add(&C, L, O, P, n);
-            }
+    for (y = ty * PN_WG_TILE; y < y1; y++)
+        for (x = tx * PN_WG_TILE; x < x1; x++) {
+            size_t pix = (size_t)y * v->width + x;
+            pn_v3 O, P, n;
+            float u, vv, h;
+            if (S->tri_id[pix] == PN_NO_PIXEL_TRIANGLE) continue;
+            pn_surf_at(S, pix, &P, &n);
+            if (!pn_shadow_origin(P, n, L, &O)) continue;
+            pn_wg_light(L, O, &u, &vv, &h);
+            b[0] = pn_kminf(b[0], u);
+            b[1] = pn_kmaxf(b[1], u);
+            b[2] = pn_kminf(b[2], vv);
+            b[3] = pn_kmaxf(b[3], vv);
+            b[4] = pn_kminf(b[4], h);
+            b[5] = pn_kmaxf(b[5], h);
+            pn_wg_cone_add(&C, L, O, P, n);
+        }
     for (i = 0; i < 6u; i++) box[i] = b[i];
     box[PN_WG_CLEAR] = pn_wg_cone_frustum(&C, L, &fr) && pn_wg_cone_clear(&fr, tris, wnodes, tri_index) ? 1.0f : 0.0f;
 }
@@ -595,25 +589,54 @@ PN_KFN void pn_wg_tile_box(const pn_kview *v, const pn_klight *L, uint32_t tx, u
  *   affine in (x_O, h_O); its least value over the box is at one corner.
  * Each comparison keeps a margin of 1e-3 of its terms' magnitudes, far above the rounding
  * of either side (a few float operations), so the pixel reaches the same decision. */
-PN_KFN int pn_wg_box_misses(PN_CONST float *B, PN_CONST pn_wsil *e)
+typedef struct pn_wmiss {
+    float ha, hb, hlo, hhi;
+    float ca[4], cb[4], fa[4], fb[4]; /* per side q: sg x_e - 1 and |x_e| of each end */
+} pn_wmiss;
+
+/* The edge's part of the test, once per silhouette (the binning tests it against many
+ * tiles); side q is x = u (q < 2) or v, sg = -1 (q even) or +1. */
+PN_KFN void pn_wg_miss_make(PN_CONST pn_wsil *e, pn_wmiss *M)
+{
+    uint32_t q;
+    M->ha = e->ha;
+    M->hb = e->hb;
+    M->hlo = pn_kminf(e->ha, e->hb);
+    M->hhi = pn_kmaxf(e->ha, e->hb);
+    for (q = 0; q < 4u; q++) {
+        float sg = (q & 1u) ? 1.0f : -1.0f, xa = q < 2u ? e->ua : e->va, xb = q < 2u ? e->ub : e->vb;
+        M->ca[q] = sg * xa - 1.0f;
+        M->cb[q] = sg * xb - 1.0f;
+        M->fa[q] = pn_kfabs(xa);
+        M->fb[q] = pn_kfabs(xb);
+    }
+}
+
+PN_KFN int pn_wg_box_misses_m(PN_CONST float *B, const pn_wmiss *M)
 {
     const float near = 1.0f - PN_WG_TNEAR;
-    float h0 = B[4], h1 = B[5], hlo = pn_kminf(e->ha, e->hb), hhi = pn_kmaxf(e->ha, e->hb);
+    float h0 = B[4], h1 = B[5];
     uint32_t q;
     if (!(B[0] <= B[1])) return 1;
     if (!(h0 > 0.0f)) return 0;
-    if (hlo >= near * h1 * 1.001f) return 1;
-    if (!(hlo >= 0.0f && hhi <= near * h0 * 0.999f)) return 0;
+    if (M->hlo >= near * h1 * 1.001f) return 1;
+    if (!(M->hlo >= 0.0f && M->hhi <= near * h0 * 0.999f)) return 0;
     for (q = 0; q < 4u; q++) {
         float sg = (q & 1u) ? 1.0f : -1.0f, x0 = B[(q >> 1) * 2u], x1 = B[(q >> 1) * 2u + 1u];
-        float xo = sg > 0.0f ? x1 : x0, xm = pn_kmaxf(pn_kfabs(x0), pn_kfabs(x1));
-        float xa = q < 2u ? e->ua : e->va, xb = q < 2u ? e->ub : e->vb;
-        float ca = sg * xa - 1.0f, cb = sg * xb - 1.0f;
-        float ga = ca * (ca >= 0.0f ? h0 : h1) + (1.0f - sg * xo) * e->ha;
-        float gb = cb * (cb >= 0.0f ? h0 : h1) + (1.0f - sg * xo) * e->hb;
-        if (ga > 1e-3f * (pn_kfabs(xa) + xm + 1.0f) * h1 && gb > 1e-3f * (pn_kfabs(xb) + xm + 1.0f) * h1) return 1;
+        float xo = sg > 0.0f ? x1 : x0, xm = pn_kmaxf(pn_kfabs(x0), pn_kfabs(x1)), co = 1.0f - sg * xo;
+        float ca = M->ca[q], cb = M->cb[q];
+        float ga = ca * (ca >= 0.0f ? h0 : h1) + co * M->ha;
+        float gb = cb * (cb >= 0.0f ? h0 : h1) + co * M->hb;
+        if (ga > 1e-3f * (M->fa[q] + xm + 1.0f) * h1 && gb > 1e-3f * (M->fb[q] + xm + 1.0f) * h1) return 1;
     }
     return 0;
+}
+
+PN_KFN int pn_wg_box_misses(PN_CONST float *B, PN_CONST pn_wsil *e)
+{
+    pn_wmiss M;
+    pn_wg_miss_make(e, &M);
+    return pn_wg_box_misses_m(B, &M);
 }
 
 /* ---- Binning ------------------------------------------------------------------------------ */
@@ -631,6 +654,7 @@ PN_KFN uint32_t pn_wg_bin(const pn_kview *v, const pn_klight *L, const pn_kwg *G
 {
     uint32_t tw = PN_WG_TILES(v->width), x, y, x0, x1, ya, yb, n = 0u;
     PN_CONST pn_wsil *e = sil + s;
+    pn_wmiss M;
     pn_wreach R;
     pn_v3 a, b;
     if (e->x0 > e->x1) return 0u;
@@ -639,13 +663,14 @@ PN_KFN uint32_t pn_wg_bin(const pn_kview *v, const pn_klight *L, const pn_kwg *G
     if (ya >= yb || e->x0 >= G->bx1 || e->x1 < G->bx0) return 0u;
     pn_wg_ends(tris, e->h, &a, &b);
     pn_wg_reach(v, L, G->hmax, a, b, 1, &R);
+    pn_wg_miss_make(e, &M);
     for (y = ya; y < yb; y++) {
         uint32_t n0 = n;
         pn_wg_row(v, &R, y, &x0, &x1);
         if (x0 < G->bx0) x0 = G->bx0;
         if (x1 + 1u > G->bx1) x1 = G->bx1 - 1u;
         for (x = x0; x <= x1 && x0 <= x1; x++) {
-            if (pn_wg_box_misses(tbox + (size_t)(y * tw + x) * PN_WG_BOX, e)) continue;
+            if (pn_wg_box_misses_m(tbox + (size_t)(y * tw + x) * PN_WG_BOX, &M)) continue;
             if (mode == PN_WG_BIN_WRITE) {
                 pairs[2u * (at + n)] = y * tw + x;
                 pairs[2u * (at + n) + 1u] = s;
@@ -1063,7 +1088,7 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
     Lc.k = 1u;
     if (!clear) {
         pn_tri_block_origin(O, &Lc, wnodes, &X);
-        pn_ray_chain(&X, wnodes);
+        pn_ray_root(&X);
         pn_ray_make(&X, &Lc, 0, 0, &R);
         pn_ray_walk_begin(&W, &X, &R, wnodes);
     }

@@ -925,13 +925,13 @@ static int seg_hits(pn_v3 o, pn_v3 c, const float *p)
 
 /* Random lights, receiver patches on random planes (a tile's points) and triangles near
  * their centre segments, on the receivers' plane and anywhere, each alone in a one-leaf
- * BVH: a cone said clear (pn_wg_cone_clear) meets no segment from an origin to the light
- * centre; and the receivers' own plane, eps behind the origins, is clear of almost every
+ * BVH, and a quarter of the patches curved (normals tilted apart): a cone said clear
+ * (pn_wg_cone_clear) meets no segment from an origin to the light centre; and the receivers' own plane, eps behind the origins, is clear of almost every
  * cone (what lets a floor's tiles skip their centre rays). */
 static void test_cone(void)
 {
     enum { CASES = 3000, PTS = 16, TRIS = 12 };
-    uint32_t st = 4242u, cs, i, j, wrong = 0u, clear = 0u, blocked = 0u, plane = 0u, plane_clear = 0u, cones = 0u;
+    uint32_t st = 4242u, cs, i, j, wrong = 0u, clear = 0u, blocked = 0u, plane = 0u, plane_clear = 0u, cones = 0u, mixed;
     for (cs = 0; cs < CASES; cs++) {
         pn_klight L;
         pn_v3 c = random_light(&st, &L), n, P0, t1, t2, O[PTS];
@@ -945,13 +945,16 @@ static void test_cone(void)
         P0 = pn_v3_make(frand(&st, -5.0f, 5.0f), frand(&st, 0.0f, 3.0f), frand(&st, -5.0f, 5.0f));
         t1 = unit(pn_v3_cross(n, pn_v3_make(0.3f, 0.1f, 1.0f)));
         t2 = pn_v3_cross(n, t1);
+        /* Every fourth case a curved receiver: each point's normal tilted from the plane's
+         * (the cap takes the first point's, which then is no plane of the others). */
+        mixed = cs % 4u == 3u;
         pn_wg_cone_init(&C);
         for (i = 0; i < PTS; i++) {
             pn_v3 P = pn_v3_add(P0, pn_v3_add(pn_v3_scale(t1, frand(&st, -spread, spread)), pn_v3_scale(t2, frand(&st, -spread, spread))));
-            if (!pn_shadow_origin(P, n, &L, &O[i])) O[i] = pn_v3_make(0.0f, 99.0f, 0.0f);
-            pn_wg_cone_add(&C, &L, O[i], P, n);
+            pn_v3 ni = mixed ? unit(pn_v3_add(n, pn_v3_make(frand(&st, -0.6f, 0.6f), frand(&st, -0.6f, 0.6f), frand(&st, -0.6f, 0.6f)))) : n;
+            if (!pn_shadow_origin(P, ni, &L, &O[i])) O[i] = pn_v3_make(0.0f, 99.0f, 0.0f);
+            pn_wg_cone_add(&C, &L, O[i], P, ni);
         }
-        for (i = 0; i < PTS; i++) pn_wg_cone_cap(&C, &L, O[i]);
         if (!pn_wg_cone_frustum(&C, &L, &fr)) continue;
         cones++;
         for (j = 0; j < TRIS; j++) {
@@ -988,7 +991,7 @@ static void test_cone(void)
             wrong += ok & hit;
             clear += ok;
             blocked += hit;
-            if (j < 2u) plane++, plane_clear += ok;
+            if (j < 2u && !mixed) plane++, plane_clear += ok;
         }
     }
     fprintf(stderr, "cone: %u cones; %u of %u triangles clear, %u block a segment; the receivers' plane clear %u of %u\n",

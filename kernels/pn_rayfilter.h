@@ -227,8 +227,9 @@ PN_KFN int pn_ray_holds_origin(const pn_ray_origin *X, PN_CONST pn_kbvh4 *w, uin
 }
 
 /* No chain: the walk starts at the root. The chain repays itself over a pixel's k^2 rays
- * (per-sample ray tracing); a single ray from the origin (the penumbra wedges' centre ray)
- * meets the same boxes from the root, and the chain's descent would cost it a third more. */
+ * (per-sample ray tracing), not over a single ray from the origin (the penumbra wedges'
+ * centre ray: on the chess set at 512^2 the chain cost 25 M instructions and the walk from
+ * the root 9 M more than from the chain's end). */
 PN_KFN void pn_ray_root(pn_ray_origin *X)
 {
     X->chain_len = 1u;

@@ -430,8 +430,9 @@ PN_KFN void pn_wg_block_box(PN_CONST pn_wsil *sil, uint32_t nsil, uint32_t k, ui
  * own triangles, behind it, are outside. The six planes make a pn_frustum (unit normals,
  * moved out by its slack), which the reference's culls test boxes against. */
 
-/* A cone in the making: its ratios' box, the cap's normal m (none yet: ok == 1 and m zero)
- * and offset D, and the origins' greatest L1 distance to c (the slack's). Each origin O (of
+/* A cone in the making: its ratios' box, the cap's normal m (the first receiver's, once
+ * has_m; every origin's m . (O - c) enters D, so a zero first normal leaves no cone) and
+ * offset D, and the origins' greatest L1 distance to c (the slack's). Each origin O (of
  * receiver point P, normal n) is added once (pn_wg_cone_add); pn_wg_cone_frustum makes the
  * frustum, or says 0 when an origin is not below the light plane (h <= 0) or there is none. */
 typedef struct pn_wcone {
@@ -589,54 +590,25 @@ PN_KFN void pn_wg_tile_box(const pn_kview *v, const pn_klight *L, uint32_t tx, u
  *   affine in (x_O, h_O); its least value over the box is at one corner.
  * Each comparison keeps a margin of 1e-3 of its terms' magnitudes, far above the rounding
  * of either side (a few float operations), so the pixel reaches the same decision. */
-typedef struct pn_wmiss {
-    float ha, hb, hlo, hhi;
-    float ca[4], cb[4], fa[4], fb[4]; /* per side q: sg x_e - 1 and |x_e| of each end */
-} pn_wmiss;
-
-/* The edge's part of the test, once per silhouette (the binning tests it against many
- * tiles); side q is x = u (q < 2) or v, sg = -1 (q even) or +1. */
-PN_KFN void pn_wg_miss_make(PN_CONST pn_wsil *e, pn_wmiss *M)
-{
-    uint32_t q;
-    M->ha = e->ha;
-    M->hb = e->hb;
-    M->hlo = pn_kminf(e->ha, e->hb);
-    M->hhi = pn_kmaxf(e->ha, e->hb);
-    for (q = 0; q < 4u; q++) {
-        float sg = (q & 1u) ? 1.0f : -1.0f, xa = q < 2u ? e->ua : e->va, xb = q < 2u ? e->ub : e->vb;
-        M->ca[q] = sg * xa - 1.0f;
-        M->cb[q] = sg * xb - 1.0f;
-        M->fa[q] = pn_kfabs(xa);
-        M->fb[q] = pn_kfabs(xb);
-    }
-}
-
-PN_KFN int pn_wg_box_misses_m(PN_CONST float *B, const pn_wmiss *M)
+PN_KFN int pn_wg_box_misses(PN_CONST float *B, PN_CONST pn_wsil *e)
 {
     const float near = 1.0f - PN_WG_TNEAR;
-    float h0 = B[4], h1 = B[5];
+    float h0 = B[4], h1 = B[5], hlo = pn_kminf(e->ha, e->hb), hhi = pn_kmaxf(e->ha, e->hb);
     uint32_t q;
     if (!(B[0] <= B[1])) return 1;
     if (!(h0 > 0.0f)) return 0;
-    if (M->hlo >= near * h1 * 1.001f) return 1;
-    if (!(M->hlo >= 0.0f && M->hhi <= near * h0 * 0.999f)) return 0;
+    if (hlo >= near * h1 * 1.001f) return 1;
+    if (!(hlo >= 0.0f && hhi <= near * h0 * 0.999f)) return 0;
     for (q = 0; q < 4u; q++) {
         float sg = (q & 1u) ? 1.0f : -1.0f, x0 = B[(q >> 1) * 2u], x1 = B[(q >> 1) * 2u + 1u];
-        float xo = sg > 0.0f ? x1 : x0, xm = pn_kmaxf(pn_kfabs(x0), pn_kfabs(x1)), co = 1.0f - sg * xo;
-        float ca = M->ca[q], cb = M->cb[q];
-        float ga = ca * (ca >= 0.0f ? h0 : h1) + co * M->ha;
-        float gb = cb * (cb >= 0.0f ? h0 : h1) + co * M->hb;
-        if (ga > 1e-3f * (M->fa[q] + xm + 1.0f) * h1 && gb > 1e-3f * (M->fb[q] + xm + 1.0f) * h1) return 1;
+        float xo = sg > 0.0f ? x1 : x0, xm = pn_kmaxf(pn_kfabs(x0), pn_kfabs(x1));
+        float xa = q < 2u ? e->ua : e->va, xb = q < 2u ? e->ub : e->vb;
+        float ca = sg * xa - 1.0f, cb = sg * xb - 1.0f;
+        float ga = ca * (ca >= 0.0f ? h0 : h1) + (1.0f - sg * xo) * e->ha;
+        float gb = cb * (cb >= 0.0f ? h0 : h1) + (1.0f - sg * xo) * e->hb;
+        if (ga > 1e-3f * (pn_kfabs(xa) + xm + 1.0f) * h1 && gb > 1e-3f * (pn_kfabs(xb) + xm + 1.0f) * h1) return 1;
     }
     return 0;
-}
-
-PN_KFN int pn_wg_box_misses(PN_CONST float *B, PN_CONST pn_wsil *e)
-{
-    pn_wmiss M;
-    pn_wg_miss_make(e, &M);
-    return pn_wg_box_misses_m(B, &M);
 }
 
 /* ---- Binning ------------------------------------------------------------------------------ */
@@ -654,7 +626,6 @@ PN_KFN uint32_t pn_wg_bin(const pn_kview *v, const pn_klight *L, const pn_kwg *G
 {
     uint32_t tw = PN_WG_TILES(v->width), x, y, x0, x1, ya, yb, n = 0u;
     PN_CONST pn_wsil *e = sil + s;
-    pn_wmiss M;
     pn_wreach R;
     pn_v3 a, b;
     if (e->x0 > e->x1) return 0u;
@@ -663,14 +634,13 @@ PN_KFN uint32_t pn_wg_bin(const pn_kview *v, const pn_klight *L, const pn_kwg *G
     if (ya >= yb || e->x0 >= G->bx1 || e->x1 < G->bx0) return 0u;
     pn_wg_ends(tris, e->h, &a, &b);
     pn_wg_reach(v, L, G->hmax, a, b, 1, &R);
-    pn_wg_miss_make(e, &M);
     for (y = ya; y < yb; y++) {
         uint32_t n0 = n;
         pn_wg_row(v, &R, y, &x0, &x1);
         if (x0 < G->bx0) x0 = G->bx0;
         if (x1 + 1u > G->bx1) x1 = G->bx1 - 1u;
         for (x = x0; x <= x1 && x0 <= x1; x++) {
-            if (pn_wg_box_misses_m(tbox + (size_t)(y * tw + x) * PN_WG_BOX, &M)) continue;
+            if (pn_wg_box_misses(tbox + (size_t)(y * tw + x) * PN_WG_BOX, e)) continue;
             if (mode == PN_WG_BIN_WRITE) {
                 pairs[2u * (at + n)] = y * tw + x;
                 pairs[2u * (at + n) + 1u] = s;

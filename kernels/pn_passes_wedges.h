@@ -12,7 +12,7 @@
 PN_KFN void pn_e_wg_cast(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
 {
     PN_POOL(uint32_t, wg_tcast)[t] =
-        pn_wg_facing(&K->light, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), PN_POOL(const uint32_t, wg_tcomp), t);
+        pn_wg_facing(&K->light, pn_view_eye(&K->view), PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), PN_POOL(const uint32_t, wg_tcomp), t);
 }
 
 /* Edge run: 1 when it is a silhouette (scanned next into slots). */
@@ -126,7 +126,7 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
         v = pn_reference_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
                                PN_POOL(const uint32_t, index), &Lk, &ce);
         c.exact = 1u;
-    } else if (v > 0.0f) {
+    } else if (v > 0.0f && !(PN_POOL(const uint32_t, wg_tcast)[id] & PN_WG_LIT_FRONT)) {
         uint32_t m[PN_MASK_WORDS_MAX];
         pn_horizon H;
         pn_mask_clear(m);

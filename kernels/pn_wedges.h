@@ -66,10 +66,14 @@
 #define PN_WG_EXACT_K 4u
 #define PN_WG_M_BLEND 1u
 #define PN_WG_M_ADD 2u
-/* Casting codes per triangle (pn_wg_facing). */
+/* Casting codes per triangle (pn_wg_facing), in the low bits of its word... */
 #define PN_WG_CAST_NONE 0u
 #define PN_WG_CAST_AS_IS 1u
 #define PN_WG_CAST_FLIPPED 2u
+#define PN_WG_CAST_CODE 3u
+/* ...and a flag: the whole light lies in front of the triangle's plane (pn_wg_front), so
+ * the horizon of each of its pixels is empty. */
+#define PN_WG_LIT_FRONT 4u
 
 /* A silhouette edge a -> b: half-edge h (triangle h / 3, its edge h % 3 from vertex h % 3
  * to the next) | PN_WG_REV when the silhouette runs the other way; weight; object; its
@@ -95,19 +99,51 @@ PN_KFN void pn_wg_light(const pn_klight *L, pn_v3 X, float *u, float *v, float *
 
 /* ---- Per triangle and per edge ----------------------------------------------------------- */
 
+/* PN_WG_LIT_FRONT when every point of the light lies on one side of triangle A B C's plane
+ * (the light centre's), by far more than any rounding: then a pixel on it, whose horizon
+ * (pn_horizon_of) keeps the samples on the side of its normal turned toward the centre,
+ * finds every sample's plane value (pn_plane_form's, computed the same way) above its bound
+ * and sets none (pn_horizon_mask returns 0), so the pixel need not build its horizon. The
+ * plane's values at the light's four corners bound those at its samples (an affine form);
+ * the margin, a thousandth of the terms' magnitudes, dwarfs the form's bound (12 u of them),
+ * the normal's rounding and the G-buffer point's distance from the plane (its depth's
+ * rounding, relative to the eye's distance, counted in). */
+PN_KFN uint32_t pn_wg_front(const pn_klight *L, pn_v3 eye, pn_v3 A, pn_v3 B, pn_v3 C)
+{
+    pn_v3 U = pn_light_U(L), V = pn_light_V(L), c = pn_light_c(L), n;
+    pn_lin f;
+    float err, pn, lo = PN_KINF, hi = -PN_KINF, m;
+    uint32_t q;
+    pn_plane_form(A, B, C, L, &f, &err, &n, &pn);
+    m = 1e-3f * pn *
+            (pn_v3_linf(pn_v3_sub(c, A)) + pn_v3_linf(U) + pn_v3_linf(V) + pn_v3_linf(A) + pn_v3_linf(c) +
+             pn_v3_linf(pn_v3_sub(eye, A))) +
+        2.0f * err + 4.0f * PN_KTINY;
+    for (q = 0; q < 4u; q++) {
+        float x = f.h0 + ((q & 1u) ? f.hu : -f.hu) + ((q & 2u) ? f.hv : -f.hv);
+        lo = pn_kminf(lo, x);
+        hi = pn_kmaxf(hi, x);
+    }
+    return lo > m || -hi > m ? PN_WG_LIT_FRONT : 0u;
+}
+
 /* How triangle t casts: PN_WG_CAST_AS_IS (it faces the centre), _FLIPPED (an open object's
- * triangle facing away: it casts turned round) or _NONE. */
-PN_KFN uint32_t pn_wg_facing(const pn_klight *L, PN_CONST float *tris, PN_CONST uint8_t *flags,
+ * triangle facing away: it casts turned round) or _NONE; with PN_WG_LIT_FRONT (pn_wg_front)
+ * for a triangle the G-buffer can show. */
+PN_KFN uint32_t pn_wg_facing(const pn_klight *L, pn_v3 eye, PN_CONST float *tris, PN_CONST uint8_t *flags,
                              PN_CONST uint32_t *tcomp, uint32_t t)
 {
     PN_CONST float *p = tris + (size_t)t * 9u;
     pn_v3 A = pn_v3_make(p[0], p[1], p[2]), B = pn_v3_make(p[3], p[4], p[5]), C = pn_v3_make(p[6], p[7], p[8]);
+    uint32_t front;
     float s;
-    if ((flags[t] & PN_TRI_DEGENERATE) || (tcomp[t] & PN_WG_DUP)) return PN_WG_CAST_NONE;
+    if (flags[t] & PN_TRI_DEGENERATE) return PN_WG_CAST_NONE;
+    front = pn_wg_front(L, eye, A, B, C);
+    if (tcomp[t] & PN_WG_DUP) return PN_WG_CAST_NONE | front;
     s = pn_v3_dot(pn_tri_cross(A, B, C), pn_v3_sub(pn_light_c(L), A));
-    if (s > 0.0f) return PN_WG_CAST_AS_IS;
-    if (s < 0.0f && !(tcomp[t] & PN_WG_CLOSED)) return PN_WG_CAST_FLIPPED;
-    return PN_WG_CAST_NONE;
+    if (s > 0.0f) return PN_WG_CAST_AS_IS | front;
+    if (s < 0.0f && !(tcomp[t] & PN_WG_CLOSED)) return PN_WG_CAST_FLIPPED | front;
+    return PN_WG_CAST_NONE | front;
 }
 
 /* Net winding of edge run r's casting triangles: > 0 along the run's canonical direction
@@ -117,7 +153,7 @@ PN_KFN int32_t pn_wg_run_winding(PN_CONST uint32_t *hedge, PN_CONST uint32_t *ru
     int32_t m = 0;
     uint32_t i;
     for (i = run[r]; i < run[r + 1u]; i++) {
-        uint32_t h = hedge[i], cast = tcast[(h & ~PN_WG_REV) / 3u];
+        uint32_t h = hedge[i], cast = tcast[(h & ~PN_WG_REV) / 3u] & PN_WG_CAST_CODE;
         int32_t s = (h & PN_WG_REV) ? -1 : 1;
         if (cast == PN_WG_CAST_NONE) continue;
         m += cast == PN_WG_CAST_FLIPPED ? -s : s;
@@ -1082,7 +1118,7 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
             hard[nhard] = s;
             hn[nhard++] = 0u;
         }
-        if (tcast[t] != PN_WG_CAST_NONE) {
+        if ((tcast[t] & PN_WG_CAST_CODE) != PN_WG_CAST_NONE) {
             uint32_t k;
             for (k = 0; k < ntri && htri[k] != t; k++) {
             }

@@ -121,6 +121,7 @@ typedef struct pn_wg_pools {
     uint32_t *toff;   /* [tiles + 1] */
     uint32_t *tscr;   /* [tiles] sort scratch */
     uint32_t *rowc;   /* [tile rows] pairs a tile row needs (the band planner's) */
+    uint32_t *sbits;  /* [sil_cap * 2] the tiles each silhouette's count kept (pn_wg_bin) */
 } pn_wg_pools;
 
 /* The frame's pools at w x h for `tris` triangles of `edges` edges: run by the frame on
@@ -141,6 +142,7 @@ static void pn_wg_carve(pn_carver *c, const pn_limits *l, uint32_t w, uint32_t h
     s->toff = (uint32_t *)pn_pool(c, (uint64_t)tiles + 1u, 4u, "wedges tile offsets");
     s->tscr = (uint32_t *)pn_pool(c, tiles, 4u, "wedges sort scratch");
     s->rowc = (uint32_t *)pn_pool(c, PN_WG_TILES(h), 4u, "wedges tile row pairs");
+    s->sbits = (uint32_t *)pn_pool(c, pn_wg_sil_max(l), 8u, "wedges silhouette tile bits");
 }
 
 void pn_wedges_query(pn_carver *c, const pn_limits *l)
@@ -173,6 +175,7 @@ static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
     P->wg_sorted = pn_dev_off(ctx, s->sorted);
     P->wg_toff = pn_dev_off(ctx, s->toff);
     P->wg_rowc = pn_dev_off(ctx, s->rowc);
+    P->wg_sbits = pn_dev_off(ctx, s->sbits);
     ctx->stats.wedges.silhouettes = 0;
     ctx->stats.wedges.pairs = 0;
     ctx->stats.wedges.bands = 0;

@@ -12,7 +12,7 @@
 PN_KFN void pn_e_wg_cast(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
 {
     PN_POOL(uint32_t, wg_tcast)[t] =
-        pn_wg_facing(&K->light, pn_view_eye(&K->view), PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), PN_POOL(const uint32_t, wg_tcomp), t);
+        pn_wg_facing(&K->light, K->wg.front_g, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), PN_POOL(const uint32_t, wg_tcomp), t);
 }
 
 /* Edge run: 1 when it is a silhouette (scanned next into slots). */

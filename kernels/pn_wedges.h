@@ -103,21 +103,19 @@ PN_KFN void pn_wg_light(const pn_klight *L, pn_v3 X, float *u, float *v, float *
  * (the light centre's), by far more than any rounding: then a pixel on it, whose horizon
  * (pn_horizon_of) keeps the samples on the side of its normal turned toward the centre,
  * finds every sample's plane value (pn_plane_form's, h0 + a hu + b hv with the same n =
- * (B - A) x (C - A)) above its bound and sets none (pn_horizon_mask returns 0), so the
- * pixel need not build its horizon. The values at the light's four corners (a, b = +-1:
- * the form's own bits there) bound those at its samples (an affine form); the margin, a
- * thousandth of the terms' magnitudes times |B - A|1 |C - A|1, dwarfs the form's bound (12 u
- * of the first three), the normal's rounding and the G-buffer point's distance from the
- * plane (its depth's rounding, relative to the eye's distance, counted in). */
-PN_KFN uint32_t pn_wg_front(const pn_klight *L, pn_v3 eye, pn_v3 A, pn_v3 B, pn_v3 C, pn_v3 n)
+ * (B - A) x (C - A), h0 = (c - A).n) above its bound and sets none (pn_horizon_mask returns
+ * 0), so the pixel need not build its horizon. The values at the light's four corners
+ * (a, b = +-1: the form's own bits there) bound those at its samples (an affine form); the
+ * margin, a thousandth of |B - A|1 |C - A|1 times g (pn_kwg.front_g, which bounds |c - A|inf
+ * + |U|inf + |V|inf + |A|inf + |c|inf + |e - A|inf for any A in the scene box), dwarfs the
+ * form's bound (12 u of the first three), the normal's rounding and the G-buffer point's
+ * distance from the plane (its depth's rounding, relative to the eye's distance e, counted
+ * in). */
+PN_KFN uint32_t pn_wg_front(const pn_klight *L, float g, pn_v3 A, pn_v3 B, pn_v3 C, pn_v3 n, float h0)
 {
-    pn_v3 U = pn_light_U(L), V = pn_light_V(L), c = pn_light_c(L), cA = pn_v3_sub(c, A);
-    float h0 = pn_v3_dot(cA, n), hu = pn_v3_dot(U, n), hv = pn_v3_dot(V, n), lo = PN_KINF, hi = -PN_KINF, m;
+    float hu = pn_v3_dot(pn_light_U(L), n), hv = pn_v3_dot(pn_light_V(L), n), lo = PN_KINF, hi = -PN_KINF, m;
     uint32_t q;
-    m = 1e-3f * (pn_v3_l1(pn_v3_sub(B, A)) * pn_v3_l1(pn_v3_sub(C, A))) *
-            (pn_v3_linf(cA) + pn_v3_linf(U) + pn_v3_linf(V) + pn_v3_linf(A) + pn_v3_linf(c) +
-             pn_v3_linf(pn_v3_sub(eye, A))) +
-        4.0f * PN_KTINY;
+    m = 1e-3f * (pn_v3_l1(pn_v3_sub(B, A)) * pn_v3_l1(pn_v3_sub(C, A))) * g + 4.0f * PN_KTINY;
     for (q = 0; q < 4u; q++) {
         float x = h0 + ((q & 1u) ? hu : -hu) + ((q & 2u) ? hv : -hv);
         lo = pn_kminf(lo, x);
@@ -129,7 +127,7 @@ PN_KFN uint32_t pn_wg_front(const pn_klight *L, pn_v3 eye, pn_v3 A, pn_v3 B, pn_
 /* How triangle t casts: PN_WG_CAST_AS_IS (it faces the centre), _FLIPPED (an open object's
  * triangle facing away: it casts turned round) or _NONE; with PN_WG_LIT_FRONT (pn_wg_front)
  * for a triangle the G-buffer can show. */
-PN_KFN uint32_t pn_wg_facing(const pn_klight *L, pn_v3 eye, PN_CONST float *tris, PN_CONST uint8_t *flags,
+PN_KFN uint32_t pn_wg_facing(const pn_klight *L, float g, PN_CONST float *tris, PN_CONST uint8_t *flags,
                              PN_CONST uint32_t *tcomp, uint32_t t)
 {
     PN_CONST float *p = tris + (size_t)t * 9u;
@@ -138,9 +136,9 @@ PN_KFN uint32_t pn_wg_facing(const pn_klight *L, pn_v3 eye, PN_CONST float *tris
     float s;
     if (flags[t] & PN_TRI_DEGENERATE) return PN_WG_CAST_NONE;
     n = pn_tri_cross(A, B, C);
-    front = pn_wg_front(L, eye, A, B, C, n);
+    s = pn_v3_dot(pn_v3_sub(pn_light_c(L), A), n);
+    front = pn_wg_front(L, g, A, B, C, n, s);
     if (tcomp[t] & PN_WG_DUP) return PN_WG_CAST_NONE | front;
-    s = pn_v3_dot(n, pn_v3_sub(pn_light_c(L), A));
     if (s > 0.0f) return PN_WG_CAST_AS_IS | front;
     if (s < 0.0f && !(tcomp[t] & PN_WG_CLOSED)) return PN_WG_CAST_FLIPPED | front;
     return PN_WG_CAST_NONE | front;

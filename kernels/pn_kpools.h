@@ -27,7 +27,7 @@ typedef struct pn_kpools {
     uint64_t lmap_depth, lmap_id, lmap_cons, srt_tile_w, srt_tile_h, srt_tile_mask, srt_words, pip_off, pip_list;
     /* persistent: the scene's connectivity (src/pn_connect.c); frame: penumbra wedges */
     uint64_t wg_hedge, wg_run, wg_tcomp;
-    uint64_t wg_tcast, wg_soff, wg_sil, wg_bbox, wg_sbox, wg_tbox, wg_poff, wg_pairs, wg_sorted, wg_toff, wg_rowc, wg_sbits;
+    uint64_t wg_tcast, wg_soff, wg_sil, wg_bbox, wg_sbox, wg_tbox, wg_poff, wg_pairs, wg_sorted, wg_toff, wg_rowc, wg_kept;
 } pn_kpools;
 
 /* A tile of GEARS grid cells: grid rows [r0, r1] and columns [x0, x1] of one face. */

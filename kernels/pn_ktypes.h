@@ -165,9 +165,11 @@ typedef struct pn_kwg {
     uint32_t bx0, by0, bx1, by1; /* the band of tiles a binning pass fills: [bx0, bx1) x [by0, by1) */
     uint32_t pix0;    /* the pixel pass: its first pixel (item i is pixel pix0 + i) */
     uint32_t count_rows; /* 1: the count pass also adds each tile row's pairs (the band planner's) */
+    uint32_t keep_cap; /* words of the pool the count keeps its tiles in (pn_wg_bin) */
     float front_g;    /* pn_wg_front's bound on the magnitudes of a triangle's plane terms: the
                          scene box's largest coordinate |X|inf times 3, plus |c|inf twice,
                          |U|inf, |V|inf and the eye's |e|inf */
+    uint32_t pad1;
 } pn_kwg;
 
 /* The G-buffer's triangle id of a pixel that sees no triangle. */

@@ -61,24 +61,28 @@ PN_KFN void pn_e_wg_tile_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
 }
 
 /* Silhouette: the count of its (tile, silhouette) pairs in the band (with wg.count_rows,
- * also added to each tile row's: wg_rowc, zeroed first). */
+ * also added to each tile row's: wg_rowc, zeroed first), its tiles kept in the tile-list
+ * pool (free until the sort) from the cursor past the kept words (zeroed first). */
 PN_KFN void pn_e_wg_count(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t s)
 {
-    PN_POOL(uint32_t, wg_poff)[s] = pn_wg_bin(&K->view, &K->light, &K->wg, PN_POOL(const float, tris), PN_POOL(const pn_wsil, wg_sil),
-                                              PN_POOL(const float, wg_tbox), s, 0u, PN_WG_BIN_COUNT, PN_POOL(uint32_t, wg_rowc),
-                                              PN_POOL(uint32_t, wg_sbits) + 2u * (size_t)s);
+    PN_POOL(uint32_t, wg_poff)[s] =
+        pn_wg_bin(&K->view, &K->light, &K->wg, PN_POOL(const float, tris), PN_POOL(const pn_wsil, wg_sil),
+                  PN_POOL(const float, wg_tbox), s, 0u, 0u, PN_WG_BIN_COUNT, PN_POOL(uint32_t, wg_rowc),
+                  PN_POOL(uint32_t, wg_kept) + 2u * (size_t)s, PN_POOL(uint32_t, wg_sorted),
+                  PN_POOL(uint32_t, wg_kept) + 2u * (size_t)K->wg.sils, K->wg.keep_cap);
 }
 
 /* Silhouette: its (tile, silhouette) pairs in the band from its prefix-summed offset (none
- * when it counted none: the same reach and tests would find none again), from the tiles
- * its count kept when it kept them. */
+ * when it counted none: the same reach and tests would find none again), copied from the
+ * tiles its count kept when it kept them. */
 PN_KFN void pn_e_wg_scatter(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t s)
 {
     PN_CONST uint32_t *poff = PN_POOL(const uint32_t, wg_poff);
     if (poff[s + 1u] == poff[s]) return;
     (void)pn_wg_bin(&K->view, &K->light, &K->wg, PN_POOL(const float, tris), PN_POOL(const pn_wsil, wg_sil),
-                    PN_POOL(const float, wg_tbox), s, poff[s], PN_WG_BIN_WRITE,
-                    PN_POOL(uint32_t, wg_pairs), PN_POOL(uint32_t, wg_sbits) + 2u * (size_t)s);
+                    PN_POOL(const float, wg_tbox), s, poff[s], poff[s + 1u] - poff[s], PN_WG_BIN_WRITE,
+                    PN_POOL(uint32_t, wg_pairs), PN_POOL(uint32_t, wg_kept) + 2u * (size_t)s,
+                    PN_POOL(uint32_t, wg_sorted), PN_POOL(uint32_t, wg_kept) + 2u * (size_t)K->wg.sils, K->wg.keep_cap);
 }
 
 /* Screen tile: the ends of its list's runs and objects (into the pair pool, free after the

@@ -651,45 +651,40 @@ PN_KFN int pn_wg_box_misses(PN_CONST float *B, PN_CONST pn_wsil *e)
  * its reach covers and whose box (pn_wg_box_misses) it does not miss, in ascending tile
  * order. Counted (mode PN_WG_BIN_COUNT: returns the count and, with G->count_rows, adds
  * each tile row's into pairs[row], atomically: the band planner's counts) or written from
- * `at` on (PN_WG_BIN_WRITE). When the silhouette's tile box has at most PN_WG_BIN_BITS
- * tiles, the count keeps which of them it counted in bits[0..1] (bit (y - y0) w + x - x0,
- * w the box's width) and the write reads them back: the same pairs in the same order
- * without the reach and the tests again (a leaf's wedge covers a few tiles: the tree's
- * scatter was as costly as its count). Otherwise both build the same reach with the same
- * arithmetic, so they agree. */
+ * `at` on (PN_WG_BIN_WRITE; want: the count). A count of at most PN_WG_KEEP tiles keeps them:
+ * it takes room for them in scratch (a pool of cap words) from *cursor, atomically, and
+ * writes them there, with their place into kept[0] and their count into kept[1] (0: not
+ * kept); the write then copies them, the same pairs in the same order without the reach
+ * and the tests again (a leaf's wedge covers a few dozen tiles: the tree's scatter was as
+ * costly as its count). Where a silhouette's tiles land in scratch depends on the threads;
+ * what it copies does not. Otherwise both build the same reach with the same arithmetic,
+ * so they agree. */
 #define PN_WG_BIN_COUNT 0
 #define PN_WG_BIN_WRITE 1
-#define PN_WG_BIN_BITS 64u
+#define PN_WG_KEEP 64u
 PN_KFN uint32_t pn_wg_bin(const pn_kview *v, const pn_klight *L, const pn_kwg *G, PN_CONST float *tris, PN_CONST pn_wsil *sil,
-                          PN_CONST float *tbox, uint32_t s, uint32_t at, int mode, PN_GLOBAL uint32_t *pairs,
-                          PN_GLOBAL uint32_t *bits)
+                          PN_CONST float *tbox, uint32_t s, uint32_t at, uint32_t want, int mode, PN_GLOBAL uint32_t *pairs,
+                          PN_GLOBAL uint32_t *kept, PN_GLOBAL uint32_t *scratch, PN_GLOBAL uint32_t *cursor, uint32_t cap)
 {
-    uint32_t tw = PN_WG_TILES(v->width), x, y, x0, x1, ya, yb, n = 0u, bw, b[2] = {0u, 0u}, small;
+    uint32_t tw = PN_WG_TILES(v->width), x, y, x0, x1, ya, yb, n = 0u, keep[PN_WG_KEEP], i;
     PN_CONST pn_wsil *e = sil + s;
     pn_wreach R;
-    pn_v3 a, c;
+    pn_v3 a, b;
+    if (mode == PN_WG_BIN_WRITE && kept[1] == want) {
+        PN_CONST uint32_t *k = scratch + kept[0];
+        for (i = 0; i < want; i++) {
+            pairs[2u * (at + i)] = k[i];
+            pairs[2u * (at + i) + 1u] = s;
+        }
+        return want;
+    }
+    if (mode == PN_WG_BIN_COUNT) kept[1] = 0u;
     if (e->x0 > e->x1) return 0u;
     ya = e->y0 > G->by0 ? e->y0 : G->by0;
     yb = e->y1 + 1u < G->by1 ? e->y1 + 1u : G->by1;
     if (ya >= yb || e->x0 >= G->bx1 || e->x1 < G->bx0) return 0u;
-    bw = e->x1 - e->x0 + 1u;
-    small = bw <= PN_WG_BIN_BITS && (e->y1 - e->y0 + 1u) <= PN_WG_BIN_BITS / bw;
-    if (mode == PN_WG_BIN_WRITE && small) {
-        uint32_t w;
-        for (w = 0; w < 2u; w++) {
-            uint32_t m = bits[w];
-            while (m) {
-                uint32_t i = 32u * w + pn_kctz(m);
-                m &= m - 1u;
-                pairs[2u * (at + n)] = (e->y0 + i / bw) * tw + e->x0 + i % bw;
-                pairs[2u * (at + n) + 1u] = s;
-                n++;
-            }
-        }
-        return n;
-    }
-    pn_wg_ends(tris, e->h, &a, &c);
-    pn_wg_reach(v, L, G->hmax, a, c, 1, &R);
+    pn_wg_ends(tris, e->h, &a, &b);
+    pn_wg_reach(v, L, G->hmax, a, b, 1, &R);
     for (y = ya; y < yb; y++) {
         uint32_t n0 = n;
         pn_wg_row(v, &R, y, &x0, &x1);
@@ -700,17 +695,20 @@ PN_KFN uint32_t pn_wg_bin(const pn_kview *v, const pn_klight *L, const pn_kwg *G
             if (mode == PN_WG_BIN_WRITE) {
                 pairs[2u * (at + n)] = y * tw + x;
                 pairs[2u * (at + n) + 1u] = s;
-            } else if (small) {
-                uint32_t i = (y - e->y0) * bw + (x - e->x0);
-                b[i >> 5] |= 1u << (i & 31u);
+            } else if (n < PN_WG_KEEP) {
+                keep[n] = y * tw + x;
             }
             n++;
         }
         if (mode == PN_WG_BIN_COUNT && G->count_rows && n > n0) pn_katomic_add(&pairs[y], n - n0);
     }
-    if (mode == PN_WG_BIN_COUNT && small) {
-        bits[0] = b[0];
-        bits[1] = b[1];
+    if (mode == PN_WG_BIN_COUNT && n > 0u && n <= PN_WG_KEEP) {
+        uint32_t at0 = pn_katomic_add(cursor, n);
+        if (at0 <= cap && n <= cap - at0) {
+            for (i = 0; i < n; i++) scratch[at0 + i] = keep[i];
+            kept[0] = at0;
+            kept[1] = n;
+        }
     }
     return n;
 }

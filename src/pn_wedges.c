@@ -121,7 +121,8 @@ typedef struct pn_wg_pools {
     uint32_t *toff;   /* [tiles + 1] */
     uint32_t *tscr;   /* [tiles] sort scratch */
     uint32_t *rowc;   /* [tile rows] pairs a tile row needs (the band planner's) */
-    uint32_t *sbits;  /* [sil_cap * 2] the tiles each silhouette's count kept (pn_wg_bin) */
+    uint32_t *kept;   /* [sil_cap * 2 + 1] where each silhouette's count kept its tiles, in
+                         the tile-list pool (pn_wg_bin), and the cursor there */
 } pn_wg_pools;
 
 /* The frame's pools at w x h for `tris` triangles of `edges` edges: run by the frame on
@@ -142,7 +143,7 @@ static void pn_wg_carve(pn_carver *c, const pn_limits *l, uint32_t w, uint32_t h
     s->toff = (uint32_t *)pn_pool(c, (uint64_t)tiles + 1u, 4u, "wedges tile offsets");
     s->tscr = (uint32_t *)pn_pool(c, tiles, 4u, "wedges sort scratch");
     s->rowc = (uint32_t *)pn_pool(c, PN_WG_TILES(h), 4u, "wedges tile row pairs");
-    s->sbits = (uint32_t *)pn_pool(c, pn_wg_sil_max(l), 8u, "wedges silhouette tile bits");
+    s->kept = (uint32_t *)pn_pool(c, 2u * (uint64_t)pn_wg_sil_max(l) + 1u, 4u, "wedges kept tiles");
 }
 
 void pn_wedges_query(pn_carver *c, const pn_limits *l)
@@ -175,7 +176,7 @@ static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
     P->wg_sorted = pn_dev_off(ctx, s->sorted);
     P->wg_toff = pn_dev_off(ctx, s->toff);
     P->wg_rowc = pn_dev_off(ctx, s->rowc);
-    P->wg_sbits = pn_dev_off(ctx, s->sbits);
+    P->wg_kept = pn_dev_off(ctx, s->kept);
     ctx->stats.wedges.silhouettes = 0;
     ctx->stats.wedges.pairs = 0;
     ctx->stats.wedges.bands = 0;
@@ -210,6 +211,7 @@ static pn_status pn_wg_band(pn_frame_state *fs, const pn_wg_pools *s, uint32_t t
     uint64_t t0 = pn_dev_timestamp(fs), t1;
     pn_status st;
     if (nsil > 0u && ((fs->K.wg.count_rows && (st = pn_dev_fill(fs, s->rowc, PN_WG_TILES(fs->height), 0u)) != PN_OK) ||
+                      (st = pn_dev_fill(fs, s->kept + 2u * (size_t)nsil, 1u, 0u)) != PN_OK ||
                       (st = pn_dev_run(fs, PN_K_WG_COUNT, nsil)) != PN_OK || (st = pn_dev_scan(fs, s->poff, nsil)) != PN_OK ||
                       (st = pn_dev_to_host(fs, s->poff + nsil, 4u)) != PN_OK))
         return st;
@@ -288,6 +290,7 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
     K->wg.tiles_x = tw;
     K->wg.sils = 0u;
     K->wg.count_rows = th > 1u; /* the first (whole frame's) count: the rows a plan needs */
+    K->wg.keep_cap = cap;       /* the tile-list pool's words: the count's kept tiles */
     K->wg.bx0 = 0u;
     K->wg.by0 = 0u;
     K->wg.bx1 = tw;

@@ -240,7 +240,7 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
 #define PN_WG_PAIRS_PER_SIL 6u
 #if PN_ENABLE_WEDGES
 /* Penumbra-wedge frame pools: per triangle its casting (4) and silhouette slots (12); per
- * silhouette (at most 3 a triangle and PN_WEDGES_SIL_MAX) 96 + 4 + 8; per (16 x 16 tile,
+ * silhouette (at most 3 a triangle and PN_WEDGES_SIL_MAX) 96 + 4 + 8, and 4; per (16 x 16 tile,
  * silhouette) pair, at most PN_WEDGES_PAIRS, 8 + 4; per tile 4 + 4 and its box, 24. */
 #define PN_WG_SIL_(t) PN_MIN_((size_t)(t) * 3u, (size_t)PN_WEDGES_SIL_MAX)
 #define PN_WG_TILES_(w, h) ((((size_t)(w) + 15u) / 16u) * (((size_t)(h) + 15u) / 16u))
@@ -255,7 +255,7 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
      PN_POOL_(PN_WG_SIL_(t) * 4u + 4u) + PN_POOL_(PN_WG_PAIRS_(t, w, h) * 8u) +                 \
      PN_POOL_(PN_WG_PAIRS_(t, w, h) * 4u) + PN_POOL_(PN_WG_TILES_(w, h) * 4u + 4u) +              \
      PN_POOL_((((size_t)(h) + 15u) / 16u) * 4u) +                                                \
-     PN_POOL_(PN_WG_TILES_(w, h) * 4u) + PN_POOL_(PN_WG_TILES_(w, h) * 28u) + PN_POOL_(PN_WG_SIL_(t) * 8u))
+     PN_POOL_(PN_WG_TILES_(w, h) * 4u) + PN_POOL_(PN_WG_TILES_(w, h) * 28u) + PN_POOL_(PN_WG_SIL_(t) * 8u + 4u))
 #else
 #define PN_WEDGES_BYTES_MAX(t, w, h) ((size_t)0)
 #endif

@@ -660,6 +660,64 @@ static pn_status short_pool_frame(const pn_setup *s, const pn_limits *lim, float
     return r;
 }
 
+/* The count's kept tiles (pn_wg_bin): a silhouette that counts at most PN_WG_KEEP tiles
+ * keeps them for its scatter, one that counts more builds its reach again. At 512x512 seven
+ * of room's wedges count more than 64 (an instrumented build of 0f42e31 printed them) and
+ * take the second way; in bands cut to parts of one tile row (a pool of a 64th of the
+ * frame's pairs) every count is at most a row's 32 tiles and kept. The same bytes both
+ * ways. */
+static pn_status kept_frame(const pn_setup *s, uint32_t wg_pairs, float *vis, pn_stats *st)
+{
+    enum { KW = 512, KH = 512 };
+    pn_limits lim;
+    pn_context *ctx;
+    pn_frame_options o;
+    pn_frame fr;
+    pn_status r = PN_E_INTERNAL;
+    uint8_t *raw;
+    size_t bytes;
+    pn_limits_max(&lim);
+    lim.max_triangles = s->mesh.triangle_count;
+    lim.max_width = KW;
+    lim.max_height = KH;
+    lim.algos = PN_BUILD_WEDGES;
+    lim.wg_pairs = wg_pairs;
+    if (pn_arena_size(&lim, &bytes) != PN_OK || !(raw = (uint8_t *)malloc(bytes))) return PN_E_INTERNAL;
+    if (pn_init(&ctx, raw, bytes, &lim) == PN_OK &&
+        pn_scene_set(ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices, s->mesh.triangle_count) == PN_OK) {
+        wg_opts(&o, 0u);
+        o.width = KW;
+        o.height = KH;
+        o.k = 16;
+        o.eps = s->eps;
+        r = pn_render(ctx, &s->camera, &s->light, &o, &fr);
+        if (r == PN_OK) memcpy(vis, fr.visibility, sizeof(float) * KW * KH);
+        CHECK(pn_get_stats(ctx, st) == PN_OK);
+    }
+    free(raw);
+    return r;
+}
+
+static void test_kept_tiles(void)
+{
+    static float full[512 * 512], cut[512 * 512];
+    pn_setup s;
+    pn_stats st_full, st_cut;
+    char err[256];
+    if (pn_setup_load(&s, "room", 1, -1, err, sizeof(err)) != 0) {
+        CHECK_MSG(0, "loading room: %s", err);
+        return;
+    }
+    REQUIRE(kept_frame(&s, 0u, full, &st_full) == PN_OK);
+    CHECK(st_full.wedges.bands == 1u && st_full.wedges.pairs > 6400u);
+    REQUIRE(kept_frame(&s, (uint32_t)(st_full.wedges.pairs / 64u), cut, &st_cut) == PN_OK);
+    fprintf(stderr, "kept tiles: %llu pairs in one band; in %u bands of at most %llu\n",
+            (unsigned long long)st_full.wedges.pairs, st_cut.wedges.bands, (unsigned long long)(st_full.wedges.pairs / 64u));
+    CHECK(st_cut.wedges.bands >= 64u && st_cut.wedges.pairs == st_full.wedges.pairs);
+    CHECK_MSG(memcmp(full, cut, sizeof(full)) == 0, "the scatter's two ways gave different bytes");
+    pn_setup_free(&s);
+}
+
 /* A pair pool smaller than the frame's pairs: the frame bins and shades the screen in bands
  * of tiles whose pairs fit, with the same bytes as in one band, in a smaller arena. Only a
  * pool smaller than one tile's pairs fails: PN_E_POOL_EXHAUSTED naming the pool, nothing
@@ -1018,6 +1076,7 @@ int main(void)
     RUN(test_holed_solid);
     RUN(test_many_blockers);
     RUN(test_short_pool);
+    RUN(test_kept_tiles);
     RUN(test_reach);
     RUN(test_culls);
     RUN(test_cone);

@@ -258,24 +258,13 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
     {
         /* The highest point of the scene box above the light plane, widened by the shadow
          * origins' offset and a relative margin for the rounding of the heights. */
-        float hm = 0.0f, e = 0.0f, r = 0.0f, lc = 0.0f, lu = 0.0f, lv = 0.0f, le = 0.0f;
+        float hm = 0.0f, e = 0.0f;
+        float r = pn_kmaxf(pn_v3_linf(pn_v3_load(ctx->scene_min)), pn_v3_linf(pn_v3_load(ctx->scene_max)));
         uint32_t q;
-        for (q = 0; q < 3u; q++) {
-            float ax = ctx->scene_min[q] < 0.0f ? -ctx->scene_min[q] : ctx->scene_min[q];
-            float bx = ctx->scene_max[q] < 0.0f ? -ctx->scene_max[q] : ctx->scene_max[q];
-            float cx = K->light.c[q] < 0.0f ? -K->light.c[q] : K->light.c[q];
-            float ux = K->light.U[q] < 0.0f ? -K->light.U[q] : K->light.U[q];
-            float vx = K->light.V[q] < 0.0f ? -K->light.V[q] : K->light.V[q];
-            float ex = K->view.eye[q] < 0.0f ? -K->view.eye[q] : K->view.eye[q];
-            r = ax > r ? ax : r;
-            r = bx > r ? bx : r;
-            lc = cx > lc ? cx : lc;
-            lu = ux > lu ? ux : lu;
-            lv = vx > lv ? vx : lv;
-            le = ex > le ? ex : le;
-        }
         /* pn_wg_front's magnitudes, for any vertex A in the box (|A|inf <= r), rounded up. */
-        K->wg.front_g = (3.0f * r + 2.0f * lc + lu + lv + le) * 1.001f;
+        K->wg.front_g = (3.0f * r + 2.0f * pn_v3_linf(pn_v3_load(K->light.c)) + pn_v3_linf(pn_v3_load(K->light.U)) +
+                         pn_v3_linf(pn_v3_load(K->light.V)) + pn_v3_linf(pn_v3_load(K->view.eye))) *
+                        1.001f;
         for (q = 0; q < 8u; q++) {
             float x = (q & 1u) ? ctx->scene_max[0] : ctx->scene_min[0], yy = (q & 2u) ? ctx->scene_max[1] : ctx->scene_min[1];
             float z = (q & 4u) ? ctx->scene_max[2] : ctx->scene_min[2];

@@ -663,9 +663,10 @@ static pn_status short_pool_frame(const pn_setup *s, const pn_limits *lim, float
 /* The count's kept tiles (pn_wg_bin): a silhouette that counts at most PN_WG_KEEP tiles
  * keeps them for its scatter, one that counts more builds its reach again. At 512x512 seven
  * of room's wedges count more than 64 (an instrumented build of 0f42e31 printed them) and
- * take the second way; in bands cut to parts of one tile row (a pool of a 64th of the
- * frame's pairs) every count is at most a row's 32 tiles and kept. The same bytes both
- * ways. */
+ * take the second way. With a pair pool of a 64th of the frame's pairs (a tile alone can
+ * hold more than 64) the bands are parts of a tile row of 32 tiles or a few sparse rows,
+ * and the counts in them keep their tiles. The same bytes both ways (a fallback writing
+ * each pair one tile to the left fails here). */
 static pn_status kept_frame(const pn_setup *s, uint32_t wg_pairs, float *vis, pn_stats *st)
 {
     enum { KW = 512, KH = 512 };

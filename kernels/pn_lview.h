@@ -26,17 +26,29 @@ PN_KFN pn_v3 pn_lview_frame(const pn_kview *lv, const pn_klight *L, pn_v3 X)
                       pn_v3_dot(rel, pn_v3_make(lv->f[0], lv->f[1], lv->f[2])));
 }
 
+/* Whether a window can hold an origin at light-frame depth z (relative to the light centre)
+ * whose tans off the axis, past the light's half-extents, are tx = (|x| - ha) / z and
+ * ty = (|y| - hb) / z: in front of the light plane and within PN_LVIEW_TAN_MAX. */
+PN_KFN int pn_lview_held(float tx, float ty, float z) { return z > 0.0f && tx <= PN_LVIEW_TAN_MAX && ty <= PN_LVIEW_TAN_MAX; }
+
+/* Whether no window holds origin E (in the light frame, pn_lview_frame; ha, hb the light's
+ * half-extents): the light-space algorithms see no occluder of it, and resolve it exactly
+ * (pn_reference_fallback). The same tans as pn_lview_bounds_row, which counts them. */
+PN_KFN int pn_lview_outside(pn_v3 E, float ha, float hb)
+{
+    return !pn_lview_held(((E.x < 0.0f ? -E.x : E.x) - ha) / E.z, ((E.y < 0.0f ? -E.y : E.y) - hb) / E.z, E.z);
+}
+
 /* Row y of the G-buffer: over its lit pixels (origins in front of the light), with (x, y,
  * z) an origin in lv's frame relative to the light centre lc (so the view's eye may sit
  * behind it): the largest (|x| - ha) / z and (|y| - hb) / z (ha = hb = 0: the tan of the
- * angle off the axis) and the smallest z over the origins within the window's reach, the
- * largest z over all with z > 0, and how many origins are too close to the light plane or
- * too far off the axis for any window (z <= 0 or beyond PN_LVIEW_TAN_MAX):
- * box[y * PN_LVIEW_BOX ..] = {x, y, min z, max z, count}. */
+ * angle off the axis) and the smallest z over the origins a window can hold
+ * (pn_lview_held), and the largest z over all with z > 0:
+ * box[y * PN_LVIEW_BOX ..] = {x, y, min z, max z}. */
 PN_KFN void pn_lview_bounds_row(const pn_kview *lv, const pn_klight *L, float ha, float hb, uint32_t width, uint32_t y,
                                 const pn_ksurf *S, PN_GLOBAL float *box)
 {
-    float ax = 0.0f, ay = 0.0f, zmin = PN_KINF, zmax = 0.0f, out = 0.0f;
+    float ax = 0.0f, ay = 0.0f, zmin = PN_KINF, zmax = 0.0f;
     pn_v3 lc = pn_v3_make(L->c[0], L->c[1], L->c[2]);
     pn_v3 r = pn_v3_make(lv->r[0], lv->r[1], lv->r[2]), u = pn_v3_make(lv->u[0], lv->u[1], lv->u[2]);
     pn_v3 f = pn_v3_make(lv->f[0], lv->f[1], lv->f[2]);
@@ -64,15 +76,9 @@ PN_KFN void pn_lview_bounds_row(const pn_kview *lv, const pn_klight *L, float ha
         for (i = 0; i < n; i++) {
             float cz = lz[i], tx = lx[i], ty = ly[i];
             if (S->tri_id[pix + i] == 0xFFFFFFFFu || !sees[i]) continue;
-            if (!(cz > 0.0f)) {
-                out += 1.0f;
-                continue;
-            }
+            if (!(cz > 0.0f)) continue;
             zmax = pn_kmaxf(zmax, cz);
-            if (!(tx <= PN_LVIEW_TAN_MAX && ty <= PN_LVIEW_TAN_MAX)) {
-                out += 1.0f;
-                continue;
-            }
+            if (!pn_lview_held(tx, ty, cz)) continue;
             ax = pn_kmaxf(ax, tx);
             ay = pn_kmaxf(ay, ty);
             zmin = pn_kminf(zmin, cz);
@@ -82,7 +88,6 @@ PN_KFN void pn_lview_bounds_row(const pn_kview *lv, const pn_klight *L, float ha
     box[(size_t)y * PN_LVIEW_BOX + 1u] = ay;
     box[(size_t)y * PN_LVIEW_BOX + 2u] = zmin;
     box[(size_t)y * PN_LVIEW_BOX + 3u] = zmax;
-    box[(size_t)y * PN_LVIEW_BOX + 4u] = out;
 }
 
 #endif

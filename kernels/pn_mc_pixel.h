@@ -40,6 +40,11 @@
 #define PN_MC_PX_LIT 3u      /* a surface of a run found lit, facing the light centre, with the
                               * light's four corners in front of its plane: visibility 1, class
                               * lit (pn_mc_pixel's answer); no field below is set */
+#define PN_MC_PX_OUTSIDE 4u  /* a surface whose origin no window holds (pn_lview_outside): the
+                              * layers hold none of its occluders; the pixel pass marks it
+                              * PN_MC_VIS_OUTSIDE for the exact fallback's pass; no field below
+                              * is set */
+#define PN_MC_VIS_OUTSIDE (-1.0f) /* the visibility buffer's mark of such a pixel */
 typedef struct pn_mc_px {
     pn_v3 nrm, O, E; /* unit normal, shadow-ray origin, O in the light frame */
     float ex, ey;    /* E's image, and */
@@ -74,7 +79,7 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, const pn_ksurf *S, size_t pix, uint32_t
     float Ox[PN_MC_RUN], Oy[PN_MC_RUN], Oz[PN_MC_RUN], Ex[PN_MC_RUN], Ey[PN_MC_RUN], Ez[PN_MC_RUN];
     float Nx[PN_MC_RUN], Ny[PN_MC_RUN], Nz[PN_MC_RUN];
     float ex[PN_MC_RUN], ey[PN_MC_RUN], b0[PN_MC_RUN], b1[PN_MC_RUN], b2[PN_MC_RUN], b3[PN_MC_RUN];
-    int sees[PN_MC_RUN], faces[PN_MC_RUN], front[PN_MC_RUN], looks[PN_MC_RUN], sheet[PN_MC_RUN];
+    int sees[PN_MC_RUN], faces[PN_MC_RUN], front[PN_MC_RUN], looks[PN_MC_RUN], sheet[PN_MC_RUN], out[PN_MC_RUN];
     uint32_t i, any = 0u;
     int lit;
     int classify = !(mc->flags & PN_MC_F_NO_CLASSIFY) && !L->is_point;
@@ -100,6 +105,7 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, const pn_ksurf *S, size_t pix, uint32_t
         sees[i] = pn_shadow_origin(P, n, L, &O);
         E = pn_lview_frame(m->lv, L, O);
         faces[i] = E.z > 0.0f && !(pn_v3_dot(n, pn_v3_sub(c, O)) < 0.0f);
+        out[i] = pn_lview_outside(E, m->ha, m->hb);
         front[i] = (pn_v3_dot(pn_v3_sub(m->corner[0], O), n) > 0.0f) + (pn_v3_dot(pn_v3_sub(m->corner[1], O), n) > 0.0f) +
                    (pn_v3_dot(pn_v3_sub(m->corner[2], O), n) > 0.0f) + (pn_v3_dot(pn_v3_sub(m->corner[3], O), n) > 0.0f);
         pn_mc_proj(m, E, &x, &y);
@@ -122,6 +128,7 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, const pn_ksurf *S, size_t pix, uint32_t
     for (i = 0; i < count; i++) {
         px[i].kind = ids[pix + i] == 0xFFFFFFFFu ? PN_MC_PX_NONE /* PN_NO_PIXEL_TRIANGLE */
                                                  : (sees[i] ? PN_MC_PX_SURFACE : PN_MC_PX_NO_ORIGIN);
+        if (px[i].kind == PN_MC_PX_SURFACE && out[i]) px[i].kind = PN_MC_PX_OUTSIDE;
         looks[i] = px[i].kind == PN_MC_PX_SURFACE && classify && faces[i] && zb < Ez[i];
         if (!looks[i]) continue;
         u[0] = pn_kminf(u[0], b0[i]);

@@ -17,6 +17,7 @@ typedef struct pn_mc_ctx {
     PN_CONST uint8_t *flags; /* triangle flags (PN_TRI_SHEET) */
     float tx, ty;          /* the layers' window half-tans (pn_project_camera's factors) */
     float hw, hh;          /* half the layers' size in texels */
+    float ha, hb;          /* the light's half-extents (pn_lview_outside) */
     pn_v3 corner[4];       /* the light's corners c -+ U -+ V (bit 0: +U, bit 1: +V) */
     uint32_t steps;        /* search steps so far */
     uint32_t capped;       /* searches stopped at the cap */
@@ -34,8 +35,9 @@ PN_KFN pn_v3 pn_mc_at(const pn_mc_ray *r, float t)
 
 /* The per-pixel context over view, light view lv, light L, parameters mc, the N-buffer nb
  * and the G-buffer's depth. */
-PN_KFN void pn_mc_ctx_init(pn_mc_ctx *m, const pn_kview *view, const pn_kview *lv, const pn_klight *L,
-                           const pn_kmc *mc, PN_CONST float *nb, PN_CONST float *depth, PN_CONST uint8_t *flags)
+PN_KFN void pn_mc_ctx_init(pn_mc_ctx *m, const pn_kview *view, const pn_kview *lv, const pn_klight *L, float ha,
+                           float hb, const pn_kmc *mc, PN_CONST float *nb, PN_CONST float *depth,
+                           PN_CONST uint8_t *flags)
 {
     uint32_t k;
     m->view = view;
@@ -50,6 +52,8 @@ PN_KFN void pn_mc_ctx_init(pn_mc_ctx *m, const pn_kview *view, const pn_kview *l
     m->ty = lv->tan_half;
     m->hw = 0.5f * (float)lv->width;
     m->hh = 0.5f * (float)lv->height;
+    m->ha = ha;
+    m->hb = hb;
     m->steps = 0u;
     m->capped = 0u;
     for (k = 0; k < 4u; k++)

@@ -42,7 +42,8 @@ PN_KFN void pn_e_mc_nbuf(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
  * counters added once. Rows, not pixels, as for the blur: a pixel item made two to four
  * atomic adds and divided its index by the width, where most pixels (lit ones) do little
  * else than one or two region lookups. The row goes in runs of PN_MC_RUN pixels
- * (pn_mc_run: their origins once, and one lookup that may find the whole run lit). */
+ * (pn_mc_run: their origins once, and one lookup that may find the whole run lit). A pixel
+ * whose origin no window holds is marked PN_MC_VIS_OUTSIDE for the next pass. */
 PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
 {
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
@@ -51,8 +52,8 @@ PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     pn_mc_ctx m;
     pn_mc_px px[PN_MC_RUN];
     pn_ksurf S = pn_surf_of(A, P, K);
-    pn_mc_ctx_init(&m, &K->view, &K->lview, &K->light, &K->mc, PN_POOL(const float, mc_nb), PN_POOL(const float, depth),
-                   PN_POOL(const uint8_t, flags));
+    pn_mc_ctx_init(&m, &K->view, &K->lview, &K->light, K->lview_ha, K->lview_hb, &K->mc, PN_POOL(const float, mc_nb),
+                   PN_POOL(const float, depth), PN_POOL(const uint8_t, flags));
     for (x0 = 0; x0 < W; x0 += PN_MC_RUN) {
         uint32_t count = pn_kminu(PN_MC_RUN, W - x0);
         size_t pix0 = (size_t)y * W + x0;
@@ -64,6 +65,11 @@ PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
                 PN_POOL(float, vis)[pix0 + i] = 1.0f;
                 c.lit++;
                 n[PN_MC_CLASS_LIT - 1u]++;
+                continue;
+            }
+            if (px[i].kind == PN_MC_PX_OUTSIDE) { /* for pn_e_mc_outside */
+                PN_POOL(float, vis)[pix0 + i] = PN_MC_VIS_OUTSIDE;
+                c.lit++;
                 continue;
             }
             if (px[i].kind != PN_MC_PX_SURFACE) {
@@ -81,6 +87,26 @@ PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     pn_counters_add(&PN_POOL(pn_row_counters, counters)[y].c, &c);
     for (k = 0; k < PN_MC_WORDS; k++)
         if (n[k]) pn_katomic_add(words + k, n[k]);
+}
+
+/* Row y: each pixel the pixel pass marked PN_MC_VIS_OUTSIDE (its origin no window holds, so
+ * the layers hold none of its occluders) takes the exact fallback, counted as exact; before
+ * the blur. A pass of its own: within the pixel pass's frame the reference's stack went over
+ * the library's budget (check_callgraph). */
+PN_KFN void pn_e_mc_outside(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
+{
+    pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
+    size_t pix = (size_t)y * K->view.width, end = pix + K->view.width;
+    pn_ksurf S = pn_surf_of(A, P, K);
+    for (; pix < end; pix++) {
+        pn_v3 Ps, ns;
+        if (!(PN_POOL(const float, vis)[pix] == PN_MC_VIS_OUTSIDE)) continue;
+        pn_surf_at(&S, pix, &Ps, &ns);
+        PN_POOL(float, vis)[pix] =
+            pn_reference_fallback(Ps, ns, PN_POOL(const uint32_t, tri_id)[pix], PN_POOL(const float, tris),
+                                  PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), &K->light, &c);
+    }
+    if (c.exact) pn_counters_add(&PN_POOL(pn_row_counters, counters)[y].c, &c);
 }
 
 /* Row: the blur across (visibility into the other buffer), then down (back). Rows, not
@@ -106,6 +132,7 @@ PN_KFN void pn_e_mc_blur_v(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kp
     X(MC_BAND, mc_band, 1, 1)                             \
     X(MC_NBUF, mc_nbuf, 4, 8)                             \
     X(MC_PIXEL, mc_pixel, 4, 2)                           \
+    X(MC_OUTSIDE, mc_outside, 4, 8)                       \
     X(MC_BLUR_H, mc_blur_h, 4, 8)                         \
     X(MC_BLUR_V, mc_blur_v, 4, 8)
 #else

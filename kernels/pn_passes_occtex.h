@@ -79,7 +79,9 @@ PN_KFN void pn_e_occ_lookup(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
 }
 
 /* Pixel: times the fraction of light samples in front of its own plane; its lookups (the
- * slices looked up that weighed in) counted as candidates. */
+ * slices looked up that weighed in) counted as candidates. An origin no window holds
+ * (pn_lview_outside: its occluders are not in the slices) takes the exact fallback
+ * instead (counted as exact). */
 PN_KFN void pn_e_occ_finish(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t pix)
 {
     uint32_t m[PN_MASK_WORDS_MAX], id = PN_POOL(const uint32_t, tri_id)[pix];
@@ -89,6 +91,12 @@ PN_KFN void pn_e_occ_finish(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_k
     if (id == PN_NO_PIXEL_TRIANGLE) return;
     pn_pix_surf(A, P, K, pix, &pos, &nrm);
     if (!pn_shadow_origin(pos, nrm, &K->light, &O)) return;
+    if (pn_lview_outside(pn_lview_frame(&K->lview, &K->light, O), K->lview_ha, K->lview_hb)) {
+        PN_POOL(float, vis)[pix] = pn_reference_fallback(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
+                                                         PN_POOL(const uint32_t, index), &K->light, &c);
+        pn_counters_add(&PN_POOL(pn_row_counters, counters)[pix / K->view.width].c, &c);
+        return;
+    }
     pn_mask_clear(m);
     pn_horizon_of(pos, nrm, id, PN_POOL(const float, tris), &K->light, &H);
     if (pn_horizon_mask(&H, &K->light, m))

@@ -99,7 +99,7 @@ PN_KFN void pn_e_wg_runs(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
  * centre ray (none in a clear tile; the tiles' boxes are made only when there are
  * silhouettes) and its tile's wedges, blended object by object, times its horizon's
  * fraction; or, in its own object's self-shadow penumbra (PN_WG_EXACT), the reference's
- * visibility over the PN_WG_EXACT_K^2 samples (fewer when k is smaller). */
+ * visibility over at most PN_REF_FALLBACK_K^2 samples (pn_reference_fallback). */
 PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
 {
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
@@ -126,12 +126,8 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
                     K->wg.sils, PN_POOL(const float, wg_bbox), PN_POOL(const float, wg_sbox), PN_POOL(const uint32_t, wg_sorted), PN_POOL(const uint32_t, wg_pairs), toff[tile], toff[tile + 1u],
                     K->wg.sils > 0u && PN_POOL(const float, wg_tbox)[(size_t)tile * PN_WG_BOX + PN_WG_CLEAR] > 0.0f, &c);
     if (v == PN_WG_EXACT) {
-        pn_shadow_counters ce = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
-        pn_klight Lk = K->light;
-        if (Lk.k > PN_WG_EXACT_K) Lk.k = PN_WG_EXACT_K;
-        v = pn_reference_pixel(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
-                               PN_POOL(const uint32_t, index), &Lk, &ce);
-        c.exact = 1u;
+        v = pn_reference_fallback(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
+                                  PN_POOL(const uint32_t, index), &K->light, &c);
     } else if (v > 0.0f && !(PN_POOL(const uint32_t, wg_tcast)[id] & PN_WG_LIT_FRONT)) {
         uint32_t m[PN_MASK_WORDS_MAX];
         pn_horizon H;

@@ -463,4 +463,22 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
     return pn_mask_visibility(m, k);
 }
 
+/* The approximations' exact fallback: a pixel that an approximation cannot represent (the
+ * wedges' self-shadow penumbrae; for the light-space algorithms, an origin that no window of
+ * the light's view holds, pn_lview_outside) takes the reference's visibility over at most
+ * PN_REF_FALLBACK_K^2 samples (all k^2 when k is smaller). k = 4: on the 15 scenes the
+ * wedges' self-shadow penumbrae at k = 4 gave the RMSE of k = 16 to the third decimal
+ * (0.0698 for 0.0697 on the Buddha, the most of them) for 0.47 G instructions more than
+ * none there instead of 1.89 G (callgrind, 256 x 256). Counted in cnt->exact. */
+#define PN_REF_FALLBACK_K 4u
+PN_KFN float pn_reference_fallback(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris, PN_CONST pn_kbvh4 *wnodes,
+                                   PN_CONST uint32_t *tri_index, const pn_klight *L, pn_shadow_counters *cnt)
+{
+    pn_shadow_counters ce = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
+    pn_klight Lk = *L;
+    if (Lk.k > PN_REF_FALLBACK_K) Lk.k = PN_REF_FALLBACK_K;
+    cnt->exact++;
+    return pn_reference_pixel(P, nrm, own, tris, wnodes, tri_index, &Lk, &ce);
+}
+
 #endif

@@ -58,12 +58,7 @@
 #define PN_WG_OBJ 0x3FFFFFFFu    /* triangle's object id */
 #define PN_WG_HARD_MAX 16u       /* objects blocking the centre a pixel keeps track of */
 #define PN_WG_TNEAR (1.0f / 1024.0f) /* the local near plane: a tenth of a percent of O's height */
-#define PN_WG_EXACT (-1.0f) /* pn_wg_pixel: resolve this pixel with the exact predicate */
-/* ...over k x k light samples at most this k: on the 15 scenes the self-shadow penumbrae
- * at k = 4 gave the RMSE of k = 16 to the third decimal (0.0698 for 0.0697 on the Buddha,
- * the most of them) for 0.47 G instructions more than none there instead of 1.89 G
- * (callgrind, 256 x 256). */
-#define PN_WG_EXACT_K 4u
+#define PN_WG_EXACT (-1.0f) /* pn_wg_pixel: resolve this pixel exactly (pn_reference_fallback) */
 #define PN_WG_M_BLEND 1u
 #define PN_WG_M_ADD 2u
 /* Casting codes per triangle (pn_wg_facing), in the low bits of its word... */

@@ -144,7 +144,6 @@ void pn_light_halves(const pn_klight *L, float *ha, float *hb);
 typedef struct pn_lwin {
     float d, zmax; /* centre of projection behind the light centre; deepest origin */
     float tx, ty;  /* the window's half-tans */
-    uint32_t outside; /* lit origins no window holds (the rows' counts, PN_LVIEW_BOX) */
 } pn_lwin;
 int pn_lview_window(const pn_context *ctx, const float *box, uint32_t height, uint32_t res, const pn_klight *L, float ha,
                     float hb, pn_kview *lv, pn_lwin *w);

@@ -57,13 +57,11 @@ int pn_lview_window(const pn_context *ctx, const float *box, uint32_t height, ui
 {
     float mx = 0.0f, my = 0.0f, zmax = 0.0f, tx, ty, d, grow = 1.0f + 4.0f / (float)res, diag = ctx->scene_diag;
     uint32_t y;
-    w->outside = 0u;
     for (y = 0; y < height; y++) {
         const float *b = box + (size_t)y * PN_LVIEW_BOX_FLOATS;
         mx = pn_kmaxf(mx, b[0]);
         my = pn_kmaxf(my, b[1]);
         zmax = pn_kmaxf(zmax, b[3]);
-        w->outside += (uint32_t)b[4];
     }
     if (!(zmax > 0.0f)) return 0;
     if (!L->is_point) {

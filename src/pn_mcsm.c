@@ -193,8 +193,11 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
         t0 = t1;
     }
     /* Without an origin in front of the light no pixel reads the layers: every pixel is
-     * background (1) or unlit (0). */
-    if ((st = pn_dev_run(fs, PN_K_MC_PIXEL, fs->height)) != PN_OK) return st;
+     * background (1), unlit (0) or one whose origin no window holds (the exact fallback's
+     * pass, whose time counts with the rays'). */
+    if ((st = pn_dev_run(fs, PN_K_MC_PIXEL, fs->height)) != PN_OK ||
+        (st = pn_dev_run(fs, PN_K_MC_OUTSIDE, fs->height)) != PN_OK)
+        return st;
     t1 = pn_dev_timestamp(fs);
     ctx->stats.mcsm.ns_rays = t1 - t0;
     t0 = t1;
@@ -218,6 +221,7 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
         ctx->stats.mcsm.capped += wd[PN_MC_WORD_CAPPED];
         ctx->stats.mcsm.rays += c->candidates;
         ctx->stats.mcsm.steps += c->nodes;
+        ctx->stats.mcsm.outside += c->exact;
     }
     return PN_OK;
 }

@@ -142,7 +142,6 @@ static int pn_occ_window(pn_frame_state *fs, const pn_occ_pools *s, uint32_t res
     if (!pn_lview_window(ctx, s->box, fs->height, res, L, K->lview_ha, K->lview_hb, lv, &w)) return 0;
     o->d = w.d;
     zmax = w.zmax;
-    ctx->stats.occtex.outside = w.outside;
     /* Kernel side in texels (pn_occtex.h): the light's half-edge over the window's half-tan,
      * times the texels. */
     o->sfac_x = L->is_point ? 0.0f : (float)res * K->lview_ha / w.tx;
@@ -175,14 +174,35 @@ static uint32_t pn_occ_top_level(const pn_kocc *o, uint32_t k, float zmax)
     return l < o->levels ? l : o->levels - 1u;
 }
 
+/* The finish pass (the horizon, the exact fallback) and the lookups' count; its time from
+ * t1 on is the lookups'. */
+static pn_status pn_occ_finish(pn_frame_state *fs, uint64_t t1)
+{
+    pn_context *ctx = fs->ctx;
+    uint64_t lookups = 0u;
+    uint32_t y, outside = 0u;
+    pn_status st;
+    if ((st = pn_dev_run(fs, PN_K_OCC_FINISH, fs->width * fs->height)) != PN_OK ||
+        (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_row_counters))) != PN_OK)
+        return st;
+    ctx->stats.occtex.ns_lookup += pn_dev_timestamp(fs) - t1;
+    for (y = 0; y < fs->height; y++) {
+        lookups += ((const pn_row_counters *)fs->counters)[y].c.candidates;
+        outside += ((const pn_row_counters *)fs->counters)[y].c.exact;
+    }
+    ctx->stats.occtex.lookups = lookups;
+    ctx->stats.occtex.outside = outside;
+    return PN_OK;
+}
+
 pn_status pn_occtex_frame(pn_frame_state *fs)
 {
     pn_context *ctx = fs->ctx;
     pn_kparams *K = &fs->K;
     pn_kocc *o = &K->occ;
     pn_occ_pools s;
-    uint32_t res = fs->res, npix = fs->width * fs->height, k, l, y;
-    uint64_t t0 = pn_dev_timestamp(fs), t1, t2, lookups = 0u;
+    uint32_t res = fs->res, npix = fs->width * fs->height, k, l;
+    uint64_t t0 = pn_dev_timestamp(fs), t1, t2;
     float zmax = 0.0f;
     pn_status st;
 
@@ -199,9 +219,11 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
         (st = pn_dev_to_host(fs, s.box, (size_t)fs->height * 4u * PN_LVIEW_BOX)) != PN_OK)
         return st;
     if (!pn_occ_window(fs, &s, res, &zmax)) {
-        /* No origin in front of the light: nothing to slice, nothing lit to finish. */
-        ctx->stats.occtex.ns_slice = pn_dev_timestamp(fs) - t0;
-        return PN_OK;
+        /* No origin in front of the light: nothing to slice; every lit origin is one no
+         * window holds, which the finish resolves exactly. */
+        t1 = pn_dev_timestamp(fs);
+        ctx->stats.occtex.ns_slice = t1 - t0;
+        return pn_occ_finish(fs, t1);
     }
 
     /* Slicing. */
@@ -248,13 +270,7 @@ pn_status pn_occtex_frame(pn_frame_state *fs)
         t1 = pn_dev_timestamp(fs);
         ctx->stats.occtex.ns_lookup += t1 - t2;
     }
-    if ((st = pn_dev_run(fs, PN_K_OCC_FINISH, npix)) != PN_OK ||
-        (st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_row_counters))) != PN_OK)
-        return st;
-    ctx->stats.occtex.ns_lookup += pn_dev_timestamp(fs) - t1;
-    for (y = 0; y < fs->height; y++) lookups += ((const pn_row_counters *)fs->counters)[y].c.candidates;
-    ctx->stats.occtex.lookups = lookups;
-    return PN_OK;
+    return pn_occ_finish(fs, t1);
 }
 
 PN_ALGO_NO_SCENE(occtex)

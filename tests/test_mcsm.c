@@ -216,27 +216,6 @@ static void test_square(void)
     pn_setup_free(&s);
 }
 
-/* A box of half-extents (hx, hy, hz) about (x, y, z), wound outward (flip: inward), as six
- * quads at vertices 4 q0 .. and triangles 2 q0 ..; or a horizontal square (hy = 0) facing up
- * (flip: down), one quad. Returns the quads written. */
-static uint32_t mc_box(float *pos, uint32_t *idx, uint32_t q0, const float *c, const float *hf, int flip)
-{
-    static const int8_t f[6][4][3] = {{{-1, 1, -1}, {-1, 1, 1}, {1, 1, 1}, {1, 1, -1}},     /* +y */
-                                      {{-1, -1, -1}, {1, -1, -1}, {1, -1, 1}, {-1, -1, 1}}, /* -y */
-                                      {{1, -1, -1}, {1, 1, -1}, {1, 1, 1}, {1, -1, 1}},     /* +x */
-                                      {{-1, -1, -1}, {-1, -1, 1}, {-1, 1, 1}, {-1, 1, -1}}, /* -x */
-                                      {{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}},     /* +z */
-                                      {{-1, -1, -1}, {-1, 1, -1}, {1, 1, -1}, {1, -1, -1}}}; /* -z */
-    static const uint32_t q[6] = {0u, 1u, 2u, 0u, 2u, 3u}, qf[6] = {0u, 2u, 1u, 0u, 3u, 2u};
-    uint32_t n = hf[1] > 0.0f ? 6u : 1u, i, j, k;
-    for (i = 0; i < n; i++) {
-        for (j = 0; j < 4u; j++)
-            for (k = 0; k < 3u; k++) pos[12u * (q0 + i) + 3u * j + k] = c[k] + (float)f[i][j][k] * hf[k];
-        for (j = 0; j < 6u; j++) idx[6u * (q0 + i) + j] = 4u * (q0 + i) + (flip ? qf[j] : q[j]);
-    }
-    return n;
-}
-
 /* Interiors and sheets, on square's camera and light over its ground, which is not marked
  * receiver-only (every surface of a room is both). (1) A table top, a closed slab: the far
  * layer behind it was the ground, the air under the table solid, and rays to the ground
@@ -266,8 +245,8 @@ static void test_interior_and_sheets(void)
         return;
     }
     for (c = 0; c < 2u; c++) {
-        nq = mc_box(pos, idx, 0u, ground, gh, 0);
-        nq += c == 0u ? mc_box(pos, idx, nq, table, th, 0) : mc_box(pos, idx, nq, sheet, sh, 1);
+        nq = pn_test_box(pos, idx, 0u, ground, gh, 0);
+        nq += c == 0u ? pn_test_box(pos, idx, nq, table, th, 0) : pn_test_box(pos, idx, nq, sheet, sh, 1);
         REQUIRE(pn_scene_set(h.ctx, pos, 4u * nq, idx, 2u * nq) == PN_OK);
         REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_REFERENCE, W, H, 32, 1, g_ref, NULL) == 0);
         mc_opts(&o, 0u, 0u, 0u, 0u, 0u);
@@ -794,6 +773,15 @@ static void test_nbuffer_layout(void)
     CHECK_MSG(wrong == 0u, "%u maps laid out wrong", wrong);
 }
 
+/* Origins no window holds, blur off: the reference's bytes at k = 4 (pn_test_check_outside);
+ * a frame that left them to the layers (as before) lit the block's penumbra on the wall. */
+static void test_outside_exact(void)
+{
+    pn_frame_options o;
+    mc_opts(&o, 0u, 0u, 0u, PN_MC_BLUR_OFF, 0u);
+    pn_test_check_outside(&o);
+}
+
 int main(void)
 {
     if (!(pn_build_info() & PN_BUILD_MCSM)) {
@@ -806,6 +794,7 @@ int main(void)
     RUN(test_nbuffer_boxes);
     RUN(test_square);
     RUN(test_interior_and_sheets);
+    RUN(test_outside_exact);
     RUN(test_classify_exact);
     RUN(test_classify_exact_512);
     RUN(test_determinism_and_stats);

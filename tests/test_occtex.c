@@ -15,6 +15,7 @@
  *    their ranges are PN_E_INVALID_ARG; a context whose occ_map_max is 64 has a smaller
  *    arena and renders at that size; the stats hold the slices, map, bits and lookups
  *    (= shadow_candidates), and with a clock the stage times lie inside the shadow pass.
+ * 5. Origins no window holds take the reference's bytes at k = 4 (test_outside_exact).
  * The error against the reference on every scene is the benchmark's (RESULTS.md). */
 #include <math.h>
 #include <stddef.h>
@@ -288,6 +289,16 @@ static void test_options(void)
     pn_setup_free(&s);
 }
 
+/* 5. Origins no window holds: the reference's bytes at k = 4 (pn_test_check_outside); a
+ *    frame that left them to the slices (as before) lit the block's penumbra on the wall. */
+static void test_outside_exact(void)
+{
+    pn_frame_options o;
+    pn_frame_options_default(&o);
+    o.algo = PN_ALGO_OCCTEX;
+    pn_test_check_outside(&o);
+}
+
 int main(void)
 {
     if (!(pn_build_info() & PN_BUILD_OCCTEX)) {
@@ -299,5 +310,6 @@ int main(void)
     RUN(test_combinations);
     RUN(test_determinism);
     RUN(test_depth_map);
+    RUN(test_outside_exact);
     return pn_test_summary();
 }

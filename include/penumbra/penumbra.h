@@ -629,7 +629,8 @@ typedef struct pn_occtex_stats { /* Occlusion textures, last frame */
     uint32_t slices;             /* slices */
     uint32_t outside;            /* lit pixels whose shadow-ray origin the slicing view cannot
                                     hold (closer to the light's plane, or further off its axis,
-                                    than 76 degrees): no slice or depth map occludes them */
+                                    than 76 degrees): no slice holds their occluders, so they
+                                    take the reference's visibility over min(k, 4)^2 samples */
     uint64_t texels_set;         /* (texel, slice) bits set, over all slices */
     uint64_t lookups;            /* filtered lookups: slices weighted > 0, over lit pixels */
     /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: slicing (window, depth range,
@@ -649,8 +650,11 @@ typedef struct pn_mcsm_stats { /* Monte Carlo shadow maps, last frame */
     uint64_t rays;               /* rays searched through the layers (after the early-outs) */
     uint64_t steps;              /* search steps: N-buffer boxes or linear samples looked up */
     uint32_t capped;             /* searches stopped by the step cap (taken as unblocked) */
+    uint32_t outside;            /* lit pixels whose shadow-ray origin no layer window can hold
+                                    (as occtex.outside): the reference's visibility over
+                                    min(k, 4)^2 samples, not the layers' */
     /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: layers (window, rasterization),
-     * N-buffer, rays (classification and search), blur */
+     * N-buffer, rays (classification and search; the exact fallback's pass), blur */
     uint64_t ns_layers, ns_nbuffer, ns_rays, ns_blur;
 } pn_mcsm_stats;
 

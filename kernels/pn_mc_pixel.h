@@ -237,7 +237,11 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
             n = 0u; /* every ray unblocked but for the horizon (and no bias needed) */
         } else {
             bias = pn_mc_bias(mc, nrm, toc, ze);
-            if (mc->layers <= 2u && ze - bias > q[2]) {
+            /* Umbra: every ray ends behind every near texel it can cross. With three
+             * layers too: the eye could clear some of those texels, but the six scenes the
+             * third layer moves most gave the same RMSE to four digits without this class
+             * (512x512), and the class saves their searches. */
+            if (ze - bias > q[2]) {
                 *cls = PN_MC_CLASS_UMBRA;
                 return 0.0f;
             }
@@ -285,7 +289,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
         blocked = !out && (mc->layers == 1u ? zend >= T[0] : zend >= T[0] && T[1] >= 0.0f);
         if (blocked && mc->layers == 3u) {
             float za = pn_kmaxf(T[0], 0.0f), zb2 = pn_kminf(T[1], zend);
-            blocked = !pn_mc_seen(m, pn_mc_at(&r, 0.5f * (za + zb2) / ze));
+            blocked = !pn_mc_seen(m, pn_mc_at(&r, 0.5f * (za + zb2) / ze), T[1] - T[0]);
         }
         *rays += 1u;
         m->steps++;

@@ -93,23 +93,37 @@ PN_KFN PN_CONST float *pn_mc_texel(const pn_mc_ctx *m, pn_v3 p, int *outside)
     return pn_mc_texel_img(m, px, py, outside);
 }
 
-/* Third layer: whether the light-frame point p is seen from the eye (in front of the
- * G-buffer's depth at its pixel, or over the background): empty space. */
-PN_KFN int pn_mc_seen(const pn_mc_ctx *m, pn_v3 p)
+/* Third layer (Algorithm 1): whether the light-frame point p, inside a texel's interval
+ * [near, far] of depth thickness `thick`, is empty space as the eye sees it: in front of
+ * the G-buffer's depth at every pixel of the 3 x 3 around its image (or over the
+ * background). Two guards keep it from clearing an occluder. The neighbourhood: an occluder
+ * thinner than a pixel, or its edge between p and p's pixel centre, still counts. The
+ * thickness: an interval thinner than its texel is wide at p's depth is never cleared. A
+ * sheet's depth there is the one at the texel's centre; where the ray crosses the sheet
+ * within the texel, p may stand in front of the surface the eye sees by less than that
+ * rounding (the built-in room's chair shells, thin's slivers). */
+PN_KFN int pn_mc_seen(const pn_mc_ctx *m, pn_v3 p, float thick)
 {
     const pn_kview *v = m->view;
-    pn_v3 X = pn_v3_make(m->L->c[0] + p.x * m->lv->r[0] + p.y * m->lv->u[0] + p.z * m->lv->f[0],
-                         m->L->c[1] + p.x * m->lv->r[1] + p.y * m->lv->u[1] + p.z * m->lv->f[1],
-                         m->L->c[2] + p.x * m->lv->r[2] + p.y * m->lv->u[2] + p.z * m->lv->f[2]);
-    pn_v3 cam = pn_to_camera(v, X), rel;
-    float px, py, dd;
-    uint32_t ix, iy;
+    pn_v3 X, cam, rel;
+    float px, py, dd = PN_KINF;
+    uint32_t ix, iy, x0, x1, y0, y1, xx, yy;
+    if (!(thick >= 2.0f * (p.z + m->mc->d) * pn_kmaxf(m->tx, m->ty) / (float)m->mc->res)) return 0;
+    X = pn_v3_make(m->L->c[0] + p.x * m->lv->r[0] + p.y * m->lv->u[0] + p.z * m->lv->f[0],
+                   m->L->c[1] + p.x * m->lv->r[1] + p.y * m->lv->u[1] + p.z * m->lv->f[1],
+                   m->L->c[2] + p.x * m->lv->r[2] + p.y * m->lv->u[2] + p.z * m->lv->f[2]);
+    cam = pn_to_camera(v, X);
     if (!(cam.z > v->znear)) return 0;
     pn_project_camera(v, cam, &px, &py);
     if (!(px >= 0.0f && py >= 0.0f && px < (float)v->width && py < (float)v->height)) return 0;
     ix = (uint32_t)pn_kfloor_clamp(px, 0, (int32_t)v->width - 1);
     iy = (uint32_t)pn_kfloor_clamp(py, 0, (int32_t)v->height - 1);
-    dd = m->depth[(size_t)iy * v->width + ix];
+    x0 = ix > 0u ? ix - 1u : 0u;
+    x1 = ix + 1u < v->width ? ix + 1u : ix;
+    y0 = iy > 0u ? iy - 1u : 0u;
+    y1 = iy + 1u < v->height ? iy + 1u : iy;
+    for (yy = y0; yy <= y1; yy++)
+        for (xx = x0; xx <= x1; xx++) dd = pn_kminf(dd, m->depth[(size_t)yy * v->width + xx]);
     rel = pn_v3_sub(X, pn_view_eye(v));
     return pn_v3_dot(rel, rel) < dd * dd * 0.9998f;
 }
@@ -127,7 +141,7 @@ PN_KFN int pn_mc_state_at(const pn_mc_ctx *m, pn_v3 p, uint32_t at, int out)
     if (m->mc->layers == 1u) return p.z >= T[0] ? PN_MC_INSIDE : PN_MC_FRONT;
     if (p.z < T[0]) return PN_MC_FRONT;
     if (p.z > T[1]) return PN_MC_BEHIND;
-    if (m->mc->layers == 3u && pn_mc_seen(m, p)) return PN_MC_FRONT;
+    if (m->mc->layers == 3u && pn_mc_seen(m, p, T[1] - T[0])) return PN_MC_FRONT;
     return PN_MC_INSIDE;
 }
 /* ...of the texel holding image (px, py) */
@@ -260,8 +274,12 @@ PN_KFN int pn_mc_hier(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
         if (hit) {
             if (l == 0u) {
                 if (mc->layers == 3u) {
-                    float a = pn_kmaxf(t, v[0] / r->ze), b = pn_kminf(te, v[1] / r->ze);
-                    if (pn_mc_seen(m, pn_mc_at(r, 0.5f * (a + b)))) {
+                    /* The ray's part inside the interval, at its ends and middle: the eye
+                     * must see all three as empty (its middle alone let the tree's leaves
+                     * leak) */
+                    float a = pn_kmaxf(t, v[0] / r->ze), b = pn_kminf(te, v[1] / r->ze), th = v[1] - v[0];
+                    if (pn_mc_seen(m, pn_mc_at(r, 0.5f * (a + b)), th) && pn_mc_seen(m, pn_mc_at(r, a), th) &&
+                        pn_mc_seen(m, pn_mc_at(r, b), th)) {
                         t = te;
                         if (l + 1u < mc->levels) l++;
                         continue;

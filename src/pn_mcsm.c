@@ -32,11 +32,12 @@ pn_status pn_mcsm_prepare(pn_frame_state *fs, const pn_frame_options *opt)
                        opt->mcsm.map, pn_mc_map_max(&ctx->limits));
     if (opt->mcsm.flags & ~(PN_MC_NO_BIAS | PN_MC_NO_CLASSIFY))
         return pn_fail(ctx, PN_E_INVALID_ARG, "mcsm.flags = %u has unknown bits", opt->mcsm.flags);
-    /* Defaults: the configuration docs/bench/RESULTS.md recommends ("Monte Carlo shadow
-     * maps"): two layers, hierarchical search, 3 x 3 rays, blur radius 1, 512^2 layers. */
+    /* Defaults: the configuration docs/algorithms/mcsm.md recommends: three layers (two
+     * for a point query, which has no eye), hierarchical search, 3 x 3 rays, blur radius
+     * 1, 512^2 layers. */
     fs->res = opt->mcsm.map ? opt->mcsm.map : pn_mc_map_max(&ctx->limits);
     if (!opt->mcsm.map && fs->res > 512u) fs->res = 512u;
-    fs->K.mc.layers = opt->mcsm.layers ? opt->mcsm.layers : 2u;
+    fs->K.mc.layers = opt->mcsm.layers ? opt->mcsm.layers : fs->points ? 2u : 3u;
     fs->K.mc.search = opt->mcsm.search ? opt->mcsm.search : PN_MC_SEARCH_HIER;
     fs->K.mc.rays = opt->mcsm.rays ? opt->mcsm.rays : 3u;
     /* A point query has no screen to blur over, nor the eye's depth for a third layer. */

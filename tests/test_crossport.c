@@ -376,8 +376,8 @@ static void lean_same(const pn_camera *cam, const pn_light *light, const pn_fram
 /* The frame just rendered on both ports (g_rig.a), again from its own depth and triangle
  * ids handed back as the caller's G-buffer: the same bytes, stats included, on both ports.
  * Then its pixels' points through pn_visibility_points on both ports: the frame's
- * visibility bit for bit (MCSM's against a frame without its screen-space blur, which a
- * point query does not run); the wedges refuse points. With `lean`, first lean_same. */
+ * visibility bit for bit (MCSM's against a frame without its screen-space blur and its
+ * third layer, which a point query does not run); the wedges refuse points. With `lean`, first lean_same. */
 static void gbuffer_and_points(const pn_camera *cam, const pn_light *light, const pn_frame_options *o,
                                const char *what, int lean)
 {
@@ -398,7 +398,10 @@ static void gbuffer_and_points(const pn_camera *cam, const pn_light *light, cons
 
     g = *o;
     if (g.algo == PN_ALGO_MCSM) {
+        /* the points' defaults: no blur, and two layers where the frame's default is three
+         * (a point has no eye for the third) */
         g.mcsm.blur = PN_MC_BLUR_OFF;
+        if (g.mcsm.layers == 0u) g.mcsm.layers = 2u;
         snprintf(w2, sizeof(w2), "%s, no blur", what);
         if (cross(&g_rig, cam, light, &g, w2) != PN_OK) goto done;
         memcpy(g_kept.vis, g_rig.a.vis, n * sizeof(float));

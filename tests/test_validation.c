@@ -789,8 +789,10 @@ static void test_points_input(void)
         o = OPT;
         o.algo = (pn_algo)a;
         o.mcsm.blur = PN_MC_BLUR_OFF;
+        o.mcsm.layers = 2u; /* a point's default: it has no eye for the third layer */
         REQUIRE(pn_render(H.ctx, &S.camera, &S.light, &o, &fr) == PN_OK);
         keep(&K0, &fr);
+        o.mcsm.layers = 0u;
         memset(out, 0xAB, sizeof(out));
         st = pn_visibility_points(H.ctx, &S.light, &o, K0.pos, K0.nrm, K0.ids, n, out);
         if (a == PN_ALGO_WEDGES) {

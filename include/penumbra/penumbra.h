@@ -445,7 +445,8 @@ typedef struct pn_occtex_options { /* PN_ALGO_OCCTEX (0 everywhere is the recomm
 typedef struct pn_mcsm_options { /* PN_ALGO_MCSM (0 everywhere is the recommended
                                     configuration) */
     uint32_t layers;       /* depth layers: 1 (near only), 2 (near, far) or 3 (near, far and
-                              the eye's depth, Algorithm 1); 0: 2 */
+                              the eye's depth, Algorithm 1); 0: 3 for a frame, 2 for
+                              pn_visibility_points */
     uint32_t search;       /* PN_MC_SEARCH_*; 0: PN_MC_SEARCH_HIER */
     uint32_t rays;         /* n: n x n jittered rays per pixel, 1 .. 8; 0: 3 */
     uint32_t blur;         /* depth-, normal- and edge-aware blur radius in pixels, 1 .. 8, or
@@ -576,7 +577,7 @@ pn_status pn_render(pn_context *ctx, const pn_camera *camera, const pn_light *li
  * (for a map-based algorithm, when one batch holds them all); a map-based algorithm fits
  * its maps to each batch's points. Algorithms: the
  * reference, GEARS, ray tracing, SRT, the occlusion textures and MCSM (its screen-space
- * blur is not run; layers 1 or 2); the wedges, which work in a camera's screen tiles, and
+ * blur is not run; layers 1 or 2, by default 2); the wedges, which work in a camera's screen tiles, and
  * MCSM's third layer (the eye's depth) return PN_E_UNSUPPORTED. Statuses: those of
  * pn_render for the light and the options, PN_E_INVALID_ARG (NULL pointers when n > 0, a
  * normal not unit, a degenerate triangle's id), PN_E_INDEX_RANGE (an id beyond the scene),

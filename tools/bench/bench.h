@@ -235,6 +235,7 @@ enum {
     SEC_MC_MAP,
     SEC_MC_SCREEN,
     SEC_MC_GOAL,
+    SEC_MC_MAPS,
     SEC_WG_MODES,
     SEC_WG_MAPS,
     SEC_WG_GOAL,
@@ -295,6 +296,12 @@ accuracy compare_vis(const float *a, const float *ref, size_t n);
 void write_data(const bench_opts *o, const char *name, const char *scene, const char *text);
 int heat_png(const bench_opts *o, const scene_state *ss, const char *file, const float *d, const float *ref,
              uint32_t w, uint32_t h, double tol, const uint8_t pos[3], const uint8_t neg[3]);
+void error_heat(const bench_opts *o, report *r, int s, const scene_state *ss, const char *file, const float *vis,
+                const float *ref, uint32_t w, uint32_t h);
+/* The note of an error_heat section. */
+#define HEAT_NOTE                                                                                                      \
+    "Per scene, the default's visibility minus the k = 32 reference: red where it is brighter (a shadow "             \
+    "missing), blue where darker, full at 0.25; elsewhere the shaded reference in grey."
 void scaled_light(const pn_light *l, float s, pn_light *out);
 int scene_open(const bench_opts *o, scene_state *ss, const char *source, int builtin, const bench_port *port,
                uint32_t max_size);

@@ -120,6 +120,8 @@ void mc_claims(const bench_opts *o, report *r, scene_state *ss)
             j->st.mcsm.penumbra ? 100.0 * j->st.mcsm.penumbra_shut / j->st.mcsm.penumbra : 0.0, (unsigned long long)j->st.mcsm.rays,
             j->st.mcsm.rays ? (double)j->st.mcsm.steps / (double)j->st.mcsm.rays : 0.0, j->st.mcsm.capped);
     }
+    /* Where the default errs: its error against the k = 32 reference as a heat map. */
+    if (jobs[0].ok) error_heat(o, r, SEC_MC_MAPS, ss, "mc_heat", jobs[0].vis, ref, opt.width, opt.height);
     for (i = 0; i < MC_CFGS; i++) chart_point(ss, "MCSM", mc_cfgs[i].name, &jobs[i], 15);
     if (jobs[0].ok && jobs[0].vis && ss->ref_vis) {
         ss->mc_ok = 1;
@@ -453,6 +455,7 @@ static const bench_note mc_notes[] = {
      "Shadow pass ms (median), hierarchical search, 512x512 layers, the default blur, square images; the stages of the last "
      "repetition. The thesis: \"the screen resolution directly affects the number of rays that must be traced\", "
      "so the rays and blur stages should grow with the pixels, the layers and N-buffer not."},
+    {SEC_MC_MAPS, "### MCSM: where the default errs", HEAT_NOTE},
     {SEC_MC_GOAL, "### MCSM: the issue's goal",
      "The default (its run of the claims table) against the fastest exact algorithm of the main point (of reference, "
      "GEARS and raytrace), its RMSE against the main point's reference, and the chart's front judged as for the "

@@ -83,19 +83,7 @@ void occ_section(const bench_opts *o, report *r, scene_state *ss)
             (unsigned long long)j->st.occtex.texels_set, (unsigned long long)j->st.occtex.lookups);
     }
     /* Where the default errs: its error against the k = 32 reference as a heat map. */
-    if (jobs[0].ok && jobs[0].vis && ref) {
-        static const uint8_t red[3] = {1, 0, 0}, blue[3] = {0, 0, 1};
-        float *d = (float *)malloc(n * sizeof(float));
-        size_t p;
-        if (d) {
-            for (p = 0; p < n; p++) d[p] = jobs[0].vis[p] - ref[p];
-            if (heat_png(o, ss, "occ_heat", d, ref, opt.width, opt.height, 1.0 / 255.0, red, blue) == 0)
-                sec(r, SEC_OCC_MAPS,
-                    "**%s**\n\n![%s: the default's error, red brighter, blue darker](occ_heat_%s.png)\n\n",
-                    ss->s.name, ss->s.name, ss->s.name);
-            free(d);
-        }
-    }
+    if (jobs[0].ok) error_heat(o, r, SEC_OCC_MAPS, ss, "occ_heat", jobs[0].vis, ref, opt.width, opt.height);
     for (i = 0; i < OCC_CFGS; i++) job_free(&jobs[i]);
 
     /* The configurations at the main point's k against its reference: the chart's points. */
@@ -206,9 +194,7 @@ static const bench_note occ_notes[] = {
     {SEC_OCC_LIGHT, "### Occlusion textures: cost against light size",
      "The default at the main point with the light's half-edges scaled (1: the scene's light). The paper claims "
      "the cost does not depend on the light's size."},
-    {SEC_OCC_MAPS, "### Occlusion textures: where the default errs",
-     "Per scene, the default's visibility minus the k = 32 reference: red where it is brighter (a shadow "
-     "missing), blue where darker, full at 0.25; elsewhere the shaded reference in grey."},
+    {SEC_OCC_MAPS, "### Occlusion textures: where the default errs", HEAT_NOTE},
 };
 
 /* The occlusion-texture tables with their headings and notes (print_report). */

@@ -47,13 +47,17 @@ for section in '## Headline' '## Per port' '## Embree 3 baseline' '## Cost vs ou
                "### MCSM: the issue's goal"; do
   check grep -q "^$section" "$md"
 done
-# MCSM (when compiled in): a claims row per scene, and the leak table's closed-box, a scene of
-# that table only.
+# MCSM (when compiled in): a claims row per scene, its error heat map, and the leak table's
+# closed-box, a scene of that table only.
 if ! grep -q '^| square | MCSM | n/a | n/a | n/a | not compiled in |' "$md"; then
   for s in square elongated-cube; do
-    check grep -q "^| $s | default (2 layers, hierarchical" "$md"
+    check grep -q "^| $s | default (3 layers, hierarchical" "$md"
+    check grep -q "^| $s | 2 layers, hierarchical | [0-9]" "$md"
+    check grep -q "(mc_heat_$s.png)" "$md"
+    check test -s "$work/mc_heat_$s.png"
   done
-  check grep -q '^| closed-box | MCSM | 3 layers | [0-9]' "$md"
+  check grep -q '^### MCSM: where the default errs' "$md"
+  check grep -q '^| closed-box | MCSM | 3 layers (default) | [0-9]' "$md"
 fi
 check test "$(grep -c '^| closed-box | [0-9]' "$md")" -eq 0
 # Exact algorithms match the reference byte for byte, and our recomputed masks reproduce it.

@@ -63,7 +63,7 @@ static rig *get_rig(uint32_t pool_sel)
     static const uint32_t pools[5] = {0u, 64u, 12u, 3u, 0u};
     rig *r = &rigs[pool_sel];
     if (!r->ctx) {
-        pn_limits lim = {MAX_T, MAX_W, MAX_H, pools[pool_sel], 64u, 64u, 64u, 64u, 0u, 0u, 0u, 0u}; /* light-space maps: 64^2 at most */
+        pn_limits lim = {MAX_T, MAX_W, MAX_H, pools[pool_sel], 64u, 64u, 64u, 64u, 0u, 0u, 0u, 0u, 0u}; /* light-space maps: 64^2 at most */
         if (pool_sel == 4u) lim.flags = PN_LIMITS_NO_SURFACE | PN_LIMITS_SPARSE_NBUFFER;
         size_t bytes;
         pn_status st;

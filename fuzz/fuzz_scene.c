@@ -396,6 +396,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 #ifdef PN_BUILD_WEDGES
     opt.wedges.mode = h[12] % 4u; /* 3: invalid */
     lim.wg_pairs = (uint32_t)h[13] * 16u; /* below a frame's pairs now and then */
+    /* below a frame's silhouettes now and then (at most 3 of its 64 triangles' each) */
+    lim.wg_silhouettes = (h[14] & 1u) ? 64u + (uint32_t)(h[14] >> 1) : 0u;
 #endif
     take(&r, &cam, sizeof cam);
     take(&r, &light, sizeof light);
@@ -480,11 +482,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if ((unsigned)opt.algo >= 8u || !(pn_build_info() & (1u << opt.algo))) {
         must |= BIT(PN_E_INVALID_ARG);
         may |= BIT(PN_E_UNSUPPORTED);
-    } else if (opt.algo != PN_ALGO_REFERENCE && (opt.algo != PN_ALGO_WEDGES || lim.wg_pairs != 0u)) {
-        /* The wedges bin in bands of tiles that fit their pair pool: with the default pool
-         * (PN_WEDGES_PAIRS >= PN_WEDGES_SIL_MAX, the most silhouettes one tile can list,
-         * and the fuzzer's scenes hold fewer triangles than a third of that) they never run
-         * out; a caller's smaller pool may hold less than one tile's pairs. */
+    } else if (opt.algo != PN_ALGO_REFERENCE &&
+               (opt.algo != PN_ALGO_WEDGES || lim.wg_pairs != 0u || lim.wg_silhouettes != 0u)) {
+        /* The wedges bin in bands of tiles that fit their pair and silhouette pools: with
+         * the default pools (PN_WEDGES_PAIRS >= PN_WEDGES_SIL_MAX, the most silhouettes one
+         * tile can list, and the fuzzer's scenes hold fewer triangles than a third of that)
+         * they never run out; a caller's smaller pool may hold less than one tile's pairs or
+         * silhouettes. */
         may |= BIT(PN_E_POOL_EXHAUSTED);
     }
 #ifdef PN_BUILD_GEARS

@@ -15,12 +15,36 @@ PN_KFN void pn_e_wg_cast(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
         pn_wg_facing(&K->light, K->wg.front_g, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), PN_POOL(const uint32_t, wg_tcomp), t);
 }
 
-/* Edge run: 1 when it is a silhouette (scanned next into slots). */
+/* Edge run: 1 when it is a silhouette (scanned next into slots) and, in a band of
+ * silhouettes (wg.sil_band), a tile of the band lists it (pn_wg_sil_tiles). */
 PN_KFN void pn_e_wg_sil_flag(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
 {
-    (void)K;
-    PN_POOL(uint32_t, wg_soff)[r] = pn_wg_run_winding(PN_POOL(const uint32_t, wg_hedge), PN_POOL(const uint32_t, wg_run),
-                                                      PN_POOL(const uint32_t, wg_tcast), r) != 0;
+    PN_CONST uint32_t *hedge = PN_POOL(const uint32_t, wg_hedge), *run = PN_POOL(const uint32_t, wg_run);
+    pn_wsil e;
+    pn_wreach R;
+    uint32_t f;
+    if (!K->wg.sil_band) {
+        f = pn_wg_run_winding(hedge, run, PN_POOL(const uint32_t, wg_tcast), r) != 0;
+    } else {
+        f = pn_wg_sil_rec(&K->view, &K->light, K->wg.hmax, PN_POOL(const float, tris), hedge, run,
+                          PN_POOL(const uint32_t, wg_tcast), PN_POOL(const uint32_t, wg_tcomp), r, 0, &e, &R) &&
+            pn_wg_sil_tiles(&K->view, &K->light, &K->wg, PN_POOL(const float, tris), PN_POOL(const float, wg_tbox), &e,
+                            (PN_GLOBAL uint32_t *)0) != 0u;
+    }
+    PN_POOL(uint32_t, wg_soff)[r] = f;
+}
+
+/* Edge run that is a silhouette: one added to the list length (wg_toff, zeroed first) of
+ * every tile of the band wg.b* that lists it. */
+PN_KFN void pn_e_wg_tile_count(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
+{
+    pn_wsil e;
+    pn_wreach R;
+    if (pn_wg_sil_rec(&K->view, &K->light, K->wg.hmax, PN_POOL(const float, tris), PN_POOL(const uint32_t, wg_hedge),
+                      PN_POOL(const uint32_t, wg_run), PN_POOL(const uint32_t, wg_tcast), PN_POOL(const uint32_t, wg_tcomp),
+                      r, 0, &e, &R))
+        (void)pn_wg_sil_tiles(&K->view, &K->light, &K->wg, PN_POOL(const float, tris), PN_POOL(const float, wg_tbox), &e,
+                              PN_POOL(uint32_t, wg_toff));
 }
 
 /* Edge run that is a silhouette: its record and wedge tiles at its slot. */
@@ -146,6 +170,7 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
 #define PN_PASSES_WEDGES(X)                               \
     X(WG_CAST, wg_cast, 64, 4096)                         \
     X(WG_SIL_FLAG, wg_sil_flag, 64, 4096)                 \
+    X(WG_TILE_COUNT, wg_tile_count, 64, 1024)             \
     X(WG_SIL_MAKE, wg_sil_make, 64, 1024)                 \
     X(WG_OBJ_BOX, wg_obj_box, 64, 1024)                   \
     X(WG_BLOCK_BOX, wg_block_box, 64, 1024)               \

@@ -341,27 +341,34 @@ PN_KFN void pn_wg_row(const pn_kview *v, const pn_wreach *R, uint32_t ty, uint32
     if (*x1 > R->x1) *x1 = R->x1;
 }
 
-/* Edge run r: its silhouette record at slot (when its winding is non-zero), with its
- * wedge's tile box (the reach's). */
-PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN_CONST float *tris, PN_CONST uint32_t *hedge,
-                           PN_CONST uint32_t *run, PN_CONST uint32_t *tcast, PN_CONST uint32_t *tcomp, uint32_t r,
-                           uint32_t slot, PN_GLOBAL pn_wsil *sil)
+/* The silhouette half-edge of a run whose first half-edge is h0 and whose net winding is
+ * m (non-zero): the run's edge in the direction the silhouette runs. */
+PN_KFN uint32_t pn_wg_sil_h(uint32_t h0, int32_t m)
 {
-    int32_t m = pn_wg_run_winding(hedge, run, tcast, r);
-    uint32_t h0 = hedge[run[r]], rev0 = (h0 & PN_WG_REV) != 0u;
-    PN_GLOBAL pn_wsil *s = sil + slot;
-    pn_wreach R;
-    pn_v3 a, b;
-    uint32_t i;
-    if (m == 0) return;
+    uint32_t rev0 = (h0 & PN_WG_REV) != 0u;
     /* The silhouette runs along the canonical direction iff m > 0; the half-edge does iff
      * it is not reversed. */
-    s->h = (h0 & ~PN_WG_REV) | (((m > 0) == (rev0 != 0u)) ? PN_WG_REV : 0u);
+    return (h0 & ~PN_WG_REV) | (((m > 0) == (rev0 != 0u)) ? PN_WG_REV : 0u);
+}
+
+/* Edge run r: 0 when its winding is zero (not a silhouette); else 1 and its silhouette
+ * record in *s, with its wedge's tile box (the reach's, *R: with its hull when want_hull,
+ * which leaves the box as it is). */
+PN_KFN int pn_wg_sil_rec(const pn_kview *v, const pn_klight *L, float hmax, PN_CONST float *tris, PN_CONST uint32_t *hedge,
+                         PN_CONST uint32_t *run, PN_CONST uint32_t *tcast, PN_CONST uint32_t *tcomp, uint32_t r, int want_hull,
+                         pn_wsil *s, pn_wreach *R)
+{
+    int32_t m = pn_wg_run_winding(hedge, run, tcast, r);
+    uint32_t h0 = hedge[run[r]];
+    pn_v3 a, b;
+    uint32_t i;
+    if (m == 0) return 0;
+    s->h = pn_wg_sil_h(h0, m);
     s->w = (uint32_t)(m > 0 ? m : -m);
     s->comp = tcomp[(h0 & ~PN_WG_REV) / 3u] & PN_WG_OBJ;
     s->pad = 0u;
     pn_wg_ends(tris, s->h, &a, &b);
-    pn_wg_reach(v, L, hmax, a, b, 0, &R); /* its box: the hull is built where it is binned */
+    pn_wg_reach(v, L, hmax, a, b, want_hull, R); /* the hull is built where it is binned */
     {
         pn_v3 c = pn_light_c(L), n = pn_v3_cross(pn_v3_sub(a, c), pn_v3_sub(b, c));
         float u, vv, h;
@@ -379,10 +386,21 @@ PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN
         s->pad1 = 0.0f;
         for (i = 0; i < 6u; i++) s->ob[i] = 0.0f; /* pn_wg_obj_box's */
     }
-    s->x0 = R.x0;
-    s->y0 = R.y0;
-    s->x1 = R.x1;
-    s->y1 = R.y1;
+    s->x0 = R->x0;
+    s->y0 = R->y0;
+    s->x1 = R->x1;
+    s->y1 = R->y1;
+    return 1;
+}
+
+/* Edge run r: its silhouette record at slot (when its winding is non-zero). */
+PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN_CONST float *tris, PN_CONST uint32_t *hedge,
+                           PN_CONST uint32_t *run, PN_CONST uint32_t *tcast, PN_CONST uint32_t *tcomp, uint32_t r,
+                           uint32_t slot, PN_GLOBAL pn_wsil *sil)
+{
+    pn_wsil s;
+    pn_wreach R;
+    if (pn_wg_sil_rec(v, L, hmax, tris, hedge, run, tcast, tcomp, r, 0, &s, &R)) sil[slot] = s;
 }
 
 /* The box in light coordinates (u0, u1, v0, v1, h0, h1) of the end points of silhouettes
@@ -619,10 +637,10 @@ PN_KFN void pn_wg_tile_box(const pn_kview *v, const pn_klight *L, uint32_t tx, u
  *   affine in (x_O, h_O); its least value over the box is at one corner.
  * Each comparison keeps a margin of 1e-3 of its terms' magnitudes, far above the rounding
  * of either side (a few float operations), so the pixel reaches the same decision. */
-PN_KFN int pn_wg_box_misses(PN_CONST float *B, PN_CONST pn_wsil *e)
+PN_KFN int pn_wg_box_misses_ends(PN_CONST float *B, float ua, float va, float ha, float ub, float vb, float hb)
 {
     const float near = 1.0f - PN_WG_TNEAR;
-    float h0 = B[4], h1 = B[5], hlo = pn_kminf(e->ha, e->hb), hhi = pn_kmaxf(e->ha, e->hb);
+    float h0 = B[4], h1 = B[5], hlo = pn_kminf(ha, hb), hhi = pn_kmaxf(ha, hb);
     uint32_t q;
     if (!(B[0] <= B[1])) return 1;
     if (!(h0 > 0.0f)) return 0;
@@ -631,13 +649,18 @@ PN_KFN int pn_wg_box_misses(PN_CONST float *B, PN_CONST pn_wsil *e)
     for (q = 0; q < 4u; q++) {
         float sg = (q & 1u) ? 1.0f : -1.0f, x0 = B[(q >> 1) * 2u], x1 = B[(q >> 1) * 2u + 1u];
         float xo = sg > 0.0f ? x1 : x0, xm = pn_kmaxf(pn_kfabs(x0), pn_kfabs(x1));
-        float xa = q < 2u ? e->ua : e->va, xb = q < 2u ? e->ub : e->vb;
+        float xa = q < 2u ? ua : va, xb = q < 2u ? ub : vb;
         float ca = sg * xa - 1.0f, cb = sg * xb - 1.0f;
-        float ga = ca * (ca >= 0.0f ? h0 : h1) + (1.0f - sg * xo) * e->ha;
-        float gb = cb * (cb >= 0.0f ? h0 : h1) + (1.0f - sg * xo) * e->hb;
+        float ga = ca * (ca >= 0.0f ? h0 : h1) + (1.0f - sg * xo) * ha;
+        float gb = cb * (cb >= 0.0f ? h0 : h1) + (1.0f - sg * xo) * hb;
         if (ga > 1e-3f * (pn_kfabs(xa) + xm + 1.0f) * h1 && gb > 1e-3f * (pn_kfabs(xb) + xm + 1.0f) * h1) return 1;
     }
     return 0;
+}
+
+PN_KFN int pn_wg_box_misses(PN_CONST float *B, PN_CONST pn_wsil *e)
+{
+    return pn_wg_box_misses_ends(B, e->ua, e->va, e->ha, e->ub, e->vb, e->hb);
 }
 
 /* ---- Binning ------------------------------------------------------------------------------ */
@@ -703,6 +726,39 @@ PN_KFN uint32_t pn_wg_bin(const pn_kview *v, const pn_klight *L, const pn_kwg *G
             for (i = 0; i < n; i++) scratch[at0 + i] = keep[i];
             kept[0] = at0;
             kept[1] = n;
+        }
+    }
+    return n;
+}
+
+/* Silhouette e's (a record of pn_wg_sil_rec's) (tile, e) pairs in the tiles [G->bx0, bx1)
+ * x [by0, by1): pn_wg_bin's count over them, the same reach and tests. Without counts (0),
+ * 1 at the first: a band of silhouettes keeps these, every silhouette a tile of the band
+ * lists. With counts, one added to each such tile's, atomically, and their number
+ * returned: every tile's list length, which the frame checks against its pools before it
+ * shades a band. The hull only for a box that reaches the band (most do not). */
+PN_KFN uint32_t pn_wg_sil_tiles(const pn_kview *v, const pn_klight *L, const pn_kwg *G, PN_CONST float *tris,
+                                PN_CONST float *tbox, const pn_wsil *e, PN_GLOBAL uint32_t *counts)
+{
+    uint32_t tw = PN_WG_TILES(v->width), x, y, x0, x1, ya, yb, n = 0u;
+    pn_wreach R;
+    pn_v3 a, b;
+    if (e->x0 > e->x1) return 0u;
+    ya = e->y0 > G->by0 ? e->y0 : G->by0;
+    yb = e->y1 + 1u < G->by1 ? e->y1 + 1u : G->by1;
+    if (ya >= yb || e->x0 >= G->bx1 || e->x1 < G->bx0) return 0u;
+    pn_wg_ends(tris, e->h, &a, &b);
+    pn_wg_reach(v, L, G->hmax, a, b, 1, &R);
+    for (y = ya; y < yb; y++) {
+        pn_wg_row(v, &R, y, &x0, &x1);
+        if (x0 < G->bx0) x0 = G->bx0;
+        if (x1 + 1u > G->bx1) x1 = G->bx1 - 1u;
+        for (x = x0; x <= x1 && x0 <= x1; x++) {
+            if (pn_wg_box_misses_ends(tbox + (size_t)(y * tw + x) * PN_WG_BOX, e->ua, e->va, e->ha, e->ub, e->vb, e->hb))
+                continue;
+            if (!counts) return 1u;
+            (void)pn_katomic_add(&counts[y * tw + x], 1u);
+            n++;
         }
     }
     return n;

@@ -63,9 +63,13 @@ pn_status pn_wedges_upload(pn_frame_state *fs)
 }
 
 /* The context's pair pool: 0 (PN_WEDGES_PAIRS) or at most it. */
-int pn_wedges_limits_ok(const pn_limits *l) { return l->wg_pairs <= PN_WEDGES_PAIRS; }
+int pn_wedges_limits_ok(const pn_limits *l)
+{
+    return l->wg_pairs <= PN_WEDGES_PAIRS &&
+           (l->wg_silhouettes == 0u || (l->wg_silhouettes >= 64u && l->wg_silhouettes <= PN_WEDGES_SIL_MAX));
+}
 /* Screen tiles of a frame; silhouettes a context holds (an edge per triangle side, at most
- * PN_WEDGES_SIL_MAX); (tile, silhouette) pairs: limits.wg_pairs, or by default the larger
+ * limits.wg_silhouettes, by default PN_WEDGES_SIL_MAX); (tile, silhouette) pairs: limits.wg_pairs, or by default the larger
  * of a 32nd of every tile with every silhouette slot (PN_WG_PAIRS_SHARE) and 6 pairs a slot
  * (PN_WG_PAIRS_PER_SIL: small frames, where a wedge's few tiles are a larger share), at most
  * PN_WEDGES_PAIRS; never more than every tile with every slot. On the 15 built-in and
@@ -77,7 +81,8 @@ static uint32_t pn_wg_tiles_of(uint32_t width, uint32_t height) { return PN_WG_T
 static uint32_t pn_wg_sil_max(const pn_limits *l)
 {
     uint64_t edges = 3u * (uint64_t)l->max_triangles;
-    return edges < PN_WEDGES_SIL_MAX ? (uint32_t)edges : PN_WEDGES_SIL_MAX;
+    uint32_t most = l->wg_silhouettes ? l->wg_silhouettes : PN_WEDGES_SIL_MAX;
+    return edges < most ? (uint32_t)edges : most;
 }
 static uint32_t pn_wg_pairs_max(const pn_limits *l)
 {
@@ -180,6 +185,7 @@ static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
     ctx->stats.wedges.silhouettes = 0;
     ctx->stats.wedges.pairs = 0;
     ctx->stats.wedges.bands = 0;
+    ctx->stats.wedges.sil_bands = 0;
     ctx->stats.wedges.touched = 0;
     ctx->stats.wedges.evaluated = 0;
     ctx->stats.wedges.hard_blockers = 0;
@@ -242,15 +248,143 @@ static uint32_t pn_wg_shrink(uint32_t n, uint32_t need, uint32_t cap)
     return m < 1u ? 1u : (m >= n ? n - 1u : m);
 }
 
+/* A band of rows x cols tiles that needed `need` > cap: cut, its rows first, then the tiles
+ * of its one row; 0 when it is one tile. */
+static int pn_wg_cut(uint32_t *rows, uint32_t *cols, uint32_t need, uint32_t cap)
+{
+    if (*rows > 1u)
+        *rows = pn_wg_shrink(*rows, need, cap);
+    else if (*cols > 1u)
+        *cols = pn_wg_shrink(*cols, need, cap);
+    else
+        return 0;
+    return 1;
+}
+
+/* The pixels of tiles [tx0, tx1) x [ty0, ty1), binned in bands of whole rows of those tiles
+ * (of tiles of one row when a row alone needs more pairs than the pool holds) whose pairs
+ * fit the pool, in order; a band that does not fit is cut and binned again. When the
+ * tiles' pairs do not fit at once, their count gave each tile row's pairs (pn_wg_bin) and
+ * every band takes the most rows that fit, so only a row that alone needs more is cut
+ * again. Each pixel takes its tile's silhouettes in the same order whatever the bands, so
+ * the bands change no byte. */
+static pn_status pn_wg_tiles(pn_frame_state *fs, const pn_wg_pools *s, uint32_t tiles, uint32_t cap, uint32_t tx0,
+                             uint32_t ty0, uint32_t tx1, uint32_t ty1)
+{
+    pn_context *ctx = fs->ctx;
+    pn_kparams *K = &fs->K;
+    uint32_t rows = ty1 - ty0, cols = tx1 - tx0, need, planned = 0u;
+    pn_status st;
+    K->wg.count_rows = rows > 1u; /* the first (all rows') count: the rows a plan needs */
+    K->wg.bx0 = tx0;
+    K->wg.by0 = ty0;
+    while (K->wg.by0 < ty1) {
+        if (planned && cols == tx1 - tx0) { /* the most whole rows from by0 whose pairs fit */
+            uint32_t r = K->wg.by0, sum = 0u;
+            while (r < ty1 && (r == K->wg.by0 || (sum <= cap && s->rowc[r] <= cap - sum))) sum += s->rowc[r++];
+            rows = r - K->wg.by0;
+        }
+        K->wg.by1 = K->wg.by0 + rows < ty1 ? K->wg.by0 + rows : ty1;
+        K->wg.bx1 = K->wg.bx0 + cols < tx1 ? K->wg.bx0 + cols : tx1;
+        if ((st = pn_wg_band(fs, s, tiles, cap, &need)) != PN_OK) return st;
+        if (need > cap && !planned && rows > 1u) {
+            /* Every tile row's pairs, from the count of all rows; no later count touches
+             * them. */
+            planned = 1u;
+            K->wg.count_rows = 0u;
+            if ((st = pn_dev_to_host(fs, s->rowc, (size_t)PN_WG_TILES(fs->height) * sizeof(uint32_t))) != PN_OK)
+                return st;
+            continue;
+        }
+        if (need > cap) {
+            if (!pn_wg_cut(&rows, &cols, need, cap))
+                return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
+                               "wedges: one screen tile needs %u (tile, wedge) pairs; the pair pool holds %u "
+                               "(pn_limits.wg_pairs, PN_WEDGES_PAIRS)", need, cap);
+            continue;
+        }
+        if (K->wg.bx1 < tx1) { /* the rest of this row of tiles next */
+            K->wg.bx0 = K->wg.bx1;
+            continue;
+        }
+        K->wg.bx0 = tx0;
+        cols = tx1 - tx0;
+        K->wg.by0 = K->wg.by1;
+        if (!planned && need <= cap / 2u && rows < ty1 - ty0) rows *= 2u; /* sparser rows: try more at once */
+    }
+    return PN_OK;
+}
+
+/* The frame's pixels in bands of tiles whose silhouettes fit the silhouette pool (scap):
+ * the whole frame when its nsil silhouettes do; else bands of whole tile rows (of tiles of
+ * one row when a row alone needs more), each flagging again only the silhouettes a tile of
+ * the band lists (pn_wg_sil_tiles), in the same order, so each pixel takes its tile's
+ * silhouettes as it would in one band: the bands change no byte. A band whose silhouettes
+ * do not fit is cut and flagged again. */
+static pn_status pn_wg_sil_bands(pn_frame_state *fs, const pn_wg_pools *s, uint32_t tiles, uint32_t cap, uint32_t scap,
+                                 uint32_t nsil)
+{
+    pn_context *ctx = fs->ctx;
+    pn_kparams *K = &fs->K;
+    uint32_t R = ctx->stats.wedges.edges, tw = PN_WG_TILES(fs->width), th = PN_WG_TILES(fs->height);
+    uint32_t rows = th, cols = tw, n = nsil, sx0 = 0u, sy0 = 0u, sx1, sy1;
+    uint64_t t0 = pn_dev_timestamp(fs), t1;
+    pn_status st;
+    while (sy0 < th) {
+        sy1 = sy0 + rows < th ? sy0 + rows : th;
+        sx1 = sx0 + cols < tw ? sx0 + cols : tw;
+        if (nsil > scap) {
+            /* the flag pass reads the band where the binning reads its own */
+            K->wg.sil_band = 1u;
+            K->wg.bx0 = sx0;
+            K->wg.by0 = sy0;
+            K->wg.bx1 = sx1;
+            K->wg.by1 = sy1;
+            if ((st = pn_dev_run(fs, PN_K_WG_SIL_FLAG, R)) != PN_OK || (st = pn_dev_scan(fs, s->soff, R)) != PN_OK ||
+                (st = pn_dev_to_host(fs, s->soff + R, 4u)) != PN_OK)
+                return st;
+            n = s->soff[R];
+            if (n > scap) {
+                if (!pn_wg_cut(&rows, &cols, n, scap))
+                    return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
+                                   "wedges: one screen tile lists %u silhouettes; the silhouette pool holds %u "
+                                   "(pn_limits.wg_silhouettes, PN_WEDGES_SIL_MAX)", n, scap);
+                continue;
+            }
+        }
+        K->wg.sils = n;
+        if (n > 0u && ((st = pn_dev_run(fs, PN_K_WG_SIL_MAKE, R)) != PN_OK ||
+                       (st = pn_dev_run(fs, PN_K_WG_OBJ_BOX, n)) != PN_OK ||
+                       (st = pn_dev_run(fs, PN_K_WG_BLOCK_BOX, (n - 1u) / PN_WG_BLOCK + 1u)) != PN_OK ||
+                       (st = pn_dev_run(fs, PN_K_WG_SBLOCK_BOX, (n - 1u) / PN_WG_SBLOCK + 1u)) != PN_OK))
+            return st;
+        ctx->stats.wedges.sil_bands++;
+        t1 = pn_dev_timestamp(fs);
+        ctx->stats.wedges.ns_silhouettes += t1 - t0;
+        if ((st = pn_wg_tiles(fs, s, tiles, cap, sx0, sy0, sx1, sy1)) != PN_OK) return st;
+        t0 = pn_dev_timestamp(fs);
+        if (sx1 < tw) { /* the rest of this row of tiles next */
+            sx0 = sx1;
+            continue;
+        }
+        sx0 = 0u;
+        cols = tw;
+        sy0 = sy1;
+        if (n <= scap / 2u && rows < th) rows *= 2u; /* sparser rows: try more at once */
+    }
+    ctx->stats.wedges.ns_silhouettes += pn_dev_timestamp(fs) - t0;
+    return PN_OK;
+}
+
 pn_status pn_wedges_frame(pn_frame_state *fs)
 {
     pn_context *ctx = fs->ctx;
     pn_kparams *K = &fs->K;
     pn_wg_pools s;
     uint32_t T = ctx->tri_count, R = ctx->stats.wedges.edges, y, nsil = 0;
-    uint32_t tiles = pn_wg_tiles_of(fs->width, fs->height), tw = PN_WG_TILES(fs->width), th = PN_WG_TILES(fs->height);
-    uint32_t cap = pn_wg_pairs_max(&ctx->limits);
-    uint64_t t0 = pn_dev_timestamp(fs), t1;
+    uint32_t tiles = pn_wg_tiles_of(fs->width, fs->height), tw = PN_WG_TILES(fs->width);
+    uint32_t cap = pn_wg_pairs_max(&ctx->limits), scap = pn_wg_sil_max(&ctx->limits);
+    uint64_t t0 = pn_dev_timestamp(fs);
     pn_status st;
 
     if ((st = pn_wg_begin(fs, &s)) != PN_OK) return st;
@@ -278,80 +412,43 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
     }
     K->wg.tiles_x = tw;
     K->wg.sils = 0u;
-    K->wg.count_rows = th > 1u; /* the first (whole frame's) count: the rows a plan needs */
-    K->wg.keep_cap = cap;       /* the tile-list pool's words: the count's kept tiles */
-    K->wg.bx0 = 0u;
-    K->wg.by0 = 0u;
-    K->wg.bx1 = tw;
-    K->wg.by1 = th;
+    K->wg.sil_band = 0u; /* the first flag pass: every silhouette */
+    K->wg.keep_cap = cap; /* the tile-list pool's words: the count's kept tiles */
     if (!K->light.is_point && R > 0u) {
         if ((st = pn_dev_run(fs, PN_K_WG_CAST, T)) != PN_OK || (st = pn_dev_run(fs, PN_K_WG_SIL_FLAG, R)) != PN_OK ||
             (st = pn_dev_scan(fs, s.soff, R)) != PN_OK || (st = pn_dev_to_host(fs, s.soff + R, 4u)) != PN_OK)
             return st;
         nsil = s.soff[R];
-        if (nsil > pn_wg_sil_max(&ctx->limits))
-            return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
-                           "wedges: %u silhouette edges; the silhouette pool holds %u (PN_WEDGES_SIL_MAX)", nsil,
-                           pn_wg_sil_max(&ctx->limits));
         ctx->stats.wedges.silhouettes = nsil;
-        K->wg.sils = nsil;
-        if (nsil > 0u && ((st = pn_dev_run(fs, PN_K_WG_SIL_MAKE, R)) != PN_OK ||
-                          (st = pn_dev_run(fs, PN_K_WG_OBJ_BOX, nsil)) != PN_OK ||
-                          (st = pn_dev_run(fs, PN_K_WG_BLOCK_BOX, (nsil - 1u) / PN_WG_BLOCK + 1u)) != PN_OK ||
-                          (st = pn_dev_run(fs, PN_K_WG_SBLOCK_BOX, (nsil - 1u) / PN_WG_SBLOCK + 1u)) != PN_OK ||
-                          (st = pn_dev_run(fs, PN_K_WG_TILE_BOX, tiles)) != PN_OK))
+        if (nsil > 0u && (st = pn_dev_run(fs, PN_K_WG_TILE_BOX, tiles)) != PN_OK) return st;
+    }
+    ctx->stats.wedges.ns_silhouettes = pn_dev_timestamp(fs) - t0;
+    /* Only a tile whose list is longer than a pool fails, and a band that failed after
+     * others were shaded would leave the previous frame's visibility half written. A list
+     * holds at most every silhouette, and a tile's pairs are its list; where the pools
+     * could be short of one (silhouettes in bands, or a pair pool smaller than the
+     * silhouette pool), every tile's list length is counted first (pn_wg_sil_tiles, into
+     * the tile offsets, free until the first band's sort) and the longest checked. */
+    if (nsil > 0u && (nsil > scap || cap < scap)) {
+        uint32_t most = 0u, i;
+        K->wg.bx0 = 0u;
+        K->wg.by0 = 0u;
+        K->wg.bx1 = tw;
+        K->wg.by1 = PN_WG_TILES(fs->height);
+        if ((st = pn_dev_fill(fs, s.toff, tiles, 0u)) != PN_OK || (st = pn_dev_run(fs, PN_K_WG_TILE_COUNT, R)) != PN_OK ||
+            (st = pn_dev_to_host(fs, s.toff, (size_t)tiles * sizeof(uint32_t))) != PN_OK)
             return st;
+        for (i = 0; i < tiles; i++) most = s.toff[i] > most ? s.toff[i] : most;
+        if (most > scap)
+            return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
+                           "wedges: one screen tile lists %u silhouettes; the silhouette pool holds %u "
+                           "(pn_limits.wg_silhouettes, PN_WEDGES_SIL_MAX)", most, scap);
+        if (most > cap)
+            return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
+                           "wedges: one screen tile needs %u (tile, wedge) pairs; the pair pool holds %u "
+                           "(pn_limits.wg_pairs, PN_WEDGES_PAIRS)", most, cap);
     }
-    t1 = pn_dev_timestamp(fs);
-    ctx->stats.wedges.ns_silhouettes = t1 - t0;
-    {
-        /* Bands of whole tile rows (of tiles of one row when a row alone needs more pairs
-         * than the pool holds) whose pairs fit the pool, in order; a band that does not
-         * fit is cut and binned again. When the whole frame does not fit, its count gave
-         * each tile row's pairs (pn_wg_bin) and every band takes the most rows that fit, so
-         * only a row that alone needs more is cut again. Each pixel takes its
-         * tile's silhouettes in the same order whatever the bands, so the bands change no
-         * byte. */
-        uint32_t rows = th, cols = tw, need, planned = 0u;
-        while (K->wg.by0 < th) {
-            if (planned && cols == tw) { /* the most whole rows from by0 whose pairs fit */
-                uint32_t r = K->wg.by0, sum = 0u;
-                while (r < th && (r == K->wg.by0 || (sum <= cap && s.rowc[r] <= cap - sum))) sum += s.rowc[r++];
-                rows = r - K->wg.by0;
-            }
-            K->wg.by1 = K->wg.by0 + rows < th ? K->wg.by0 + rows : th;
-            K->wg.bx1 = K->wg.bx0 + cols < tw ? K->wg.bx0 + cols : tw;
-            if ((st = pn_wg_band(fs, &s, tiles, cap, &need)) != PN_OK) return st;
-            if (need > cap && !planned && rows > 1u) {
-                /* Every tile row's pairs, from the whole frame's count; no later count
-                 * touches them. */
-                planned = 1u;
-                K->wg.count_rows = 0u;
-                if ((st = pn_dev_to_host(fs, s.rowc, (size_t)th * sizeof(uint32_t))) != PN_OK) return st;
-                continue;
-            }
-            if (need > cap) {
-                if (rows > 1u) {
-                    rows = pn_wg_shrink(rows, need, cap);
-                } else if (cols > 1u) {
-                    cols = pn_wg_shrink(cols, need, cap);
-                } else {
-                    return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
-                                   "wedges: one screen tile needs %u (tile, wedge) pairs; the pair pool holds %u "
-                                   "(pn_limits.wg_pairs, PN_WEDGES_PAIRS)", need, cap);
-                }
-                continue;
-            }
-            if (K->wg.bx1 < tw) { /* the rest of this row of tiles next */
-                K->wg.bx0 = K->wg.bx1;
-                continue;
-            }
-            K->wg.bx0 = 0u;
-            cols = tw;
-            K->wg.by0 = K->wg.by1;
-            if (!planned && need <= cap / 2u && rows < th) rows *= 2u; /* sparser rows: try more at once */
-        }
-    }
+    if ((st = pn_wg_sil_bands(fs, &s, tiles, cap, scap, nsil)) != PN_OK) return st;
     if ((st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_row_counters))) != PN_OK) return st;
     for (y = 0; y < fs->height; y++) {
         const pn_shadow_counters *c = &((const pn_row_counters *)fs->counters)[y].c;

@@ -147,6 +147,7 @@ static int same_frame(const char *what, const pn_xframe *a, const pn_xframe *b)
     SAME_STAT(wedges.silhouettes);
     SAME_STAT(wedges.pairs);
     SAME_STAT(wedges.bands);
+    SAME_STAT(wedges.sil_bands);
     SAME_STAT(wedges.evaluated);
     SAME_STAT(wedges.touched);
     SAME_STAT(wedges.hard_blockers);
@@ -605,8 +606,10 @@ static void test_options(void)
 }
 
 /* A rig for scene s at w x h whose GEARS and wedge pair pools are gears_pairs and wg_pairs
- * (0: the default), the scene set; 0, or 1 after a failed check (the rig closed). */
-static int small_rig(pn_xrig *r, const pn_setup *s, uint32_t w, uint32_t h, uint32_t gears_pairs, uint32_t wg_pairs)
+ * and whose wedge silhouette pool is wg_sils (0: the default), the scene set; 0, or 1 after
+ * a failed check (the rig closed). */
+static int small_rig(pn_xrig *r, const pn_setup *s, uint32_t w, uint32_t h, uint32_t gears_pairs, uint32_t wg_pairs,
+                     uint32_t wg_sils)
 {
     pn_limits lim;
     memset(&lim, 0, sizeof(lim));
@@ -615,6 +618,7 @@ static int small_rig(pn_xrig *r, const pn_setup *s, uint32_t w, uint32_t h, uint
     lim.max_height = h;
     lim.gears_pairs = gears_pairs;
     lim.wg_pairs = wg_pairs;
+    lim.wg_silhouettes = wg_sils;
     if (rig_open(r, &lim, NULL) != 0 ||
         pn_scene_set(r->h.ctx, s->mesh.positions, s->mesh.vertex_count, s->mesh.indices, s->mesh.triangle_count) !=
             PN_OK) {
@@ -625,17 +629,58 @@ static int small_rig(pn_xrig *r, const pn_setup *s, uint32_t w, uint32_t h, uint
     return 0;
 }
 
-/* The wedges through bands: pair pools of a third of the frame's pairs (bands of tile rows
- * planned from the rows' counts) and of the fullest tile's pairs (read from the message of
- * a pool of 2: rows cut into runs of tiles), against the one-band frame, on both ports. */
+/* The wedges through bands of one pool (sil: 0 the pair pool, 1 the silhouette pool),
+ * against the one-band frame `one` (pairs pairs), on both ports: a pool of a third of the
+ * frame's pairs (half its silhouettes: bands of tile rows); then from the least pool (2
+ * pairs, 64 silhouettes) up, each failure's count ("one screen tile needs N" pairs, "...
+ * lists N" silhouettes) the next pool, until the fullest tile fits (rows cut into runs of
+ * tiles: more bands than the five tile rows). */
+static void wedge_pools(const pn_setup *s, const pn_frame_options *o, const float *one, uint64_t pairs, int sil)
+{
+    const char *say = sil ? "one screen tile lists " : "one screen tile needs ";
+    char what[256], fmt[64];
+    uint32_t pool = sil ? g_rig.a.st.wedges.silhouettes / 2u : (uint32_t)(pairs / 3u), tries;
+    snprintf(fmt, sizeof(fmt), "%s%%u", say);
+    for (tries = 0; tries < 64u; tries++) {
+        pn_xrig small;
+        pn_status st;
+        const char *m;
+        uint32_t bands;
+        if (small_rig(&small, s, 96, 72, 0u, sil ? 0u : pool, sil ? pool : 0u) != 0) break;
+        snprintf(what, sizeof(what), "spheres wedges, %s pool %u", sil ? "silhouette" : "pair", pool);
+        st = cross(&small, &s->camera, &s->light, o, what);
+        m = strstr(pn_last_error(small.h.ctx), say);
+        if (st == PN_E_POOL_EXHAUSTED && tries > 0u) {
+            uint32_t need = 0u;
+            CHECK_MSG(m && sscanf(m, fmt, &need) == 1 && need > pool, "%s: %s", what, pn_last_error(small.h.ctx));
+            rig_close(&small);
+            if (need <= pool) break;
+            pool = need;
+            continue;
+        }
+        CHECK_MSG(st == PN_OK, "%s: %s", what, pn_status_str(st));
+        if (st == PN_OK) {
+            bands = sil ? small.b.st.wedges.sil_bands : small.b.st.wedges.bands;
+            CHECK_MSG(bands >= (tries ? 6u : sil ? 2u : 3u) && small.b.st.wedges.pairs == pairs, "%s: %u bands", what,
+                      bands);
+            CHECK_MSG(memcmp(small.b.vis, one, 96u * 72u * sizeof(float)) == 0, "%s: differs from one band", what);
+            fprintf(stderr, "same: %s: %u bands\n", what, bands);
+        }
+        rig_close(&small);
+        if (tries > 0u) break;
+        pool = sil ? 64u : 2u;
+    }
+}
+
+/* The wedges through bands of their pair pool and of their silhouette pool (wedge_pools),
+ * against the one-band frame, on both ports. */
 static void test_wedge_bands(void)
 {
     pn_setup s;
-    char err[256], what[256];
+    char err[256];
     pn_frame_options o;
     pn_xframe one;
     uint64_t pairs;
-    uint32_t pool, tries;
     if (!(pn_build_info() & PN_BUILD_WEDGES)) return;
     REQUIRE(pn_setup_load(&s, "spheres", 1, -1, err, sizeof(err)) == 0);
     REQUIRE(pn_scene_set(g_rig.h.ctx, s.mesh.positions, s.mesh.vertex_count, s.mesh.indices, s.mesh.triangle_count) ==
@@ -646,38 +691,8 @@ static void test_wedge_bands(void)
     CHECK(g_rig.a.st.wedges.bands == 1u);
     pairs = g_rig.a.st.wedges.pairs;
     memcpy(one.vis, g_rig.a.vis, 96u * 72u * sizeof(float));
-    /* A third of the pairs; then from a pool of 2 up, each failure's count ("one screen
-     * tile needs N") the next pool, until the fullest tile's fits. */
-    for (pool = (uint32_t)(pairs / 3u), tries = 0; tries < 64u; tries++) {
-        pn_xrig small;
-        pn_status st;
-        const char *m;
-        if (small_rig(&small, &s, 96, 72, 0u, pool) != 0) break;
-        snprintf(what, sizeof(what), "spheres wedges, pool %u of %llu pairs", pool, (unsigned long long)pairs);
-        st = cross(&small, &s.camera, &s.light, &o, what);
-        m = strstr(pn_last_error(small.h.ctx), "one screen tile needs ");
-        if (st == PN_E_POOL_EXHAUSTED && tries > 0u) {
-            uint32_t need = 0u;
-            CHECK_MSG(m && sscanf(m, "one screen tile needs %u", &need) == 1 && need > pool, "%s: %s", what,
-                      pn_last_error(small.h.ctx));
-            rig_close(&small);
-            if (need <= pool) break;
-            pool = need;
-            continue;
-        }
-        CHECK_MSG(st == PN_OK, "%s: %s", what, pn_status_str(st));
-        if (st == PN_OK) {
-            /* five tile rows: a third of the pairs takes at least three bands; the fullest
-             * tile's count, more than five (rows cut into runs of tiles) */
-            CHECK_MSG(small.b.st.wedges.bands >= (tries ? 6u : 3u) && small.b.st.wedges.pairs == pairs,
-                      "%s: %u bands", what, small.b.st.wedges.bands);
-            CHECK_MSG(memcmp(small.b.vis, one.vis, 96u * 72u * sizeof(float)) == 0, "%s: differs from one band", what);
-            fprintf(stderr, "same: %s: %u bands\n", what, small.b.st.wedges.bands);
-        }
-        rig_close(&small);
-        if (tries > 0u) break;
-        pool = 2u;
-    }
+    wedge_pools(&s, &o, one.vis, pairs, 0);
+    wedge_pools(&s, &o, one.vis, pairs, 1);
     xframe_free(&one);
     pn_setup_free(&s);
 }
@@ -714,7 +729,7 @@ static void test_tiling(void)
         for (i = 0; i < 3; i++) {
             pn_xrig small;
             pn_status st;
-            if (small_rig(&small, &s, 48, 48, pools[i], 0u) != 0) continue;
+            if (small_rig(&small, &s, 48, 48, pools[i], 0u, 0u) != 0) continue;
             snprintf(what, sizeof(what), "spheres GEARS %s light, pool %u of %llu pairs (largest cell %u)",
                      q ? "point" : "area", pools[i], (unsigned long long)pairs, max_cell);
             st = cross(&small, &s.camera, &light, &o, what);
@@ -811,7 +826,7 @@ static void test_api(void)
     /* Validation and statuses as pn_render's: no scene yet on a fresh context. */
     {
         pn_xrig fresh;
-        pn_limits lim = {64, 16, 16, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+        pn_limits lim = {64, 16, 16, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
         pn_camera cam = {{0, 1, 3}, {0, 0, 0}, {0, 1, 0}, 45.0f};
         pn_light light = {{0, 3, 0}, {0.5f, 0, 0}, {0, 0, 0.5f}};
         static const float quad[12] = {-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};

@@ -16,7 +16,7 @@ int main(void)
     size_t i, dark = 0;
 
     /* ---- the example ---- */
-    pn_limits lim = { 100000, 512, 512, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+    pn_limits lim = { 100000, 512, 512, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
     size_t bytes; pn_arena_size(&lim, &bytes);
     memory = malloc(bytes);
     pn_context *ctx; pn_init(&ctx, memory, bytes, &lim);

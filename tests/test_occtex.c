@@ -221,7 +221,7 @@ static void test_options(void)
 {
     pn_setup s;
     pn_host h;
-    pn_limits lim = {64, 32, 32, 1000, 16, 8, 64, 8, 0, 0, 0, 0}; /* the others small: the frame region holds the largest */
+    pn_limits lim = {64, 32, 32, 1000, 16, 8, 64, 8, 0, 0, 0, 0, 0}; /* the others small: the frame region holds the largest */
     size_t bytes;
     void *mem;
     pn_context *ctx;

@@ -284,7 +284,7 @@ static void test_options(void)
     pn_setup s;
     pn_host h;
     char err[256];
-    pn_limits lim = {64, 32, 32, 1000, 16, 64, 0, 8, 0, 0, 0, 0};
+    pn_limits lim = {64, 32, 32, 1000, 16, 64, 0, 8, 0, 0, 0, 0, 0};
     size_t bytes;
     void *mem;
     pn_context *ctx;

@@ -723,6 +723,27 @@ static void test_kept_tiles(void)
  * of tiles whose pairs fit, with the same bytes as in one band, in a smaller arena. Only a
  * pool smaller than one tile's pairs fails: PN_E_POOL_EXHAUSTED naming the pool, nothing
  * written outside the arena, the previous frame's buffers as they were. */
+/* spheres, and limits for it at W x H with the other algorithms' pools small; 0 when
+ * loaded. */
+static int short_limits(pn_setup *s, pn_limits *big)
+{
+    char err[256];
+    if (pn_setup_load(s, "spheres", 1, -1, err, sizeof(err)) != 0) {
+        CHECK_MSG(0, "loading spheres: %s", err);
+        return 1;
+    }
+    pn_limits_max(big);
+    big->max_triangles = s->mesh.triangle_count;
+    big->max_width = W;
+    big->max_height = H;
+    big->gears_pairs = 4096u;
+    big->gears_grid_max = 16u;
+    big->srt_map_max = 64u;
+    big->occ_map_max = 64u;
+    big->mc_map_max = 64u;
+    return 0;
+}
+
 static void test_short_pool(void)
 {
     pn_setup s;
@@ -730,19 +751,7 @@ static void test_short_pool(void)
     pn_stats st_big, st;
     size_t bytes_big, bytes;
     char err[256];
-    if (pn_setup_load(&s, "spheres", 1, -1, err, sizeof(err)) != 0) {
-        CHECK_MSG(0, "loading spheres: %s", err);
-        return;
-    }
-    pn_limits_max(&big);
-    big.max_triangles = s.mesh.triangle_count;
-    big.max_width = W;
-    big.max_height = H;
-    big.gears_pairs = 4096u;
-    big.gears_grid_max = 16u;
-    big.srt_map_max = 64u;
-    big.occ_map_max = 64u;
-    big.mc_map_max = 64u;
+    if (short_limits(&s, &big) != 0) return;
     REQUIRE(short_pool_frame(&s, &big, g_ref, &st_big, &bytes_big, err, sizeof(err)) == PN_OK);
     CHECK(st_big.wedges.bands == 1u && st_big.wedges.pairs > 1000u);
     lim = big;
@@ -757,6 +766,57 @@ static void test_short_pool(void)
     CHECK(short_pool_frame(&s, &lim, g_a, &st, &bytes, err, sizeof(err)) == PN_E_POOL_EXHAUSTED);
     fprintf(stderr, "pair pool of 2: %s\n", err);
     CHECK(strstr(err, "one screen tile") != NULL && strstr(err, "wg_pairs") != NULL);
+    pn_setup_free(&s);
+}
+
+/* A silhouette pool smaller than the frame's silhouettes (pn_limits.wg_silhouettes): the
+ * frame makes them in bands of tiles, each only the silhouettes a tile of the band lists
+ * (pn_wg_sil_tiles), with the same bytes as in one band and the same pairs, in a smaller
+ * arena; rows that alone need more are cut into tiles of the row. Only a pool smaller than
+ * one tile's list fails: PN_E_POOL_EXHAUSTED naming the pool, nothing written outside the
+ * arena, the previous frame's buffers as they were. */
+static void test_short_silhouettes(void)
+{
+    pn_setup s;
+    pn_limits big, lim;
+    pn_stats st_big, st;
+    size_t bytes_big, bytes;
+    char err[256];
+    uint32_t n;
+    if (short_limits(&s, &big) != 0) return;
+    REQUIRE(short_pool_frame(&s, &big, g_ref, &st_big, &bytes_big, err, sizeof(err)) == PN_OK);
+    CHECK(st_big.wedges.sil_bands == 1u && st_big.wedges.silhouettes > 3000u);
+    lim = big;
+    lim.wg_silhouettes = st_big.wedges.silhouettes / 2u;
+    CHECK_MSG(short_pool_frame(&s, &lim, g_a, &st, &bytes, err, sizeof(err)) == PN_OK, "half the silhouettes: %s", err);
+    fprintf(stderr, "short silhouette pool: %u silhouettes in %u bands of at most %u (pair bands %u); arena %zu, "
+            "default %zu\n", st.wedges.silhouettes, st.wedges.sil_bands, lim.wg_silhouettes, st.wedges.bands, bytes,
+            bytes_big);
+    CHECK(st.wedges.sil_bands >= 2u && st.wedges.pairs == st_big.wedges.pairs &&
+          st.wedges.silhouettes == st_big.wedges.silhouettes);
+    CHECK_MSG(memcmp(g_a, g_ref, sizeof(g_ref)) == 0, "silhouette bands changed the frame's bytes");
+    CHECK_MSG(bytes < bytes_big, "wg_silhouettes %u: arena %zu, not below the default's %zu", lim.wg_silhouettes, bytes,
+              bytes_big);
+    /* The least pool: fails naming the pool and the count of a tile it met; a pool of that
+     * count fits that tile, and so on up to the longest tile list, which the frame then
+     * makes in bands of tiles of a row (more than the frame's tile rows). */
+    lim.wg_silhouettes = 64u;
+    CHECK(short_pool_frame(&s, &lim, g_a, &st, &bytes, err, sizeof(err)) == PN_E_POOL_EXHAUSTED);
+    fprintf(stderr, "silhouette pool of 64: %s\n", err);
+    CHECK(strstr(err, "one screen tile lists") != NULL && strstr(err, "wg_silhouettes") != NULL);
+    for (n = 0; n < 16u; n++) {
+        unsigned m = 0u;
+        const char *at = strstr(err, "lists ");
+        REQUIRE(at != NULL && sscanf(at, "lists %u", &m) == 1 && m > lim.wg_silhouettes);
+        lim.wg_silhouettes = m;
+        if (short_pool_frame(&s, &lim, g_a, &st, &bytes, err, sizeof(err)) == PN_OK) break;
+    }
+    fprintf(stderr, "the least silhouette pool: %u, in %u bands (%u tile rows)\n", lim.wg_silhouettes, st.wedges.sil_bands,
+            (H + 15u) / 16u);
+    CHECK(n < 16u && st.wedges.sil_bands > (H + 15u) / 16u && st.wedges.pairs == st_big.wedges.pairs);
+    CHECK_MSG(memcmp(g_a, g_ref, sizeof(g_ref)) == 0, "bands of tiles changed the frame's bytes");
+    lim.wg_silhouettes = 63u; /* below the least pool */
+    CHECK(pn_arena_size(&lim, &bytes) == PN_E_LIMIT);
     pn_setup_free(&s);
 }
 
@@ -1077,6 +1137,7 @@ int main(void)
     RUN(test_holed_solid);
     RUN(test_many_blockers);
     RUN(test_short_pool);
+    RUN(test_short_silhouettes);
     RUN(test_kept_tiles);
     RUN(test_reach);
     RUN(test_culls);

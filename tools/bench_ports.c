@@ -115,7 +115,7 @@ static int build_time(const char *dir, const char *device, double *build_ms, dou
     fflush(NULL);
     pid = fork();
     if (pid == 0) {
-        pn_limits lim = {16, 16, 16, 1024, 16, 0, 0, 0, 0, 0, 0, 0};
+        pn_limits lim = {16, 16, 16, 1024, 16, 0, 0, 0, 0, 0, 0, 0, 0};
         size_t bytes;
         void *mem;
         pn_context *ctx;

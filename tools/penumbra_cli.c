@@ -45,7 +45,7 @@ static void usage(FILE *f)
             "                  [--occ-combine product|max|sum] [--occ-leak-fix] [--occ-paper-fade]\n"
             "                  [--mc-layers 1|2|3] [--mc-search linear|hier] [--mc-rays N] [--mc-blur N|off]\n"
             "                  [--mc-map N] [--mc-no-bias] [--mc-no-classify] [--mc-seed N] [--mc-sparse-nbuffer]\n"
-            "                  [--wg-mode blend|additive]\n"
+            "                  [--wg-mode blend|additive] [--wg-silhouettes N]\n"
             "                  --out image.png [--vis vis.pfm] [--ids ids.bin] [--stats stats.json]\n"
             "  penumbra bake [the scene, view, light and algorithm options of render]\n"
             "                --out lightmap.pfm [--size WxH]\n"
@@ -314,9 +314,9 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
             (double)st->mcsm.ns_blur * 1e-6);
     fprintf(f, "  \"wg_vertices\": %u,\n  \"wg_edges\": %u,\n  \"wg_open_edges\": %u,\n  \"wg_nonmanifold_edges\": %u,\n",
             st->wedges.vertices, st->wedges.edges, st->wedges.open_edges, st->wedges.nonmanifold_edges);
-    fprintf(f, "  \"wg_objects\": %u,\n  \"wg_closed_objects\": %u,\n  \"wg_duplicates\": %u,\n  \"wg_silhouettes\": %u,\n  \"wg_pairs\": %llu,\n  \"wg_bands\": %u,\n",
+    fprintf(f, "  \"wg_objects\": %u,\n  \"wg_closed_objects\": %u,\n  \"wg_duplicates\": %u,\n  \"wg_silhouettes\": %u,\n  \"wg_pairs\": %llu,\n  \"wg_bands\": %u,\n  \"wg_sil_bands\": %u,\n",
             st->wedges.objects, st->wedges.closed_objects, st->wedges.duplicates, st->wedges.silhouettes, (unsigned long long)st->wedges.pairs,
-            st->wedges.bands);
+            st->wedges.bands, st->wedges.sil_bands);
     fprintf(f, "  \"wg_evaluated\": %llu,\n  \"wg_touched\": %llu,\n  \"wg_hard_blockers\": %llu,\n  \"wg_hard_overflow\": %u,\n  \"wg_exact_pixels\": %u,\n",
             (unsigned long long)st->wedges.evaluated, (unsigned long long)st->wedges.touched,
             (unsigned long long)st->wedges.hard_blockers, st->wedges.hard_overflow, st->wedges.exact_pixels);
@@ -384,6 +384,7 @@ static int cmd_render(int argc, char **argv, int bake)
     pn_status rs;
     char err[512];
     int ground = -1, threads = 0, i, user_view = 0, user_light = 0, have_size = 0;
+    uint32_t wg_sils = 0u; /* --wg-silhouettes: the wedges' silhouette pool (0: the library's default) */
     long gears_pairs = -1; /* --gears-pairs: -1 the host's (PN_GEARS_PAIRS), 0 the library's default */
     uint32_t lim_flags = 0u; /* --mc-sparse-nbuffer: PN_LIMITS_SPARSE_NBUFFER */
     float eps_rel = -1.0f;
@@ -499,6 +500,7 @@ static int cmd_render(int argc, char **argv, int bake)
             else if (strcmp(v, "additive") == 0) opt.wedges.mode = PN_WG_MODE_ADDITIVE;
             else BAD(a);
         }
+        else if (strcmp(a, "--wg-silhouettes") == 0) { NEED_ARG; wg_sils = (uint32_t)strtoul(v, NULL, 10); }
         else if (strcmp(a, "--threads") == 0) { NEED_ARG; threads = atoi(v); if (threads < 1) BAD(a); }
         else if (strcmp(a, "--out") == 0) { NEED_ARG; out = v; }
         else if (strcmp(a, "--vis") == 0) { NEED_ARG; vis = v; }
@@ -575,6 +577,7 @@ static int cmd_render(int argc, char **argv, int bake)
     if (bake && !have_size) opt.width = opt.height = 256u;
     pn_host_limits(&lim, s.mesh.triangle_count, opt.width > 0 ? opt.width : 1, opt.height > 0 ? opt.height : 1);
     if (gears_pairs >= 0) lim.gears_pairs = (uint32_t)gears_pairs;
+    lim.wg_silhouettes = wg_sils;
     lim.flags |= lim_flags;
     if (pn_host_open_limits(&h, &lim, threads, err, sizeof(err)) != 0) {
         fprintf(stderr, "penumbra: %s\n", err);

@@ -95,9 +95,10 @@
 #define PN_ENABLE_WEDGES 1
 #endif
 
-/* Largest silhouette-edge count of a frame (80 + 4 bytes each; a context holds at most
- * 3 x max_triangles, every edge). A frame with more fails PN_E_POOL_EXHAUSTED, naming it.
- * Range 64 .. 2^24. */
+/* The silhouette pool's largest size (96 + 4 + 8 bytes a slot, and its share of the pair
+ * pool; a context holds at most 3 x max_triangles, every edge, or pn_limits.wg_silhouettes).
+ * A frame with more silhouettes makes them in bands of screen tiles (the same bytes); only
+ * a tile that lists more fails PN_E_POOL_EXHAUSTED, naming it. Range 64 .. 2^24. */
 #ifndef PN_WEDGES_SIL_MAX
 #define PN_WEDGES_SIL_MAX (1u << 18)
 #endif

@@ -38,7 +38,7 @@
  *   one call at a time per context.
  *
  * USAGE
- *   pn_limits lim = { 100000, 512, 512, 0, 0, 0, 0, 0, 0, 0, 0, 0 };  // max triangles, width, height; 0: default
+ *   pn_limits lim = { 100000, 512, 512, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };  // max triangles, width, height; 0: default
  *   size_t bytes; pn_arena_size(&lim, &bytes);
  *   void *mem = my_alloc(bytes);             // or static uint8_t mem[PN_ARENA_BYTES_MAX(...)]
  *   pn_context *ctx; pn_init(&ctx, mem, bytes, &lim);
@@ -130,11 +130,12 @@ typedef struct pn_limits {
     uint32_t mc_map_max;     /* largest Monte Carlo depth layer per axis; 0: PN_MCSM_MAP_MAX */
     uint32_t wg_pairs;       /* penumbra wedges' (screen tile, wedge) pair pool, at most
                                 PN_WEDGES_PAIRS; 0: a 32nd of every 16x16 tile of
-                                max_width x max_height with every silhouette slot (3 a
-                                triangle, at most PN_WEDGES_SIL_MAX), at least 6 a slot,
+                                max_width x max_height with every silhouette slot
+                                (wg_silhouettes), at least 6 a slot,
                                 at most PN_WEDGES_PAIRS. A frame needing more is binned in
                                 bands of tiles (the same bytes); one tile needing more fails
-                                PN_E_POOL_EXHAUSTED with its count */
+                                PN_E_POOL_EXHAUSTED with its count, before any pixel is
+                                written */
     uint32_t bvh_refs;       /* BVH references (47 bytes of arena each, and 72 of the
                                 frame region while the tree is built); beyond one a
                                 triangle, split slivers (config.h PN_BVH_SPLIT_DEPTH; frames
@@ -148,6 +149,14 @@ typedef struct pn_limits {
                                 another fails PN_E_LIMIT. 0: every algorithm compiled in.
                                 A flag of one not compiled in: PN_E_UNSUPPORTED */
     uint32_t flags;          /* PN_LIMITS_* (0: none) */
+    uint32_t wg_silhouettes; /* penumbra wedges' silhouette pool (96 bytes a slot), 64 ..
+                                PN_WEDGES_SIL_MAX; 0: 3 a triangle, at most
+                                PN_WEDGES_SIL_MAX. A frame with more silhouettes makes them
+                                in bands of tiles, each band only those its tiles list
+                                (the same bytes); a tile listing more fails
+                                PN_E_POOL_EXHAUSTED with its count, before any pixel is
+                                written. Last, so that positional initializers of the
+                                fields above still hold */
 } pn_limits;
 
 /* pn_limits.flags. PN_LIMITS_NO_SURFACE: frames keep no per-pixel position and normal (24
@@ -676,6 +685,8 @@ typedef struct pn_wedges_stats { /* Penumbra wedges: the scene's connectivity (a
     uint64_t pairs;              /* (screen tile, wedge) pairs binned */
     uint32_t bands;              /* binning passes: bands of tiles whose pairs fit the pair
                                     pool (1 when the whole screen's do) */
+    uint32_t sil_bands;          /* silhouette passes: bands of tile rows whose silhouettes
+                                    fit the silhouette pool (1 when the frame's do) */
     uint64_t evaluated;          /* (pixel, wedge) pairs evaluated */
     uint64_t touched;            /* ...of which the edge covered some of the light: the pixels
                                     touched per wedge are touched / silhouettes */

@@ -7,7 +7,7 @@ int main(void)
 {
     static const float pos[] = {-1, 1, -1, 1, 1, -1, 0, 1, 1, -4, 0, -4, 4, 0, -4, 0, 0, 4};
     static const uint32_t idx[] = {0, 2, 1, 3, 5, 4};
-    pn_limits lim = {2, 8, 8, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    pn_limits lim = {2, 8, 8, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
     size_t bytes;
     pn_context *ctx;
     pn_camera cam = {{0, 1, 3}, {0, 0, 0}, {0, 1, 0}, 45.0f};

@@ -141,6 +141,62 @@ static void test_algos(void)
     }
 }
 
+/* A scene of more than 2^20 triangles (the limit before PN_MAX_TRIANGLES was raised to
+ * 2^22): a floor of 1,049,800 small triangles under a square occluder and a square light
+ * sets and renders (the reference, k = 4), with the occluder's shadow on it. */
+static void test_over_a_million(void)
+{
+    enum { Q = 725, R = 724 }; /* quads along x and z: 2 Q R = 1,049,800 triangles */
+    uint32_t nv = (Q + 1u) * (R + 1u) + 4u, nt = 2u * Q * R + 2u, x, z, i = 0, lit = 0, dark = 0;
+    float *pos = (float *)malloc((size_t)nv * 3u * sizeof(float));
+    uint32_t *idx = (uint32_t *)malloc((size_t)nt * 3u * sizeof(uint32_t));
+    pn_camera cam = {{0, 5, 5}, {0, 0, -1}, {0, 1, 0}, 60.0f};
+    pn_light light = {{2, 8, -2}, {0.5f, 0, 0}, {0, 0, 0.5f}};
+    pn_limits l = lim3(nt, 32, 32);
+    pn_frame_options o;
+    pn_frame fr;
+    pn_context *ctx;
+    size_t bytes;
+    uint8_t *mem;
+    CHECK(nt > (1u << 20) && nt <= PN_MAX_TRIANGLES);
+    l.algos = PN_BUILD_REFERENCE;
+    REQUIRE(pos && idx && pn_arena_size(&l, &bytes) == PN_OK && (mem = (uint8_t *)malloc(bytes)) != NULL);
+    for (z = 0; z <= R; z++)
+        for (x = 0; x <= Q; x++, i++) {
+            pos[3u * i] = -4.0f + 8.0f * (float)x / Q;
+            pos[3u * i + 1u] = 0.0f;
+            pos[3u * i + 2u] = -4.0f + 8.0f * (float)z / R;
+        }
+    for (i = 0; i < 4u; i++) { /* the occluder, 1 x 1 at height 2 */
+        pos[3u * (nv - 4u + i)] = (i & 1u) ? 0.5f : -0.5f;
+        pos[3u * (nv - 4u + i) + 1u] = 2.0f;
+        pos[3u * (nv - 4u + i) + 2u] = (i & 2u) ? 0.5f : -0.5f;
+    }
+    for (z = 0, i = 0; z < R; z++)
+        for (x = 0; x < Q; x++) {
+            uint32_t a = z * (Q + 1u) + x, b = a + 1u, c = a + Q + 1u, d = c + 1u;
+            idx[i++] = a, idx[i++] = c, idx[i++] = b;
+            idx[i++] = b, idx[i++] = c, idx[i++] = d;
+        }
+    idx[i++] = nv - 4u, idx[i++] = nv - 2u, idx[i++] = nv - 3u;
+    idx[i++] = nv - 3u, idx[i++] = nv - 2u, idx[i++] = nv - 1u;
+    REQUIRE(pn_init(&ctx, mem, bytes, &l) == PN_OK);
+    CHECK_MSG(pn_scene_set(ctx, pos, nv, idx, nt) == PN_OK, "%s", pn_last_error(ctx));
+    pn_frame_options_default(&o);
+    o.width = o.height = 32;
+    o.k = 4;
+    CHECK_MSG(pn_render(ctx, &cam, &light, &o, &fr) == PN_OK, "%s", pn_last_error(ctx));
+    for (i = 0; i < 32u * 32u; i++) {
+        lit += fr.visibility[i] == 1.0f;
+        dark += fr.visibility[i] < 0.5f;
+    }
+    fprintf(stderr, "%u triangles: %u of 1024 pixels lit, %u below half\n", nt, lit, dark);
+    CHECK(lit > 300u && dark > 4u);
+    free(mem);
+    free(pos);
+    free(idx);
+}
+
 /* PN_LIMITS_NO_SURFACE: each algorithm's context costs at least 20 of the 24 bytes a pixel
  * of positions and normals less (a point query's batch, a quarter of the rows with its
  * surfaces, fits in what is left). */
@@ -364,5 +420,6 @@ int main(void)
     RUN(test_too_small_and_guard);
     RUN(test_static_arena);
     RUN(test_two_contexts);
+    RUN(test_over_a_million);
     return pn_test_summary();
 }

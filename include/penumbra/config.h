@@ -119,7 +119,7 @@
  * four-wide BVH nodes up to 128 / 3, leaf and raster orders 4 + 4), and the BVH's split
  * references (PN_BVH_SPLIT_REFS) 47 bytes each. Range 1 .. 2^26. */
 #ifndef PN_MAX_TRIANGLES
-#define PN_MAX_TRIANGLES (1u << 20)
+#define PN_MAX_TRIANGLES (1u << 22)
 #endif
 
 /* Largest vertex count accepted by pn_scene_set(). Vertices are validated and read while

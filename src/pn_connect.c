@@ -136,7 +136,7 @@ static int pn_cn_same_tri(const uint32_t *canon, uint32_t a, uint32_t b)
  * non-duplicate triangles):
  *   D = |sum of its triangles' vector areas| / A: 0 for a closed surface; the vector area
  *       of its holes otherwise (1 for a flat sheet, 1/2 for a bowl);
- *   H = (length of its open and non-manifold edges)^2 / (4 pi A): at least the holes' area
+ *   H = (length of its boundary: edges whose half-edges do not cancel)^2 / (4 pi A): at least the holes' area
  *       over A (the isoperimetric inequality), so an open tube or lamp shade (D = 0: its
  *       two ends' vector areas cancel) is not taken for a solid.
  * Solid when D <= PN_CN_SOLID_D and H <= PN_CN_SOLID_H. The sums run in triangle and edge
@@ -165,8 +165,16 @@ static void pn_cn_solids(pn_context *ctx, uint32_t *scratch, const uint32_t *hed
         uint32_t lo = run[r], hi = run[r + 1u], h = hedge[lo] & ~PN_WG_REV, e = h % 3u;
         const float *p = ctx->tris + (size_t)(h / 3u) * 9u, *x = p + 3u * e, *y = p + 3u * (e == 2u ? 0u : e + 1u);
         float dx = y[0] - x[0], dy = y[1] - x[1], dz = y[2] - x[2];
-        /* open, or not two half-edges winding it opposite ways (two from one vertex) */
-        if (hi - lo == 2u && (hedge[lo] & PN_WG_REV) != (hedge[lo + 1u] & PN_WG_REV)) continue;
+        /* A boundary when its half-edges do not cancel: open, an odd count, or more one way
+         * than the other. Closed surfaces that touch along an edge (stacked boxes, the
+         * steps of a stair, walls meeting at a corner) meet it with two pairs winding
+         * opposite ways: their union is closed there. */
+        {
+            uint32_t k;
+            int32_t wsum = 0;
+            for (k = lo; k < hi; k++) wsum += (hedge[k] & PN_WG_REV) ? -1 : 1;
+            if (wsum == 0) continue;
+        }
         acc[5u * (tcomp[h / 3u] & PN_WG_OBJ) + 4u] += pn_ksqrt(dx * dx + dy * dy + dz * dz);
     }
     ctx->stats.wedges.closed_objects = 0;

@@ -122,6 +122,19 @@ static void test_connect(void)
     cube(pos + 72, idx + 36, 3.0f);
     for (i = 36u; i < 72u; i++) idx[i] += 24u;
     connect_case("two cubes", pos, 48u, idx, 24u, 16u, 36u, 0u, 0u, 2u, 2u);
+    /* Two long bars touching along a long edge (a stair's steps, stacked boxes): one
+     * object, its shared edge non-manifold with two pairs of half-edges winding it opposite
+     * ways, so the union is closed there: a solid. Taken for a boundary, the edge made it a
+     * sheet (H = 0.79), whose faces MCSM lit through their own bar. */
+    cube(pos + 72, idx + 36, 1.0f);
+    for (i = 36u; i < 72u; i++) idx[i] += 24u;
+    for (i = 0; i < 48u; i++) {
+        pos[3u * i + 1u] += i >= 24u ? 1.0f : 0.0f;
+        pos[3u * i] *= 0.1f;
+        pos[3u * i + 1u] *= 0.1f;
+        pos[3u * i + 2u] *= 4.0f;
+    }
+    connect_case("two bars on an edge", pos, 48u, idx, 24u, 14u, 35u, 0u, 1u, 1u, 1u);
     connect_case("open quad", quad, 4u, qi, 2u, 4u, 5u, 4u, 0u, 1u, 0u);
     connect_case("fin", fin, 5u, fi, 3u, 5u, 7u, 6u, 1u, 1u, 0u);
     /* A triangle and its back: the back is a duplicate, so the object is a sheet (cast as a

@@ -169,9 +169,7 @@ typedef struct pn_kwg {
     float front_g;    /* pn_wg_front's bound on the magnitudes of a triangle's plane terms: the
                          scene box's largest coordinate |X|inf times 3, plus |c|inf twice,
                          |U|inf, |V|inf and the eye's |e|inf */
-    uint32_t sil_band; /* 1: the flag pass keeps only the silhouettes a tile of the band
-                          [bx0, bx1) x [by0, by1) lists (a band of silhouettes); 0: every
-                          silhouette */
+    uint32_t pad1;
 } pn_kwg;
 
 /* The G-buffer's triangle id of a pixel that sees no triangle. */

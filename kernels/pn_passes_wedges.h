@@ -15,23 +15,26 @@ PN_KFN void pn_e_wg_cast(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
         pn_wg_facing(&K->light, K->wg.front_g, PN_POOL(const float, tris), PN_POOL(const uint8_t, flags), PN_POOL(const uint32_t, wg_tcomp), t);
 }
 
-/* Edge run: 1 when it is a silhouette (scanned next into slots) and, in a band of
- * silhouettes (wg.sil_band), a tile of the band lists it (pn_wg_sil_tiles). */
+/* Edge run: 1 when it is a silhouette (scanned next into slots). */
 PN_KFN void pn_e_wg_sil_flag(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
 {
-    PN_CONST uint32_t *hedge = PN_POOL(const uint32_t, wg_hedge), *run = PN_POOL(const uint32_t, wg_run);
+    (void)K;
+    PN_POOL(uint32_t, wg_soff)[r] = pn_wg_run_winding(PN_POOL(const uint32_t, wg_hedge), PN_POOL(const uint32_t, wg_run),
+                                                      PN_POOL(const uint32_t, wg_tcast), r) != 0;
+}
+
+/* Edge run, in a band of silhouettes (the band of tiles wg.b*): 1 when it is a silhouette a
+ * tile of the band lists (pn_wg_sil_tiles); scanned next into slots as the flag pass's. */
+PN_KFN void pn_e_wg_sil_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
+{
     pn_wsil e;
     pn_wreach R;
-    uint32_t f;
-    if (!K->wg.sil_band) {
-        f = pn_wg_run_winding(hedge, run, PN_POOL(const uint32_t, wg_tcast), r) != 0;
-    } else {
-        f = pn_wg_sil_rec(&K->view, &K->light, K->wg.hmax, PN_POOL(const float, tris), hedge, run,
-                          PN_POOL(const uint32_t, wg_tcast), PN_POOL(const uint32_t, wg_tcomp), r, 0, &e, &R) &&
-            pn_wg_sil_tiles(&K->view, &K->light, &K->wg, PN_POOL(const float, tris), PN_POOL(const float, wg_tbox), &e,
-                            (PN_GLOBAL uint32_t *)0) != 0u;
-    }
-    PN_POOL(uint32_t, wg_soff)[r] = f;
+    PN_POOL(uint32_t, wg_soff)[r] =
+        pn_wg_sil_rec(&K->view, &K->light, K->wg.hmax, PN_POOL(const float, tris), PN_POOL(const uint32_t, wg_hedge),
+                      PN_POOL(const uint32_t, wg_run), PN_POOL(const uint32_t, wg_tcast), PN_POOL(const uint32_t, wg_tcomp), r,
+                      0, &e, &R) &&
+        pn_wg_sil_tiles(&K->view, &K->light, &K->wg, PN_POOL(const float, tris), PN_POOL(const float, wg_tbox), &e,
+                        (PN_GLOBAL uint32_t *)0) != 0u;
 }
 
 /* Edge run that is a silhouette: one added to the list length (wg_toff, zeroed first) of
@@ -170,6 +173,7 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
 #define PN_PASSES_WEDGES(X)                               \
     X(WG_CAST, wg_cast, 64, 4096)                         \
     X(WG_SIL_FLAG, wg_sil_flag, 64, 4096)                 \
+    X(WG_SIL_BAND, wg_sil_band, 64, 1024)                 \
     X(WG_TILE_COUNT, wg_tile_count, 64, 1024)             \
     X(WG_SIL_MAKE, wg_sil_make, 64, 1024)                 \
     X(WG_OBJ_BOX, wg_obj_box, 64, 1024)                   \

@@ -665,6 +665,30 @@ PN_KFN int pn_wg_box_misses(PN_CONST float *B, PN_CONST pn_wsil *e)
 
 /* ---- Binning ------------------------------------------------------------------------------ */
 
+/* The tile rows [*ya, *yb) of band G (G->bx0 .. by1) that a wedge's tile box x0, y0, x1, y1
+ * reaches, and the wedge's reach (edge h) with its hull into R; 0 when the box misses the
+ * band (nothing built). */
+PN_KFN_HOT int pn_wg_band_reach(const pn_kview *v, const pn_klight *L, const pn_kwg *G, PN_CONST float *tris, uint32_t h,
+                            uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, pn_wreach *R, uint32_t *ya, uint32_t *yb)
+{
+    pn_v3 a, b;
+    if (x0 > x1) return 0;
+    *ya = y0 > G->by0 ? y0 : G->by0;
+    *yb = y1 + 1u < G->by1 ? y1 + 1u : G->by1;
+    if (*ya >= *yb || x0 >= G->bx1 || x1 < G->bx0) return 0;
+    pn_wg_ends(tris, h, &a, &b);
+    pn_wg_reach(v, L, G->hmax, a, b, 1, R);
+    return 1;
+}
+
+/* The tile columns [*x0, *x1] of row y that reach R covers (pn_wg_row), within band G's. */
+PN_KFN_HOT void pn_wg_band_row(const pn_kview *v, const pn_wreach *R, const pn_kwg *G, uint32_t y, uint32_t *x0, uint32_t *x1)
+{
+    pn_wg_row(v, R, y, x0, x1);
+    if (*x0 < G->bx0) *x0 = G->bx0;
+    if (*x1 + 1u > G->bx1) *x1 = G->bx1 - 1u;
+}
+
 /* Silhouette s's (tile, s) pairs in the band [K->wg.bx0, bx1) x [by0, by1) of tiles: those
  * its reach covers and whose box (pn_wg_box_misses) it does not miss, in ascending tile
  * order. Counted (mode PN_WG_BIN_COUNT: returns the count and, with G->count_rows, adds
@@ -687,7 +711,6 @@ PN_KFN uint32_t pn_wg_bin(const pn_kview *v, const pn_klight *L, const pn_kwg *G
     uint32_t tw = PN_WG_TILES(v->width), x, y, x0, x1, ya, yb, n = 0u, keep[PN_WG_KEEP], i;
     PN_CONST pn_wsil *e = sil + s;
     pn_wreach R;
-    pn_v3 a, b;
     if (mode == PN_WG_BIN_WRITE && kept[1] == want) {
         PN_CONST uint32_t *k = scratch + kept[0];
         for (i = 0; i < want; i++) {
@@ -697,17 +720,10 @@ PN_KFN uint32_t pn_wg_bin(const pn_kview *v, const pn_klight *L, const pn_kwg *G
         return want;
     }
     if (mode == PN_WG_BIN_COUNT) kept[1] = 0u;
-    if (e->x0 > e->x1) return 0u;
-    ya = e->y0 > G->by0 ? e->y0 : G->by0;
-    yb = e->y1 + 1u < G->by1 ? e->y1 + 1u : G->by1;
-    if (ya >= yb || e->x0 >= G->bx1 || e->x1 < G->bx0) return 0u;
-    pn_wg_ends(tris, e->h, &a, &b);
-    pn_wg_reach(v, L, G->hmax, a, b, 1, &R);
+    if (!pn_wg_band_reach(v, L, G, tris, e->h, e->x0, e->y0, e->x1, e->y1, &R, &ya, &yb)) return 0u;
     for (y = ya; y < yb; y++) {
         uint32_t n0 = n;
-        pn_wg_row(v, &R, y, &x0, &x1);
-        if (x0 < G->bx0) x0 = G->bx0;
-        if (x1 + 1u > G->bx1) x1 = G->bx1 - 1u;
+        pn_wg_band_row(v, &R, G, y, &x0, &x1);
         for (x = x0; x <= x1 && x0 <= x1; x++) {
             if (pn_wg_box_misses(tbox + (size_t)(y * tw + x) * PN_WG_BOX, e)) continue;
             if (mode == PN_WG_BIN_WRITE) {
@@ -742,17 +758,9 @@ PN_KFN uint32_t pn_wg_sil_tiles(const pn_kview *v, const pn_klight *L, const pn_
 {
     uint32_t tw = PN_WG_TILES(v->width), x, y, x0, x1, ya, yb, n = 0u;
     pn_wreach R;
-    pn_v3 a, b;
-    if (e->x0 > e->x1) return 0u;
-    ya = e->y0 > G->by0 ? e->y0 : G->by0;
-    yb = e->y1 + 1u < G->by1 ? e->y1 + 1u : G->by1;
-    if (ya >= yb || e->x0 >= G->bx1 || e->x1 < G->bx0) return 0u;
-    pn_wg_ends(tris, e->h, &a, &b);
-    pn_wg_reach(v, L, G->hmax, a, b, 1, &R);
+    if (!pn_wg_band_reach(v, L, G, tris, e->h, e->x0, e->y0, e->x1, e->y1, &R, &ya, &yb)) return 0u;
     for (y = ya; y < yb; y++) {
-        pn_wg_row(v, &R, y, &x0, &x1);
-        if (x0 < G->bx0) x0 = G->bx0;
-        if (x1 + 1u > G->bx1) x1 = G->bx1 - 1u;
+        pn_wg_band_row(v, &R, G, y, &x0, &x1);
         for (x = x0; x <= x1 && x0 <= x1; x++) {
             if (pn_wg_box_misses_ends(tbox + (size_t)(y * tw + x) * PN_WG_BOX, e->ua, e->va, e->ha, e->ub, e->vb, e->hb))
                 continue;

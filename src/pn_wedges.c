@@ -334,13 +334,12 @@ static pn_status pn_wg_sil_bands(pn_frame_state *fs, const pn_wg_pools *s, uint3
         sy1 = sy0 + rows < th ? sy0 + rows : th;
         sx1 = sx0 + cols < tw ? sx0 + cols : tw;
         if (nsil > scap) {
-            /* the flag pass reads the band where the binning reads its own */
-            K->wg.sil_band = 1u;
+            /* the band pass reads the band where the binning reads its own */
             K->wg.bx0 = sx0;
             K->wg.by0 = sy0;
             K->wg.bx1 = sx1;
             K->wg.by1 = sy1;
-            if ((st = pn_dev_run(fs, PN_K_WG_SIL_FLAG, R)) != PN_OK || (st = pn_dev_scan(fs, s->soff, R)) != PN_OK ||
+            if ((st = pn_dev_run(fs, PN_K_WG_SIL_BAND, R)) != PN_OK || (st = pn_dev_scan(fs, s->soff, R)) != PN_OK ||
                 (st = pn_dev_to_host(fs, s->soff + R, 4u)) != PN_OK)
                 return st;
             n = s->soff[R];
@@ -412,7 +411,6 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
     }
     K->wg.tiles_x = tw;
     K->wg.sils = 0u;
-    K->wg.sil_band = 0u; /* the first flag pass: every silhouette */
     K->wg.keep_cap = cap; /* the tile-list pool's words: the count's kept tiles */
     if (!K->light.is_point && R > 0u) {
         if ((st = pn_dev_run(fs, PN_K_WG_CAST, T)) != PN_OK || (st = pn_dev_run(fs, PN_K_WG_SIL_FLAG, R)) != PN_OK ||

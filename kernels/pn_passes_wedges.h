@@ -28,11 +28,10 @@ PN_KFN void pn_e_wg_sil_flag(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
 PN_KFN void pn_e_wg_sil_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
 {
     pn_wsil e;
-    pn_wreach R;
     PN_POOL(uint32_t, wg_soff)[r] =
         pn_wg_sil_rec(&K->view, &K->light, K->wg.hmax, PN_POOL(const float, tris), PN_POOL(const uint32_t, wg_hedge),
                       PN_POOL(const uint32_t, wg_run), PN_POOL(const uint32_t, wg_tcast), PN_POOL(const uint32_t, wg_tcomp), r,
-                      0, &e, &R) &&
+                      &e) &&
         pn_wg_sil_tiles(&K->view, &K->light, &K->wg, PN_POOL(const float, tris), PN_POOL(const float, wg_tbox), &e,
                         (PN_GLOBAL uint32_t *)0) != 0u;
 }
@@ -42,10 +41,9 @@ PN_KFN void pn_e_wg_sil_band(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
 PN_KFN void pn_e_wg_tile_count(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t r)
 {
     pn_wsil e;
-    pn_wreach R;
     if (pn_wg_sil_rec(&K->view, &K->light, K->wg.hmax, PN_POOL(const float, tris), PN_POOL(const uint32_t, wg_hedge),
                       PN_POOL(const uint32_t, wg_run), PN_POOL(const uint32_t, wg_tcast), PN_POOL(const uint32_t, wg_tcomp),
-                      r, 0, &e, &R))
+                      r, &e))
         (void)pn_wg_sil_tiles(&K->view, &K->light, &K->wg, PN_POOL(const float, tris), PN_POOL(const float, wg_tbox), &e,
                               PN_POOL(uint32_t, wg_toff));
 }

@@ -352,14 +352,13 @@ PN_KFN uint32_t pn_wg_sil_h(uint32_t h0, int32_t m)
 }
 
 /* Edge run r: 0 when its winding is zero (not a silhouette); else 1 and its silhouette
- * record in *s, with its wedge's tile box (the reach's, *R: with its hull when want_hull,
- * which leaves the box as it is). */
+ * record in *s, with its wedge's tile box (the reach's). */
 PN_KFN int pn_wg_sil_rec(const pn_kview *v, const pn_klight *L, float hmax, PN_CONST float *tris, PN_CONST uint32_t *hedge,
-                         PN_CONST uint32_t *run, PN_CONST uint32_t *tcast, PN_CONST uint32_t *tcomp, uint32_t r, int want_hull,
-                         pn_wsil *s, pn_wreach *R)
+                         PN_CONST uint32_t *run, PN_CONST uint32_t *tcast, PN_CONST uint32_t *tcomp, uint32_t r, pn_wsil *s)
 {
     int32_t m = pn_wg_run_winding(hedge, run, tcast, r);
     uint32_t h0 = hedge[run[r]];
+    pn_wreach R;
     pn_v3 a, b;
     uint32_t i;
     if (m == 0) return 0;
@@ -368,7 +367,7 @@ PN_KFN int pn_wg_sil_rec(const pn_kview *v, const pn_klight *L, float hmax, PN_C
     s->comp = tcomp[(h0 & ~PN_WG_REV) / 3u] & PN_WG_OBJ;
     s->pad = 0u;
     pn_wg_ends(tris, s->h, &a, &b);
-    pn_wg_reach(v, L, hmax, a, b, want_hull, R); /* the hull is built where it is binned */
+    pn_wg_reach(v, L, hmax, a, b, 0, &R); /* its box: the hull is built where it is binned */
     {
         pn_v3 c = pn_light_c(L), n = pn_v3_cross(pn_v3_sub(a, c), pn_v3_sub(b, c));
         float u, vv, h;
@@ -386,10 +385,10 @@ PN_KFN int pn_wg_sil_rec(const pn_kview *v, const pn_klight *L, float hmax, PN_C
         s->pad1 = 0.0f;
         for (i = 0; i < 6u; i++) s->ob[i] = 0.0f; /* pn_wg_obj_box's */
     }
-    s->x0 = R->x0;
-    s->y0 = R->y0;
-    s->x1 = R->x1;
-    s->y1 = R->y1;
+    s->x0 = R.x0;
+    s->y0 = R.y0;
+    s->x1 = R.x1;
+    s->y1 = R.y1;
     return 1;
 }
 
@@ -399,8 +398,7 @@ PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN
                            uint32_t slot, PN_GLOBAL pn_wsil *sil)
 {
     pn_wsil s;
-    pn_wreach R;
-    if (pn_wg_sil_rec(v, L, hmax, tris, hedge, run, tcast, tcomp, r, 0, &s, &R)) sil[slot] = s;
+    if (pn_wg_sil_rec(v, L, hmax, tris, hedge, run, tcast, tcomp, r, &s)) sil[slot] = s;
 }
 
 /* The box in light coordinates (u0, u1, v0, v1, h0, h1) of the end points of silhouettes

@@ -297,10 +297,8 @@ static pn_status pn_wg_tiles(pn_frame_state *fs, const pn_wg_pools *s, uint32_t 
             continue;
         }
         if (need > cap) {
-            if (!pn_wg_cut(&rows, &cols, need, cap))
-                return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
-                               "wedges: one screen tile needs %u (tile, wedge) pairs; the pair pool holds %u "
-                               "(pn_limits.wg_pairs, PN_WEDGES_PAIRS)", need, cap);
+            if (!pn_wg_cut(&rows, &cols, need, cap)) /* pn_wedges_frame checked every tile */
+                return pn_fail(ctx, PN_E_INTERNAL, "wedges: one screen tile needs %u pairs, above the pool's %u", need, cap);
             continue;
         }
         if (K->wg.bx1 < tx1) { /* the rest of this row of tiles next */
@@ -344,10 +342,9 @@ static pn_status pn_wg_sil_bands(pn_frame_state *fs, const pn_wg_pools *s, uint3
                 return st;
             n = s->soff[R];
             if (n > scap) {
-                if (!pn_wg_cut(&rows, &cols, n, scap))
-                    return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
-                                   "wedges: one screen tile lists %u silhouettes; the silhouette pool holds %u "
-                                   "(pn_limits.wg_silhouettes, PN_WEDGES_SIL_MAX)", n, scap);
+                if (!pn_wg_cut(&rows, &cols, n, scap)) /* pn_wedges_frame checked every tile */
+                    return pn_fail(ctx, PN_E_INTERNAL, "wedges: one screen tile lists %u silhouettes, above the pool's %u", n,
+                                   scap);
                 continue;
             }
         }

@@ -165,6 +165,10 @@ typedef struct tiny_spec {
     long view0_stride;      /* positions bufferView byteStride; 0 = absent */
     long buffer_len;        /* buffers[0].byteLength; 0 = the BIN size */
     int pos_ctype;          /* POSITION componentType; 0 = 5126 */
+    const unsigned char *pos_raw; /* the positions' bytes as stored (nverts elements); NULL =
+                                     pos as floats */
+    unsigned pos_raw_len;   /* their length */
+    int pos_norm;           /* POSITION "normalized": true */
     int mesh_prims;         /* copies of the primitive in mesh 0; 0 = 1 */
     const char *prim0;      /* extra members of the first primitive only */
     const char *top;        /* extra top-level members */
@@ -181,10 +185,10 @@ static size_t index_bytes(int itype)
 static unsigned char *build_tiny(const tiny_spec *sp, size_t *size)
 {
     const float *pos = sp->pos ? sp->pos : quad_pos;
-    unsigned nverts = sp->pos ? sp->nverts : 4u;
+    unsigned nverts = sp->pos || sp->pos_raw ? sp->nverts : 4u;
     const uint32_t *idx = sp->idx ? sp->idx : quad_idx;
     unsigned nidx = sp->idx ? sp->nidx : 6u;
-    size_t pos_bytes = (size_t)nverts * 12u;
+    size_t pos_bytes = sp->pos_raw ? ((size_t)sp->pos_raw_len + 3u) & ~(size_t)3u : (size_t)nverts * 12u;
     size_t isz = index_bytes(sp->itype);
     size_t idx_bytes = sp->itype ? (size_t)nidx * isz : 0u;
     size_t bin_size = pos_bytes + ((idx_bytes + 3u) & ~(size_t)3u);
@@ -194,7 +198,8 @@ static unsigned char *build_tiny(const tiny_spec *sp, size_t *size)
     unsigned i;
     int p, nprims = sp->mesh_prims ? sp->mesh_prims : 1;
 
-    for (i = 0; i < nverts * 3u; i++) {
+    if (sp->pos_raw) memcpy(bin, sp->pos_raw, sp->pos_raw_len);
+    for (i = 0; !sp->pos_raw && i < nverts * 3u; i++) {
         uint32_t bits;
         memcpy(&bits, &pos[i], 4);
         put_le32(bin + (size_t)i * 4u, bits);
@@ -229,7 +234,7 @@ static unsigned char *build_tiny(const tiny_spec *sp, size_t *size)
     sb_add(&j, "\"buffers\":[{\"byteLength\":%ld}],",
            sp->buffer_len ? sp->buffer_len : (long)bin_size);
     sb_add(&j, "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":%ld",
-           sp->view0_len ? sp->view0_len : (long)pos_bytes);
+           sp->view0_len ? sp->view0_len : sp->pos_raw ? (long)sp->pos_raw_len : (long)pos_bytes);
     if (sp->view0_stride) {
         sb_add(&j, ",\"byteStride\":%ld", sp->view0_stride);
     }
@@ -239,8 +244,9 @@ static unsigned char *build_tiny(const tiny_spec *sp, size_t *size)
                idx_bytes);
     }
     sb_add(&j, "],\"accessors\":[{\"bufferView\":0,\"componentType\":%d,\"count\":%ld,"
-               "\"type\":\"VEC3\"}",
-           sp->pos_ctype ? sp->pos_ctype : 5126, sp->pos_count ? sp->pos_count : (long)nverts);
+               "\"type\":\"VEC3\"%s}",
+           sp->pos_ctype ? sp->pos_ctype : 5126, sp->pos_count ? sp->pos_count : (long)nverts,
+           sp->pos_norm ? ",\"normalized\":true" : "");
     if (sp->itype) {
         sb_add(&j, ",{\"bufferView\":1,\"componentType\":%d,\"count\":%u,\"type\":\"SCALAR\"}",
                sp->itype, nidx);
@@ -1245,6 +1251,171 @@ static void test_png_and_ids(void)
     CHECK(pn_write_ids(path, NULL, W, H, err, sizeof err) != 0);
 }
 
+/* z of triangle t's normal (B - A) x (C - A) in winding order: which side its front is on. */
+static float front_z(const pn_mesh *m, unsigned t)
+{
+    const float *a = m->positions + 3u * m->indices[3u * t], *b = m->positions + 3u * m->indices[3u * t + 1u];
+    const float *c = m->positions + 3u * m->indices[3u * t + 2u];
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+/* Loads sp and checks its triangles' indices (n of them) and that every front faces z's
+ * sign sz. */
+static void expect_triangles(const char *name, const tiny_spec *sp, const uint32_t *idx, unsigned n, float sz)
+{
+    pn_mesh m;
+    unsigned i;
+    if (expect_ok(name, sp, &m) == 0) {
+        CHECK_MSG(m.triangle_count == n, "%s: %u triangles, want %u", name, m.triangle_count, n);
+        for (i = 0; i < 3u * n && m.triangle_count == n; i++)
+            CHECK_MSG(m.indices[i] == idx[i], "%s: index %u is %u, want %u", name, i, m.indices[i], idx[i]);
+        for (i = 0; i < m.triangle_count; i++)
+            CHECK_MSG(front_z(&m, i) * sz > 0.0f, "%s: triangle %u faces the wrong way", name, i);
+    }
+    pn_mesh_free(&m);
+}
+
+/* The glTF specification's winding: a node whose world matrix mirrors (negative determinant)
+ * makes its primitives' front faces clockwise, so the loader reverses their winding and the
+ * front stays where the file puts it (the approximations read it: MCSM rendered a mirrored
+ * closed solid as umbra on its lit side). Triangle strips and fans as the specification
+ * orders their triangles. */
+static void test_winding_strips_fans(void)
+{
+    static const uint32_t flipped[6] = {0, 2, 1, 0, 3, 2}, strip[4] = {0, 1, 3, 2}, fan[4] = {0, 1, 2, 3};
+    static const uint32_t strip_tris[6] = {0, 1, 3, 1, 2, 3}, fan_tris[6] = {1, 2, 0, 2, 3, 0};
+    static const uint32_t strip_mirrored[6] = {0, 3, 1, 1, 3, 2}, plain_strip[6] = {0, 1, 2, 1, 3, 2};
+    static const float zigzag[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+    tiny_spec sp;
+    pn_mesh m;
+    unsigned i;
+
+    memset(&sp, 0, sizeof sp);
+    sp.itype = 5123;
+    expect_triangles("winding_plain.glb", &sp, quad_idx, 2, 1.0f);
+    sp.nodes = "[{\"scale\":[-1,1,1],\"mesh\":0}]"; /* x mirrored: z, the front's side, stays */
+    expect_triangles("winding_mirror_x.glb", &sp, flipped, 2, 1.0f);
+    if (expect_ok("winding_mirror_x.glb", &sp, &m) == 0 && m.vertex_count == 4)
+        for (i = 0; i < 4; i++) CHECK(m.positions[i * 3] == -quad_pos[i * 3]);
+    pn_mesh_free(&m);
+    sp.nodes = "[{\"scale\":[1,1,-1],\"mesh\":0}]"; /* z mirrored: the front turns to -z */
+    expect_triangles("winding_mirror_z.glb", &sp, flipped, 2, -1.0f);
+    /* A mirroring matrix (x and y swapped) under a translation. */
+    sp.nodes = "[{\"translation\":[0,0,2],\"children\":[1]},"
+               "{\"matrix\":[0,1,0,0, 1,0,0,0, 0,0,1,0, 0,0,0,1],\"mesh\":0}]";
+    expect_triangles("winding_mirror_matrix.glb", &sp, flipped, 2, 1.0f);
+    /* Two mirrors make a rotation (half a turn about y): the winding stays, the front -z. */
+    sp.nodes = "[{\"scale\":[-1,1,1],\"children\":[1]},{\"scale\":[1,1,-1],\"mesh\":0}]";
+    expect_triangles("winding_two_mirrors.glb", &sp, quad_idx, 2, -1.0f);
+    sp.nodes = NULL;
+
+    /* Strips: triangle t is (t, t+1, t+2) for even t and (t, t+2, t+1) for odd t. */
+    sp.idx = strip;
+    sp.nidx = 4;
+    sp.prim0 = "\"mode\":5";
+    expect_triangles("strip.glb", &sp, strip_tris, 2, 1.0f);
+    sp.nodes = "[{\"scale\":[-1,1,1],\"mesh\":0}]";
+    expect_triangles("strip_mirrored.glb", &sp, strip_mirrored, 2, 1.0f);
+    sp.nodes = NULL;
+    /* Fans: triangle t is (t+1, t+2, 0). */
+    sp.idx = fan;
+    sp.prim0 = "\"mode\":6";
+    expect_triangles("fan.glb", &sp, fan_tris, 2, 1.0f);
+    /* Not indexed: the elements are the vertices. */
+    memset(&sp, 0, sizeof sp);
+    sp.pos = zigzag;
+    sp.nverts = 4;
+    sp.prim0 = "\"mode\":5";
+    expect_triangles("strip_not_indexed.glb", &sp, plain_strip, 2, 1.0f);
+    /* Four elements are a strip's two triangles but no list of triangles; two are nothing. */
+    sp.prim0 = NULL;
+    expect_fail("list_of_four.glb", &sp, "multiple of 3");
+    sp.nverts = 2;
+    sp.prim0 = "\"mode\":6";
+    expect_fail("fan_of_two.glb", &sp, "no triangles");
+}
+
+static void put_le16(unsigned char *p, int v)
+{
+    p[0] = (unsigned char)((unsigned)v & 0xffu);
+    p[1] = (unsigned char)(((unsigned)v >> 8) & 0xffu);
+}
+
+/* KHR_mesh_quantization (what gltfpack writes by default): integer positions, normalized or
+ * not, dequantized by the node's transform; refused without the extension; compressed
+ * geometry refused with a way out. */
+static void test_quantized_positions(void)
+{
+    static const int s16[12] = {0, 0, 0, 32767, 0, 0, 32767, 32767, -32768, 0, 32767, -32767};
+    static const float s16_want[12] = {0, 0, 0, 1, 0, 0, 1, 1, -1, 0, 1, -1};
+    static const int u16[12] = {0, 0, 0, 2, 0, 0, 2, 2, 0, 0, 2, 0};
+    static const signed char s8[12] = {0, 0, 0, 127, 0, 0, 127, 127, -128, 0, 127, -127};
+    unsigned char raw[32];
+    tiny_spec sp;
+    pn_mesh m;
+    unsigned i;
+    const char *ext = "\"extensionsUsed\":[\"KHR_mesh_quantization\"],"
+                      "\"extensionsRequired\":[\"KHR_mesh_quantization\"]";
+
+    /* Unsigned shorts, not normalized, under a scale of 1/2 (gltfpack's layout: 8-byte
+     * elements). */
+    memset(&sp, 0, sizeof sp);
+    memset(raw, 0, sizeof raw);
+    for (i = 0; i < 12; i++) put_le16(raw + (i / 3u) * 8u + (i % 3u) * 2u, u16[i]);
+    sp.itype = 5123;
+    sp.pos_raw = raw;
+    sp.pos_raw_len = 32;
+    sp.nverts = 4;
+    sp.view0_stride = 8;
+    sp.pos_ctype = 5123;
+    sp.top = ext;
+    sp.nodes = "[{\"scale\":[0.5,0.5,0.5],\"mesh\":0}]";
+    if (expect_ok("quantized_u16.glb", &sp, &m) == 0 && m.vertex_count == 4) {
+        CHECK(memcmp(m.positions, quad_pos, sizeof quad_pos) == 0);
+        for (i = 0; i < 6; i++) CHECK(m.indices[i] == quad_idx[i]);
+    }
+    pn_mesh_free(&m);
+    /* The same file without the extension: integer positions are refused, saying why. */
+    sp.top = NULL;
+    expect_fail("quantized_u16_no_extension.glb", &sp, "KHR_mesh_quantization");
+    sp.top = ext;
+    sp.nodes = NULL;
+
+    /* Signed shorts, normalized: c / 32767, at least -1. */
+    for (i = 0; i < 12; i++) put_le16(raw + (i / 3u) * 8u + (i % 3u) * 2u, s16[i]);
+    sp.pos_ctype = 5122;
+    sp.pos_norm = 1;
+    if (expect_ok("quantized_s16_normalized.glb", &sp, &m) == 0 && m.vertex_count == 4)
+        for (i = 0; i < 12; i++) CHECK_MSG(m.positions[i] == s16_want[i], "s16 %u: %g", i, (double)m.positions[i]);
+    pn_mesh_free(&m);
+
+    /* Signed bytes, normalized (4-byte elements): c / 127, at least -1. */
+    memset(raw, 0, sizeof raw);
+    for (i = 0; i < 12; i++) raw[(i / 3u) * 4u + i % 3u] = (unsigned char)s8[i];
+    sp.pos_raw_len = 16;
+    sp.view0_stride = 4;
+    sp.pos_ctype = 5120;
+    if (expect_ok("quantized_s8_normalized.glb", &sp, &m) == 0 && m.vertex_count == 4)
+        for (i = 0; i < 12; i++) CHECK_MSG(m.positions[i] == s16_want[i], "s8 %u: %g", i, (double)m.positions[i]);
+    pn_mesh_free(&m);
+    /* Unsigned bytes, normalized: c / 255. */
+    for (i = 0; i < 12; i++) raw[(i / 3u) * 4u + i % 3u] = (unsigned char)(u16[i] ? 255 : 0);
+    sp.pos_ctype = 5121;
+    if (expect_ok("quantized_u8_normalized.glb", &sp, &m) == 0 && m.vertex_count == 4)
+        CHECK(memcmp(m.positions, quad_pos, sizeof quad_pos) == 0);
+    pn_mesh_free(&m);
+    /* An integer type the extension does not allow for positions. */
+    sp.pos_ctype = 5125;
+    expect_fail("quantized_u32.glb", &sp, "componentType");
+
+    /* Compressed geometry: refused, naming a way out. */
+    memset(&sp, 0, sizeof sp);
+    sp.itype = 5123;
+    sp.top = "\"extensionsUsed\":[\"EXT_meshopt_compression\"],"
+             "\"extensionsRequired\":[\"EXT_meshopt_compression\"]";
+    expect_fail("meshopt_required.glb", &sp, "without -c");
+}
+
 int main(void)
 {
     RUN(test_scene_set);
@@ -1257,6 +1428,8 @@ int main(void)
     RUN(test_tiny_malformed);
     RUN(test_triangle_limit);
     RUN(test_transforms);
+    RUN(test_winding_strips_fans);
+    RUN(test_quantized_positions);
     RUN(test_ascii_gltf);
     RUN(test_mutations);
     RUN(test_mesh_ground);

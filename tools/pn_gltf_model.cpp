@@ -326,14 +326,37 @@ size_t pn_index_size(int component_type)
 
 struct pn_prim_views {
     pn_view pos;
+    bool pos_normalized;  // integer positions (KHR_mesh_quantization) mapped to [-1, 1] or [0, 1]
     pn_view idx;
     bool indexed;
+    int mode;             // 4 triangles, 5 strip, 6 fan
     size_t triangles;
 };
 
-// Validates one primitive's accessors (mode 4 only; the caller filters).
-bool pn_prim_views_get(const tinygltf::Model &model, int mesh, size_t p, pn_prim_views *pv,
-                       std::string *why)
+// Bytes per component of a POSITION accessor: float, or with KHR_mesh_quantization (used by
+// the file) a signed or unsigned byte or short; 0 for anything else.
+size_t pn_position_size(int component_type, bool quantized)
+{
+    switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return quantized ? 1 : 0;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return quantized ? 2 : 0;
+    default: return 0;
+    }
+}
+
+// The triangles of a list of n elements in mode 4 (triangles), 5 (strip) or 6 (fan).
+size_t pn_mode_triangles(int mode, size_t n)
+{
+    if (mode == TINYGLTF_MODE_TRIANGLES) return n / 3;
+    return n >= 3 ? n - 2 : 0;
+}
+
+// Validates one primitive's accessors (modes 4, 5 and 6; the caller filters).
+bool pn_prim_views_get(const tinygltf::Model &model, int mesh, size_t p, bool quantized,
+                       pn_prim_views *pv, std::string *why)
 {
     const tinygltf::Primitive &prim = model.meshes[(size_t)mesh].primitives[p];
     char what[96];
@@ -343,15 +366,24 @@ bool pn_prim_views_get(const tinygltf::Model &model, int mesh, size_t p, pn_prim
         return false;
     }
     std::snprintf(what, sizeof what, "mesh %d primitive %zu POSITION", mesh, p);
-    if (it->second >= 0 && (size_t)it->second < model.accessors.size() &&
-        model.accessors[(size_t)it->second].componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
-        *why = pn_strf("%s accessor %d has componentType %d, need float (5126)", what,
-                       it->second, model.accessors[(size_t)it->second].componentType);
+    size_t psz = 4;
+    pv->pos_normalized = false;
+    if (it->second >= 0 && (size_t)it->second < model.accessors.size()) {
+        const tinygltf::Accessor &a = model.accessors[(size_t)it->second];
+        psz = pn_position_size(a.componentType, quantized);
+        if (psz == 0) {
+            *why = pn_strf("%s accessor %d has componentType %d, need float (5126)%s", what,
+                           it->second, a.componentType,
+                           quantized ? " or a byte or short (5120-5123)"
+                                     : " (integer positions need KHR_mesh_quantization)");
+            return false;
+        }
+        pv->pos_normalized = psz < 4 && a.normalized;
+    }
+    if (!pn_accessor_view(model, it->second, TINYGLTF_TYPE_VEC3, psz, &pv->pos, what, why)) {
         return false;
     }
-    if (!pn_accessor_view(model, it->second, TINYGLTF_TYPE_VEC3, 4, &pv->pos, what, why)) {
-        return false;
-    }
+    pv->mode = prim.mode;
     pv->indexed = prim.indices >= 0;
     if (pv->indexed) {
         std::snprintf(what, sizeof what, "mesh %d primitive %zu indices", mesh, p);
@@ -372,23 +404,23 @@ bool pn_prim_views_get(const tinygltf::Model &model, int mesh, size_t p, pn_prim
                               why)) {
             return false;
         }
-        if (pv->idx.count % 3 != 0) {
+        if (prim.mode == TINYGLTF_MODE_TRIANGLES && pv->idx.count % 3 != 0) {
             *why = pn_strf("%s: %zu indices is not a multiple of 3", what, pv->idx.count);
             return false;
         }
-        pv->triangles = pv->idx.count / 3;
+        pv->triangles = pn_mode_triangles(prim.mode, pv->idx.count);
     } else {
         if (prim.indices != -1) {
             *why = pn_strf("mesh %d primitive %zu has indices %d", mesh, p, prim.indices);
             return false;
         }
-        if (pv->pos.count % 3 != 0) {
+        if (prim.mode == TINYGLTF_MODE_TRIANGLES && pv->pos.count % 3 != 0) {
             *why = pn_strf("mesh %d primitive %zu is not indexed and has %zu vertices, not a "
                            "multiple of 3",
                            mesh, p, pv->pos.count);
             return false;
         }
-        pv->triangles = pv->pos.count / 3;
+        pv->triangles = pn_mode_triangles(prim.mode, pv->pos.count);
     }
     return true;
 }
@@ -401,6 +433,34 @@ float pn_read_f32(const unsigned char *p)
     return f;
 }
 
+// Component k of a POSITION element: a float as stored, or an integer of
+// KHR_mesh_quantization, normalized as the glTF specification maps it (signed: c / max,
+// at least -1; unsigned: c / max).
+double pn_read_position(const unsigned char *e, int component_type, bool normalized, int k)
+{
+    switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        double c = (double)(int8_t)e[k];
+        return normalized ? std::fmax(c / 127.0, -1.0) : c;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+        double c = (double)e[k];
+        return normalized ? c / 255.0 : c;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        const unsigned char *q = e + 2 * k;
+        double c = (double)(int16_t)(uint16_t)((uint32_t)q[0] | ((uint32_t)q[1] << 8));
+        return normalized ? std::fmax(c / 32767.0, -1.0) : c;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        const unsigned char *q = e + 2 * k;
+        double c = (double)((uint32_t)q[0] | ((uint32_t)q[1] << 8));
+        return normalized ? c / 65535.0 : c;
+    }
+    default: return (double)pn_read_f32(e + 4 * k);
+    }
+}
+
 uint32_t pn_read_index(const unsigned char *p, size_t size)
 {
     if (size == 1) return p[0];
@@ -408,12 +468,50 @@ uint32_t pn_read_index(const unsigned char *p, size_t size)
     return pn_le32(p);
 }
 
-// Required extensions that only affect appearance are harmless for shadows; anything else
-// (compression, quantization, ...) changes how geometry is stored and is refused.
+// Element j of a primitive's list: its index, or j where it has none.
+uint32_t pn_prim_element(const pn_prim_views &pv, size_t j)
+{
+    if (!pv.indexed) return (uint32_t)j;
+    return pn_read_index(pv.idx.base + j * pv.idx.stride, pn_index_size(pv.idx.component_type));
+}
+
+// The elements of triangle t of the primitive's mode, as the glTF specification orders them
+// (strip: t even (t, t+1, t+2), t odd (t, t+2, t+1); fan: (t+1, t+2, 0)).
+void pn_prim_triangle(int mode, size_t t, size_t e[3])
+{
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        e[0] = t;
+        e[1] = t + 1 + (t & 1u);
+        e[2] = t + 2 - (t & 1u);
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        e[0] = t + 1;
+        e[1] = t + 2;
+        e[2] = 0;
+    } else {
+        e[0] = 3 * t;
+        e[1] = 3 * t + 1;
+        e[2] = 3 * t + 2;
+    }
+}
+
+// Whether the world matrix mirrors (the determinant of its 3 x 3 part is negative): the
+// glTF specification then makes the triangles' front faces clockwise, so their winding is
+// reversed to keep the counter-clockwise front the library's approximations read.
+bool pn_mat_mirrors(const double m[16])
+{
+    double det = m[0] * (m[5] * m[10] - m[9] * m[6]) - m[4] * (m[1] * m[10] - m[9] * m[2]) +
+                 m[8] * (m[1] * m[6] - m[5] * m[2]);
+    return det < 0.0;
+}
+
+
+// Required extensions that only affect appearance are harmless for shadows, and
+// KHR_mesh_quantization's integer positions are read; anything else (compression, ...)
+// changes how geometry is stored and is refused.
 bool pn_extension_ok(const std::string &e)
 {
     static const char *const prefixes[] = {"KHR_materials_", "KHR_texture_", "KHR_lights_",
-                                           "EXT_texture_"};
+                                           "EXT_texture_", "KHR_mesh_quantization"};
     for (const char *pre : prefixes) {
         if (e.compare(0, std::strlen(pre), pre) == 0) {
             return true;
@@ -432,9 +530,18 @@ bool pn_model_to_mesh(const tinygltf::Model &model, uint32_t max_tris, pn_mesh *
     const uint64_t max_verts = 3ull * max_tris;
     for (const std::string &e : model.extensionsRequired) {
         if (!pn_extension_ok(e)) {
-            *why = pn_strf("requires unsupported extension '%s'", e.c_str());
+            bool packed = e == "EXT_meshopt_compression" || e == "KHR_meshopt_compression" ||
+                          e == "KHR_draco_mesh_compression";
+            *why = pn_strf("requires unsupported extension '%s'%s", e.c_str(),
+                           packed ? " (compressed geometry: write the file without it, e.g. "
+                                    "gltfpack without -c)"
+                                  : "");
             return false;
         }
+    }
+    bool quantized = false;
+    for (const std::string &e : model.extensionsUsed) {
+        quantized = quantized || e == "KHR_mesh_quantization";
     }
     std::vector<pn_instance> inst;
     if (!pn_collect_instances(model, &inst, why)) {
@@ -457,10 +564,12 @@ bool pn_model_to_mesh(const tinygltf::Model &model, uint32_t max_tris, pn_mesh *
             const tinygltf::Mesh &mesh = model.meshes[(size_t)in.mesh];
             for (size_t p = 0; p < mesh.primitives.size(); p++) {
                 pn_prim_views pv;
-                if (mesh.primitives[p].mode != TINYGLTF_MODE_TRIANGLES) {
-                    continue;
+                const int mode = mesh.primitives[p].mode;
+                if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+                    mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+                    continue; // points and lines cast no shadow
                 }
-                if (!pn_prim_views_get(model, in.mesh, p, &pv, why)) {
+                if (!pn_prim_views_get(model, in.mesh, p, quantized, &pv, why)) {
                     return false;
                 }
                 if (pv.triangles == 0) {
@@ -491,7 +600,8 @@ bool pn_model_to_mesh(const tinygltf::Model &model, uint32_t max_tris, pn_mesh *
         }
     }
     if (total_tris == 0) {
-        *why = "no triangles: no mode-4 primitive with triangles is reachable from the scene";
+        *why = "no triangles: no triangle, strip or fan primitive with triangles is reachable "
+               "from the scene";
         return false;
     }
 
@@ -507,14 +617,18 @@ bool pn_model_to_mesh(const tinygltf::Model &model, uint32_t max_tris, pn_mesh *
     uint32_t *idx = out->indices;
     uint32_t base = 0;
     for (const pn_instance &in : inst) {
-        const bool identity = pn_mat_is_identity(in.m);
+        const bool identity = pn_mat_is_identity(in.m), mirrors = pn_mat_mirrors(in.m);
         const double *m = in.m;
         for (const auto &entry : info[(size_t)in.mesh].prims) {
             const size_t p = entry.first;
             const pn_prim_views &pv = entry.second;
             for (size_t i = 0; i < pv.pos.count; i++) {
                 const unsigned char *e = pv.pos.base + i * pv.pos.stride;
-                float x = pn_read_f32(e), y = pn_read_f32(e + 4), z = pn_read_f32(e + 8);
+                const int ct = pv.pos.component_type;
+                const double qx = pn_read_position(e, ct, pv.pos_normalized, 0);
+                const double qy = pn_read_position(e, ct, pv.pos_normalized, 1);
+                const double qz = pn_read_position(e, ct, pv.pos_normalized, 2);
+                float x = (float)qx, y = (float)qy, z = (float)qz;
                 if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) {
                     *why = pn_strf("mesh %d primitive %zu: vertex %zu has a non-finite "
                                    "position (%g, %g, %g)",
@@ -524,7 +638,7 @@ bool pn_model_to_mesh(const tinygltf::Model &model, uint32_t max_tris, pn_mesh *
                 if (!identity) {
                     // double keeps the composed transform exact enough that a unit-scale
                     // translation does not move vertices by more than float rounding.
-                    double dx = x, dy = y, dz = z;
+                    double dx = qx, dy = qy, dz = qz;
                     x = (float)(m[0] * dx + m[4] * dy + m[8] * dz + m[12]);
                     y = (float)(m[1] * dx + m[5] * dy + m[9] * dz + m[13]);
                     z = (float)(m[2] * dx + m[6] * dy + m[10] * dz + m[14]);
@@ -540,22 +654,21 @@ bool pn_model_to_mesh(const tinygltf::Model &model, uint32_t max_tris, pn_mesh *
                 pos[2] = z;
                 pos += 3;
             }
-            const size_t n_idx = pv.triangles * 3;
-            if (pv.indexed) {
-                const size_t isz = pn_index_size(pv.idx.component_type);
-                for (size_t i = 0; i < n_idx; i++) {
-                    uint32_t v = pn_read_index(pv.idx.base + i * pv.idx.stride, isz);
+            for (size_t t = 0; t < pv.triangles; t++) {
+                size_t el[3];
+                pn_prim_triangle(pv.mode, t, el);
+                if (mirrors) {
+                    std::swap(el[1], el[2]);
+                }
+                for (int c = 0; c < 3; c++) {
+                    uint32_t v = pn_prim_element(pv, el[c]);
                     if (v >= pv.pos.count) {
                         *why = pn_strf("mesh %d primitive %zu: index %zu is %u, but there are "
                                        "only %zu vertices",
-                                       in.mesh, p, i, v, pv.pos.count);
+                                       in.mesh, p, el[c], v, pv.pos.count);
                         return false;
                     }
                     *idx++ = base + v;
-                }
-            } else {
-                for (size_t i = 0; i < n_idx; i++) {
-                    *idx++ = base + (uint32_t)i;
                 }
             }
             base += (uint32_t)pv.pos.count;

@@ -185,6 +185,17 @@ typedef struct pn_kwg {
  * faces the light; a solid's face turned away from the light by its winding is in its own
  * shadow. Set at pn_scene_set for a context that runs MCSM or the wedges. */
 #define PN_TRI_SHEET 4u
+/* Of a closed object wound inside out for this frame's light (src/pn_connect.c
+ * pn_connect_light: its signed volume is negative and the light centre lies outside its
+ * box): MCSM and the wedges read its winding reversed, as for the solid wound outward. The
+ * exact algorithms do not read the winding. */
+#define PN_TRI_INVERTED 8u
+/* Of a closed object of negative volume (pn_cn_solids): an inside-out solid, or a cavity
+ * (a room wound inward), which the frame tells apart by its light (pn_connect_light). The
+ * three bits hold its group: 1 .. PN_CN_NEG_MAX - 1 one object each, PN_CN_NEG_MAX the
+ * others together. */
+#define PN_TRI_NEGVOL_SHIFT 4u
+#define PN_TRI_NEGVOL (7u << PN_TRI_NEGVOL_SHIFT)
 
 /* Rows of pixels per rasterizer work item. */
 #define PN_RASTER_BAND 8u

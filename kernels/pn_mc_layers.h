@@ -16,6 +16,11 @@ PN_KFN void pn_mc_clear_row(const pn_kview *v, uint32_t y, PN_GLOBAL float *nb)
     }
 }
 
+/* Whether a triangle whose plane gives nA = n.(A - eye) (n in winding order) is a back face
+ * seen from the light's view: nA > 0, or nA < 0 for a solid wound inside out
+ * (PN_TRI_INVERTED), as the solid wound outward would give. */
+PN_KFN int pn_mc_back(float nA, uint8_t flag) { return (flag & PN_TRI_INVERTED) ? nA < 0.0f : nA > 0.0f; }
+
 /* The layers' rows pass for group g of the n triangles (pn_raster_rows_group): a
  * receiver-only triangle covers nothing; a small one puts its fragments into level 0 here,
  * as the band would (pn_raster_tri_setup's plane, pn_raster_axial, the same centres), by
@@ -48,7 +53,7 @@ PN_KFN void pn_mc_rows(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris
             if (!(z > 0.0f)) continue;
             T = (PN_GLOBAL int32_t *)(nb + ((size_t)y * v->width + x) * PN_NB_MM);
             pn_katomic_imin(T, (int32_t)pn_kfbits(z)); /* near: the layers hold z > 0 or +-inf */
-            if (nA > 0.0f) pn_katomic_imax(T + 1, (int32_t)pn_kfbits(z)); /* far: back faces */
+            if (pn_mc_back(nA, flags[t0 + i])) pn_katomic_imax(T + 1, (int32_t)pn_kfbits(z)); /* far: back faces */
         }
     }
 }
@@ -81,7 +86,7 @@ PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris
                 if (!(z > 0.0f)) continue;
                 T = nb + ((size_t)y * v->width + (uint32_t)xi) * PN_NB_MM;
                 T[0] = pn_kminf(T[0], z);
-                if (rt.nA > 0.0f) T[1] = pn_kmaxf(T[1], z); /* a back face: n.(A - eye) > 0 */
+                if (pn_mc_back(rt.nA, flags[t])) T[1] = pn_kmaxf(T[1], z); /* a back face */
             }
         }
     }

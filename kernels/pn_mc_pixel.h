@@ -79,7 +79,8 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, const pn_ksurf *S, size_t pix, uint32_t
     float Ox[PN_MC_RUN], Oy[PN_MC_RUN], Oz[PN_MC_RUN], Ex[PN_MC_RUN], Ey[PN_MC_RUN], Ez[PN_MC_RUN];
     float Nx[PN_MC_RUN], Ny[PN_MC_RUN], Nz[PN_MC_RUN];
     float ex[PN_MC_RUN], ey[PN_MC_RUN], b0[PN_MC_RUN], b1[PN_MC_RUN], b2[PN_MC_RUN], b3[PN_MC_RUN];
-    int sees[PN_MC_RUN], faces[PN_MC_RUN], front[PN_MC_RUN], looks[PN_MC_RUN], sheet[PN_MC_RUN], out[PN_MC_RUN];
+    int sees[PN_MC_RUN], faces[PN_MC_RUN], front[PN_MC_RUN], looks[PN_MC_RUN], sheet[PN_MC_RUN], inv[PN_MC_RUN];
+    int out[PN_MC_RUN];
     uint32_t i, any = 0u;
     int lit;
     int classify = !(mc->flags & PN_MC_F_NO_CLASSIFY) && !L->is_point;
@@ -88,12 +89,14 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, const pn_ksurf *S, size_t pix, uint32_t
      * branch (the compilers vectorize it: seven divisions a pixel), whatever its kind; a
      * pixel with no surface has some point and normal in the G-buffer, whose results are
      * not read. */
-    /* A sheet's side toward the light centre is its front (PN_TRI_SHEET): which pixels see
-     * one, looked up apart so that the loop below stays free of loads by index. */
+    /* A sheet's side toward the light centre is its front (PN_TRI_SHEET), an inside-out
+     * solid's is the side its winding turns away (PN_TRI_INVERTED): which pixels see one,
+     * looked up apart so that the loop below stays free of loads by index. */
     for (i = 0; i < count; i++) {
-        uint32_t id = ids[pix + i];
+        uint32_t id = ids[pix + i], f = id != PN_NO_PIXEL_TRIANGLE ? m->flags[id] : 0u;
         pn_v3 P, n;
-        sheet[i] = id != PN_NO_PIXEL_TRIANGLE && (m->flags[id] & PN_TRI_SHEET) != 0u;
+        sheet[i] = (f & PN_TRI_SHEET) != 0u;
+        inv[i] = (f & PN_TRI_INVERTED) != 0u;
         pn_surf_at(S, pix + i, &P, &n); /* into the arrays the loop below writes */
         pn_v3_put(Ox, Oy, Oz, i, P);
         pn_v3_put(Nx, Ny, Nz, i, n);
@@ -101,7 +104,7 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, const pn_ksurf *S, size_t pix, uint32_t
     for (i = 0; i < count; i++) {
         pn_v3 n = pn_v3_make(Nx[i], Ny[i], Nz[i]), P = pn_v3_make(Ox[i], Oy[i], Oz[i]), O, E;
         float b[4], x, y;
-        n = pn_v3_scale(n, sheet[i] && pn_v3_dot(n, pn_v3_sub(c, P)) < 0.0f ? -1.0f : 1.0f);
+        n = pn_v3_scale(n, (sheet[i] && pn_v3_dot(n, pn_v3_sub(c, P)) < 0.0f) || inv[i] ? -1.0f : 1.0f);
         sees[i] = pn_shadow_origin(P, n, L, &O);
         E = pn_lview_frame(m->lv, L, O);
         faces[i] = E.z > 0.0f && !(pn_v3_dot(n, pn_v3_sub(c, O)) < 0.0f);

@@ -134,6 +134,8 @@ PN_KFN uint32_t pn_wg_facing(const pn_klight *L, float g, PN_CONST float *tris, 
     s = pn_v3_dot(pn_v3_sub(pn_light_c(L), A), n);
     front = pn_wg_front(L, g, A, B, C, n, s);
     if (tcomp[t] & PN_WG_DUP) return PN_WG_CAST_NONE | front;
+    /* A solid wound inside out casts from the faces its winding turns away, turned round. */
+    if (flags[t] & PN_TRI_INVERTED) return (s < 0.0f ? PN_WG_CAST_FLIPPED : PN_WG_CAST_NONE) | front;
     if (s > 0.0f) return PN_WG_CAST_AS_IS | front;
     if (s < 0.0f && !(tcomp[t] & PN_WG_CLOSED)) return PN_WG_CAST_FLIPPED | front;
     return PN_WG_CAST_NONE | front;

@@ -20,9 +20,9 @@ static int pn_bump(uint64_t *off, uint64_t count, uint64_t elem, size_t *out)
     return 1;
 }
 
-/* PN_ARENA_BYTES_MAX (include/penumbra/penumbra.h) counts at most 1280 bytes for the
+/* PN_ARENA_BYTES_MAX (include/penumbra/penumbra.h) counts at most 1536 bytes for the
  * context. */
-typedef char pn_context_fits_bound[sizeof(pn_context) <= 1280u ? 1 : -1];
+typedef char pn_context_fits_bound[sizeof(pn_context) <= 1536u ? 1 : -1];
 
 /* A row's counters fill one cache line (kernels/pn_reference.h). */
 typedef char pn_row_counters_is_64[sizeof(pn_row_counters) == 64u ? 1 : -1];

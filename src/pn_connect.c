@@ -124,6 +124,13 @@ static int pn_cn_same_tri(const uint32_t *canon, uint32_t a, uint32_t b)
 /* The longest edge run searched for duplicate triangles (pairs within it: quadratic). */
 #define PN_CN_DUP_RUN 8u
 
+/* A closed object whose signed volume is below -PN_CN_INVERTED_V (its area)^1.5 is wound
+ * inside out, or is a cavity (a sphere's volume is 0.094 (area)^1.5, a leaf of the shared
+ * tree's 0.002 and more; the sum's rounding, taken from the object's first corner, far
+ * below 1e-4). Only a surface with no boundary edge at all has a volume independent of that
+ * corner. */
+#define PN_CN_INVERTED_V 1e-4f
+
 /* Solid objects (PN_WG_CLOSED: they cast with the triangles facing the light centre; the
  * others, sheets, with all of theirs turned to face it, and are marked PN_TRI_SHEET in the
  * triangle flags: the Monte Carlo shadow maps light a sheet on its side toward the light). A scanned statue or an exported
@@ -139,28 +146,39 @@ static int pn_cn_same_tri(const uint32_t *canon, uint32_t a, uint32_t b)
  *   H = (length of its boundary: edges whose half-edges do not cancel)^2 / (4 pi A): at least the holes' area
  *       over A (the isoperimetric inequality), so an open tube or lamp shade (D = 0: its
  *       two ends' vector areas cancel) is not taken for a solid.
- * Solid when D <= PN_CN_SOLID_D and H <= PN_CN_SOLID_H. The sums run in triangle and edge
- * order (the same bits every time) over the frame scratch: five floats an object. */
+ * Solid when D <= PN_CN_SOLID_D and H <= PN_CN_SOLID_H. A solid with no boundary edge whose
+ * signed volume is negative is an inside-out solid or a cavity (PN_TRI_NEGVOL; the frame
+ * tells them apart, pn_connect_light). The sums run in triangle and
+ * edge order (the same bits every time) over the frame scratch: six floats an object (24
+ * bytes a triangle are reserved). */
 #define PN_CN_SOLID_D 0.05f
 #define PN_CN_SOLID_H 0.2f
 
 static void pn_cn_solids(pn_context *ctx, uint32_t *scratch, const uint32_t *hedge, const uint32_t *run, uint32_t nr,
                          uint32_t *tcomp, uint32_t ncomp)
 {
-    float *acc = (float *)(void *)scratch; /* per object: vector area x, y, z, area, boundary length */
+    /* per object: vector area x, y, z, area (all twice), boundary length, six times the
+     * volume; the boundary's place holds the object's first triangle until the edges */
+    float *acc = (float *)(void *)scratch;
     uint32_t T = ctx->tri_count, i, t, r;
-    for (i = 0; i < 5u * ncomp; i++) acc[i] = 0.0f;
+    for (i = 0; i < 6u * ncomp; i++) acc[i] = 0.0f;
+    for (t = T; t-- > 0u;) memcpy(acc + 6u * (tcomp[t] & PN_WG_OBJ) + 4u, &t, sizeof(t));
     for (t = 0; t < T; t++) {
-        const float *p = ctx->tris + (size_t)t * 9u;
-        float *a = acc + 5u * (tcomp[t] & PN_WG_OBJ);
+        const float *p = ctx->tris + (size_t)t * 9u, *o;
+        float *a = acc + 6u * (tcomp[t] & PN_WG_OBJ);
         float ex = p[3] - p[0], ey = p[4] - p[1], ez = p[5] - p[2], fx = p[6] - p[0], fy = p[7] - p[1], fz = p[8] - p[2];
         float nx = ey * fz - ez * fy, ny = ez * fx - ex * fz, nz = ex * fy - ey * fx;
+        uint32_t first;
         if ((ctx->flags[t] & PN_TRI_DEGENERATE) || (tcomp[t] & PN_WG_DUP)) continue;
+        memcpy(&first, a + 4u, sizeof(first));
+        o = ctx->tris + (size_t)first * 9u; /* the volume's apex: the object's first corner */
         a[0] += nx;
         a[1] += ny;
         a[2] += nz;
         a[3] += pn_ksqrt(nx * nx + ny * ny + nz * nz);
+        a[5] += (p[0] - o[0]) * nx + (p[1] - o[1]) * ny + (p[2] - o[2]) * nz;
     }
+    for (i = 0; i < ncomp; i++) acc[6u * i + 4u] = 0.0f;
     for (r = 0; r < nr; r++) {
         uint32_t lo = run[r], hi = run[r + 1u], h = hedge[lo] & ~PN_WG_REV, e = h % 3u;
         const float *p = ctx->tris + (size_t)(h / 3u) * 9u, *x = p + 3u * e, *y = p + 3u * (e == 2u ? 0u : e + 1u);
@@ -175,22 +193,75 @@ static void pn_cn_solids(pn_context *ctx, uint32_t *scratch, const uint32_t *hed
             for (k = lo; k < hi; k++) wsum += (hedge[k] & PN_WG_REV) ? -1 : 1;
             if (wsum == 0) continue;
         }
-        acc[5u * (tcomp[h / 3u] & PN_WG_OBJ) + 4u] += pn_ksqrt(dx * dx + dy * dy + dz * dz);
+        acc[6u * (tcomp[h / 3u] & PN_WG_OBJ) + 4u] += pn_ksqrt(dx * dx + dy * dy + dz * dz);
     }
     ctx->stats.wedges.closed_objects = 0;
+    ctx->stats.wedges.inverted_objects = 0;
+    ctx->neg_groups = ctx->neg_mask = 0u;
+    for (i = 0; i < PN_CN_NEG_MAX; i++) {
+        ctx->neg[i].lo[0] = ctx->neg[i].lo[1] = ctx->neg[i].lo[2] = PN_KINF;
+        ctx->neg[i].hi[0] = ctx->neg[i].hi[1] = ctx->neg[i].hi[2] = -PN_KINF;
+        ctx->neg[i].objects = 0u;
+    }
     for (i = 0; i < ncomp; i++) {
-        float *a = acc + 5u * i, A = a[3], D = pn_ksqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+        float *a = acc + 6u * i, A = a[3], D = pn_ksqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]), h = 0.5f * A;
         int solid = A > 0.0f && D <= PN_CN_SOLID_D * A && a[4] * a[4] <= PN_CN_SOLID_H * (4.0f * 3.14159265f) * (0.5f * A);
-        acc[5u * i] = solid ? 1.0f : 0.0f;
+        int neg = solid && a[4] == 0.0f && a[5] < -6.0f * PN_CN_INVERTED_V * h * pn_ksqrt(h);
+        uint32_t g = 0u;
         ctx->stats.wedges.closed_objects += (uint32_t)solid;
+        if (neg) { /* its group: the next one, or the last, shared */
+            g = ctx->neg_groups < PN_CN_NEG_MAX ? ++ctx->neg_groups : PN_CN_NEG_MAX;
+            ctx->neg[g - 1u].objects++;
+        }
+        acc[6u * i] = solid ? 1.0f : 0.0f;
+        acc[6u * i + 1u] = (float)g;
     }
     for (t = 0; t < T; t++) {
-        ctx->flags[t] = (uint8_t)(ctx->flags[t] & ~PN_TRI_SHEET);
-        if (acc[5u * (tcomp[t] & PN_WG_OBJ)] != 0.0f)
+        uint32_t o = tcomp[t] & PN_WG_OBJ, g = (uint32_t)acc[6u * o + 1u];
+        ctx->flags[t] = (uint8_t)(ctx->flags[t] & ~(PN_TRI_SHEET | PN_TRI_INVERTED | PN_TRI_NEGVOL));
+        if (acc[6u * o] != 0.0f)
             tcomp[t] |= PN_WG_CLOSED;
         else
             ctx->flags[t] = (uint8_t)(ctx->flags[t] | PN_TRI_SHEET);
+        if (g) { /* the group's box, for the frames to place their light against */
+            uint32_t c, v;
+            const float *p = ctx->tris + (size_t)t * 9u;
+            ctx->flags[t] = (uint8_t)(ctx->flags[t] | (g << PN_TRI_NEGVOL_SHIFT));
+            for (v = 0; v < 3u; v++)
+                for (c = 0; c < 3u; c++) {
+                    ctx->neg[g - 1u].lo[c] = pn_kminf(ctx->neg[g - 1u].lo[c], p[3u * v + c]);
+                    ctx->neg[g - 1u].hi[c] = pn_kmaxf(ctx->neg[g - 1u].hi[c], p[3u * v + c]);
+                }
+        }
     }
+}
+
+/* Which closed objects of negative volume this frame reads reversed (PN_TRI_INVERTED): the
+ * groups whose box the light centre lies outside of. A closed surface of negative volume is
+ * an inside-out solid, whose fronts face in, or a cavity (a room modelled as a box wound
+ * inward, its lamp inside), whose fronts are right; with the light outside its box it is the
+ * solid (a cavity would show such a light nothing of its inside). The flags change only when
+ * the choice does; a device port then copies the scene again (its version changes).
+ * pn_stats.wedges.inverted_objects counts the objects read reversed. */
+void pn_connect_light(pn_context *ctx, const pn_klight *L)
+{
+    uint32_t mask = 0u, g, t, n = 0u;
+    for (g = 0; g < ctx->neg_groups; g++) {
+        uint32_t c, in = 1u;
+        for (c = 0; c < 3u; c++) in &= (uint32_t)(L->c[c] >= ctx->neg[g].lo[c] && L->c[c] <= ctx->neg[g].hi[c]);
+        if (!in) {
+            mask |= 1u << g;
+            n += ctx->neg[g].objects;
+        }
+    }
+    ctx->stats.wedges.inverted_objects = n;
+    if (mask == ctx->neg_mask) return;
+    for (t = 0; t < ctx->tri_count; t++) {
+        uint32_t f = ctx->flags[t], gt = (f & PN_TRI_NEGVOL) >> PN_TRI_NEGVOL_SHIFT;
+        if (gt) ctx->flags[t] = (uint8_t)((f & ~PN_TRI_INVERTED) | ((mask >> (gt - 1u)) & 1u ? PN_TRI_INVERTED : 0u));
+    }
+    ctx->neg_mask = mask;
+    ctx->scene_version++;
 }
 
 void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t *tcomp)

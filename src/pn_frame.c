@@ -429,6 +429,11 @@ static pn_status pn_frame_begin(pn_frame_state *fs, pn_context *ctx, const pn_po
         fs->K.view.height = opt->height;
     }
     if ((st = pn_setup_light(ctx, light, opt->k, opt->eps, &fs->K.light)) != PN_OK) return st;
+#if PN_ENABLE_WEDGES || PN_ENABLE_MCSM
+    /* The algorithms that read the winding: which closed objects this light says are
+     * inside out. */
+    if (opt->algo == PN_ALGO_MCSM || opt->algo == PN_ALGO_WEDGES) pn_connect_light(ctx, &fs->K.light);
+#endif
     fs->K.shade.albedo = opt->albedo;
     fs->K.shade.ambient = opt->ambient;
     fs->K.shade.background = (uint32_t)opt->background[0] | ((uint32_t)opt->background[1] << 8) |

@@ -60,6 +60,9 @@ typedef struct pn_frame_state {
 /* Words of port scratch (a persistent pool): a device port's prefix sum keeps its block
  * partials there. */
 #define PN_PORT_SCRATCH_WORDS 256u
+/* Groups of closed objects of negative volume a context keeps track of (pn_connect_light):
+ * one object each but the last, which holds the others (three bits of a triangle's flags). */
+#define PN_CN_NEG_MAX 7u
 
 struct pn_context {
     pn_limits limits;
@@ -95,6 +98,14 @@ struct pn_context {
      * a receiver, at pn_scene_update_positions),
      * empty (min > max) when every triangle is a receiver */
     float occ_min[3], occ_max[3];
+    /* closed objects of negative volume (src/pn_connect.c, for MCSM and the wedges): each
+     * group's box and objects (PN_TRI_NEGVOL), and the groups the last frame read reversed
+     * (bit g - 1: group g) */
+    struct {
+        float lo[3], hi[3];
+        uint32_t objects;
+    } neg[PN_CN_NEG_MAX];
+    uint32_t neg_groups, neg_mask;
     /* execution */
     pn_parallel_for_fn parallel_for;
     void *parallel_user;
@@ -252,6 +263,7 @@ pn_status pn_raster_setup(pn_frame_state *fs, uint32_t rows_pass);
 #define PN_CONNECT_SCRATCH 24u
 #define PN_CONNECT_POOLS 28u /* hedge, run and tcomp: 7 words a triangle, and one */
 void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t *tcomp);
+void pn_connect_light(pn_context *ctx, const pn_klight *L);
 
 /* pn_math.c */
 int pn_finite(float v);

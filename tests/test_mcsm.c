@@ -267,6 +267,91 @@ static void test_interior_and_sheets(void)
     pn_setup_free(&s);
 }
 
+/* A closed solid wound inside out (every triangle clockwise seen from outside, as CAD and
+ * mirrored exports leave them; the CAD model has one) is found by its negative volume
+ * (PN_TRI_INVERTED) and shaded as the solid wound outward: MCSM took its lit faces, turned
+ * away from the light by their winding, for umbra, and its layers took it for a shell. The box
+ * sits at coordinates no pixel or texel centre falls on an edge of (the fill rule gives such a
+ * centre to the triangle its winding picks). Without the blur, which compares the G-buffer's
+ * normals in winding order, MCSM's frame is the same bytes as the box wound outward; with
+ * it, no pixel differs by more than 0.25. The wedges' frame is the same bytes. */
+static void test_inside_out(void)
+{
+    static const float ground[3] = {0.0f, 0.0f, 0.0f}, gh[3] = {4.0f, 0.0f, 4.0f};
+    static const float box[3] = {0.3137f, 0.6071f, -0.2219f}, bh[3] = {0.5813f, 0.4129f, 0.4871f};
+    static float mc[2][W * H], nb[2][W * H], wg[2][W * H];
+    float pos[7u * 12u];
+    uint32_t idx[7u * 6u], nq, p, c, lit = 0u, gross = 0u;
+    pn_setup s;
+    pn_host h;
+    pn_frame_options o;
+    pn_stats st;
+    char err[256];
+    if (pn_setup_load(&s, "square", 1, -1, err, sizeof(err)) != 0) {
+        CHECK_MSG(0, "loading square: %s", err);
+        return;
+    }
+    if (pn_host_open(&h, 14u, W, H, 2, err, sizeof(err)) != 0) {
+        CHECK_MSG(0, "context: %s", err);
+        pn_setup_free(&s);
+        return;
+    }
+    for (c = 0; c < 2u; c++) {
+        nq = pn_test_box(pos, idx, 0u, ground, gh, 0);
+        nq += pn_test_box(pos, idx, nq, box, bh, (int)c);
+        REQUIRE(pn_scene_set(h.ctx, pos, 4u * nq, idx, 2u * nq) == PN_OK);
+        mc_opts(&o, 0u, 0u, 0u, 0u, 0u);
+        REQUIRE(render_opt(&h, &s, &s.light, &o, mc[c], NULL, &st) == 0);
+        CHECK_MSG(st.wedges.closed_objects == 1u && st.wedges.inverted_objects == c,
+                  "box wound %s: %u closed objects, %u inverted", c ? "inward" : "outward", st.wedges.closed_objects,
+                  st.wedges.inverted_objects);
+        mc_opts(&o, 0u, 0u, 0u, PN_MC_BLUR_OFF, 0u);
+        REQUIRE(render_opt(&h, &s, &s.light, &o, nb[c], NULL, NULL) == 0);
+        REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_WEDGES, W, H, 16, 0, wg[c], NULL) == 0);
+    }
+    for (p = 0; p < W * H; p++) {
+        gross += mc[1][p] > mc[0][p] + 0.25f || mc[1][p] < mc[0][p] - 0.25f;
+        lit += mc[0][p] > 0.5f; /* lit in the outward frame: the check must see light */
+    }
+    CHECK(lit > W * H / 4u);
+    CHECK_MSG(memcmp(nb[0], nb[1], sizeof(nb[0])) == 0, "MCSM without the blur: the inside-out box's frame differs");
+    CHECK_MSG(gross == 0u, "MCSM: %u pixels differ by more than 0.25", gross);
+    CHECK_MSG(memcmp(wg[0], wg[1], sizeof(wg[0])) == 0, "wedges: the inside-out box's frame differs");
+
+    /* A cavity is a closed surface of negative volume too: a room, a box wound inward around
+     * the lamp. Its fronts are right (the light is inside its box): read reversed, its walls,
+     * lit from inside, went dark. MCSM must stay within 0.25 of the reference on all but
+     * 1% of the pixels, as for the outward box, and the light moved out of the room (above
+     * it: the room's top then shades everything) makes it an inside-out solid again. */
+    {
+        static const float room[3] = {0.0313f, 3.0071f, -0.0219f}, rh[3] = {1.5213f, 1.5129f, 1.4871f};
+        pn_light above = s.light;
+        uint32_t dark = 0u, bright = 0u;
+        nq = pn_test_box(pos, idx, 0u, ground, gh, 0);
+        nq += pn_test_box(pos, idx, nq, room, rh, 1);
+        REQUIRE(pn_scene_set(h.ctx, pos, 4u * nq, idx, 2u * nq) == PN_OK);
+        REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_REFERENCE, W, H, 32, 1, g_ref, NULL) == 0);
+        mc_opts(&o, 0u, 0u, 0u, 0u, 0u);
+        REQUIRE(render_opt(&h, &s, &s.light, &o, g_a, NULL, &st) == 0);
+        CHECK_MSG(st.wedges.inverted_objects == 0u, "the lamp's room read as an inside-out solid");
+        for (p = 0, lit = 0u; p < W * H; p++) {
+            dark += g_a[p] < g_ref[p] - 0.25f;
+            bright += g_a[p] > g_ref[p] + 0.25f;
+            lit += g_ref[p] > 0.5f;
+        }
+        fprintf(stderr, "the lamp in a room wound inward: %u pixels darker than the reference by 0.25, %u brighter, "
+                "%u lit\n", dark, bright, lit);
+        CHECK(lit > W * H / 20u);
+        CHECK_MSG(dark + bright <= W * H / 100u, "room: %u darker, %u brighter", dark, bright);
+        above.center[1] = 5.0f;
+        REQUIRE(render_opt(&h, &s, &above, &o, g_a, NULL, &st) == 0);
+        CHECK_MSG(st.wedges.inverted_objects == 1u, "the room with the lamp above it: %u inverted objects",
+                  st.wedges.inverted_objects);
+    }
+    pn_host_close(&h);
+    pn_setup_free(&s);
+}
+
 /* One layer, blur off, w x hh: the frame with the classification and early-outs into va
  * (stats a) and without them into vb (b); the pixels that differ, or -1 if a frame failed. */
 static long classify_pair(pn_host *h, const pn_setup *s, uint32_t w, uint32_t hh, float *va, float *vb, pn_stats *a,
@@ -844,6 +929,7 @@ int main(void)
     RUN(test_nbuffer_boxes);
     RUN(test_square);
     RUN(test_interior_and_sheets);
+    RUN(test_inside_out);
     RUN(test_outside_exact);
     RUN(test_classify_exact);
     RUN(test_classify_exact_512);

@@ -314,8 +314,8 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
             (double)st->mcsm.ns_blur * 1e-6);
     fprintf(f, "  \"wg_vertices\": %u,\n  \"wg_edges\": %u,\n  \"wg_open_edges\": %u,\n  \"wg_nonmanifold_edges\": %u,\n",
             st->wedges.vertices, st->wedges.edges, st->wedges.open_edges, st->wedges.nonmanifold_edges);
-    fprintf(f, "  \"wg_objects\": %u,\n  \"wg_closed_objects\": %u,\n  \"wg_duplicates\": %u,\n  \"wg_silhouettes\": %u,\n  \"wg_pairs\": %llu,\n  \"wg_bands\": %u,\n  \"wg_sil_bands\": %u,\n",
-            st->wedges.objects, st->wedges.closed_objects, st->wedges.duplicates, st->wedges.silhouettes, (unsigned long long)st->wedges.pairs,
+    fprintf(f, "  \"wg_objects\": %u,\n  \"wg_closed_objects\": %u,\n  \"wg_inverted_objects\": %u,\n  \"wg_duplicates\": %u,\n  \"wg_silhouettes\": %u,\n  \"wg_pairs\": %llu,\n  \"wg_bands\": %u,\n  \"wg_sil_bands\": %u,\n",
+            st->wedges.objects, st->wedges.closed_objects, st->wedges.inverted_objects, st->wedges.duplicates, st->wedges.silhouettes, (unsigned long long)st->wedges.pairs,
             st->wedges.bands, st->wedges.sil_bands);
     fprintf(f, "  \"wg_evaluated\": %llu,\n  \"wg_touched\": %llu,\n  \"wg_hard_blockers\": %llu,\n  \"wg_hard_overflow\": %u,\n  \"wg_exact_pixels\": %u,\n",
             (unsigned long long)st->wedges.evaluated, (unsigned long long)st->wedges.touched,

@@ -221,12 +221,12 @@ pn_status pn_arena_size(const pn_limits *limits, size_t *out_bytes);
 #define PN_MAX_(a, b) ((a) > (b) ? (a) : (b))
 #define PN_MIN_(a, b) ((a) < (b) ? (a) : (b))
 #define PN_POOL_(n) (((size_t)(n) + PN_ARENA_ALIGN - 1u) / PN_ARENA_ALIGN * PN_ARENA_ALIGN)
-/* Persistent pools, no split references: the context (at most 1280 bytes, checked in
+/* Persistent pools, no split references: the context (at most 1536 bytes, checked in
  * src/pn_arena.c), per triangle its copy (36), flags (1), a third of a four-wide BVH node
  * (128 / 3, and one spare), its leaf-order and raster-order entries (4 + 4), port scratch
  * (1 KB); with the wedges their connectivity (12 + 12 + 4). */
 #define PN_PERSIST_BYTES_MAX(t)                                                               \
-    (PN_POOL_(1280u) + PN_POOL_((size_t)(t) * 36u) + PN_POOL_(t) +                               \
+    (PN_POOL_(1536u) + PN_POOL_((size_t)(t) * 36u) + PN_POOL_(t) +                               \
      PN_POOL_(((size_t)(t) / 3u + 2u) * 128u) + 2u * PN_POOL_((size_t)(t) * 4u) + PN_POOL_(1024u) + \
      (PN_ENABLE_WEDGES ? PN_POOL_((size_t)(t) * 12u) + PN_POOL_((size_t)(t) * 12u + 4u) +          \
                              PN_POOL_((size_t)(t) * 4u)                                          \
@@ -681,6 +681,9 @@ typedef struct pn_wedges_stats { /* Penumbra wedges: the scene's connectivity (a
     uint32_t duplicates;         /* triangles on the vertices of another (a double-sided
                                     sheet's back): they cast nothing */
     /* ...and the last frame */
+    uint32_t inverted_objects;   /* closed objects wound inside out (negative volume, the
+                                    light centre outside their box): MCSM and the wedges
+                                    read their fronts reversed */
     uint32_t silhouettes;        /* silhouette edges seen from the light centre (= wedges) */
     uint64_t pairs;              /* (screen tile, wedge) pairs binned */
     uint32_t bands;              /* binning passes: bands of tiles whose pairs fit the pair

@@ -124,11 +124,10 @@ static int pn_cn_same_tri(const uint32_t *canon, uint32_t a, uint32_t b)
 /* The longest edge run searched for duplicate triangles (pairs within it: quadratic). */
 #define PN_CN_DUP_RUN 8u
 
-/* A closed object whose signed volume is below -PN_CN_INVERTED_V (its area)^1.5 is wound
- * inside out, or is a cavity (a sphere's volume is 0.094 (area)^1.5, a leaf of the shared
- * tree's 0.002 and more; the sum's rounding, taken from the object's first corner, far
- * below 1e-4). Only a surface with no boundary edge at all has a volume independent of that
- * corner. */
+/* A solid whose signed volume is below -PN_CN_INVERTED_V (its area)^1.5 is wound inside
+ * out, or is a cavity (a sphere's volume is 0.094 (area)^1.5, a leaf of the shared tree's
+ * 0.002 and more; the sum's rounding, taken from the object's first corner, far below
+ * 1e-4). A solid with small holes must be below that by the holes' share too (below). */
 #define PN_CN_INVERTED_V 1e-4f
 
 /* Solid objects (PN_WG_CLOSED: they cast with the triangles facing the light centre; the
@@ -146,8 +145,8 @@ static int pn_cn_same_tri(const uint32_t *canon, uint32_t a, uint32_t b)
  *   H = (length of its boundary: edges whose half-edges do not cancel)^2 / (4 pi A): at least the holes' area
  *       over A (the isoperimetric inequality), so an open tube or lamp shade (D = 0: its
  *       two ends' vector areas cancel) is not taken for a solid.
- * Solid when D <= PN_CN_SOLID_D and H <= PN_CN_SOLID_H. A solid with no boundary edge whose
- * signed volume is negative is an inside-out solid or a cavity (PN_TRI_NEGVOL; the frame
+ * Solid when D <= PN_CN_SOLID_D and H <= PN_CN_SOLID_H. A solid whose signed volume is
+ * negative is an inside-out solid or a cavity (PN_TRI_NEGVOL; the frame
  * tells them apart, pn_connect_light). The sums run in triangle and
  * edge order (the same bits every time) over the frame scratch: six floats an object (24
  * bytes a triangle are reserved). */
@@ -206,9 +205,35 @@ static void pn_cn_solids(pn_context *ctx, uint32_t *scratch, const uint32_t *hed
     for (i = 0; i < ncomp; i++) {
         float *a = acc + 6u * i, A = a[3], D = pn_ksqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]), h = 0.5f * A;
         int solid = A > 0.0f && D <= PN_CN_SOLID_D * A && a[4] * a[4] <= PN_CN_SOLID_H * (4.0f * 3.14159265f) * (0.5f * A);
-        int neg = solid && a[4] == 0.0f && a[5] < -6.0f * PN_CN_INVERTED_V * h * pn_ksqrt(h);
-        uint32_t g = 0u;
         ctx->stats.wedges.closed_objects += (uint32_t)solid;
+        /* a candidate (D >= 0) when solid and of negative volume; a[2]: its apex's farthest
+         * corner, squared (below) */
+        a[0] = solid && a[5] < -6.0f * PN_CN_INVERTED_V * h * pn_ksqrt(h) ? D : -1.0f;
+        a[2] = 0.0f;
+        a[4] = solid ? 1.0f : 0.0f; /* the boundary's length is no longer needed */
+    }
+    /* A surface with holes has a volume that depends on its apex, by at most the holes'
+     * vector area (D) times their distance from it (at most R, its farthest corner): a
+     * candidate is of negative volume only below -2 R D too. */
+    for (t = T; t-- > 0u;)
+        if (acc[6u * (tcomp[t] & PN_WG_OBJ)] >= 0.0f) memcpy(acc + 6u * (tcomp[t] & PN_WG_OBJ) + 1u, &t, sizeof(t));
+    for (t = 0; t < T; t++) {
+        float *a = acc + 6u * (tcomp[t] & PN_WG_OBJ);
+        const float *p = ctx->tris + (size_t)t * 9u, *o;
+        uint32_t first, v;
+        if (!(a[0] >= 0.0f)) continue;
+        memcpy(&first, a + 1u, sizeof(first));
+        o = ctx->tris + (size_t)first * 9u;
+        for (v = 0; v < 3u; v++) {
+            float dx = p[3u * v] - o[0], dy = p[3u * v + 1u] - o[1], dz = p[3u * v + 2u] - o[2];
+            a[2] = pn_kmaxf(a[2], dx * dx + dy * dy + dz * dz);
+        }
+    }
+    for (i = 0; i < ncomp; i++) {
+        float *a = acc + 6u * i, h = 0.5f * a[3];
+        int solid = a[4] != 0.0f;
+        int neg = a[0] >= 0.0f && a[5] < -(6.0f * PN_CN_INVERTED_V * h * pn_ksqrt(h) + 2.0f * pn_ksqrt(a[2]) * a[0]);
+        uint32_t g = 0u;
         if (neg) { /* its group: the next one, or the last, shared */
             g = ctx->neg_groups < PN_CN_NEG_MAX ? ++ctx->neg_groups : PN_CN_NEG_MAX;
             ctx->neg[g - 1u].objects++;

@@ -192,8 +192,8 @@ typedef struct pn_kwg {
 #define PN_TRI_INVERTED 8u
 /* Of a closed object of negative volume (pn_cn_solids): an inside-out solid, or a cavity
  * (a room wound inward), which the frame tells apart by its light (pn_connect_light). The
- * three bits hold its group: 1 .. PN_CN_NEG_MAX - 1 one object each, PN_CN_NEG_MAX the
- * others together. */
+ * three bits hold its group: 1 .. PN_CN_NEG_MAX - 1 the largest such objects, one each;
+ * PN_CN_NEG_MAX the others, read reversed in every frame. */
 #define PN_TRI_NEGVOL_SHIFT 4u
 #define PN_TRI_NEGVOL (7u << PN_TRI_NEGVOL_SHIFT)
 

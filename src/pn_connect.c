@@ -229,17 +229,32 @@ static void pn_cn_solids(pn_context *ctx, uint32_t *scratch, const uint32_t *hed
             a[2] = pn_kmaxf(a[2], dx * dx + dy * dy + dz * dz);
         }
     }
-    for (i = 0; i < ncomp; i++) {
-        float *a = acc + 6u * i, h = 0.5f * a[3];
-        int solid = a[4] != 0.0f;
-        int neg = a[0] >= 0.0f && a[5] < -(6.0f * PN_CN_INVERTED_V * h * pn_ksqrt(h) + 2.0f * pn_ksqrt(a[2]) * a[0]);
-        uint32_t g = 0u;
-        if (neg) { /* its group: the next one, or the last, shared */
-            g = ctx->neg_groups < PN_CN_NEG_MAX ? ++ctx->neg_groups : PN_CN_NEG_MAX;
-            ctx->neg[g - 1u].objects++;
+    {
+        /* The PN_CN_NEG_MAX - 1 largest (by area; ties by id) of negative volume get a group
+         * each, for the frame to place its light against their boxes: a cavity is a room,
+         * larger than what stands in it. The others share the last group, read reversed in
+         * every frame (an inside-out part, a piece of furniture). */
+        uint32_t top[PN_CN_NEG_MAX - 1u], ntop = 0u, k;
+        for (i = 0; i < ncomp; i++) {
+            float *a = acc + 6u * i, h = 0.5f * a[3];
+            int neg = a[0] >= 0.0f && a[5] < -(6.0f * PN_CN_INVERTED_V * h * pn_ksqrt(h) + 2.0f * pn_ksqrt(a[2]) * a[0]);
+            acc[6u * i] = a[4] != 0.0f ? 1.0f : 0.0f; /* solid */
+            acc[6u * i + 1u] = neg ? (float)PN_CN_NEG_MAX : 0.0f;
+            if (!neg) continue;
+            ctx->neg[PN_CN_NEG_MAX - 1u].objects++;
+            /* insertion into the largest so far, by area descending */
+            k = ntop < PN_CN_NEG_MAX - 1u ? ntop++ : PN_CN_NEG_MAX - 1u;
+            if (k == PN_CN_NEG_MAX - 1u && !(a[3] > acc[6u * top[k - 1u] + 3u])) continue;
+            for (; k > 0u && a[3] > acc[6u * top[k - 1u] + 3u]; k--)
+                if (k < PN_CN_NEG_MAX - 1u) top[k] = top[k - 1u];
+            top[k] = i;
         }
-        acc[6u * i] = solid ? 1.0f : 0.0f;
-        acc[6u * i + 1u] = (float)g;
+        for (k = 0; k < ntop; k++) {
+            acc[6u * top[k] + 1u] = (float)(k + 1u);
+            ctx->neg[k].objects = 1u;
+            ctx->neg[PN_CN_NEG_MAX - 1u].objects--;
+        }
+        ctx->neg_groups = ctx->neg[PN_CN_NEG_MAX - 1u].objects ? PN_CN_NEG_MAX : ntop;
     }
     for (t = 0; t < T; t++) {
         uint32_t o = tcomp[t] & PN_WG_OBJ, g = (uint32_t)acc[6u * o + 1u];
@@ -262,7 +277,8 @@ static void pn_cn_solids(pn_context *ctx, uint32_t *scratch, const uint32_t *hed
 }
 
 /* Which closed objects of negative volume this frame reads reversed (PN_TRI_INVERTED): the
- * groups whose box the light centre lies outside of. A closed surface of negative volume is
+ * largest ones whose box the light centre lies outside of, and every other. A closed
+ * surface of negative volume is
  * an inside-out solid, whose fronts face in, or a cavity (a room modelled as a box wound
  * inward, its lamp inside), whose fronts are right; with the light outside its box it is the
  * solid (a cavity would show such a light nothing of its inside). The flags change only when
@@ -272,9 +288,9 @@ void pn_connect_light(pn_context *ctx, const pn_klight *L)
 {
     uint32_t mask = 0u, g, t, n = 0u;
     for (g = 0; g < ctx->neg_groups; g++) {
-        uint32_t c, in = 1u;
+        uint32_t c, in = g + 1u < PN_CN_NEG_MAX; /* the last group: always reversed */
         for (c = 0; c < 3u; c++) in &= (uint32_t)(L->c[c] >= ctx->neg[g].lo[c] && L->c[c] <= ctx->neg[g].hi[c]);
-        if (!in) {
+        if (!in && ctx->neg[g].objects) {
             mask |= 1u << g;
             n += ctx->neg[g].objects;
         }

@@ -61,7 +61,8 @@ typedef struct pn_frame_state {
  * partials there. */
 #define PN_PORT_SCRATCH_WORDS 256u
 /* Groups of closed objects of negative volume a context keeps track of (pn_connect_light):
- * one object each but the last, which holds the others (three bits of a triangle's flags). */
+ * the largest objects one each, and the last group the others (three bits of a triangle's
+ * flags). */
 #define PN_CN_NEG_MAX 7u
 
 struct pn_context {

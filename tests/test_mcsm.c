@@ -348,6 +348,45 @@ static void test_inside_out(void)
                   st.wedges.inverted_objects);
     }
     pn_host_close(&h);
+
+    /* More inside-out objects than a context places one by one (six): the largest keep their
+     * own boxes (the room, whose box holds the lamp, is not reversed), the others are read
+     * reversed together whatever their box holds: eight crates wound inward around the room,
+     * the three smallest spread so that their common box holds the lamp. */
+    {
+        static const float room[3] = {0.0313f, 3.0071f, -0.0219f}, rh[3] = {1.5213f, 1.5129f, 1.4871f};
+        static float cpos[(1u + 9u * 6u) * 12u];
+        static uint32_t cidx[(1u + 9u * 6u) * 6u];
+        char err[256];
+        uint32_t k, dark = 0u, bright = 0u;
+        REQUIRE(pn_host_open(&h, 2u + 9u * 12u, W, H, 2, err, sizeof(err)) == 0);
+        nq = pn_test_box(cpos, cidx, 0u, ground, gh, 0);
+        for (k = 0; k < 8u; k++) {
+            /* the three smallest (0, 1, 2) apart so that their box holds the lamp: one above
+             * it, two on the ground at opposite corners */
+            static const float c3[3][3] = {{0.0513f, 4.9113f, 0.0313f}, {-2.9f, 0.1413f, -3.3131f}, {2.91f, 0.1513f, 3.3031f}};
+            const float c[3] = {k < 3u ? c3[k][0] : -2.9f + 0.71f * (float)k, k < 3u ? c3[k][1] : 0.1413f + 0.01f * (float)k,
+                                k < 3u ? c3[k][2] : -3.3131f + 0.11f * (float)(k & 3u)};
+            const float hc[3] = {0.1013f, 0.1371f + 0.01f * (float)k, 0.0913f};
+            nq += pn_test_box(cpos, cidx, nq, c, hc, 1);
+        }
+        nq += pn_test_box(cpos, cidx, nq, room, rh, 1); /* the last object: not the first six found */
+        REQUIRE(pn_scene_set(h.ctx, cpos, 4u * nq, cidx, 2u * nq) == PN_OK);
+        REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_REFERENCE, W, H, 32, 1, g_ref, NULL) == 0);
+        mc_opts(&o, 0u, 0u, 0u, 0u, 0u);
+        REQUIRE(render_opt(&h, &s, &s.light, &o, g_a, NULL, &st) == 0);
+        CHECK_MSG(st.wedges.closed_objects == 9u && st.wedges.inverted_objects == 8u,
+                  "eight crates and a room: %u closed objects, %u read reversed", st.wedges.closed_objects,
+                  st.wedges.inverted_objects);
+        for (p = 0; p < W * H; p++) {
+            dark += g_a[p] < g_ref[p] - 0.25f;
+            bright += g_a[p] > g_ref[p] + 0.25f;
+        }
+        fprintf(stderr, "eight inside-out crates and a room: %u pixels darker than the reference by 0.25, %u brighter\n",
+                dark, bright);
+        CHECK_MSG(dark + bright <= W * H / 100u, "crates: %u darker, %u brighter", dark, bright);
+        pn_host_close(&h);
+    }
     pn_setup_free(&s);
 
     /* A scan with holes (the bunny's open bottom) wound inside out: its volume depends on the

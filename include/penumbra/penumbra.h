@@ -369,7 +369,8 @@ pn_status pn_set_clock(pn_context *ctx, pn_clock_fn clock, void *user);
  * algorithms do not read it; MCSM and the wedges do for closed solids (a face turned from
  * the light is in its solid's shadow), and read a solid of negative volume reversed in a
  * frame whose light centre is outside its box (an inside-out solid; with the light inside,
- * a cavity such as a room wound inward). Open surfaces are lit on the light's side.
+ * a cavity such as a room wound inward), the six largest so, every smaller one always.
+ * Open surfaces are lit on the light's side.
  * Validation reads everything before anything is written: on failure the previous scene
  * stays in place. */
 pn_status pn_scene_set(pn_context *ctx, const float *positions, uint32_t vertex_count,

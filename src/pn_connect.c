@@ -153,6 +153,21 @@ static int pn_cn_same_tri(const uint32_t *canon, uint32_t a, uint32_t b)
 #define PN_CN_SOLID_D 0.05f
 #define PN_CN_SOLID_H 0.2f
 
+/* Each object's first triangle into float `slot` of its six (its bits): the corner its volume
+ * and its farthest corner are measured from (pn_cn_apex). */
+static void pn_cn_firsts(float *acc, uint32_t slot, const uint32_t *tcomp, uint32_t T)
+{
+    uint32_t t;
+    for (t = T; t-- > 0u;) memcpy(acc + 6u * (tcomp[t] & PN_WG_OBJ) + slot, &t, sizeof(t));
+}
+
+static const float *pn_cn_apex(const pn_context *ctx, const float *a, uint32_t slot)
+{
+    uint32_t first;
+    memcpy(&first, a + slot, sizeof(first));
+    return ctx->tris + (size_t)first * 9u;
+}
+
 static void pn_cn_solids(pn_context *ctx, uint32_t *scratch, const uint32_t *hedge, const uint32_t *run, uint32_t nr,
                          uint32_t *tcomp, uint32_t ncomp)
 {
@@ -161,16 +176,14 @@ static void pn_cn_solids(pn_context *ctx, uint32_t *scratch, const uint32_t *hed
     float *acc = (float *)(void *)scratch;
     uint32_t T = ctx->tri_count, i, t, r;
     for (i = 0; i < 6u * ncomp; i++) acc[i] = 0.0f;
-    for (t = T; t-- > 0u;) memcpy(acc + 6u * (tcomp[t] & PN_WG_OBJ) + 4u, &t, sizeof(t));
+    pn_cn_firsts(acc, 4u, tcomp, T);
     for (t = 0; t < T; t++) {
         const float *p = ctx->tris + (size_t)t * 9u, *o;
         float *a = acc + 6u * (tcomp[t] & PN_WG_OBJ);
         float ex = p[3] - p[0], ey = p[4] - p[1], ez = p[5] - p[2], fx = p[6] - p[0], fy = p[7] - p[1], fz = p[8] - p[2];
         float nx = ey * fz - ez * fy, ny = ez * fx - ex * fz, nz = ex * fy - ey * fx;
-        uint32_t first;
         if ((ctx->flags[t] & PN_TRI_DEGENERATE) || (tcomp[t] & PN_WG_DUP)) continue;
-        memcpy(&first, a + 4u, sizeof(first));
-        o = ctx->tris + (size_t)first * 9u; /* the volume's apex: the object's first corner */
+        o = pn_cn_apex(ctx, a, 4u); /* the volume's apex: the object's first corner */
         a[0] += nx;
         a[1] += ny;
         a[2] += nz;
@@ -215,15 +228,13 @@ static void pn_cn_solids(pn_context *ctx, uint32_t *scratch, const uint32_t *hed
     /* A surface with holes has a volume that depends on its apex, by at most the holes'
      * vector area (D) times their distance from it (at most R, its farthest corner): a
      * candidate is of negative volume only below -2 R D too. */
-    for (t = T; t-- > 0u;)
-        if (acc[6u * (tcomp[t] & PN_WG_OBJ)] >= 0.0f) memcpy(acc + 6u * (tcomp[t] & PN_WG_OBJ) + 1u, &t, sizeof(t));
+    pn_cn_firsts(acc, 1u, tcomp, T); /* the same apex again (the boundary took its place) */
     for (t = 0; t < T; t++) {
         float *a = acc + 6u * (tcomp[t] & PN_WG_OBJ);
         const float *p = ctx->tris + (size_t)t * 9u, *o;
-        uint32_t first, v;
+        uint32_t v;
         if (!(a[0] >= 0.0f)) continue;
-        memcpy(&first, a + 1u, sizeof(first));
-        o = ctx->tris + (size_t)first * 9u;
+        o = pn_cn_apex(ctx, a, 1u);
         for (v = 0; v < 3u; v++) {
             float dx = p[3u * v] - o[0], dy = p[3u * v + 1u] - o[1], dz = p[3u * v + 2u] - o[2];
             a[2] = pn_kmaxf(a[2], dx * dx + dy * dy + dz * dz);

@@ -15,6 +15,7 @@
 #define PN_MC_CLASS_PENUMBRA 3u
 #define PN_MC_CLASS_PENUMBRA_OPEN 4u
 #define PN_MC_CLASS_PENUMBRA_SHUT 5u
+#define PN_MC_CLASS_GRAZING 6u /* resolved by the exact fallback: PN_MC_VIS_OUTSIDE */
 
 /* Pixels of a row that the classification first tests as one run (pn_mc_run). */
 #define PN_MC_RUN 16u
@@ -244,7 +245,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
              * layers too: the eye could clear some of those texels, but the six scenes the
              * third layer moves most gave the same RMSE to four digits without this class
              * (512x512), and the class saves their searches. */
-            if (ze - bias > q[2]) {
+            if (bias >= 0.0f && ze - bias > q[2]) {
                 *cls = PN_MC_CLASS_UMBRA;
                 return 0.0f;
             }
@@ -253,6 +254,10 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
         }
     } else {
         bias = pn_mc_bias(mc, nrm, toc, ze);
+    }
+    if (bias < 0.0f) { /* a grazed surface (pn_mc_bias): the exact fallback's pass */
+        *cls = PN_MC_CLASS_GRAZING;
+        return PN_MC_VIS_OUTSIDE;
     }
     if (n == 0u) {
         /* Lit: only the horizon blocks. A light wholly in front of (behind) the surface

@@ -382,13 +382,13 @@ PN_KFN void pn_mc_clip(const pn_mc_ctx *m, const pn_mc_ray *r, float *t0, float 
 
 /* The adaptive bias of eq. 3.2 for an origin at light depth ze with unit normal nrm and
  * toc, the origin to the light centre: half a texel's diagonal at the origin's depth
- * (bias_k (ze + d)), over the cosine of the angle to the light, at least PN_MC_COS_MIN. */
+ * (bias_k (ze + d)), over the cosine of the angle to the light; -1 when that cosine is below
+ * PN_MC_COS_MIN (the surface is grazed: no bias covers its texels; the exact fallback's). */
 PN_KFN float pn_mc_bias(const pn_kmc *mc, pn_v3 nrm, pn_v3 toc, float ze)
 {
-    float lt, cosv;
+    float lt = pn_ksqrt(pn_v3_dot(toc, toc)), cosv = lt > 0.0f ? pn_v3_dot(nrm, toc) / lt : 1.0f;
+    if (cosv < PN_MC_COS_MIN) return -1.0f;
     if (mc->flags & PN_MC_F_NO_BIAS) return 0.0f;
-    lt = pn_ksqrt(pn_v3_dot(toc, toc));
-    cosv = lt > 0.0f ? pn_v3_dot(nrm, toc) / lt : 1.0f;
     return mc->bias_k * (ze + mc->d) / pn_kmaxf(cosv, PN_MC_COS_MIN);
 }
 

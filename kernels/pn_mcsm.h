@@ -110,6 +110,10 @@
  * grazing surfaces self-shadowed (spot 0.038, bunny 0.035); 0.1 gives spot 0.023, bunny
  * 0.030, CAD 0.014, buddha 0.047, dragon 0.041, chess 0.045; 0.05 starts to leak (chess,
  * CAD and buddha worse again). */
+/* Below it the bias no longer grows while a texel's depth range on the surface does: a
+ * pixel left in penumbra there is not searched but marked PN_MC_VIS_OUTSIDE for the exact
+ * fallback's pass (counted as grazing: RMSE fell on the 12 scenes that have such pixels,
+ * the built-in room's 0.0536 -> 0.0487, its pixels too bright by 0.25 0.243% -> 0.113%). */
 #define PN_MC_COS_MIN 0.1f
 /* Relative slack of a depth bound turned into a ray parameter (t = z / z_E): the rounding
  * of t z_E must not move a ray's crossing of a plane occluder (near = far) out of the
@@ -143,8 +147,9 @@
 #define PN_MC_WORD_PENUMBRA 2u      /* penumbra pixels whose rays came back mixed */
 #define PN_MC_WORD_PENUMBRA_OPEN 3u /* ...that no layer blocked (lit as far as the layers say) */
 #define PN_MC_WORD_PENUMBRA_SHUT 4u /* ...whose every sample in front was blocked */
-#define PN_MC_WORD_CAPPED 5u
-#define PN_MC_WORDS 6u
+#define PN_MC_WORD_GRAZING 5u        /* ...whose surface the light centre grazes: exact */
+#define PN_MC_WORD_CAPPED 6u
+#define PN_MC_WORDS 7u
 #define PN_MC_ROW_WORDS 16u
 
 /* The parts, in order (each uses those before it). */

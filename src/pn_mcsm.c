@@ -53,7 +53,7 @@ pn_status pn_mcsm_prepare(pn_frame_state *fs, const pn_frame_options *opt)
 typedef char pn_mc_consts_agree[PN_MC_S_LINEAR == PN_MC_SEARCH_LINEAR && PN_MC_S_HIER == PN_MC_SEARCH_HIER &&
                                         PN_MC_F_NO_BIAS == PN_MC_NO_BIAS && PN_MC_F_NO_CLASSIFY == PN_MC_NO_CLASSIFY &&
                                         PN_MC_RAYS_MAX == 8u && PN_MC_BLUR_MAX + 1u <= 12u &&
-                                        PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS && PN_MC_WORDS == 6u &&
+                                        PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS && PN_MC_WORDS == 7u && PN_MC_CLASS_GRAZING == PN_MC_WORD_GRAZING + 1u &&
                                         PN_MC_ROW_WORDS == 16u /* 64 bytes a row (pn_mc_carve) */
                                         && PN_MCSM_MAP_MAX <= 2048u /* N-buffer offsets in 32 bits, 12 levels (pn_nb_mm_lay) */
                                     ? 1
@@ -222,7 +222,8 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
         ctx->stats.mcsm.capped += wd[PN_MC_WORD_CAPPED];
         ctx->stats.mcsm.rays += c->candidates;
         ctx->stats.mcsm.steps += c->nodes;
-        ctx->stats.mcsm.outside += c->exact;
+        ctx->stats.mcsm.grazing += wd[PN_MC_WORD_GRAZING];
+        ctx->stats.mcsm.outside += c->exact - wd[PN_MC_WORD_GRAZING]; /* the fallback's pass counts both */
     }
     return PN_OK;
 }

@@ -144,6 +144,7 @@ static int same_frame(const char *what, const pn_xframe *a, const pn_xframe *b)
     SAME_STAT(mcsm.steps);
     SAME_STAT(mcsm.capped);
     SAME_STAT(mcsm.outside);
+    SAME_STAT(mcsm.grazing);
     SAME_STAT(wedges.silhouettes);
     SAME_STAT(wedges.pairs);
     SAME_STAT(wedges.bands);

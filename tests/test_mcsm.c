@@ -606,8 +606,9 @@ static void test_determinism_and_stats(void)
     CHECK_MSG(memcmp(g_a, g_b, sizeof(g_a)) == 0, "1 and 2 threads differ");
     REQUIRE(render_opt(&h2, &s, &s.light, &o, g_b, NULL, NULL) == 0);
     CHECK_MSG(memcmp(g_a, g_b, sizeof(g_a)) == 0, "two runs differ");
-    CHECK_MSG(st.mcsm.lit + st.mcsm.umbra + st.mcsm.penumbra == st.lit_pixels, "classes %u + %u + %u, lit pixels %u",
-              st.mcsm.lit, st.mcsm.umbra, st.mcsm.penumbra, st.lit_pixels);
+    CHECK_MSG(st.mcsm.lit + st.mcsm.umbra + st.mcsm.penumbra + st.mcsm.outside + st.mcsm.grazing == st.lit_pixels,
+              "classes %u + %u + %u, outside %u, grazing %u; lit pixels %u", st.mcsm.lit, st.mcsm.umbra, st.mcsm.penumbra,
+              st.mcsm.outside, st.mcsm.grazing, st.lit_pixels);
     CHECK_MSG(st.mcsm.penumbra > 0u && st.mcsm.lit > 0u && st.mcsm.umbra > 0u, "classes %u / %u / %u", st.mcsm.lit, st.mcsm.umbra,
               st.mcsm.penumbra);
     CHECK_MSG(st.mcsm.penumbra_open + st.mcsm.penumbra_shut < st.mcsm.penumbra, "penumbra %u: %u open, %u shut", st.mcsm.penumbra,
@@ -1001,6 +1002,38 @@ static void test_nbuffer_layout(void)
 
 /* Origins no window holds, blur off: the reference's bytes at k = 4 (pn_test_check_outside);
  * a frame that left them to the layers (as before) lit the block's penumbra on the wall. */
+/* A surface the light centre grazes (the cosine of its normal with the direction to the
+ * centre below PN_MC_COS_MIN, where eq. 3.2's bias stops growing) takes the exact fallback:
+ * a slab under the square's lamp (y = 4, half-size 0.5) whose face toward the camera lies
+ * 0.2 beside the lamp's axis (cosine at most 0.2 / 2 there), the light straddling its
+ * plane; its other faces the light sees fully (the top) or not at all. Without the blur and
+ * at k = 4, every pixel is the reference's at k = 4, bit for bit, and the face's pixels are
+ * counted as grazing. */
+static void test_grazing(void)
+{
+    static const float slab[3] = {0.0f, 1.0f, -0.35f}, sh[3] = {1.0f, 1.0f, 0.15f};
+    float pos[6u * 12u];
+    uint32_t idx[6u * 6u], nq, p, differ = 0u;
+    pn_setup s;
+    pn_host h;
+    pn_frame_options o;
+    pn_stats st;
+    if (!open_boxes(&s, &h, 12u)) return;
+    nq = pn_test_box(pos, idx, 0u, slab, sh, 0);
+    REQUIRE(pn_scene_set(h.ctx, pos, 4u * nq, idx, 2u * nq) == PN_OK);
+    REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_REFERENCE, W, H, 4, 1, g_ref, NULL) == 0);
+    mc_opts(&o, 0u, 0u, 0u, PN_MC_BLUR_OFF, 0u);
+    o.k = 4;
+    REQUIRE(render_opt(&h, &s, &s.light, &o, g_a, NULL, &st) == 0);
+    for (p = 0; p < W * H; p++) differ += g_a[p] != g_ref[p];
+    fprintf(stderr, "grazing: %u pixels resolved exactly, %u outside, %u of %u differ from the reference at k = 4\n",
+            st.mcsm.grazing, st.mcsm.outside, differ, W * H);
+    CHECK_MSG(st.mcsm.grazing > 100u && st.mcsm.outside == 0u, "grazing %u, outside %u", st.mcsm.grazing, st.mcsm.outside);
+    CHECK_MSG(differ == 0u, "%u pixels differ from the reference at k = 4", differ);
+    pn_host_close(&h);
+    pn_setup_free(&s);
+}
+
 static void test_outside_exact(void)
 {
     pn_frame_options o;
@@ -1025,6 +1058,7 @@ int main(void)
     RUN(test_inside_out_many);
     RUN(test_inside_out_holes);
     RUN(test_outside_exact);
+    RUN(test_grazing);
     RUN(test_classify_exact);
     RUN(test_classify_exact_512);
     RUN(test_third_layer);

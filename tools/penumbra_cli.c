@@ -307,8 +307,9 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
     fprintf(f, "  \"mc_map\": %u,\n  \"mc_lit\": %u,\n  \"mc_umbra\": %u,\n  \"mc_penumbra\": %u,\n",
             st->mcsm.map, st->mcsm.lit, st->mcsm.umbra, st->mcsm.penumbra);
     fprintf(f, "  \"mc_penumbra_open\": %u,\n  \"mc_penumbra_shut\": %u,\n", st->mcsm.penumbra_open, st->mcsm.penumbra_shut);
-    fprintf(f, "  \"mc_rays\": %llu,\n  \"mc_steps\": %llu,\n  \"mc_capped\": %u,\n  \"mc_outside\": %u,\n",
-            (unsigned long long)st->mcsm.rays, (unsigned long long)st->mcsm.steps, st->mcsm.capped, st->mcsm.outside);
+    fprintf(f, "  \"mc_rays\": %llu,\n  \"mc_steps\": %llu,\n  \"mc_capped\": %u,\n  \"mc_outside\": %u,\n  \"mc_grazing\": %u,\n",
+            (unsigned long long)st->mcsm.rays, (unsigned long long)st->mcsm.steps, st->mcsm.capped, st->mcsm.outside,
+            st->mcsm.grazing);
     fprintf(f, "  \"ms_mc_layers\": %.3f,\n  \"ms_mc_nbuffer\": %.3f,\n  \"ms_mc_rays\": %.3f,\n  \"ms_mc_blur\": %.3f,\n",
             (double)st->mcsm.ns_layers * 1e-6, (double)st->mcsm.ns_nbuffer * 1e-6, (double)st->mcsm.ns_rays * 1e-6,
             (double)st->mcsm.ns_blur * 1e-6);

@@ -389,7 +389,7 @@ PN_KFN float pn_mc_bias(const pn_kmc *mc, pn_v3 nrm, pn_v3 toc, float ze)
     float lt = pn_ksqrt(pn_v3_dot(toc, toc)), cosv = lt > 0.0f ? pn_v3_dot(nrm, toc) / lt : 1.0f;
     if (cosv < PN_MC_COS_MIN) return -1.0f;
     if (mc->flags & PN_MC_F_NO_BIAS) return 0.0f;
-    return mc->bias_k * (ze + mc->d) / pn_kmaxf(cosv, PN_MC_COS_MIN);
+    return mc->bias_k * (ze + mc->d) / pn_kmaxf(cosv, PN_MC_COS_MIN); /* the floor for a NaN cosine */
 }
 
 #endif

@@ -1003,7 +1003,7 @@ static void test_nbuffer_layout(void)
 /* Origins no window holds, blur off: the reference's bytes at k = 4 (pn_test_check_outside);
  * a frame that left them to the layers (as before) lit the block's penumbra on the wall. */
 /* A surface the light centre grazes (the cosine of its normal with the direction to the
- * centre below PN_MC_COS_MIN, where eq. 3.2's bias stops growing) takes the exact fallback:
+ * centre below PN_MC_COS_MIN, where no bias covers a texel's depth range) takes the exact fallback:
  * a slab under the square's lamp (y = 4, half-size 0.5) whose face toward the camera lies
  * 0.2 beside the lamp's axis (cosine at most 0.2 / 2 there), the light straddling its
  * plane; its other faces the light sees fully (the top) or not at all. Without the blur and

@@ -670,8 +670,9 @@ typedef struct pn_mcsm_stats { /* Monte Carlo shadow maps, last frame */
                                     (as occtex.outside): the reference's visibility over
                                     min(k, 4)^2 samples, not the layers' */
     uint32_t grazing;            /* pixels the classification left in penumbra whose surface
-                                    makes a cosine below 0.2 with the light centre (where eq.
-                                    3.2's bias stops growing): the same exact fallback */
+                                    makes a cosine below 0.2 with the light centre (there no
+                                    bias of eq. 3.2 covers a texel's depth range without
+                                    leaking): the same exact fallback */
     /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: layers (window, rasterization),
      * N-buffer, rays (classification and search; the exact fallback's pass), blur */
     uint64_t ns_layers, ns_nbuffer, ns_rays, ns_blur;

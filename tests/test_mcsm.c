@@ -1002,6 +1002,13 @@ static void test_nbuffer_layout(void)
 
 /* Origins no window holds, blur off: the reference's bytes at k = 4 (pn_test_check_outside);
  * a frame that left them to the layers (as before) lit the block's penumbra on the wall. */
+static void test_outside_exact(void)
+{
+    pn_frame_options o;
+    mc_opts(&o, 0u, 0u, 0u, PN_MC_BLUR_OFF, 0u);
+    pn_test_check_outside(&o);
+}
+
 /* A surface the light centre grazes (the cosine of its normal with the direction to the
  * centre below PN_MC_COS_MIN, where no bias covers a texel's depth range) takes the exact fallback:
  * a slab under the square's lamp (y = 4, half-size 0.5) whose face toward the camera lies
@@ -1032,13 +1039,6 @@ static void test_grazing(void)
     CHECK_MSG(differ == 0u, "%u pixels differ from the reference at k = 4", differ);
     pn_host_close(&h);
     pn_setup_free(&s);
-}
-
-static void test_outside_exact(void)
-{
-    pn_frame_options o;
-    mc_opts(&o, 0u, 0u, 0u, PN_MC_BLUR_OFF, 0u);
-    pn_test_check_outside(&o);
 }
 
 int main(void)

@@ -91,8 +91,9 @@ PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
 
 /* Row y: each pixel the pixel pass marked PN_MC_VIS_OUTSIDE (its origin no window holds, so
  * the layers hold none of its occluders, or its surface the light centre grazes:
- * PN_MC_COS_MIN) takes the exact fallback, counted as exact; before the blur. A pass of its own: within the pixel pass's frame the reference's stack went over
- * the library's budget (check_callgraph). */
+ * PN_MC_COS_MIN) takes the exact fallback, counted as exact; before the blur. A pass of its
+ * own: within the pixel pass's frame the reference's stack went over the library's budget
+ * (check_callgraph). */
 PN_KFN void pn_e_mc_outside(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
 {
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};

@@ -1148,7 +1148,15 @@ PN_KFN int pn_wg_listed(PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t
 /* Visibility of one lit pixel (shadow origin O, own triangle own, tile edges list[lo, hi),
  * their objects' runs next: pn_wg_runs).
  * PN_WG_EXACT for a receiver in its own object's self-shadow penumbra (its object hides
- * the centre and has an edge reaching the light).
+ * the centre and has an edge reaching the light), unless O lies inside its own solid: the
+ * centre segment leaves the solid through more of its triangles than it enters it by
+ * (distinct ones; a watertight solid: one more from inside, as many from outside). There
+ * no sample sees the light (every segment from O must leave the solid; the samples on the
+ * other side of the own triangle are below the horizon): 0, without the fallback. That is
+ * where a solid's face turns from the light centre (O is pushed eps to the centre's side,
+ * into the solid), the dark side of every closed object, whose terminator band took the
+ * fallback before; one pushed through a solid thinner than eps (a modelled leaf) lies
+ * outside, and its segment enters the solid as often as it leaves it, if it meets it.
  * Counters: candidates = edges evaluated, blocking = edges covering some of the light,
  * nodes = blockers of the centre ray, capped = more than PN_WG_HARD_MAX objects listed in
  * the tile block the centre (taken as umbra; reported as pn_stats.wedges.hard_overflow, not
@@ -1162,8 +1170,8 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
                          pn_shadow_counters *cnt)
 {
     uint32_t hard[PN_WG_HARD_MAX], hn[PN_WG_HARD_MAX], htri[PN_WG_HARD_MAX], nhard = 0u, ntri = 0u, t, i, q;
-    uint32_t kb = PN_WG_ANY, hc = 0u;
-    int kmiss = 0;
+    uint32_t kb = PN_WG_ANY, hc = 0u, so = tcomp[own] & PN_WG_OBJ, ent[PN_WG_HARD_MAX], nent = 0u;
+    int kmiss = 0, inside = (tcomp[own] & PN_WG_CLOSED) != 0u;
     float af[4];
     pn_wbox bf[4];
     pn_klight Lc = *L;
@@ -1214,7 +1222,26 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
                 htri[ntri++] = t;
                 hn[j]++;
             }
+        } else if (inside && s == so && !(tcomp[t] & PN_WG_DUP)) {
+            uint32_t k;
+            for (k = 0; k < nent && ent[k] != t; k++) {
+            }
+            if (k == nent) {
+                if (nent == PN_WG_HARD_MAX)
+                    inside = 0;
+                else
+                    ent[nent++] = t;
+            }
         }
+    }
+    /* O inside its own solid (the segment leaves it more often than it enters): no light.
+     * The entries are the own solid's triangles that face away from the centre (casting
+     * none), the exits its casting ones (hn); a segment crossing more than
+     * PN_WG_HARD_MAX of them decides nothing here. */
+    if (inside) {
+        for (i = 0; i < nhard && hard[i] != so; i++) {
+        }
+        if (i < nhard && hn[i] > nent) return 0.0f;
     }
     if (L->is_point) return 1.0f;
     /* The blockers in ascending order (insertion sort, at most PN_WG_HARD_MAX): the list

@@ -28,7 +28,10 @@
  * 9. The culls of tiles in depth and of objects lose no edge that reaches the light.
  * 10. A tile's centre cone (pn_wg_cone_clear: the tile's pixels skip their centre rays)
  *    is clear only when no segment from one of its origins to the light centre meets a
- *    triangle, and it is clear of the receivers' own plane. */
+ *    triangle, and it is clear of the receivers' own plane.
+ * 11. A pixel whose shadow origin lies inside its own solid is dark without the exact
+ *    fallback; one beyond a solid thinner than eps is not taken for inside, and one under
+ *    its own solid's overhang still takes the fallback. */
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -325,8 +328,8 @@ static void test_blend_spheres(void)
     /* Neighbouring spheres mostly hide different parts of the light, so the two modes differ
      * on few pixels (the benchmark's table and heat map say where); the stacked test below is
      * the overlap the blending is for. Here: the objects are the 81 spheres and the ground. */
-    /* The spheres' terminators are self-shadow penumbrae, resolved exactly. */
-    CHECK_MSG(st.wedges.exact_pixels > 0u && rmse_b < 0.01, "spheres: %u pixels resolved exactly, RMSE %.4f",
+    /* The spheres' terminators: their origins lie inside the spheres (test_inside_solid). */
+    CHECK_MSG(st.wedges.exact_pixels == 0u && rmse_b < 0.01, "spheres: %u pixels resolved exactly, RMSE %.4f",
               st.wedges.exact_pixels, rmse_b);
     CHECK_MSG(st.wedges.objects == 82u && st.wedges.closed_objects == 81u && st.wedges.silhouettes > 0u &&
                   st.wedges.touched > 0u && st.wedges.touched <= st.wedges.evaluated,
@@ -576,6 +579,88 @@ static void test_holed_solid(void)
               st.wedges.closed_objects, st.wedges.open_edges);
     CHECK_MSG(memcmp(g_a, g_ref, sizeof(g_ref)) == 0, "the holed sphere casts differently from the closed one");
     CHECK_MSG(dark == 0u, "holed sphere: %u pixels darker than the reference by more than 0.1", dark);
+    pn_host_close(&h);
+    pn_setup_free(&s);
+}
+
+/* Where the light centre lies behind a solid's face, the shadow origin (pushed eps off the
+ * face, to the centre's side) lies inside the solid, and no sample reaches the light: the
+ * centre segment leaves the solid once more than it enters it, and the pixel is dark without
+ * the exact fallback (which a closed sphere's terminator took before: exact_pixels > 0).
+ * A "leaf" (a closed box thinner than eps, standing before the sphere with its face to the
+ * camera turned away from the light centre) is the counter-case: its origins lie beyond
+ * it, on its lit side, and must not be taken for inside (the reference's light). */
+static void test_inside_solid(void)
+{
+    static const float ground[4] = {0.0f, 0.0f, 0.0f, 4.0f}, c[3] = {0.1f, 2.0f, 0.0f};
+    static float pos[(SPH_VERTS + 4u + 24u) * 3u];
+    static uint32_t idx[(SPH_TRIS + 2u + 12u) * 3u];
+    const float P0[3] = {-0.8f, 0.4f, 2.6f}, A[3] = {1.6f, 0.0f, 0.0f}, B[3] = {0.0f, 1.2f, -0.36f};
+    float nl[3] = {0.0f, 0.3f, 1.0f}, t;
+    uint32_t n, p, v, dark = 0u, bright = 0u;
+    pn_setup s;
+    pn_host h;
+    pn_frame_options o;
+    pn_stats st;
+    if (!open_square_host(&s, &h, SPH_TRIS + 2u + 12u)) return;
+    put_square(pos, idx, ground, 0u);
+    n = 2u + uv_sphere(pos, idx + 6u, 4u, c, 0.6f);
+    /* The leaf: the unit cube (wound outward) mapped to P0 + x A + y B + z t nl. */
+    t = 0.2f * s.eps;
+    {
+        float l = sqrtf(nl[1] * nl[1] + nl[2] * nl[2]), q[24 * 3];
+        uint32_t ci[12 * 3];
+        nl[1] /= l, nl[2] /= l;
+        cube(q, ci, 0.0f);
+        for (v = 0; v < 24u; v++)
+            for (p = 0; p < 3u; p++)
+                pos[3u * (4u + SPH_VERTS + v) + p] = P0[p] + q[3u * v] * A[p] + q[3u * v + 1u] * B[p] + q[3u * v + 2u] * t * nl[p];
+        for (p = 0; p < 36u; p++) idx[3u * n + p] = ci[p] + 4u + SPH_VERTS;
+        n += 12u;
+    }
+    wg_opts(&o, PN_WG_MODE_BLEND);
+    REQUIRE(pn_scene_set(h.ctx, pos, SPH_VERTS + 4u + 24u, idx, n) == PN_OK);
+    REQUIRE(render_opt(&h, &s, &s.light, &o, g_a, NULL, &st) == 0);
+    REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_REFERENCE, W, H, 32, 1, g_ref, NULL) == 0);
+    for (p = 0; p < W * H; p++) {
+        dark += g_a[p] < g_ref[p] - 0.1f;
+        bright += g_a[p] > g_ref[p] + 0.1f;
+    }
+    fprintf(stderr, "inside a solid: %u solid objects, %u pixels resolved exactly, %u darker and %u brighter than the "
+                    "reference by more than 0.1\n",
+            st.wedges.closed_objects, st.wedges.exact_pixels, dark, bright);
+    CHECK_MSG(st.wedges.closed_objects == 2u, "%u solid objects, want the sphere and the leaf", st.wedges.closed_objects);
+    CHECK_MSG(st.wedges.exact_pixels == 0u, "%u pixels took the exact fallback", st.wedges.exact_pixels);
+    CHECK_MSG(dark == 0u && bright == 0u, "%u pixels darker, %u brighter than the reference by more than 0.1", dark, bright);
+    /* An L standing beside the sphere's place, its arm over the face the camera sees: from
+     * that face the arm hides the light centre, the segment enters the L and leaves it
+     * (outside), and its penumbra on the face takes the exact fallback. */
+    {
+        static const float L[12 * 3] = {1.4f, 0.0f, -1.5f, 1.4f, 0.0f, -1.3f, 1.4f, 2.0f, -1.3f, 1.4f, 2.0f, -0.9f,
+                                        1.4f, 2.2f, -0.9f, 1.4f, 2.2f, -1.5f, 2.6f, 0.0f, -1.5f, 2.6f, 0.0f, -1.3f,
+                                        2.6f, 2.0f, -1.3f, 2.6f, 2.0f, -0.9f, 2.6f, 2.2f, -0.9f, 2.6f, 2.2f, -1.5f};
+        static const uint32_t Li[20 * 3] = {0u, 1u, 2u, 6u, 8u, 7u, 0u, 2u, 5u, 6u, 11u, 8u, 2u, 3u, 4u, 8u, 10u, 9u,
+                                            2u, 4u, 5u, 8u, 11u, 10u, 0u, 7u, 1u, 0u, 6u, 7u, 1u, 8u, 2u, 1u, 7u, 8u,
+                                            2u, 9u, 3u, 2u, 8u, 9u, 3u, 10u, 4u, 3u, 9u, 10u, 4u, 11u, 5u, 4u, 10u, 11u,
+                                            5u, 6u, 0u, 5u, 11u, 6u};
+        memcpy(pos + 12u, L, sizeof(L));
+        for (p = 0; p < 60u; p++) idx[6u + p] = Li[p] + 4u;
+        REQUIRE(pn_scene_set(h.ctx, pos, 16u, idx, 22u) == PN_OK);
+        REQUIRE(render_opt(&h, &s, &s.light, &o, g_a, NULL, &st) == 0);
+        REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_REFERENCE, W, H, 32, 1, g_ref, NULL) == 0);
+        dark = bright = 0u;
+        for (p = 0; p < W * H; p++) {
+            dark += g_a[p] < g_ref[p] - 0.25f;
+            bright += g_a[p] > g_ref[p] + 0.25f;
+        }
+        fprintf(stderr, "overhang: %u solid objects, %u pixels resolved exactly, %u darker and %u brighter than the "
+                        "reference by more than 0.25\n",
+                st.wedges.closed_objects, st.wedges.exact_pixels, dark, bright);
+        CHECK_MSG(st.wedges.closed_objects == 1u && st.wedges.exact_pixels > 0u,
+                  "overhang: %u solid objects, %u pixels resolved exactly", st.wedges.closed_objects, st.wedges.exact_pixels);
+        CHECK_MSG(dark == 0u && bright == 0u, "overhang: %u pixels darker, %u brighter than the reference by more than 0.25",
+                  dark, bright);
+    }
     pn_host_close(&h);
     pn_setup_free(&s);
 }
@@ -1148,6 +1233,7 @@ int main(void)
     RUN(test_two_layers);
     RUN(test_double_sided);
     RUN(test_holed_solid);
+    RUN(test_inside_solid);
     RUN(test_many_blockers);
     RUN(test_short_pool);
     RUN(test_short_silhouettes);

@@ -583,6 +583,22 @@ static void test_holed_solid(void)
     pn_setup_free(&s);
 }
 
+/* The frame of o (its stats into st) against the reference at k = 32: its pixels darker and
+ * brighter than the reference's by more than d. 0 on success. */
+static int off_reference(pn_host *h, const pn_setup *s, const pn_frame_options *o, float d, pn_stats *st, uint32_t *dark,
+                         uint32_t *bright)
+{
+    uint32_t p;
+    if (render_opt(h, s, &s->light, o, g_a, NULL, st) != 0) return 1;
+    if (render_vis(h, s, &s->light, PN_ALGO_REFERENCE, W, H, 32, 1, g_ref, NULL) != 0) return 1;
+    *dark = *bright = 0u;
+    for (p = 0; p < W * H; p++) {
+        *dark += g_a[p] < g_ref[p] - d;
+        *bright += g_a[p] > g_ref[p] + d;
+    }
+    return 0;
+}
+
 /* Where the light centre lies behind a solid's face, the shadow origin (pushed eps off the
  * face, to the centre's side) lies inside the solid, and no sample reaches the light: the
  * centre segment leaves the solid once more than it enters it, and the pixel is dark without
@@ -597,7 +613,7 @@ static void test_inside_solid(void)
     static uint32_t idx[(SPH_TRIS + 2u + 12u) * 3u];
     const float P0[3] = {-0.8f, 0.4f, 2.6f}, A[3] = {1.6f, 0.0f, 0.0f}, B[3] = {0.0f, 1.2f, -0.36f};
     float nl[3] = {0.0f, 0.3f, 1.0f}, t;
-    uint32_t n, p, v, dark = 0u, bright = 0u;
+    uint32_t n, p, v, dark, bright;
     pn_setup s;
     pn_host h;
     pn_frame_options o;
@@ -620,12 +636,7 @@ static void test_inside_solid(void)
     }
     wg_opts(&o, PN_WG_MODE_BLEND);
     REQUIRE(pn_scene_set(h.ctx, pos, SPH_VERTS + 4u + 24u, idx, n) == PN_OK);
-    REQUIRE(render_opt(&h, &s, &s.light, &o, g_a, NULL, &st) == 0);
-    REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_REFERENCE, W, H, 32, 1, g_ref, NULL) == 0);
-    for (p = 0; p < W * H; p++) {
-        dark += g_a[p] < g_ref[p] - 0.1f;
-        bright += g_a[p] > g_ref[p] + 0.1f;
-    }
+    REQUIRE(off_reference(&h, &s, &o, 0.1f, &st, &dark, &bright) == 0);
     fprintf(stderr, "inside a solid: %u solid objects, %u pixels resolved exactly, %u darker and %u brighter than the "
                     "reference by more than 0.1\n",
             st.wedges.closed_objects, st.wedges.exact_pixels, dark, bright);
@@ -646,13 +657,7 @@ static void test_inside_solid(void)
         memcpy(pos + 12u, L, sizeof(L));
         for (p = 0; p < 60u; p++) idx[6u + p] = Li[p] + 4u;
         REQUIRE(pn_scene_set(h.ctx, pos, 16u, idx, 22u) == PN_OK);
-        REQUIRE(render_opt(&h, &s, &s.light, &o, g_a, NULL, &st) == 0);
-        REQUIRE(render_vis(&h, &s, &s.light, PN_ALGO_REFERENCE, W, H, 32, 1, g_ref, NULL) == 0);
-        dark = bright = 0u;
-        for (p = 0; p < W * H; p++) {
-            dark += g_a[p] < g_ref[p] - 0.25f;
-            bright += g_a[p] > g_ref[p] + 0.25f;
-        }
+        REQUIRE(off_reference(&h, &s, &o, 0.25f, &st, &dark, &bright) == 0);
         fprintf(stderr, "overhang: %u solid objects, %u pixels resolved exactly, %u darker and %u brighter than the "
                         "reference by more than 0.25\n",
                 st.wedges.closed_objects, st.wedges.exact_pixels, dark, bright);

@@ -1237,8 +1237,10 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
     /* O inside its own solid (the segment leaves it more often than it enters): no light.
      * The entries are the own solid's triangles that face away from the centre (casting
      * none), the exits its casting ones (hn); a segment crossing more than
-     * PN_WG_HARD_MAX of them decides nothing here. */
-    if (inside) {
+     * PN_WG_HARD_MAX of them decides nothing here. Asked only where a walk ran: without
+     * the !clear, PoCL 3.1's inliner laid out the program's other kernels differently and
+     * ran the reference's pixel pass 1.5x slower (docs/wedges-time.md). */
+    if (inside && !clear) {
         for (i = 0; i < nhard && hard[i] != so; i++) {
         }
         if (i < nhard && hn[i] > nent) return 0.0f;

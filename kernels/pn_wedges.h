@@ -1145,6 +1145,20 @@ PN_KFN int pn_wg_listed(PN_CONST pn_wsil *sil, PN_CONST uint32_t *list, uint32_t
     return 0;
 }
 
+/* The place of v in set[0, *n) (at most PN_WG_HARD_MAX entries), v added at the end when
+ * absent; PN_WG_HARD_MAX when absent from a full set. */
+PN_KFN uint32_t pn_wg_place(uint32_t *set, uint32_t *n, uint32_t v)
+{
+    uint32_t i;
+    for (i = 0; i < *n && set[i] != v; i++) {
+    }
+    if (i == *n) {
+        if (*n == PN_WG_HARD_MAX) return PN_WG_HARD_MAX;
+        set[(*n)++] = v;
+    }
+    return i;
+}
+
 /* Visibility of one lit pixel (shadow origin O, own triangle own, tile edges list[lo, hi),
  * their objects' runs next: pn_wg_runs).
  * PN_WG_EXACT for a receiver in its own object's self-shadow penumbra (its object hides
@@ -1192,7 +1206,7 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
     }
     while (!clear) {
         pn_shadow_counters rc = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
-        uint32_t s, j;
+        uint32_t s, j, m;
         t = pn_ray_walk_next(&W, &R, own, tris, wnodes, tri_index, &Lc, &rc);
         cnt->overflow += rc.overflow;
         if (t == PN_RAY_NONE) break;
@@ -1200,38 +1214,21 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
         s = tcomp[t] & PN_WG_OBJ;
         /* An object whose wedges do not reach this tile covers the whole light. */
         if (L->is_point || !pn_wg_listed(sil, list, lo, hi, s)) return 0.0f;
-        for (j = 0; j < nhard && hard[j] != s; j++) {
+        m = nhard;
+        if ((j = pn_wg_place(hard, &nhard, s)) == PN_WG_HARD_MAX) {
+            cnt->capped++;
+            return 0.0f;
         }
-        if (j == nhard) {
-            if (nhard == PN_WG_HARD_MAX) {
+        if (nhard > m) hn[j] = 0u;
+        if ((tcast[t] & PN_WG_CAST_CODE) != PN_WG_CAST_NONE) {
+            m = ntri;
+            if (pn_wg_place(htri, &ntri, t) == PN_WG_HARD_MAX) {
                 cnt->capped++;
                 return 0.0f;
             }
-            hard[nhard] = s;
-            hn[nhard++] = 0u;
-        }
-        if ((tcast[t] & PN_WG_CAST_CODE) != PN_WG_CAST_NONE) {
-            uint32_t k;
-            for (k = 0; k < ntri && htri[k] != t; k++) {
-            }
-            if (k == ntri) {
-                if (ntri == PN_WG_HARD_MAX) {
-                    cnt->capped++;
-                    return 0.0f;
-                }
-                htri[ntri++] = t;
-                hn[j]++;
-            }
+            hn[j] += ntri - m;
         } else if (inside && s == so && !(tcomp[t] & PN_WG_DUP)) {
-            uint32_t k;
-            for (k = 0; k < nent && ent[k] != t; k++) {
-            }
-            if (k == nent) {
-                if (nent == PN_WG_HARD_MAX)
-                    inside = 0;
-                else
-                    ent[nent++] = t;
-            }
+            if (pn_wg_place(ent, &nent, t) == PN_WG_HARD_MAX) inside = 0;
         }
     }
     /* O inside its own solid (the segment leaves it more often than it enters): no light.

@@ -78,9 +78,9 @@
  * light coordinates of its object's silhouette end points (ob: u0, u1, v0, v1, h0, h1;
  * the same in every silhouette of the object). */
 typedef struct pn_wsil {
-    uint32_t h, w, comp, pad, x0, y0, x1, y1;
+    uint32_t h, w, comp, x0, y0, x1, y1;
     float ua, va, ha, ub, vb, hb, nx, ny, nz;
-    float ob[6], pad1;
+    float ob[8]; /* its object's box (pn_wg_sil_box), then max(|u0|, |u1|), max(|v0|, |v1|) */
 } pn_wsil;
 
 /* Light coordinates of X: u = (X - c).U / |U|^2, v = (X - c).V / |V|^2, h = (X - c).N. */
@@ -367,7 +367,6 @@ PN_KFN int pn_wg_sil_rec(const pn_kview *v, const pn_klight *L, float hmax, PN_C
     s->h = pn_wg_sil_h(h0, m);
     s->w = (uint32_t)(m > 0 ? m : -m);
     s->comp = tcomp[(h0 & ~PN_WG_REV) / 3u] & PN_WG_OBJ;
-    s->pad = 0u;
     pn_wg_ends(tris, s->h, &a, &b);
     pn_wg_reach(v, L, hmax, a, b, 0, &R); /* its box: the hull is built where it is binned */
     {
@@ -384,8 +383,7 @@ PN_KFN int pn_wg_sil_rec(const pn_kview *v, const pn_klight *L, float hmax, PN_C
         s->nx = n.x;
         s->ny = n.y;
         s->nz = n.z;
-        s->pad1 = 0.0f;
-        for (i = 0; i < 6u; i++) s->ob[i] = 0.0f; /* pn_wg_obj_box's */
+        for (i = 0; i < 8u; i++) s->ob[i] = 0.0f; /* pn_wg_obj_box's */
     }
     s->x0 = R.x0;
     s->y0 = R.y0;
@@ -430,8 +428,11 @@ PN_KFN void pn_wg_obj_box(PN_GLOBAL pn_wsil *sil, uint32_t nsil, uint32_t s)
     float b[6];
     if (s > 0u && sil[s - 1u].comp == c) return;
     pn_wg_sil_box(sil, s, nsil, c, b);
-    for (j = s; j < nsil && sil[j].comp == c; j++)
+    for (j = s; j < nsil && sil[j].comp == c; j++) {
         for (i = 0; i < 6u; i++) sil[j].ob[i] = b[i];
+        sil[j].ob[6] = pn_kmaxf(pn_kfabs(b[0]), pn_kfabs(b[1]));
+        sil[j].ob[7] = pn_kmaxf(pn_kfabs(b[2]), pn_kfabs(b[3]));
+    }
 }
 
 /* Block k of silhouettes (PN_WG_BLOCK of them from k PN_WG_BLOCK on, of any objects): the
@@ -880,6 +881,9 @@ PN_KFN int pn_wg_clip(float *px, float *py, float *qx, float *qy)
     if ((*px >= 0.0f) & (*px <= 1.0f) & (*py >= 0.0f) & (*py <= 1.0f) & (*qx >= 0.0f) & (*qx <= 1.0f) & (*qy >= 0.0f) &
         (*qy <= 1.0f))
         return 1;
+    /* Both ends beyond a far side (the ends below 0 on an axis pn_wg_edge_parts leaves
+     * out): nothing left. */
+    if ((*px > 1.0f && *qx > 1.0f) || (*py > 1.0f && *qy > 1.0f)) return 0;
     pk[0] = -dx;
     qk[0] = *px;
     pk[1] = dx;
@@ -1083,23 +1087,30 @@ PN_KFN int pn_wg_project(const pn_wframe *F, PN_CONST pn_wsil *e, float *p, floa
 /* Side x = sg of the light (x: u or v, xo the origin's, [x0, x1] the box's): every end
  * in the box projects beyond it. Written for a constant sg, called with each (the
  * compiler folds it: this is the hottest test of a frame of small objects). */
-PN_KFN int pn_wg_side_misses(float sg, float co, float ao, float x0, float x1, float h0, float h1, float ho)
+PN_KFN int pn_wg_side_misses(float sg, float co, float ao, float x0, float x1, float xm, float h0, float h1, float ho)
 {
     float xe = sg > 0.0f ? x0 : x1, he = co >= 0.0f ? h0 : h1;
     float g = (sg * xe - 1.0f) * ho + co * he;
-    return g > 1e-3f * (pn_kmaxf(pn_kfabs(x0), pn_kfabs(x1)) + ao) * ho;
+    return g > 1e-3f * (xm + ao) * ho;
 }
 
-PN_KFN_HOT int pn_wg_obj_misses(const pn_wframe *F, PN_CONST float *ob)
+/* mu, mv: max(|u0|, |u1|) and max(|v0|, |v1|) of box ob (pn_wsil.ob holds its own). */
+PN_KFN_HOT int pn_wg_obj_misses(const pn_wframe *F, PN_CONST float *ob, float mu, float mv)
 {
     const float near = 1.0f - PN_WG_TNEAR;
     float ho = F->ho, h0 = ob[4], h1 = ob[5];
     if (h0 >= near * ho * 1.001f) return 1;
     if (!(h0 >= 0.0f && h1 <= near * ho * 0.999f)) return 0;
-    return pn_wg_side_misses(-1.0f, F->cu[0], F->au, ob[0], ob[1], h0, h1, ho) ||
-           pn_wg_side_misses(1.0f, F->cu[1], F->au, ob[0], ob[1], h0, h1, ho) ||
-           pn_wg_side_misses(-1.0f, F->cv[0], F->av, ob[2], ob[3], h0, h1, ho) ||
-           pn_wg_side_misses(1.0f, F->cv[1], F->av, ob[2], ob[3], h0, h1, ho);
+    return pn_wg_side_misses(-1.0f, F->cu[0], F->au, ob[0], ob[1], mu, h0, h1, ho) ||
+           pn_wg_side_misses(1.0f, F->cu[1], F->au, ob[0], ob[1], mu, h0, h1, ho) ||
+           pn_wg_side_misses(-1.0f, F->cv[0], F->av, ob[2], ob[3], mv, h0, h1, ho) ||
+           pn_wg_side_misses(1.0f, F->cv[1], F->av, ob[2], ob[3], mv, h0, h1, ho);
+}
+
+/* The same for a block's box (six floats, no margins stored). */
+PN_KFN int pn_wg_box6_misses(const pn_wframe *F, PN_CONST float *b)
+{
+    return pn_wg_obj_misses(F, b, pn_kmaxf(pn_kfabs(b[0]), pn_kfabs(b[1])), pn_kmaxf(pn_kfabs(b[2]), pn_kfabs(b[3])));
 }
 
 /* A projected edge (pn_wg_project) of weight w into the object's four parts. Returns 1
@@ -1272,7 +1283,7 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
          * cut there goes on as one, whose skipped edges added nothing. */
         if (k != kb) {
             kb = k;
-            kmiss = pn_wg_obj_misses(&F, sbox + (size_t)k * 6u);
+            kmiss = pn_wg_box6_misses(&F, sbox + (size_t)k * 6u);
             if (kmiss && hc < nhard) { /* objects before c0 are behind the list's cursor */
                 uint32_t c0 = sil[k * PN_WG_SBLOCK].comp;
                 uint32_t c1 = sil[((k + 1u) * PN_WG_SBLOCK < nsil ? (k + 1u) * PN_WG_SBLOCK : nsil) - 1u].comp;
@@ -1289,7 +1300,7 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
             h = 1;
             a0 = hn[hc] > 1u ? (float)hn[hc] : 1.0f;
         }
-        if (!h && pn_wg_obj_misses(&F, sil[list[i]].ob)) { /* none of its edges reaches the light */
+        if (!h && pn_wg_obj_misses(&F, sil[list[i]].ob, sil[list[i]].ob[6], sil[list[i]].ob[7])) { /* none of its edges reaches the light */
             i = next[2u * (size_t)i + 1u];
             continue;
         }
@@ -1298,7 +1309,7 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
             /* A run of a block none of whose edges reaches the light: nothing to add (not
              * asked of an object that is one run and passed its own box's test). */
             if (end - i >= PN_WG_BLOCK_RUN && (h || i != o0 || end != oend) &&
-                pn_wg_obj_misses(&F, bbox + (size_t)(list[i] / PN_WG_BLOCK) * 6u)) {
+                pn_wg_box6_misses(&F, bbox + (size_t)(list[i] / PN_WG_BLOCK) * 6u)) {
                 i = end;
                 continue;
             }

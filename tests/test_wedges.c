@@ -1069,13 +1069,16 @@ static void test_culls(void)
             ob[2] = fminf(ob[2], fminf(e[i].va, e[i].vb)), ob[3] = fmaxf(ob[3], fmaxf(e[i].va, e[i].vb));
             ob[4] = fminf(ob[4], fminf(e[i].ha, e[i].hb)), ob[5] = fmaxf(ob[5], fmaxf(e[i].ha, e[i].hb));
         }
-        for (i = 0; i < EDGES; i++)
-            for (j = 0; j < 6u; j++) e[i].ob[j] = ob[j];
-        /* A block of these edges has the object's box (the pixel's run cull tests it). */
+        /* The object's box and margins as the frame makes them (one object: comp 0), and a
+         * block of these edges has the same box (the pixel's run cull tests it). */
+        pn_wg_obj_box(e, EDGES, 0u);
         {
             float bb[6];
             pn_wg_block_box(e, EDGES, 0u, PN_WG_BLOCK, bb);
             block_wrong += (uint32_t)(memcmp(bb, ob, sizeof(bb)) != 0);
+            block_wrong += (uint32_t)(memcmp(e[EDGES - 1u].ob, ob, sizeof(bb)) != 0);
+            block_wrong += (uint32_t)(e[0].ob[6] != fmaxf(fabsf(ob[0]), fabsf(ob[1])) ||
+                                      e[0].ob[7] != fmaxf(fabsf(ob[2]), fabsf(ob[3])));
         }
         /* Origins: a cluster (a tile's points), some on the edges' own heights. */
         {
@@ -1099,7 +1102,8 @@ static void test_culls(void)
             pn_wframe F;
             int any = 0, om;
             pn_wg_frame(&L, O[i], &F);
-            om = pn_wg_obj_misses(&F, ob);
+            om = pn_wg_obj_misses(&F, e[0].ob, e[0].ob[6], e[0].ob[7]);
+            obj_wrong += (uint32_t)(om != pn_wg_box6_misses(&F, ob));
             obj_culls += (uint32_t)om;
             for (j = 0; j < EDGES; j++) {
                 float p[4], sg;
@@ -1116,7 +1120,7 @@ static void test_culls(void)
             box_culls, CASES * EDGES, obj_culls, CASES * PTS, reach);
     CHECK_MSG(box_wrong == 0u, "%u (origin, edge) pairs reach the light through a box said to miss", box_wrong);
     CHECK_MSG(obj_wrong == 0u, "%u origins see an edge of an object said to miss", obj_wrong);
-    CHECK_MSG(block_wrong == 0u, "%u blocks' boxes differ from their edges' box", block_wrong);
+    CHECK_MSG(block_wrong == 0u, "%u blocks' or objects' boxes differ from their edges' box", block_wrong);
     CHECK(box_culls > CASES * EDGES / 10u && box_culls < CASES * EDGES * 9u / 10u);
     CHECK(obj_culls > CASES * PTS / 10u && reach > CASES);
 }

@@ -1183,9 +1183,9 @@ PN_KFN uint32_t pn_wg_place(uint32_t *set, uint32_t *n, uint32_t v)
  * fallback before; one pushed through a solid thinner than eps (a modelled leaf) lies
  * outside, and its segment enters the solid as often as it leaves it, if it meets it.
  * Counters: candidates = edges evaluated, blocking = edges covering some of the light,
- * nodes = blockers of the centre ray, capped = more than PN_WG_HARD_MAX objects listed in
- * the tile block the centre (taken as umbra; reported as pn_stats.wedges.hard_overflow, not
- * an error), overflow = the centre ray's walk lost a stack entry (a broken invariant:
+ * nodes = blockers of the centre ray, capped = more objects (or casting triangles) than
+ * PN_WG_HARD_MAX listed in the tile block the centre (more than the pixel keeps track of:
+ * PN_WG_EXACT, the exact fallback; reported as pn_stats.wedges.hard_overflow), overflow = the centre ray's walk lost a stack entry (a broken invariant:
  * pn_bvh_fold bounds the stack). */
 PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mode, PN_CONST float *tris,
                          PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index,
@@ -1228,14 +1228,14 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
         m = nhard;
         if ((j = pn_wg_place(hard, &nhard, s)) == PN_WG_HARD_MAX) {
             cnt->capped++;
-            return 0.0f;
+            return PN_WG_EXACT;
         }
         if (nhard > m) hn[j] = 0u;
         if ((tcast[t] & PN_WG_CAST_CODE) != PN_WG_CAST_NONE) {
             m = ntri;
             if (pn_wg_place(htri, &ntri, t) == PN_WG_HARD_MAX) {
                 cnt->capped++;
-                return 0.0f;
+                return PN_WG_EXACT;
             }
             hn[j] += ntri - m;
         } else if (inside && s == so && !(tcomp[t] & PN_WG_DUP)) {

@@ -704,10 +704,12 @@ typedef struct pn_wedges_stats { /* Penumbra wedges: the scene's connectivity (a
     uint64_t touched;            /* ...of which the edge covered some of the light: the pixels
                                     touched per wedge are touched / silhouettes */
     uint64_t hard_blockers;      /* triangles found blocking the pixels' centre rays */
-    uint32_t hard_overflow;      /* pixels with more than 16 objects blocking the centre
-                                    whose wedges reach them (taken as umbra) */
-    uint32_t exact_pixels;       /* pixels in their own object's self-shadow penumbra,
-                                    resolved with the reference's exact predicate */
+    uint32_t hard_overflow;      /* pixels with more than 16 objects (or casting triangles)
+                                    blocking the centre whose wedges reach them, more than
+                                    a pixel keeps track of: resolved exactly, as below */
+    uint32_t exact_pixels;       /* pixels in their own object's self-shadow penumbra or
+                                    past that cap, resolved with the reference's exact
+                                    predicate */
     /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: silhouettes, binning, pixels */
     uint64_t ns_silhouettes, ns_binning, ns_pixels;
 } pn_wedges_stats;

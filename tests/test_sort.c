@@ -56,7 +56,7 @@ static void test_sort_runs(void)
     uint32_t n, kind;
     REQUIRE(a && ref);
     for (n = 0; n <= 3000u; n += n < 40u ? 1u : 173u)
-        for (kind = 0; kind < 4u; kind++) {
+        for (kind = 0; kind < 6u; kind++) {
             uint32_t i;
             for (i = 0; i < n; i++) ref[i] = i * 7u + (next() % 7u); /* distinct, ascending */
             memcpy(a, ref, (size_t)n * 4u);
@@ -74,6 +74,14 @@ static void test_sort_runs(void)
             if (kind == 3u)
                 for (i = n; i > 1u; i--) {
                     uint32_t j = next() % i, t = a[i - 1u];
+                    a[i - 1u] = a[j];
+                    a[j] = t;
+                }
+            if (kind == 4u) /* the first and second halves dealt alternately (in order each) */
+                for (i = 0; i < n; i++) a[i] = ref[(i & 1u) ? (n + 1u) / 2u + i / 2u : i / 2u];
+            if (kind == 5u) /* blocks of 16 shuffled within themselves: work-groups side by side */
+                for (i = n; i > 1u; i--) {
+                    uint32_t b0 = (i - 1u) & ~15u, j = b0 + next() % (i - b0), t = a[i - 1u];
                     a[i - 1u] = a[j];
                     a[j] = t;
                 }

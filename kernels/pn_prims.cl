@@ -56,3 +56,14 @@ __kernel void pn_k_pairs_sort_runs(__global uchar *A, ulong o_offsets, uint keys
     e0 = PN_AT(o_offsets)[c];
     pn_sort_u32(PN_AT(o_values) + e0, PN_AT(o_offsets)[c + 1u] - e0);
 }
+
+/* The same with scratch: key c's run sorted with the words at the same offsets from
+ * o_scratch (pn_sort_u32_merge; the sort of pairs passes the pairs' own buffer, dead once
+ * every value is in its key's run). */
+__kernel void pn_k_pairs_merge_runs(__global uchar *A, ulong o_offsets, uint keys, ulong o_values, ulong o_scratch)
+{
+    uint c = (uint)get_global_id(0), e0;
+    if (c >= keys) return;
+    e0 = PN_AT(o_offsets)[c];
+    pn_sort_u32_merge(PN_AT(o_values) + e0, PN_AT(o_scratch) + e0, PN_AT(o_offsets)[c + 1u] - e0);
+}

@@ -82,4 +82,58 @@ PN_KFN void pn_sort_u32(PN_GLOBAL uint32_t *a, uint32_t n)
     }
 }
 
+/* ---- The same with scratch tmp[0 .. n) --------------------------------------------------
+ * A run that atomics filled from a few work-groups running side by side is a few ascending
+ * sequences dealt into each other (under PoCL the two halves of the range, one a thread),
+ * which the heapsort does not use. Each element goes to the ascending subsequence whose
+ * last element is the largest below it (the fewest subsequences there can be: the longest
+ * descending subsequence's length), at most PN_SORT_SEQS of them; counted, then placed
+ * one after the other in tmp by the same choices again, then merged back into a. A run
+ * that needs more subsequences takes the heapsort. Distinct values: one answer. */
+#define PN_SORT_SEQS 4u
+
+/* The subsequence (of *ns, last elements tail[]) that value v extends, a new one when none
+ * ends below v; PN_SORT_SEQS when that would be one too many. */
+PN_KFN uint32_t pn_sort_seq_of(uint32_t *tail, uint32_t *ns, uint32_t v)
+{
+    uint32_t j, best = PN_SORT_SEQS;
+    for (j = 0; j < *ns; j++)
+        if (tail[j] < v && (best == PN_SORT_SEQS || tail[j] > tail[best])) best = j;
+    if (best == PN_SORT_SEQS) {
+        if (*ns == PN_SORT_SEQS) return PN_SORT_SEQS;
+        best = (*ns)++;
+    }
+    tail[best] = v;
+    return best;
+}
+
+PN_KFN void pn_sort_u32_merge(PN_GLOBAL uint32_t *a, PN_GLOBAL uint32_t *tmp, uint32_t n)
+{
+    uint32_t tail[PN_SORT_SEQS], cnt[PN_SORT_SEQS], at[PN_SORT_SEQS], end[PN_SORT_SEQS], ns = 0u, i, j, k;
+    for (i = 1; i < n && a[i - 1u] <= a[i]; i++) {
+    }
+    if (i >= n) return;
+    for (j = 0; j < PN_SORT_SEQS; j++) cnt[j] = 0u;
+    for (i = 0; i < n; i++) {
+        if ((j = pn_sort_seq_of(tail, &ns, a[i])) == PN_SORT_SEQS) {
+            pn_sort_u32(a, n);
+            return;
+        }
+        cnt[j]++;
+    }
+    for (j = 0, k = 0; j < ns; k += cnt[j], j++) at[j] = end[j] = k;
+    for (j = 0; j < ns; j++) end[j] += cnt[j];
+    for (i = 0, ns = 0u; i < n; i++) {
+        j = pn_sort_seq_of(tail, &ns, a[i]);
+        tmp[at[j]++] = a[i];
+    }
+    for (j = 0, k = 0; j < ns; k += cnt[j], j++) at[j] = k;
+    for (i = 0; i < n; i++) {
+        uint32_t best = PN_SORT_SEQS;
+        for (j = 0; j < ns; j++)
+            if (at[j] < end[j] && (best == PN_SORT_SEQS || tmp[at[j]] < tmp[at[best]])) best = j;
+        a[i] = tmp[at[best]++];
+    }
+}
+
 #endif

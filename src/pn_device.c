@@ -57,7 +57,7 @@ pn_status pn_dev_scan(pn_frame_state *fs, const uint32_t *a, uint32_t n)
     return pn_dev_exec(fs->port, fs->ctx, &c);
 }
 
-pn_status pn_dev_sort_pairs(pn_frame_state *fs, const uint32_t *pairs, uint32_t n, uint32_t keys, uint32_t *values,
+pn_status pn_dev_sort_pairs(pn_frame_state *fs, uint32_t *pairs, uint32_t n, uint32_t keys, uint32_t *values,
                             uint32_t *offsets, uint32_t *scratch)
 {
     pn_devcmd c;

@@ -24,7 +24,8 @@ enum {
                            within each key (as a scatter in value order writes them): the
                            stable order by key. Out: values by key at b, offsets[keys + 1] at
                            c (the first pair of each key; c[keys] = n); d: `keys` uint32 of
-                           scratch. Any sort may be used: the output is the one ascending
+                           scratch, and the pairs' 2 n words are scratch too (undefined
+                           after). Any sort may be used: the output is the one ascending
                            (key, value) order */
     PN_DEV_SORT_RUNS,   /* the run of each key k < `keys` of the uint32 values at b,
                            [c[k], c[k + 1]) (offsets at c), sorted ascending in place: the
@@ -69,7 +70,7 @@ pn_status pn_dev_run(pn_frame_state *fs, uint32_t pass, uint32_t n);
 pn_status pn_dev_fill(pn_frame_state *fs, const void *a, uint32_t n, uint32_t value);
 pn_status pn_dev_copy(pn_frame_state *fs, const void *dst, const void *src, size_t bytes);
 pn_status pn_dev_scan(pn_frame_state *fs, const uint32_t *a, uint32_t n);
-pn_status pn_dev_sort_pairs(pn_frame_state *fs, const uint32_t *pairs, uint32_t n, uint32_t keys, uint32_t *values,
+pn_status pn_dev_sort_pairs(pn_frame_state *fs, uint32_t *pairs, uint32_t n, uint32_t keys, uint32_t *values,
                             uint32_t *offsets, uint32_t *scratch);
 pn_status pn_dev_sort_runs(pn_frame_state *fs, uint32_t *values, const uint32_t *offsets, uint32_t keys);
 pn_status pn_dev_to_host(pn_frame_state *fs, const void *a, size_t bytes);

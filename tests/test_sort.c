@@ -53,10 +53,11 @@ static void test_scan(void)
 static void test_sort_runs(void)
 {
     uint32_t *a = (uint32_t *)malloc(3000u * 4u), *ref = (uint32_t *)malloc(3000u * 4u);
+    uint32_t *b = (uint32_t *)malloc(3000u * 4u), *tmp = (uint32_t *)malloc(3000u * 4u);
     uint32_t n, kind;
-    REQUIRE(a && ref);
+    REQUIRE(a && ref && b && tmp);
     for (n = 0; n <= 3000u; n += n < 40u ? 1u : 173u)
-        for (kind = 0; kind < 6u; kind++) {
+        for (kind = 0; kind < 8u; kind++) {
             uint32_t i;
             for (i = 0; i < n; i++) ref[i] = i * 7u + (next() % 7u); /* distinct, ascending */
             memcpy(a, ref, (size_t)n * 4u);
@@ -85,12 +86,23 @@ static void test_sort_runs(void)
                     a[i - 1u] = a[j];
                     a[j] = t;
                 }
+            if (kind >= 6u) { /* four (five) quarters (fifths) dealt in turn: the most the merge takes, one more */
+                uint32_t m = kind == 6u ? 4u : 5u, q = (n + m - 1u) / m, r, o = 0u;
+                for (r = 0; r < q; r++)
+                    for (i = 0; i < m; i++)
+                        if (i * q + r < n && r < q) a[o++] = ref[i * q + r];
+            }
+            memcpy(b, a, (size_t)n * 4u);
             pn_sort_u32(a, n);
+            pn_sort_u32_merge(b, tmp, n);
             qsort(ref, n, 4u, cmp_u32);
             CHECK_MSG(memcmp(a, ref, (size_t)n * 4u) == 0, "sort n=%u kind=%u", n, kind);
+            CHECK_MSG(memcmp(b, ref, (size_t)n * 4u) == 0, "sort with scratch n=%u kind=%u", n, kind);
         }
     free(a);
     free(ref);
+    free(b);
+    free(tmp);
 }
 
 int main(void)

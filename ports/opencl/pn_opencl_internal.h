@@ -21,7 +21,8 @@
     X(SCAN_APPLY, pn_k_scan_apply, 1, "Aluulu")        \
     X(PAIRS_HIST, pn_k_pairs_hist, 64, "Alul")         \
     X(PAIRS_FILL, pn_k_pairs_fill, 64, "Alull")        \
-    X(PAIRS_SORT_RUNS, pn_k_pairs_sort_runs, 16, "Alul")
+    X(PAIRS_SORT_RUNS, pn_k_pairs_sort_runs, 16, "Alul")    \
+    X(PAIRS_MERGE_RUNS, pn_k_pairs_merge_runs, 16, "Alull")
 
 #define PN_CL_PRIM_ENUM(id, name, local, args) PN_CLP_##id,
 enum { PN_CL_PRIMS(PN_CL_PRIM_ENUM) PN_CLP_COUNT };

@@ -102,7 +102,8 @@ static pn_status pn_cl_scan(pn_opencl *cl, const uint32_t *a, uint32_t n)
 }
 
 /* Sort by key: histogram into the scratch counts, offsets = their prefix sum, every pair
- * into the next slot of its key with an atomic cursor, then each key's run sorted. */
+ * into the next slot of its key with an atomic cursor, then each key's run sorted, with
+ * the pairs' buffer (2 n words, dead once every value is placed) as the merge's scratch. */
 static pn_status pn_cl_sort_pairs(pn_opencl *cl, const pn_devcmd *c)
 {
     cl_ulong op = pn_cl_offset(cl, c->a), ov = pn_cl_offset(cl, c->b), oo = pn_cl_offset(cl, c->c);
@@ -115,7 +116,7 @@ static pn_status pn_cl_sort_pairs(pn_opencl *cl, const pn_devcmd *c)
         (st = pn_cl_copy(cl, c->d, c->c, (size_t)keys * 4u)) != PN_OK ||
         (st = PN_CL_PRIM_RUN(cl, PAIRS_FILL, n, &op, &n, &oc, &ov)) != PN_OK)
         return st;
-    return PN_CL_PRIM_RUN(cl, PAIRS_SORT_RUNS, keys, &oo, &keys, &ov);
+    return PN_CL_PRIM_RUN(cl, PAIRS_MERGE_RUNS, keys, &oo, &keys, &ov, &op);
 }
 
 /* Each key's run of values sorted (the runs of a scatter by atomic cursors). */

@@ -1185,8 +1185,9 @@ PN_KFN uint32_t pn_wg_place(uint32_t *set, uint32_t *n, uint32_t v)
  * Counters: candidates = edges evaluated, blocking = edges covering some of the light,
  * nodes = blockers of the centre ray, capped = more objects (or casting triangles) than
  * PN_WG_HARD_MAX listed in the tile block the centre (more than the pixel keeps track of:
- * PN_WG_EXACT, the exact fallback; reported as pn_stats.wedges.hard_overflow), overflow = the centre ray's walk lost a stack entry (a broken invariant:
- * pn_bvh_fold bounds the stack). */
+ * PN_WG_EXACT, the exact fallback; reported as pn_stats.wedges.hard_overflow), overflow =
+ * the centre ray's walk lost a stack entry (a broken invariant: pn_bvh_fold bounds the
+ * stack). */
 PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mode, PN_CONST float *tris,
                          PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index,
                          PN_CONST uint32_t *tcomp, PN_CONST uint32_t *tcast,
@@ -1273,7 +1274,8 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
     }
     i = lo;
     while (i < hi) {
-        uint32_t s = sil[list[i]].comp, o0, oend, k = list[i] / PN_WG_SBLOCK;
+        PN_CONST pn_wsil *e0 = sil + list[i];
+        uint32_t s = e0->comp, o0, oend, k = list[i] / PN_WG_SBLOCK;
         int h = 0, started = 0;
         float a0 = 0.0f;
         pn_wpart parts[4];
@@ -1300,7 +1302,7 @@ PN_KFN float pn_wg_pixel(pn_v3 O, uint32_t own, const pn_klight *L, uint32_t mod
             h = 1;
             a0 = hn[hc] > 1u ? (float)hn[hc] : 1.0f;
         }
-        if (!h && pn_wg_obj_misses(&F, sil[list[i]].ob, sil[list[i]].ob[6], sil[list[i]].ob[7])) { /* none of its edges reaches the light */
+        if (!h && pn_wg_obj_misses(&F, e0->ob, e0->ob[6], e0->ob[7])) { /* none of its edges reaches the light */
             i = next[2u * (size_t)i + 1u];
             continue;
         }

@@ -1,5 +1,5 @@
 /* pn_sort.h - integer building blocks for data-parallel ports: an exclusive prefix sum in
- * blocks and an in-place sort of a short run of distinct ids.
+ * blocks and a sort of a short run of distinct ids (in place, or merged through scratch).
  *
  * Both give one answer whatever the schedule: integer addition is associative, and a
  * sorted run of distinct values is unique. That is what lets the OpenCL port fill a

@@ -38,9 +38,10 @@
 #define PN_MC_PX_NONE 0u     /* no surface: visibility 1 */
 #define PN_MC_PX_NO_ORIGIN 1u /* no shadow-ray origin (pn_shadow_origin): visibility 0 */
 #define PN_MC_PX_SURFACE 2u  /* the fields below hold */
-#define PN_MC_PX_LIT 3u      /* a surface of a run found lit, facing the light centre, with the
-                              * light's four corners in front of its plane: visibility 1, class
-                              * lit (pn_mc_pixel's answer); no field below is set */
+#define PN_MC_PX_LIT 3u      /* a surface of a run found lit, facing the light centre, not grazed
+                              * (pn_mc_bias), with the light's four corners in front of its
+                              * plane: visibility 1, class lit (pn_mc_pixel's answer); no field
+                              * below is set */
 #define PN_MC_PX_OUTSIDE 4u  /* a surface whose origin no window holds (pn_lview_outside): the
                               * layers hold none of its occluders; the pixel pass marks it
                               * PN_MC_VIS_OUTSIDE for the exact fallback's pass; no field below
@@ -81,6 +82,7 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, const pn_ksurf *S, size_t pix, uint32_t
     float Nx[PN_MC_RUN], Ny[PN_MC_RUN], Nz[PN_MC_RUN];
     float ex[PN_MC_RUN], ey[PN_MC_RUN], b0[PN_MC_RUN], b1[PN_MC_RUN], b2[PN_MC_RUN], b3[PN_MC_RUN];
     int sees[PN_MC_RUN], faces[PN_MC_RUN], front[PN_MC_RUN], looks[PN_MC_RUN], sheet[PN_MC_RUN], inv[PN_MC_RUN];
+    int grazed[PN_MC_RUN];
     int out[PN_MC_RUN];
     uint32_t i, any = 0u;
     int lit;
@@ -109,6 +111,7 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, const pn_ksurf *S, size_t pix, uint32_t
         sees[i] = pn_shadow_origin(P, n, L, &O);
         E = pn_lview_frame(m->lv, L, O);
         faces[i] = E.z > 0.0f && !(pn_v3_dot(n, pn_v3_sub(c, O)) < 0.0f);
+        grazed[i] = pn_mc_cos(n, pn_v3_sub(c, O)) < PN_MC_COS_MIN; /* pn_mc_bias's test */
         out[i] = pn_lview_outside(E, m->ha, m->hb);
         front[i] = (pn_v3_dot(pn_v3_sub(m->corner[0], O), n) > 0.0f) + (pn_v3_dot(pn_v3_sub(m->corner[1], O), n) > 0.0f) +
                    (pn_v3_dot(pn_v3_sub(m->corner[2], O), n) > 0.0f) + (pn_v3_dot(pn_v3_sub(m->corner[3], O), n) > 0.0f);
@@ -152,7 +155,7 @@ PN_KFN int pn_mc_run(const pn_mc_ctx *m, const pn_ksurf *S, size_t pix, uint32_t
     for (i = 0; i < count; i++) {
         pn_mc_px *p = px + i;
         if (p->kind != PN_MC_PX_SURFACE) continue;
-        if (lit && faces[i] && front[i] == 4) {
+        if (lit && faces[i] && front[i] == 4 && !grazed[i]) {
             p->kind = PN_MC_PX_LIT;
             continue;
         }
@@ -219,6 +222,15 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
         *cls = PN_MC_CLASS_UMBRA;
         return 0.0f;
     }
+    /* A grazed surface (pn_mc_bias): the exact fallback's pass, before any class (whose
+     * model it leaves: with the class first, a grazed pixel called lit took the horizon's
+     * count, 0 or 1 from pixel to pixel, where the rays' pass took the exact answer;
+     * fuzz_culls). */
+    bias = pn_mc_bias(mc, nrm, toc, ze);
+    if (bias < 0.0f) {
+        *cls = PN_MC_CLASS_GRAZING;
+        return PN_MC_VIS_OUTSIDE;
+    }
     if (classify && !L->is_point && run_lit) {
         *cls = PN_MC_CLASS_LIT;
         n = 0u;
@@ -238,26 +250,19 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
         }
         if (!(zb < ze)) {
             *cls = PN_MC_CLASS_LIT;
-            n = 0u; /* every ray unblocked but for the horizon (and no bias needed) */
+            n = 0u; /* every ray unblocked but for the horizon */
         } else {
-            bias = pn_mc_bias(mc, nrm, toc, ze);
             /* Umbra: every ray ends behind every near texel it can cross. With three
              * layers too: the eye could clear some of those texels, but the six scenes the
              * third layer moves most gave the same RMSE to four digits without this class
              * (512x512), and the class saves their searches. */
-            if (bias >= 0.0f && ze - bias > q[2]) {
+            if (ze - bias > q[2]) {
                 *cls = PN_MC_CLASS_UMBRA;
                 return 0.0f;
             }
             zlo = zb;
             if (mc->layers >= 2u) zhi = q[1];
         }
-    } else {
-        bias = pn_mc_bias(mc, nrm, toc, ze);
-    }
-    if (bias < 0.0f) { /* a grazed surface (pn_mc_bias): the exact fallback's pass */
-        *cls = PN_MC_CLASS_GRAZING;
-        return PN_MC_VIS_OUTSIDE;
     }
     if (n == 0u) {
         /* Lit: only the horizon blocks. A light wholly in front of (behind) the surface

@@ -220,6 +220,7 @@ PN_KFN int pn_mc_hier(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
 {
     const pn_kmc *mc = m->mc;
     float ax, ay, bx, by, dx, dy, t = t0;
+    float on_edge = (float)mc->res * PN_MC_ON_EDGE_REL;
     uint32_t l = 0u, iter, cap = PN_MC_STEP_CAP(mc->res);
     pn_mc_proj(m, pn_mc_at(r, t0), &ax, &ay);
     pn_mc_proj(m, pn_mc_at(r, t1), &bx, &by);
@@ -246,7 +247,7 @@ PN_KFN int pn_mc_hier(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
         te = t1;
         if (dx != 0.0f) {
             float xb = (float)(dx > 0.0f ? X0 + B : X0), tc = pn_mc_t_col(m, r, xb);
-            if (!(tc > t) && pn_kfabs(px - xb) < PN_MC_ON_EDGE) {
+            if (!(tc > t) && pn_kfabs(px - xb) < on_edge) {
                 X0 += dx > 0.0f ? 1 : -1;
                 tc = pn_mc_t_col(m, r, (float)(dx > 0.0f ? X0 + B : X0));
             } else if (!(tc > t)) {
@@ -256,7 +257,7 @@ PN_KFN int pn_mc_hier(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
         }
         if (dy != 0.0f) {
             float yb = (float)(dy > 0.0f ? Y0 + B : Y0), tr = pn_mc_t_row(m, r, yb);
-            if (!(tr > t) && pn_kfabs(py - yb) < PN_MC_ON_EDGE) {
+            if (!(tr > t) && pn_kfabs(py - yb) < on_edge) {
                 Y0 += dy > 0.0f ? 1 : -1;
                 tr = pn_mc_t_row(m, r, (float)(dy > 0.0f ? Y0 + B : Y0));
             } else if (!(tr > t)) {
@@ -380,13 +381,21 @@ PN_KFN void pn_mc_clip(const pn_mc_ctx *m, const pn_mc_ray *r, float *t0, float 
     pn_mc_clip_side(-r->ys - ky * d, -dy - ky * r->ze, t0, t1);
 }
 
+/* The cosine of the angle between unit normal nrm and toc, the origin to the light centre
+ * (1 for an origin at the centre). */
+PN_KFN float pn_mc_cos(pn_v3 nrm, pn_v3 toc)
+{
+    float lt = pn_ksqrt(pn_v3_dot(toc, toc));
+    return lt > 0.0f ? pn_v3_dot(nrm, toc) / lt : 1.0f;
+}
+
 /* The adaptive bias of eq. 3.2 for an origin at light depth ze with unit normal nrm and
  * toc, the origin to the light centre: half a texel's diagonal at the origin's depth
  * (bias_k (ze + d)), over the cosine of the angle to the light; -1 when that cosine is below
  * PN_MC_COS_MIN (the surface is grazed: no bias covers its texels; the exact fallback's). */
 PN_KFN float pn_mc_bias(const pn_kmc *mc, pn_v3 nrm, pn_v3 toc, float ze)
 {
-    float lt = pn_ksqrt(pn_v3_dot(toc, toc)), cosv = lt > 0.0f ? pn_v3_dot(nrm, toc) / lt : 1.0f;
+    float cosv = pn_mc_cos(nrm, toc);
     if (cosv < PN_MC_COS_MIN) return -1.0f;
     if (mc->flags & PN_MC_F_NO_BIAS) return 0.0f;
     return mc->bias_k * (ze + mc->d) / pn_kmaxf(cosv, PN_MC_COS_MIN); /* the floor for a NaN cosine */

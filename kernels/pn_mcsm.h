@@ -124,9 +124,15 @@
 /* The smallest step of the hierarchical search, as a fraction of the searched range (taken
  * only where rounding leaves no exit after the current point). */
 #define PN_MC_T_STEP 2.44140625e-4f
-/* Texels from a box side within which a point whose exit rounds to before it is taken to
- * lie on that side. */
-#define PN_MC_ON_EDGE 1e-2f
+/* Texels from a box side, per texel of the map's side, within which a point whose exit rounds
+ * to before it is taken to lie on that side: about 20 ulps of the map's size, the rounding of
+ * a point's image (1e-2 texels at 4096, 1.6e-4 at 64). Farther in, the exit's own rounding
+ * put it before the point: an image that barely moves (a ray nearly along the light view's
+ * line of sight), whose exit the search takes as never. As a fixed 1e-2 texels, a point
+ * 0.007 texels inside its texel of a 64^2 map was moved to the next one, whose nearer depth
+ * then sent the search up and down one level by steps of 2.4e-4 of the ray until its cap,
+ * which answered open (fuzz_culls: lit with the classification, blocked without). */
+#define PN_MC_ON_EDGE_REL 2.44140625e-6f
 /* Neighbours whose normal is more than about 37 degrees off the centre's take no part in
  * its blur. */
 #define PN_MC_BLUR_COS 0.8f

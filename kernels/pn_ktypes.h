@@ -169,7 +169,8 @@ typedef struct pn_kwg {
     float front_g;    /* pn_wg_front's bound on the magnitudes of a triangle's plane terms: the
                          scene box's largest coordinate |X|inf times 3, plus |c|inf twice,
                          |U|inf, |V|inf and the eye's |e|inf */
-    uint32_t pad1;
+    uint32_t no_cull; /* 1 (PN_WG_NO_CULL): every silhouette in every tile of a band, no box
+                         test passes and no tile clear (the same bytes) */
 } pn_kwg;
 
 /* The G-buffer's triangle id of a pixel that sees no triangle. */

@@ -668,11 +668,17 @@ PN_KFN int pn_wg_box_misses(PN_CONST float *B, PN_CONST pn_wsil *e)
 
 /* The tile rows [*ya, *yb) of band G (G->bx0 .. by1) that a wedge's tile box x0, y0, x1, y1
  * reaches, and the wedge's reach (edge h) with its hull into R; 0 when the box misses the
- * band (nothing built). */
+ * band (nothing built). Under G->no_cull every row of the band (R not built: pn_wg_band_row
+ * then gives every column). */
 PN_KFN_HOT int pn_wg_band_reach(const pn_kview *v, const pn_klight *L, const pn_kwg *G, PN_CONST float *tris, uint32_t h,
                             uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, pn_wreach *R, uint32_t *ya, uint32_t *yb)
 {
     pn_v3 a, b;
+    if (G->no_cull) { /* every tile of the band */
+        *ya = G->by0;
+        *yb = G->by1;
+        return 1;
+    }
     if (x0 > x1) return 0;
     *ya = y0 > G->by0 ? y0 : G->by0;
     *yb = y1 + 1u < G->by1 ? y1 + 1u : G->by1;
@@ -685,6 +691,11 @@ PN_KFN_HOT int pn_wg_band_reach(const pn_kview *v, const pn_klight *L, const pn_
 /* The tile columns [*x0, *x1] of row y that reach R covers (pn_wg_row), within band G's. */
 PN_KFN_HOT void pn_wg_band_row(const pn_kview *v, const pn_wreach *R, const pn_kwg *G, uint32_t y, uint32_t *x0, uint32_t *x1)
 {
+    if (G->no_cull) {
+        *x0 = G->bx0;
+        *x1 = G->bx1 - 1u;
+        return;
+    }
     pn_wg_row(v, R, y, x0, x1);
     if (*x0 < G->bx0) *x0 = G->bx0;
     if (*x1 + 1u > G->bx1) *x1 = G->bx1 - 1u;

@@ -101,9 +101,12 @@ pn_status pn_wedges_prepare(pn_frame_state *fs, const pn_frame_options *opt)
     pn_context *ctx = fs->ctx;
     if (opt->wedges.mode > PN_WG_MODE_ADDITIVE)
         return pn_fail(ctx, PN_E_INVALID_ARG, "wedges.mode = %u; it must be 0 or a PN_WG_MODE_*", opt->wedges.mode);
+    if (opt->wedges.flags & ~PN_WG_NO_CULL)
+        return pn_fail(ctx, PN_E_INVALID_ARG, "wedges.flags = %u has unknown bits", opt->wedges.flags);
     if (fs->points)
         return pn_fail(ctx, PN_E_UNSUPPORTED, "the penumbra wedges work in a camera's screen tiles: no point query");
     fs->K.wg.mode = opt->wedges.mode ? opt->wedges.mode : PN_WG_MODE_BLEND;
+    fs->K.wg.no_cull = (opt->wedges.flags & PN_WG_NO_CULL) != 0u;
     return PN_OK;
 }
 
@@ -409,8 +412,13 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
     K->wg.tiles_x = tw;
     K->wg.sils = 0u;
     K->wg.keep_cap = cap; /* the tile-list pool's words: the count's kept tiles */
+    /* Every frame's: the pixel pass reads a pixel's triangle's PN_WG_LIT_FRONT, a point
+     * light's and a scene without edges' too (they read the previous frame's words when
+     * only an area light's frame wrote them: fuzz_culls, a point light's frame after
+     * another scene's). */
+    if (T > 0u && (st = pn_dev_run(fs, PN_K_WG_CAST, T)) != PN_OK) return st;
     if (!K->light.is_point && R > 0u) {
-        if ((st = pn_dev_run(fs, PN_K_WG_CAST, T)) != PN_OK || (st = pn_dev_run(fs, PN_K_WG_SIL_FLAG, R)) != PN_OK ||
+        if ((st = pn_dev_run(fs, PN_K_WG_SIL_FLAG, R)) != PN_OK ||
             (st = pn_dev_scan(fs, s.soff, R)) != PN_OK || (st = pn_dev_to_host(fs, s.soff + R, 4u)) != PN_OK)
             return st;
         nsil = s.soff[R];

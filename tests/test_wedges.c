@@ -31,7 +31,11 @@
  *    triangle, and it is clear of the receivers' own plane.
  * 11. A pixel whose shadow origin lies inside its own solid is dark without the exact
  *    fallback; one beyond a solid thinner than eps is not taken for inside, and one under
- *    its own solid's overhang still takes the fallback. */
+ *    its own solid's overhang still takes the fallback.
+ * 12. The culls lose nothing: on every built-in scene, blended and additive, the frame is
+ *    the same bytes as with PN_WG_NO_CULL (every silhouette in every tile, no box test, no
+ *    clear tile; fuzz_culls asks the same of random small scenes), which lists every
+ *    silhouette in every one of the frame's tiles; an unknown flag is PN_E_INVALID_ARG. */
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -1128,6 +1132,51 @@ static void test_culls(void)
 /* ---- 10. A tile's centre cone: clear only when no segment to the centre is blocked ------- */
 
 /* Whether segment o -> c meets triangle p (double precision, edges included). */
+/* ---- 12. The culls against PN_WG_NO_CULL ---------------------------------------------------- */
+
+static void test_no_cull(void)
+{
+    const char *const *names = pn_builtin_scene_names();
+    uint32_t i, m, tiles = PN_WG_TILES(W) * PN_WG_TILES(H);
+    for (i = 0; names[i]; i++) {
+        pn_setup s;
+        pn_host h;
+        if (!open_scene(names[i], &s, &h, 2)) continue;
+        for (m = PN_WG_MODE_BLEND; m <= PN_WG_MODE_ADDITIVE; m++) {
+            pn_frame_options o;
+            pn_stats a, b;
+            uint32_t differ = 0u, p;
+            wg_opts(&o, m);
+            o.k = 16u;
+            REQUIRE(render_opt(&h, &s, &s.light, &o, g_a, NULL, &a) == 0);
+            o.wedges.flags = PN_WG_NO_CULL;
+            REQUIRE(render_opt(&h, &s, &s.light, &o, g_b, NULL, &b) == 0);
+            for (p = 0; p < W * H; p++) differ += memcmp(&g_a[p], &g_b[p], sizeof(float)) != 0;
+            if (m == PN_WG_MODE_BLEND)
+                fprintf(stderr, "%s: %u silhouettes, pairs %llu -> %llu, edges evaluated %llu -> %llu without the culls\n",
+                        names[i], a.wedges.silhouettes, (unsigned long long)a.wedges.pairs,
+                        (unsigned long long)b.wedges.pairs, (unsigned long long)a.wedges.evaluated,
+                        (unsigned long long)b.wedges.evaluated);
+            CHECK_MSG(differ == 0u, "%s, mode %u: %u pixels differ without the culls", names[i], m, differ);
+            CHECK_MSG(b.wedges.silhouettes == a.wedges.silhouettes &&
+                          b.wedges.pairs == (uint64_t)a.wedges.silhouettes * tiles && b.wedges.evaluated >= a.wedges.evaluated,
+                      "%s: %u / %u silhouettes, %llu pairs without the culls (%u tiles)", names[i], a.wedges.silhouettes,
+                      b.wedges.silhouettes, (unsigned long long)b.wedges.pairs, tiles);
+        }
+        {
+            pn_frame_options o;
+            pn_frame fr;
+            wg_opts(&o, 0u);
+            o.eps = s.eps;
+            o.wedges.flags = 2u;
+            CHECK(pn_render(h.ctx, &s.camera, &s.light, &o, &fr) == PN_E_INVALID_ARG);
+            CHECK(strstr(pn_last_error(h.ctx), "wedges.flags") != NULL);
+        }
+        pn_host_close(&h);
+        pn_setup_free(&s);
+    }
+}
+
 static int seg_hits(pn_v3 o, pn_v3 c, const float *p)
 {
     double e1[3], e2[3], d[3], s[3], q[3], h[3], a, f, u, v, t;
@@ -1250,5 +1299,6 @@ int main(void)
     RUN(test_reach);
     RUN(test_culls);
     RUN(test_cone);
+    RUN(test_no_cull);
     return pn_test_summary();
 }

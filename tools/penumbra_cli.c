@@ -45,7 +45,7 @@ static void usage(FILE *f)
             "                  [--occ-combine product|max|sum] [--occ-leak-fix] [--occ-paper-fade]\n"
             "                  [--mc-layers 1|2|3] [--mc-search linear|hier] [--mc-rays N] [--mc-blur N|off]\n"
             "                  [--mc-map N] [--mc-no-bias] [--mc-no-classify] [--mc-seed N] [--mc-sparse-nbuffer]\n"
-            "                  [--wg-mode blend|additive] [--wg-silhouettes N]\n"
+            "                  [--wg-mode blend|additive] [--wg-no-cull] [--wg-silhouettes N]\n"
             "                  --out image.png [--vis vis.pfm] [--ids ids.bin] [--stats stats.json]\n"
             "  penumbra bake [the scene, view, light and algorithm options of render]\n"
             "                --out lightmap.pfm [--size WxH]\n"
@@ -501,6 +501,7 @@ static int cmd_render(int argc, char **argv, int bake)
             else if (strcmp(v, "additive") == 0) opt.wedges.mode = PN_WG_MODE_ADDITIVE;
             else BAD(a);
         }
+        else if (strcmp(a, "--wg-no-cull") == 0) opt.wedges.flags |= PN_WG_NO_CULL;
         else if (strcmp(a, "--wg-silhouettes") == 0) { NEED_ARG; wg_sils = (uint32_t)strtoul(v, NULL, 10); }
         else if (strcmp(a, "--threads") == 0) { NEED_ARG; threads = atoi(v); if (threads < 1) BAD(a); }
         else if (strcmp(a, "--out") == 0) { NEED_ARG; out = v; }

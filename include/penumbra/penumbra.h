@@ -477,6 +477,9 @@ typedef struct pn_mcsm_options { /* PN_ALGO_MCSM (0 everywhere is the recommende
 typedef struct pn_wedges_options { /* PN_ALGO_WEDGES (0 is the recommended configuration) */
     uint32_t mode;         /* PN_WG_MODE_BLEND (Forest et al. 2006's overlap blending) or
                               PN_WG_MODE_ADDITIVE (the classic sum); 0: PN_WG_MODE_BLEND */
+    uint32_t flags;        /* PN_WG_NO_CULL: every silhouette in every screen tile, every
+                              object's and block's edges evaluated, every centre ray walked:
+                              the same bytes, slower (what fuzz_culls checks the culls by) */
 } pn_wedges_options;
 
 typedef struct pn_frame_options {
@@ -524,6 +527,7 @@ typedef struct pn_gbuffer {
 
 #define PN_WG_MODE_BLEND 1u
 #define PN_WG_MODE_ADDITIVE 2u
+#define PN_WG_NO_CULL 0x1u
 
 #define PN_SRT_NO_CONSERVATIVE 0x1u
 #define PN_SRT_FORCE_PIP 0x2u

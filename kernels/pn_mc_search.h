@@ -237,9 +237,13 @@ PN_KFN int pn_mc_hier(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
         if (!(t < t1)) return 0;
         pn_mc_proj(m, pn_mc_at(r, t), &px, &py);
         B = 1 << l;
-        /* The box of side B holding the current point and reaching toward the ray's end. */
-        X0 = dx >= 0.0f ? pn_kfloor_clamp(px, -(1 << 24), 1 << 24) : pn_kceil_clamp(px, -(1 << 24), 1 << 24) - B;
-        Y0 = dy >= 0.0f ? pn_kfloor_clamp(py, -(1 << 24), 1 << 24) : pn_kceil_clamp(py, -(1 << 24), 1 << 24) - B;
+        /* The box of side B holding the current point and reaching toward the ray's end.
+         * The point's texel is floor(p) in either direction: toward -x, a point exactly on
+         * x = 40 is still in texel 40 (its exit below says whether it has left it); as the
+         * box [40 - B, 40) it left texel 40 out where a descent put the point there by
+         * rounding before the texel's exit (fuzz_culls: crash-mcsm-texel-side-1). */
+        X0 = pn_kfloor_clamp(px, -(1 << 24), 1 << 24) + (dx >= 0.0f ? 0 : 1 - B);
+        Y0 = pn_kfloor_clamp(py, -(1 << 24), 1 << 24) + (dy >= 0.0f ? 0 : 1 - B);
         /* Where the ray leaves the box. A point rounded onto the box's far side (its exit
          * not after it) belongs to the next box along that axis; if rounding still leaves
          * no exit after it, the search moves on by a step that float can represent. */

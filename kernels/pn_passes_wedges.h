@@ -58,32 +58,23 @@ PN_KFN void pn_e_wg_sil_make(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
                    off[r], PN_POOL(pn_wsil, wg_sil));
 }
 
-/* Under PN_WG_NO_CULL (K->wg.no_cull) a box's least height is -infinity: no box test of
- * pn_wg_obj_misses, pn_wg_box6_misses or pn_wg_box_misses_ends passes (they ask for a box
- * above the light plane), and no tile is clear. */
-
-/* Silhouette: its object's box, written by the object's first silhouette. */
+/* Silhouette: its object's box, written by the object's first silhouette (under
+ * PN_WG_NO_CULL one no test passes: pn_wg_sil_box). */
 PN_KFN void pn_e_wg_obj_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t s)
 {
-    PN_GLOBAL pn_wsil *sil = PN_POOL(pn_wsil, wg_sil);
-    uint32_t j;
-    pn_wg_obj_box(sil, K->wg.sils, s);
-    if (K->wg.no_cull && (s == 0u || sil[s - 1u].comp != sil[s].comp))
-        for (j = s; j < K->wg.sils && sil[j].comp == sil[s].comp; j++) sil[j].ob[4] = -PN_KINF;
+    pn_wg_obj_box(PN_POOL(pn_wsil, wg_sil), K->wg.sils, s, K->wg.no_cull);
 }
 
 /* Block of PN_WG_BLOCK silhouettes: the light-space box of their end points. */
 PN_KFN void pn_e_wg_block_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t k)
 {
-    pn_wg_block_box(PN_POOL(const pn_wsil, wg_sil), K->wg.sils, k, PN_WG_BLOCK, PN_POOL(float, wg_bbox));
-    if (K->wg.no_cull) PN_POOL(float, wg_bbox)[(size_t)k * 6u + 4u] = -PN_KINF;
+    pn_wg_block_box(PN_POOL(const pn_wsil, wg_sil), K->wg.sils, k, PN_WG_BLOCK, K->wg.no_cull, PN_POOL(float, wg_bbox));
 }
 
 /* Superblock of PN_WG_SBLOCK silhouettes: the same. */
 PN_KFN void pn_e_wg_sblock_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t k)
 {
-    pn_wg_block_box(PN_POOL(const pn_wsil, wg_sil), K->wg.sils, k, PN_WG_SBLOCK, PN_POOL(float, wg_sbox));
-    if (K->wg.no_cull) PN_POOL(float, wg_sbox)[(size_t)k * 6u + 4u] = -PN_KINF;
+    pn_wg_block_box(PN_POOL(const pn_wsil, wg_sil), K->wg.sils, k, PN_WG_SBLOCK, K->wg.no_cull, PN_POOL(float, wg_sbox));
 }
 
 /* Screen tile: the light-space box of its pixels' shadow origins and whether its centre
@@ -94,7 +85,7 @@ PN_KFN void pn_e_wg_tile_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_
     PN_GLOBAL float *box = PN_POOL(float, wg_tbox) + (size_t)t * PN_WG_BOX;
     pn_wg_tile_box(&K->view, &K->light, t % K->wg.tiles_x, t / K->wg.tiles_x, &S, PN_POOL(const float, tris),
                    PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), box);
-    if (K->wg.no_cull) {
+    if (K->wg.no_cull) { /* PN_WG_NO_CULL: no test of pn_wg_box_misses_ends passes, no tile clear */
         box[0] = box[2] = box[4] = -PN_KINF;
         box[1] = box[3] = box[5] = PN_KINF;
         box[PN_WG_CLEAR] = 0.0f;

@@ -402,9 +402,11 @@ PN_KFN void pn_wg_sil_make(const pn_kview *v, const pn_klight *L, float hmax, PN
 }
 
 /* The box in light coordinates (u0, u1, v0, v1, h0, h1) of the end points of silhouettes
- * [j0, j1) that are of object c (any object: c = PN_WG_ANY), from j0 on. */
+ * [j0, j1) that are of object c (any object: c = PN_WG_ANY), from j0 on. With no_cull
+ * (PN_WG_NO_CULL) its h0 is -infinity: no box test passes (pn_wg_obj_misses and
+ * pn_wg_box6_misses ask for a box above the light plane). */
 #define PN_WG_ANY 0xFFFFFFFFu
-PN_KFN void pn_wg_sil_box(PN_CONST pn_wsil *sil, uint32_t j0, uint32_t j1, uint32_t c, float *b)
+PN_KFN void pn_wg_sil_box(PN_CONST pn_wsil *sil, uint32_t j0, uint32_t j1, uint32_t c, uint32_t no_cull, float *b)
 {
     uint32_t j;
     b[0] = b[2] = b[4] = PN_KINF;
@@ -418,16 +420,17 @@ PN_KFN void pn_wg_sil_box(PN_CONST pn_wsil *sil, uint32_t j0, uint32_t j1, uint3
         b[4] = pn_kminf(b[4], pn_kminf(e->ha, e->hb));
         b[5] = pn_kmaxf(b[5], pn_kmaxf(e->ha, e->hb));
     }
+    if (no_cull) b[4] = -PN_KINF;
 }
 
 /* Silhouette s, the first of its object's (silhouettes are numbered object by object):
  * the object's box (pn_wsil.ob) into each of its silhouettes. */
-PN_KFN void pn_wg_obj_box(PN_GLOBAL pn_wsil *sil, uint32_t nsil, uint32_t s)
+PN_KFN void pn_wg_obj_box(PN_GLOBAL pn_wsil *sil, uint32_t nsil, uint32_t s, uint32_t no_cull)
 {
     uint32_t c = sil[s].comp, j, i;
     float b[6];
     if (s > 0u && sil[s - 1u].comp == c) return;
-    pn_wg_sil_box(sil, s, nsil, c, b);
+    pn_wg_sil_box(sil, s, nsil, c, no_cull, b);
     for (j = s; j < nsil && sil[j].comp == c; j++) {
         for (i = 0; i < 6u; i++) sil[j].ob[i] = b[i];
         sil[j].ob[6] = pn_kmaxf(pn_kfabs(b[0]), pn_kfabs(b[1]));
@@ -448,11 +451,12 @@ PN_KFN void pn_wg_obj_box(PN_GLOBAL pn_wsil *sil, uint32_t nsil, uint32_t s)
 #define PN_WG_SBLOCK 128u
 
 /* Block k of n silhouettes each (PN_WG_BLOCK or PN_WG_SBLOCK): its box into bb[6 k ..]. */
-PN_KFN void pn_wg_block_box(PN_CONST pn_wsil *sil, uint32_t nsil, uint32_t k, uint32_t n, PN_GLOBAL float *bb)
+PN_KFN void pn_wg_block_box(PN_CONST pn_wsil *sil, uint32_t nsil, uint32_t k, uint32_t n, uint32_t no_cull,
+                            PN_GLOBAL float *bb)
 {
     uint32_t j, end = (k + 1u) * n < nsil ? (k + 1u) * n : nsil;
     float b[6];
-    pn_wg_sil_box(sil, k * n, end, PN_WG_ANY, b);
+    pn_wg_sil_box(sil, k * n, end, PN_WG_ANY, no_cull, b);
     for (j = 0; j < 6u; j++) bb[(size_t)k * 6u + j] = b[j];
 }
 

@@ -1075,10 +1075,10 @@ static void test_culls(void)
         }
         /* The object's box and margins as the frame makes them (one object: comp 0), and a
          * block of these edges has the same box (the pixel's run cull tests it). */
-        pn_wg_obj_box(e, EDGES, 0u);
+        pn_wg_obj_box(e, EDGES, 0u, 0u);
         {
             float bb[6];
-            pn_wg_block_box(e, EDGES, 0u, PN_WG_BLOCK, bb);
+            pn_wg_block_box(e, EDGES, 0u, PN_WG_BLOCK, 0u, bb);
             block_wrong += (uint32_t)(memcmp(bb, ob, sizeof(bb)) != 0);
             block_wrong += (uint32_t)(memcmp(e[EDGES - 1u].ob, ob, sizeof(bb)) != 0);
             block_wrong += (uint32_t)(e[0].ob[6] != fmaxf(fabsf(ob[0]), fabsf(ob[1])) ||

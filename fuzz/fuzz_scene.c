@@ -19,7 +19,8 @@
  *   Monte Carlo builds: the same bits the layers' limit, 11 layers % 5, 12 search % 4, 13 rays
  *   % 10, 14 bits 0..2 flags, bits 3..7 blur % 11 (31: off); 6 bit 128: the second half of
  *   the triangles receiver-only (pn_scene_set_receivers), and a call out of range first;
- *   penumbra-wedge builds: 12 % 4 the mode (3 invalid), 13 x 16 the pair pool (0: default);
+ *   penumbra-wedge builds: 12 % 4 the mode (3 invalid), 13 x 16 the pair pool (0: default),
+ *   11 bits 5..7 the flags (bit 5 PN_WG_NO_CULL, the others invalid);
  *   algo 6 is PN_ALGO_WEDGES
  *   then floats: eye[3] target[3] up[3] fov, light c[3] u[3] v[3], eps albedo ambient;
  *   4 background bytes; vertex count * 3 floats; triangle count * 3 uint32 indices;
@@ -395,6 +396,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 #endif
 #ifdef PN_BUILD_WEDGES
     opt.wedges.mode = h[12] % 4u; /* 3: invalid */
+    opt.wedges.flags = (uint32_t)(h[11] >> 5); /* bit 0 PN_WG_NO_CULL, the others invalid */
     lim.wg_pairs = (uint32_t)h[13] * 16u; /* below a frame's pairs now and then */
     /* below a frame's silhouettes now and then (at most 3 of its 64 triangles' each) */
     lim.wg_silhouettes = (h[14] & 1u) ? 64u + (uint32_t)(h[14] >> 1) : 0u;
@@ -504,7 +506,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         must |= BIT(PN_E_INVALID_ARG);
 #endif
 #ifdef PN_BUILD_WEDGES
-    if (opt.algo == PN_ALGO_WEDGES && opt.wedges.mode > PN_WG_MODE_ADDITIVE) must |= BIT(PN_E_INVALID_ARG);
+    if (opt.algo == PN_ALGO_WEDGES && (opt.wedges.mode > PN_WG_MODE_ADDITIVE || (opt.wedges.flags & ~PN_WG_NO_CULL)))
+        must |= BIT(PN_E_INVALID_ARG);
 #endif
 #ifdef PN_BUILD_MCSM
     if (opt.algo == PN_ALGO_MCSM && (opt.mcsm.layers > 3u || opt.mcsm.search > 2u || opt.mcsm.rays > 8u ||

@@ -2,7 +2,8 @@
  * invariant 4) on random small scenes: same status, same message, and on PN_OK the same
  * visibility, RGBA, depth, ids, positions, normals and pn_stats counters.
  *
- * Input: fuzz_frame.h's (the algorithm byte picks any pn_algo; flags bits 3-4 the pair pool).
+ * Input: fuzz_frame.h's (the algorithm byte picks any pn_algo; flags bits 3-4 the pair pool;
+ * the wedges with and without PN_WG_NO_CULL).
  * With the default pair pool, the frame is rendered again on both ports by a context whose
  * frames keep no positions and normals (PN_LIMITS_NO_SURFACE): the same status, and on
  * PN_OK the same visibility, RGBA, depth and ids as the full frame. */

@@ -130,8 +130,9 @@ static void fuzz_frame_decode(const uint8_t *data, size_t size, fuzz_frame *f)
     f->opt.mcsm.blur = (flags >> 7) ? PN_MC_BLUR_OFF : 1u + (grid - 1u) % 8u;
     f->opt.mcsm.flags = ((grid - 1u) / 2u) % 4u;
     f->opt.mcsm.seed = grid;
-    /* Penumbra wedges: both modes. */
+    /* Penumbra wedges: both modes, with and without the culls (PN_WG_NO_CULL). */
     f->opt.wedges.mode = 1u + (grid & 1u);
+    f->opt.wedges.flags = ((grid >> 1) & 1u) ? PN_WG_NO_CULL : 0u;
     f->opt.eps = 1e-4f * scale;
 }
 

@@ -17,10 +17,6 @@
 #include "pn_cl_host.h"
 #include "penumbra/penumbra.h"
 
-#define MAX_T FUZZ_MAX_T
-#define MAX_W FUZZ_MAX_W
-#define MAX_H FUZZ_MAX_H
-
 /* One context and one OpenCL port per pair-pool size, and one with the default pool whose
  * frames keep no surfaces and whose MCSM N-buffer keeps every third level (rig 4), made on
  * first use. */
@@ -36,7 +32,7 @@ static rig *get_rig(uint32_t pool_sel)
     static const uint32_t pools[5] = {0u, 64u, 12u, 3u, 0u};
     rig *r = &rigs[pool_sel];
     if (!r->ctx) {
-        pn_limits lim = {MAX_T, MAX_W, MAX_H, pools[pool_sel], 64u, 64u, 64u, 64u, 0u, 0u, 0u, 0u, 0u}; /* light-space maps: 64^2 at most */
+        pn_limits lim = {FUZZ_MAX_T, FUZZ_MAX_W, FUZZ_MAX_H, pools[pool_sel], 64u, 64u, 64u, 64u, 0u, 0u, 0u, 0u, 0u}; /* light-space maps: 64^2 at most */
         if (pool_sel == 4u) lim.flags = PN_LIMITS_NO_SURFACE | PN_LIMITS_SPARSE_NBUFFER;
         size_t bytes;
         pn_status st;
@@ -65,9 +61,9 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
 }
 
 /* The frame's bytes, kept from the scalar render. */
-static float k_vis[MAX_W * MAX_H], k_depth[MAX_W * MAX_H], k_pos[MAX_W * MAX_H * 3], k_nrm[MAX_W * MAX_H * 3];
-static uint32_t k_ids[MAX_W * MAX_H];
-static uint8_t k_rgba[MAX_W * MAX_H * 4];
+static float k_vis[FUZZ_MAX_W * FUZZ_MAX_H], k_depth[FUZZ_MAX_W * FUZZ_MAX_H], k_pos[FUZZ_MAX_W * FUZZ_MAX_H * 3], k_nrm[FUZZ_MAX_W * FUZZ_MAX_H * 3];
+static uint32_t k_ids[FUZZ_MAX_W * FUZZ_MAX_H];
+static uint8_t k_rgba[FUZZ_MAX_W * FUZZ_MAX_H * 4];
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

@@ -21,6 +21,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "fuzz_check.h"
 #include "penumbra/penumbra.h"
 
 #define FUZZ_MAX_V 34u
@@ -37,13 +38,6 @@ typedef struct fuzz_frame {
     pn_light light;
     pn_frame_options opt; /* every algorithm's options set from the grid byte */
 } fuzz_frame;
-
-typedef struct fuzz_rd {
-    const uint8_t *p;
-    size_t n, i;
-} fuzz_rd;
-
-static uint32_t fuzz_byte(fuzz_rd *r) { return r->i < r->n ? r->p[r->i++] : (r->i++, 0u); }
 
 /* [-1, 1) in steps of 2^-15. */
 static float fuzz_num(fuzz_rd *r)

@@ -35,8 +35,6 @@
 #define LMAX 7u /* pn_nb_levels(64) */
 #define QMAX 64u
 
-static uint32_t at_byte(const uint8_t *d, size_t n, size_t i) { return i < n ? d[i] : 0u; }
-
 static float nb_dense[LMAX * RMAX * RMAX * PN_NB_MM], nb_sparse[LMAX * RMAX * RMAX * PN_NB_MM];
 static uint32_t bits[RMAX * RMAX], nbuf[LMAX * RMAX * RMAX], mip[2u * RMAX * RMAX], sat[(RMAX + 1u) * (RMAX + 1u)];
 
@@ -63,9 +61,9 @@ static int bounds(const float *v, const float *b) { return v[0] <= b[0] && v[1] 
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    uint32_t res = 1u + at_byte(data, size, 0) % RMAX, flags = at_byte(data, size, 1), slice = flags >> 4, i, l, y;
+    fuzz_rd r = {data, size, 0};
+    uint32_t res = 1u + fuzz_byte(&r) % RMAX, flags = fuzz_byte(&r), slice = flags >> 4, i, l;
     uint32_t nq;
-    size_t p = 2u;
     pn_kmc mc;
     pn_kocc oc;
     pn_nb_mm_lay D, S;
@@ -83,8 +81,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     oc.slice = slice;
     oc.levels = mc.levels;
 
-    for (i = 0; i < res * res; i++, p += 2u) {
-        uint32_t a = at_byte(data, size, p), b = at_byte(data, size, p + 1u);
+    for (i = 0; i < res * res; i++) {
+        uint32_t a = fuzz_byte(&r), b = fuzz_byte(&r);
         float *T = nb_dense + (size_t)i * PN_NB_MM, near, far;
         bits[i] = a | b << 8;
         if (a < 40u) {
@@ -102,10 +100,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         T[2] = near;
         memcpy(nb_sparse + (size_t)i * PN_NB_MM, T, sizeof(float) * PN_NB_MM);
     }
-    for (l = 1; l < D.levels; l++)
-        for (y = 0; y < pn_nb_mm_w(res, l); y++) pn_nb_mm_row(&D, l, y, nb_dense);
-    for (l = 3u; l < S.levels; l += 3u)
-        for (y = 0; y < pn_nb_mm_w(res, l); y++) pn_nb_mm_row(&S, l, y, nb_sparse);
+    pn_nb_mm_build(&D, nb_dense);
+    pn_nb_mm_build(&S, nb_sparse);
 
     /* The occlusion textures' tables of the slice: level 0, the N-buffer's levels, the
      * mipmap's first two, the summed-area table. */
@@ -113,22 +109,22 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memcpy(mip, nbuf, sizeof(uint32_t) * res * res);
     for (l = 1; l < oc.levels; l++) {
         oc.level = l;
-        for (y = 0; y < res; y++) pn_occ_nbuf_row(&oc, y, nbuf);
+        for (i = 0; i < res; i++) pn_occ_nbuf_row(&oc, i, nbuf);
     }
     for (l = 1; l < 3u && l < oc.levels; l++) {
         oc.level = l;
-        for (y = 0; y < pn_occ_mip_dim(res, l); y++) pn_occ_mip_row(&oc, y, mip);
+        for (i = 0; i < pn_occ_mip_dim(res, l); i++) pn_occ_mip_row(&oc, i, mip);
     }
-    for (y = 0; y <= res; y++) pn_occ_sat_row(&oc, bits, y, sat);
+    for (i = 0; i <= res; i++) pn_occ_sat_row(&oc, bits, i, sat);
     for (i = 0; i * PN_OCC_SAT_COLS < res + 1u; i++) pn_occ_sat_cols(&oc, i, sat);
 
-    nq = (uint32_t)(size > p ? (size - p) / 5u : 0u);
+    nq = (uint32_t)(size > r.i ? (size - r.i) / 5u : 0u);
     if (nq > QMAX) nq = QMAX;
-    for (i = 0; i < nq; i++, p += 5u) {
-        int32_t span = (int32_t)res + 16;
-        int32_t x0 = (int32_t)(at_byte(data, size, p) % (uint32_t)span) - 8, y0 = (int32_t)(at_byte(data, size, p + 1u) % (uint32_t)span) - 8;
-        int32_t x1 = (int32_t)(at_byte(data, size, p + 2u) % (uint32_t)span) - 8, y1 = (int32_t)(at_byte(data, size, p + 3u) % (uint32_t)span) - 8;
-        uint32_t lq = at_byte(data, size, p + 4u) % mc.levels, count, B = 1u << lq;
+    for (i = 0; i < nq; i++) {
+        uint32_t span = res + 16u;
+        int32_t x0 = (int32_t)(fuzz_byte(&r) % span) - 8, y0 = (int32_t)(fuzz_byte(&r) % span) - 8;
+        int32_t x1 = (int32_t)(fuzz_byte(&r) % span) - 8, y1 = (int32_t)(fuzz_byte(&r) % span) - 8;
+        uint32_t lq = fuzz_byte(&r) % mc.levels, count, B = 1u << lq;
         int32_t R = (int32_t)res;
         float v[PN_NB_MM], w[PN_NB_MM], b[PN_NB_MM];
 

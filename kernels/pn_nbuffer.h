@@ -207,6 +207,17 @@ PN_KFN void pn_nb_mm_row(const pn_nb_mm_lay *ly, uint32_t l, uint32_t Y, PN_GLOB
     }
 }
 
+/* Every kept level above 0 of ly's layout from level 0, row by row in one work item (a
+ * frame runs each level's rows as a pass, src/pn_mcsm.c; the tests and fuzz_tables build
+ * with this). */
+PN_KFN void pn_nb_mm_build(const pn_nb_mm_lay *ly, PN_GLOBAL float *lv)
+{
+    uint32_t l, y;
+    for (l = 1; l < ly->levels; l++)
+        if (ly->src[l] == l)
+            for (y = 0; y < pn_nb_mm_w(ly->res, l); y++) pn_nb_mm_row(ly, l, y, lv);
+}
+
 /* Into acc, the level-l box whose texel in kept level ly->src[l] is at float `at`. */
 PN_KFN void pn_nb_mm_box_add(PN_CONST float *lv, const pn_nb_mm_lay *ly, uint32_t l, uint32_t at, float *acc)
 {

@@ -82,14 +82,9 @@ PN_KFN void pn_e_wg_sblock_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const p
 PN_KFN void pn_e_wg_tile_box(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t t)
 {
     pn_ksurf S = pn_surf_of(A, P, K);
-    PN_GLOBAL float *box = PN_POOL(float, wg_tbox) + (size_t)t * PN_WG_BOX;
     pn_wg_tile_box(&K->view, &K->light, t % K->wg.tiles_x, t / K->wg.tiles_x, &S, PN_POOL(const float, tris),
-                   PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), box);
-    if (K->wg.no_cull) { /* PN_WG_NO_CULL: no test of pn_wg_box_misses_ends passes, no tile clear */
-        box[0] = box[2] = box[4] = -PN_KINF;
-        box[1] = box[3] = box[5] = PN_KINF;
-        box[PN_WG_CLEAR] = 0.0f;
-    }
+                   PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), K->wg.no_cull,
+                   PN_POOL(float, wg_tbox) + (size_t)t * PN_WG_BOX);
 }
 
 /* Silhouette: the count of its (tile, silhouette) pairs in the band (with wg.count_rows,

@@ -597,12 +597,19 @@ PN_KFN int pn_wg_cone_clear(const pn_frustum *fr, PN_CONST float *tris, PN_CONST
 }
 
 PN_KFN void pn_wg_tile_box(const pn_kview *v, const pn_klight *L, uint32_t tx, uint32_t ty, const pn_ksurf *S,
-                           PN_CONST float *tris, PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index, PN_GLOBAL float *box)
+                           PN_CONST float *tris, PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index, uint32_t no_cull,
+                           PN_GLOBAL float *box)
 {
     float b[PN_WG_BOX];
     pn_frustum fr;
     uint32_t x, y, x1 = (tx + 1u) * PN_WG_TILE, y1 = (ty + 1u) * PN_WG_TILE, i;
     pn_wcone C;
+    if (no_cull) { /* PN_WG_NO_CULL: a box no test of pn_wg_box_misses_ends passes, not clear */
+        box[0] = box[2] = box[4] = -PN_KINF;
+        box[1] = box[3] = box[5] = PN_KINF;
+        box[PN_WG_CLEAR] = 0.0f;
+        return;
+    }
     b[0] = b[2] = b[4] = PN_KINF;
     b[1] = b[3] = b[5] = -PN_KINF;
     pn_wg_cone_init(&C);

@@ -861,7 +861,7 @@ static void test_nbuffer_boxes(void)
     uint32_t si, boxes = 0u, bad = 0u, rects = 0u, bad_rects = 0u, inexact = 0u, differ = 0u, zeros = 0u;
     uint64_t dense_texels = 0u, sparse_texels = 0u;
     for (si = 0; si < 6u; si++) {
-        uint32_t res = sizes[si], l, y, i, kept[2];
+        uint32_t res = sizes[si], l, i, kept[2];
         pn_kmc mc;
         pn_nb_mm_lay D, S;
         memset(&mc, 0, sizeof(mc));
@@ -882,10 +882,8 @@ static void test_nbuffer_boxes(void)
             T[2] = near;
             memcpy(sp + (size_t)i * PN_NB_MM, T, sizeof(float) * PN_NB_MM);
         }
-        for (l = 1; l < D.levels; l++)
-            for (y = 0; y < pn_nb_mm_w(res, l); y++) pn_nb_mm_row(&D, l, y, nb);
-        for (l = 3u; l < S.levels; l += 3u)
-            for (y = 0; y < pn_nb_mm_w(res, l); y++) pn_nb_mm_row(&S, l, y, sp);
+        pn_nb_mm_build(&D, nb);
+        pn_nb_mm_build(&S, sp);
         for (l = 0; l < D.levels; l++) {
             int32_t B = 1 << l, X, Y, step = res >= 64u ? 3 : 1;
             for (Y = 1 - B; Y < (int32_t)res; Y += step)

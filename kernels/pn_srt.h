@@ -94,42 +94,54 @@ PN_KFN int pn_srt_strip(const pn_poly *p, float y0, float y1, float *xlo, float 
     return hit;
 }
 
-/* Triangle t: when thin in the light view (it could slip between texel centres: narrower
- * than a texel, three times longer than wide, its longest edge at least a texel), every texel
- * it touches gets 1/zmin (zmin: its nearest depth along the light axis) by atomic max into
- * cons (widened by a texel for the rounding of the projection); *count: one more;
- * *texels: one more for each texel it marked first. */
-PN_KFN void pn_srt_conservative(const pn_kview *lv, PN_CONST float *tris, PN_CONST uint8_t *flags, uint32_t t,
-                                PN_GLOBAL uint32_t *cons, PN_GLOBAL uint32_t *count, PN_GLOBAL uint32_t *texels)
+/* Triangle t in the light view: 1 when thin (it could slip between texel centres: narrower
+ * than a texel, three times longer than wide, its longest edge at least a texel, in front of
+ * the light), with its projected polygon in *poly and its weight 1/zmin (zmin: its nearest
+ * depth along the light axis) in *w. Small but regular triangles (scanned meshes) are
+ * covered by their neighbours and are not thin, as in the paper. */
+PN_KFN int pn_srt_thin(const pn_kview *lv, PN_CONST float *tris, PN_CONST uint8_t *flags, uint32_t t, pn_poly *poly,
+                       float *w)
 {
     PN_CONST float *p = tris + (size_t)t * 9u;
-    pn_poly poly;
-    float zmin, area = 0.0f, longest = 0.0f, ylo, yhi, w;
-    uint32_t i, n, res = lv->width, first = 0u;
-    int32_t y, y0, y1;
-    if (flags[t] & PN_TRI_DEGENERATE) return;
+    float zmin, area = 0.0f, longest = 0.0f;
+    uint32_t i, n;
+    if (flags[t] & PN_TRI_DEGENERATE) return 0;
     pn_poly_project(lv, pn_v3_make(p[0], p[1], p[2]), pn_v3_make(p[3], p[4], p[5]), pn_v3_make(p[6], p[7], p[8]),
-                    &poly, &zmin);
-    n = poly.n;
-    if (n < 2u) return;
-    ylo = poly.y[0];
-    yhi = poly.y[0];
+                    poly, &zmin);
+    n = poly->n;
+    if (n < 2u) return 0;
     for (i = 0; i < n; i++) {
         uint32_t j = (i + 1u) % n;
-        float dx = poly.x[j] - poly.x[i], dy = poly.y[j] - poly.y[i];
-        area += poly.x[i] * poly.y[j] - poly.x[j] * poly.y[i];
+        float dx = poly->x[j] - poly->x[i], dy = poly->y[j] - poly->y[i];
+        area += poly->x[i] * poly->y[j] - poly->x[j] * poly->y[i];
         longest = pn_kmaxf(longest, dx * dx + dy * dy);
-        ylo = pn_kminf(ylo, poly.y[i]);
-        yhi = pn_kmaxf(yhi, poly.y[i]);
     }
     area = 0.5f * (area < 0.0f ? -area : area);
     longest = pn_ksqrt(longest);
-    /* Thin: narrower than a texel (2 area / longest edge) and at least three times longer
-     * than wide. Small but regular triangles (scanned meshes) are covered by their
-     * neighbours and skipped, as the paper does. */
-    if (!(longest >= 1.0f) || !(2.0f * area < longest) || !(6.0f * area < longest * longest) || !(zmin > 0.0f)) return;
+    /* Narrower than a texel (2 area / longest edge), at least three times longer than wide. */
+    if (!(longest >= 1.0f) || !(2.0f * area < longest) || !(6.0f * area < longest * longest) || !(zmin > 0.0f)) return 0;
+    *w = 1.0f / zmin;
+    return 1;
+}
+
+/* Triangle t: when thin (pn_srt_thin), every texel it touches gets its weight 1/zmin by
+ * atomic max into cons (widened by a texel for the rounding of the projection); *count:
+ * one more; *texels: one more for each texel it marked first. */
+PN_KFN void pn_srt_conservative(const pn_kview *lv, PN_CONST float *tris, PN_CONST uint8_t *flags, uint32_t t,
+                                PN_GLOBAL uint32_t *cons, PN_GLOBAL uint32_t *count, PN_GLOBAL uint32_t *texels)
+{
+    pn_poly poly;
+    float ylo, yhi, w;
+    uint32_t i, res = lv->width, first = 0u;
+    int32_t y, y0, y1;
+    if (!pn_srt_thin(lv, tris, flags, t, &poly, &w)) return;
     pn_katomic_add(count, 1u);
-    w = 1.0f / zmin;
+    ylo = poly.y[0];
+    yhi = poly.y[0];
+    for (i = 1; i < poly.n; i++) {
+        ylo = pn_kminf(ylo, poly.y[i]);
+        yhi = pn_kmaxf(yhi, poly.y[i]);
+    }
     y0 = pn_kfloor_clamp(ylo - 1.0f, 0, (int32_t)res - 1);
     y1 = pn_kfloor_clamp(yhi + 1.0f, 0, (int32_t)res - 1);
     if (!(ylo - 1.0f < (float)res) || !(yhi + 1.0f >= 0.0f)) return;
@@ -199,9 +211,25 @@ PN_KFN float pn_srt_slope(const pn_kview *lv, float alpha, PN_CONST float *tris,
     return 3.0f * s * alpha * sn / cs;
 }
 
-/* Tile (bx, by) of the soft map: the largest splat weight 1/z of its edge texels (0: none),
- * into tile_w, and into *wmax by atomic max. An edge texel's depth differs from a
- * neighbour's by more than the threshold plus its surface's slope allowance. */
+/* Texel (x, y) of the soft map: its splat weight, 1/z of the nearest depth around it when it
+ * is an edge texel (its depth differs from a neighbour's by more than the threshold plus
+ * its surface's slope allowance), at least the mark of a thin triangle touching it; 0:
+ * none. */
+PN_KFN float pn_srt_texel_weight(const pn_kview *lv, float delta, float alpha, PN_CONST float *depth,
+                                 PN_CONST uint32_t *ids, PN_CONST float *tris, PN_CONST uint32_t *cons, uint32_t x,
+                                 uint32_t y)
+{
+    uint32_t res = lv->width;
+    size_t t = (size_t)y * res + x;
+    float near, D = pn_srt_delta(depth, res, (int32_t)x, (int32_t)y, &near), w = pn_kbitsf(cons[t]);
+    if (!(D > delta) || !(near < PN_KINF)) return w;
+    if (D < PN_KINF && ids[t] != 0xFFFFFFFFu && !(D > delta + pn_srt_slope(lv, alpha, tris, ids[t], x, y, depth[t])))
+        return w;
+    return pn_kmaxf(w, 1.0f / pn_srt_texel_z(lv, x, y, near));
+}
+
+/* Tile (bx, by) of the soft map: the largest splat weight of its texels (0: none), into
+ * tile_w, and into *wmax by atomic max. */
 PN_KFN void pn_srt_tile(const pn_kview *lv, float delta, float alpha, PN_CONST float *depth, PN_CONST uint32_t *ids,
                         PN_CONST float *tris, PN_CONST uint32_t *cons, uint32_t tile, uint32_t tiles,
                         PN_GLOBAL uint32_t *tile_w, PN_GLOBAL uint32_t *wmax)
@@ -209,15 +237,8 @@ PN_KFN void pn_srt_tile(const pn_kview *lv, float delta, float alpha, PN_CONST f
     uint32_t res = lv->width, bx = tile % tiles, by = tile / tiles, x, y;
     float w = 0.0f;
     for (y = by * PN_SRT_TILE; y < (by + 1u) * PN_SRT_TILE && y < res; y++)
-        for (x = bx * PN_SRT_TILE; x < (bx + 1u) * PN_SRT_TILE && x < res; x++) {
-            size_t t = (size_t)y * res + x;
-            float near, D = pn_srt_delta(depth, res, (int32_t)x, (int32_t)y, &near);
-            w = pn_kmaxf(w, pn_kbitsf(cons[t]));
-            if (!(D > delta) || !(near < PN_KINF)) continue;
-            if (D < PN_KINF && ids[t] != 0xFFFFFFFFu && !(D > delta + pn_srt_slope(lv, alpha, tris, ids[t], x, y, depth[t])))
-                continue;
-            w = pn_kmaxf(w, 1.0f / pn_srt_texel_z(lv, x, y, near));
-        }
+        for (x = bx * PN_SRT_TILE; x < (bx + 1u) * PN_SRT_TILE && x < res; x++)
+            w = pn_kmaxf(w, pn_srt_texel_weight(lv, delta, alpha, depth, ids, tris, cons, x, y));
     tile_w[tile] = pn_kfbits(w);
     if (w > 0.0f) pn_srt_atomic_fmax(wmax, w);
 }
@@ -265,15 +286,18 @@ PN_KFN void pn_srt_sweep(PN_CONST uint32_t *in, PN_GLOBAL uint32_t *out, uint32_
     }
 }
 
-/* A receiver at depth z along the light axis, in tile (bx, by): 1 if some edge tile's
+/* A receiver at depth z along the light axis: the weight an occluder must exceed to reach
+ * it, 1/z for a z rounded up a little. */
+PN_KFN float pn_srt_receiver_w(float z) { return 1.0f / (z * 1.0001f); }
+
+/* A receiver of weight cz (pn_srt_receiver_w) in tile (bx, by): 1 if some edge tile's
  * splat reaches it. An occluder point at weight w = 1/z_e is seen from light point
  * c + a U + b V displaced in the map by (a |U|, b |V|) (1/z - w): for w > 1/z the shadow it
  * casts at the receiver's depth lies within |U| (w - 1/z) by |V| (w - 1/z) of it (exactly),
  * in texels reach_u (w - 1/z) by reach_v (w - 1/z), plus the tiles' own width. */
-PN_KFN uint32_t pn_srt_refine(PN_CONST uint32_t *tile_w, uint32_t tiles, int32_t bx, int32_t by, float z, float wmax,
+PN_KFN uint32_t pn_srt_refine(PN_CONST uint32_t *tile_w, uint32_t tiles, int32_t bx, int32_t by, float cz, float wmax,
                               float reach_u, float reach_v)
 {
-    float cz = 1.0f / z;
     int32_t rx, ry, x, y;
     if (!(wmax > cz)) return 0u;
     rx = pn_srt_reach_tiles(reach_u, wmax - cz);
@@ -287,7 +311,9 @@ PN_KFN uint32_t pn_srt_refine(PN_CONST uint32_t *tile_w, uint32_t tiles, int32_t
             if (!(w > cz)) continue;
             gx = (float)((x > bx ? x - bx : bx - x) - 1) * (float)PN_SRT_TILE;
             gy = (float)((y > by ? y - by : by - y) - 1) * (float)PN_SRT_TILE;
-            if (gx <= reach_u * (w - cz) + 1.0f && gy <= reach_v * (w - cz) + 1.0f) return 1u;
+            /* Reached unless shown out of reach: a NaN (an infinite weight, from an occluder at
+             * depth 0, times a zero reach) reaches. */
+            if (!(gx > reach_u * (w - cz) + 1.0f) && !(gy > reach_v * (w - cz) + 1.0f)) return 1u;
         }
     }
     return 0u;
@@ -301,6 +327,17 @@ typedef struct pn_srt_args {
     uint32_t flags;     /* PN_SRT_NO_CONSERVATIVE, PN_SRT_FLAG_FORCE_PIP */
     uint32_t tiles;     /* tiles per map row */
 } pn_srt_args;
+
+/* Texel (tx, ty) of a receiver at depth z along the light axis: 1 if it lies in the
+ * penumbra mask: the coarse mask (every splat at its widest, for receivers at infinity)
+ * first, then the splats at this receiver's depth. */
+PN_KFN uint32_t pn_srt_masked(const pn_srt_args *a, PN_CONST uint32_t *tile_w, PN_CONST uint32_t *tile_mask, uint32_t tx,
+                              uint32_t ty, float z)
+{
+    uint32_t bx = tx / PN_SRT_TILE, by = ty / PN_SRT_TILE;
+    return tile_mask[by * a->tiles + bx] != 0u &&
+           pn_srt_refine(tile_w, a->tiles, (int32_t)bx, (int32_t)by, pn_srt_receiver_w(z), a->wmax, a->reach_u, a->reach_v);
+}
 
 /* Pixel pix: 1 if it is in the PIP set, else 0 with its visibility from the map in
  * *vis (also for background and unlit pixels, which are final). *lit: 1 if it faces the
@@ -374,13 +411,8 @@ PN_KFN uint32_t pn_srt_classify(const pn_kview *lv, const pn_klight *L, const pn
             if (!(hi < s - D || lo > s + D)) return 1u;
             if ((d - s) * (dhat - s) <= 0.0f) return 1u;
         }
-    } else {
-        /* The coarse mask (every splat at its widest, for receivers at infinity) first, then
-         * the splats at this receiver's depth. */
-        uint32_t bx = (uint32_t)tx / PN_SRT_TILE, by = (uint32_t)ty / PN_SRT_TILE;
-        if (tile_mask[by * a->tiles + bx] != 0u &&
-            pn_srt_refine(tile_w, a->tiles, (int32_t)bx, (int32_t)by, c.z * 1.0001f, a->wmax, a->reach_u, a->reach_v))
-            return 1u;
+    } else if (pn_srt_masked(a, tile_w, tile_mask, (uint32_t)tx, (uint32_t)ty, c.z)) {
+        return 1u;
     }
     bias = (d - dhat) + 1e-4f * d;
     /* Another surface in front of O, lit only by the bias: the map cannot tell. */

@@ -241,9 +241,20 @@ PN_KFN int pn_mc_hier(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
          * The point's texel is floor(p) in either direction: toward -x, a point exactly on
          * x = 40 is still in texel 40 (its exit below says whether it has left it); as the
          * box [40 - B, 40) it left texel 40 out where a descent put the point there by
-         * rounding before the texel's exit (fuzz_culls: crash-mcsm-texel-side-1). */
-        X0 = pn_kfloor_clamp(px, -(1 << 24), 1 << 24) + (dx >= 0.0f ? 0 : 1 - B);
-        Y0 = pn_kfloor_clamp(py, -(1 << 24), 1 << 24) + (dy >= 0.0f ? 0 : 1 - B);
+         * rounding before the texel's exit (fuzz_culls: crash-mcsm-texel-side-1). A point
+         * within the on-edge band past the side it entered that texel by, whose crossing
+         * of that side (from the ray's parameter, as its exits below) is still ahead, is
+         * in the texel behind: a descent to depth 1.1371279 put a point 3e-6 texels before
+         * row 57 on it, and the search skipped row 56, where the ray reaches the near
+         * depth (crash-mcsm-texel-side-behind). */
+        X0 = pn_kfloor_clamp(px, -(1 << 24), 1 << 24);
+        Y0 = pn_kfloor_clamp(py, -(1 << 24), 1 << 24);
+        if (dx > 0.0f && px - (float)X0 < on_edge && pn_mc_t_col(m, r, (float)X0) > t) X0--;
+        if (dx < 0.0f && (float)(X0 + 1) - px < on_edge && pn_mc_t_col(m, r, (float)(X0 + 1)) > t) X0++;
+        if (dy > 0.0f && py - (float)Y0 < on_edge && pn_mc_t_row(m, r, (float)Y0) > t) Y0--;
+        if (dy < 0.0f && (float)(Y0 + 1) - py < on_edge && pn_mc_t_row(m, r, (float)(Y0 + 1)) > t) Y0++;
+        X0 += dx >= 0.0f ? 0 : 1 - B;
+        Y0 += dy >= 0.0f ? 0 : 1 - B;
         /* Where the ray leaves the box. A point rounded onto the box's far side (its exit
          * not after it) belongs to the next box along that axis; if rounding still leaves
          * no exit after it, the search moves on by a step that float can represent. */

@@ -11,7 +11,11 @@
  *
  * Sorting is LSD radix by bytes over the caller's arena: the half-edge and run pools
  * themselves, and the frame region (free between frames) for the vertex ids and the
- * union-find, 24 bytes a triangle, which pn_carve reserves. No recursion, no allocation.
+ * union-find, 24 bytes a triangle, which pn_carve reserves; the weld's Morton codes travel
+ * with their corners through those two words, so its sort reads them in order (a key read
+ * from the triangles in sorted order is a cache miss: the dragon's sorts took 0.9 s so),
+ * and each byte's histogram comes from one pass over the keys for all four. No recursion,
+ * no allocation.
  *
  *   solids   objects closed but for small holes and seams (pn_cn_solids) cast as solids,
  *            the others as sheets. */
@@ -26,7 +30,6 @@ typedef struct pn_cn {
     const float *tris;
     const uint32_t *canon; /* corner -> vertex id */
     const uint32_t *comp;  /* triangle -> object */
-    const uint32_t *morton; /* corner -> its position's Morton code (while welding) */
 } pn_cn;
 
 static uint32_t pn_cn_fbits(float v)
@@ -36,46 +39,145 @@ static uint32_t pn_cn_fbits(float v)
     return b == 0x80000000u ? 0u : b;
 }
 
-/* Key word `which` of an item: 0..2 a corner's z, y, x; 3..5 a half-edge's higher vertex,
- * lower vertex, object; 6 a corner's Morton code. */
+/* Key word `which` of a half-edge: its higher vertex, lower vertex or object. */
+#define PN_CN_HI 0u
+#define PN_CN_LO 1u
+#define PN_CN_OBJ 2u
 static uint32_t pn_cn_key(const pn_cn *c, uint32_t which, uint32_t item)
 {
     uint32_t t, e, x, y;
-    if (which < 3u) return pn_cn_fbits(c->tris[(size_t)item * 3u + (2u - which)]);
-    if (which == 6u) return c->morton[item];
     t = item / 3u;
     e = item % 3u;
-    if (which == 5u) return c->comp[t];
+    if (which == PN_CN_OBJ) return c->comp[t];
     x = c->canon[(size_t)t * 3u + e];
     y = c->canon[(size_t)t * 3u + (e == 2u ? 0u : e + 1u)];
-    if (which == 3u) return x > y ? x : y;
+    if (which == PN_CN_HI) return x > y ? x : y;
     return x < y ? x : y;
 }
 
+/* The histograms of the four bytes of a sort's keys, taken in one pass over them (a
+ * byte's counts do not depend on the order the other bytes' passes leave); a byte whose
+ * keys all fall in one bucket needs no pass. */
+static void pn_cn_hist_clear(uint32_t h[4][256])
+{
+    uint32_t d, b;
+    for (d = 0; d < 4u; d++)
+        for (b = 0; b < 256u; b++) h[d][b] = 0u;
+}
+
+static void pn_cn_hist_add(uint32_t h[4][256], uint32_t k)
+{
+    h[0][k & 255u]++;
+    h[1][(k >> 8) & 255u]++;
+    h[2][(k >> 16) & 255u]++;
+    h[3][k >> 24]++;
+}
+
+/* Byte d's histogram h[d] into its buckets' starts; 0 when one bucket holds all n. */
+static int pn_cn_starts(uint32_t *h, uint32_t n)
+{
+    uint32_t b, sum = 0u;
+    for (b = 0; b < 256u; b++)
+        if (h[b] == n) return 0;
+    for (b = 0; b < 256u; b++) {
+        uint32_t k = h[b];
+        h[b] = sum;
+        sum += k;
+    }
+    return 1;
+}
+
 /* Stable sort of (*a)[0, n) by key word `which`, bytes least significant first, through
- * *b; the sorted items end in *a (the pointers swap). */
+ * *b; the sorted items end in *a (the pointers swap). The key is read n times for the
+ * histograms and n times per byte that moves anything. */
 static void pn_cn_radix(const pn_cn *c, uint32_t which, uint32_t **a, uint32_t **b, uint32_t n)
 {
-    uint32_t count[256], shift, i, d;
-    for (shift = 0; shift < 32u; shift += 8u) {
-        uint32_t sum = 0, *t;
-        for (d = 0; d < 256u; d++) count[d] = 0;
-        for (i = 0; i < n; i++) count[(pn_cn_key(c, which, (*a)[i]) >> shift) & 255u]++;
-        for (d = 0; d < 256u && count[d] != n; d++) {
-        }
-        if (d < 256u) continue; /* one digit: already in order */
-        for (d = 0; d < 256u; d++) {
-            uint32_t k = count[d];
-            count[d] = sum;
-            sum += k;
-        }
+    uint32_t h[4][256], d, i;
+    pn_cn_hist_clear(h);
+    for (i = 0; i < n; i++) pn_cn_hist_add(h, pn_cn_key(c, which, (*a)[i]));
+    for (d = 0; d < 4u; d++) {
+        uint32_t shift = 8u * d, *t;
+        if (!pn_cn_starts(h[d], n)) continue;
         for (i = 0; i < n; i++) {
             uint32_t v = (*a)[i];
-            (*b)[count[(pn_cn_key(c, which, v) >> shift) & 255u]++] = v;
+            (*b)[h[d][(pn_cn_key(c, which, v) >> shift) & 255u]++] = v;
         }
         t = *a;
         *a = *b;
         *b = t;
+    }
+}
+
+/* The same with the keys at hand: (*ka)[i] is item (*a)[i]'s, and moves with it through
+ * *kb (both pairs of pointers swap). */
+static void pn_cn_radix_kv(uint32_t **ka, uint32_t **kb, uint32_t **a, uint32_t **b, uint32_t n)
+{
+    uint32_t h[4][256], d, i;
+    pn_cn_hist_clear(h);
+    for (i = 0; i < n; i++) pn_cn_hist_add(h, (*ka)[i]);
+    for (d = 0; d < 4u; d++) {
+        uint32_t shift = 8u * d, *t;
+        if (!pn_cn_starts(h[d], n)) continue;
+        for (i = 0; i < n; i++) {
+            uint32_t k = (*ka)[i], j = h[d][(k >> shift) & 255u]++;
+            (*kb)[j] = k;
+            (*b)[j] = (*a)[i];
+        }
+        t = *a;
+        *a = *b;
+        *b = t;
+        t = *ka;
+        *ka = *kb;
+        *kb = t;
+    }
+}
+
+/* Whether corner x's position comes before corner y's: x, then y, then z, by their bits
+ * (-0 as +0), the order of the weld's ties. */
+static int pn_cn_pos_less(const float *tris, uint32_t x, uint32_t y)
+{
+    const float *p = tris + (size_t)x * 3u, *q = tris + (size_t)y * 3u;
+    uint32_t a;
+    for (a = 0; a < 3u; a++) {
+        uint32_t u = pn_cn_fbits(p[a]), v = pn_cn_fbits(q[a]);
+        if (u != v) return u < v;
+    }
+    return 0;
+}
+
+/* Corner v sifted down the heap s[0, n) from place r (the larger child up while it
+ * comes after v). */
+static void pn_cn_sift(const float *tris, uint32_t *s, uint32_t n, uint32_t r, uint32_t v)
+{
+    for (;;) {
+        uint32_t ch = 2u * r + 1u;
+        if (ch >= n) break;
+        if (ch + 1u < n && pn_cn_pos_less(tris, s[ch], s[ch + 1u])) ch++;
+        if (!pn_cn_pos_less(tris, v, s[ch])) break;
+        s[r] = s[ch];
+        r = ch;
+    }
+    s[r] = v;
+}
+
+/* Corners s[0, n) sorted by position (pn_cn_pos_less; equal positions in any order):
+ * insertion for a few, else heapsort (no recursion, n log n for any run). */
+static void pn_cn_sort_pos(const float *tris, uint32_t *s, uint32_t n)
+{
+    uint32_t i, m;
+    if (n <= 16u) {
+        for (i = 1u; i < n; i++) {
+            uint32_t v = s[i], j = i;
+            for (; j > 0u && pn_cn_pos_less(tris, v, s[j - 1u]); j--) s[j] = s[j - 1u];
+            s[j] = v;
+        }
+        return;
+    }
+    for (m = n; m-- > 0u;) pn_cn_sift(tris, s, n, m, s[m]); /* heapify */
+    for (m = n; m-- > 1u;) {                                 /* the largest to the end */
+        uint32_t v = s[m];
+        s[m] = s[0];
+        pn_cn_sift(tris, s, m, 0u, v);
     }
 }
 
@@ -324,7 +426,6 @@ void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t 
     c.tris = ctx->tris;
     c.canon = canon;
     c.comp = tcomp;
-    c.morton = NULL;
 
     /* Weld: corners sorted by position, one id per distinct position, in the Morton order
      * of the positions in the scene's box (ties: by the position's bits), so that edges,
@@ -338,21 +439,27 @@ void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t 
                    (pn_cn_spread(p[2], ctx->scene_min[2], ctx->scene_max[2]) << 2);
         hedge[i] = i;
     }
-    c.morton = canon;
-    a = hedge;
-    b = run;
-    pn_cn_radix(&c, 0u, &a, &b, n);
-    pn_cn_radix(&c, 1u, &a, &b, n);
-    pn_cn_radix(&c, 2u, &a, &b, n);
-    pn_cn_radix(&c, 6u, &a, &b, n);
-    for (i = 0; i < n; i++) {
-        if (i > 0u) {
-            const float *p = ctx->tris + (size_t)a[i] * 3u, *q = ctx->tris + (size_t)a[i - 1u] * 3u;
-            if (pn_cn_fbits(p[0]) != pn_cn_fbits(q[0]) || pn_cn_fbits(p[1]) != pn_cn_fbits(q[1]) ||
-                pn_cn_fbits(p[2]) != pn_cn_fbits(q[2]))
-                nv++;
+    /* By Morton code with the codes at hand (canon and parent, free until the union-find,
+     * carry them), then each run of one code by position: the order of (code, x, y, z).
+     * Ids by sorted place into b first (positions compared while their lines are at hand;
+     * two codes are two positions), then to the corners. */
+    {
+        uint32_t *ka = canon, *kb = parent, j, k;
+        a = hedge;
+        b = run;
+        pn_cn_radix_kv(&ka, &kb, &a, &b, n);
+        for (i = 0; i < n; i = j) {
+            for (j = i + 1u; j < n && ka[j] == ka[i]; j++) {
+            }
+            if (j - i > 1u) pn_cn_sort_pos(ctx->tris, a + i, j - i);
+            if (i > 0u) nv++;
+            b[i] = nv;
+            for (k = i + 1u; k < j; k++) {
+                if (pn_cn_pos_less(ctx->tris, a[k - 1u], a[k])) nv++;
+                b[k] = nv;
+            }
         }
-        canon[a[i]] = nv;
+        for (i = 0; i < n; i++) canon[a[i]] = b[i];
     }
     nv++;
 
@@ -376,14 +483,14 @@ void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t 
     for (i = 0; i < n; i++) {
         t = i / 3u;
         if (ctx->flags[t] & PN_TRI_DEGENERATE) continue;
-        if (pn_cn_key(&c, 3u, i) == pn_cn_key(&c, 4u, i)) continue;
+        if (pn_cn_key(&c, PN_CN_HI, i) == pn_cn_key(&c, PN_CN_LO, i)) continue;
         hedge[nh++] = i;
     }
     a = hedge;
     b = run;
-    pn_cn_radix(&c, 3u, &a, &b, nh);
-    pn_cn_radix(&c, 4u, &a, &b, nh);
-    pn_cn_radix(&c, 5u, &a, &b, nh);
+    pn_cn_radix(&c, PN_CN_HI, &a, &b, nh);
+    pn_cn_radix(&c, PN_CN_LO, &a, &b, nh);
+    pn_cn_radix(&c, PN_CN_OBJ, &a, &b, nh);
     if (a != hedge) memcpy(hedge, a, (size_t)nh * sizeof(uint32_t));
 
     /* Runs. */
@@ -391,8 +498,8 @@ void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t 
     ctx->stats.wedges.nonmanifold_edges = 0;
     i = 0;
     while (i < nh) {
-        uint32_t j = i + 1u, h = hedge[i], lo = pn_cn_key(&c, 4u, h), hi = pn_cn_key(&c, 3u, h), s = tcomp[h / 3u];
-        while (j < nh && pn_cn_key(&c, 4u, hedge[j]) == lo && pn_cn_key(&c, 3u, hedge[j]) == hi &&
+        uint32_t j = i + 1u, h = hedge[i], lo = pn_cn_key(&c, PN_CN_LO, h), hi = pn_cn_key(&c, PN_CN_HI, h), s = tcomp[h / 3u];
+        while (j < nh && pn_cn_key(&c, PN_CN_LO, hedge[j]) == lo && pn_cn_key(&c, PN_CN_HI, hedge[j]) == hi &&
                tcomp[hedge[j] / 3u] == s)
             j++;
         run[nr++] = i;
@@ -425,7 +532,7 @@ void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t 
     /* Direction flags, now that the keys are no longer needed. */
     for (i = 0; i < nh; i++) {
         uint32_t h = hedge[i];
-        if (pn_cn_key(&c, 4u, h) != canon[h]) hedge[i] = h | PN_WG_REV;
+        if (pn_cn_key(&c, PN_CN_LO, h) != canon[h]) hedge[i] = h | PN_WG_REV;
     }
     pn_cn_solids(ctx, canon, hedge, run, nr, tcomp, ncomp);
     ctx->stats.wedges.edges = nr;

@@ -168,6 +168,32 @@ static void test_connect(void)
         }
         connect_case("open tube", tp, 24u, tt, 24u, 24u, 48u, 24u, 0u, 1u, 0u);
     }
+    /* A grid of 5 x 5 quads, each with its own four corners (100 positions, 36 distinct),
+     * 1e-5 across beside a triangle 1e3 across: the weld's Morton cells are the scene box's
+     * 1024th, so all 100 corners share one code and the weld's sort of a run by position
+     * (a heap beyond 16 corners) alone tells the 36 vertices apart. */
+    {
+        static float gp[103 * 3];
+        static uint32_t gt[51 * 3];
+        uint32_t x, z, c;
+        for (z = 0; z < 5u; z++)
+            for (x = 0; x < 5u; x++) {
+                static const uint32_t q[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+                uint32_t k = z * 5u + x;
+                for (c = 0; c < 4u; c++) {
+                    gp[(4u * k + c) * 3u] = 1e-5f * (float)(x + q[c][0]);
+                    gp[(4u * k + c) * 3u + 1u] = 0.0f;
+                    gp[(4u * k + c) * 3u + 2u] = 1e-5f * (float)(z + q[c][1]);
+                }
+                quad_tris(gt, k);
+            }
+        gp[300] = 10.0f, gp[301] = 0.0f, gp[302] = 0.0f;
+        gp[303] = 1010.0f, gp[304] = 0.0f, gp[305] = 0.0f;
+        gp[306] = 10.0f, gp[307] = 0.0f, gp[308] = 1000.0f;
+        gt[150] = 100u, gt[151] = 101u, gt[152] = 102u;
+        /* 36 + 3 vertices; 30 + 30 + 25 + 3 edges, 20 + 3 of them open; 2 sheets */
+        connect_case("grid in one Morton cell", gp, 103u, gt, 51u, 39u, 88u, 23u, 0u, 2u, 0u);
+    }
 }
 
 /* ---- 2 .. 6. Frames ------------------------------------------------------------------------ */

@@ -9,13 +9,14 @@
  *   edges    the half-edges of non-degenerate triangles sorted by (object, lower vertex id,
  *            higher vertex id), ties by half-edge id: an edge is a run of equal keys.
  *
- * Sorting is LSD radix by bytes over the caller's arena: the half-edge and run pools
- * themselves, and the frame region (free between frames) for the vertex ids and the
- * union-find, 24 bytes a triangle, which pn_carve reserves; the weld's Morton codes travel
- * with their corners through those two words, so its sort reads them in order (a key read
- * from the triangles in sorted order is a cache miss: the dragon's sorts took 0.9 s so),
- * and each byte's histogram comes from one pass over the keys for all four. No recursion,
- * no allocation.
+ * Sorting works in the caller's arena: the half-edge and run pools themselves, and the
+ * frame region (free between frames) for the vertex ids and the union-find, 24 bytes a
+ * triangle, which pn_carve reserves. The weld is an LSD radix sort by bytes whose Morton
+ * codes travel with their corners through those two words, so it reads them in order; the
+ * edges are counted by lower vertex in half-edge order, which reads the corners in order,
+ * then sorted by comparison within a vertex, then counted by object. (Chained radix sorts
+ * reading each key at its item's index in sorted order, a cache miss a read, took 0.9 s
+ * of the dragon's set-up.) No recursion, no allocation.
  *
  *   solids   objects closed but for small holes and seams (pn_cn_solids) cast as solids,
  *            the others as sheets. */
@@ -29,7 +30,6 @@
 typedef struct pn_cn {
     const float *tris;
     const uint32_t *canon; /* corner -> vertex id */
-    const uint32_t *comp;  /* triangle -> object */
 } pn_cn;
 
 static uint32_t pn_cn_fbits(float v)
@@ -39,16 +39,14 @@ static uint32_t pn_cn_fbits(float v)
     return b == 0x80000000u ? 0u : b;
 }
 
-/* Key word `which` of a half-edge: its higher vertex, lower vertex or object. */
+/* Key word `which` of a half-edge: its higher or lower vertex. */
 #define PN_CN_HI 0u
 #define PN_CN_LO 1u
-#define PN_CN_OBJ 2u
 static uint32_t pn_cn_key(const pn_cn *c, uint32_t which, uint32_t item)
 {
     uint32_t t, e, x, y;
     t = item / 3u;
     e = item % 3u;
-    if (which == PN_CN_OBJ) return c->comp[t];
     x = c->canon[(size_t)t * 3u + e];
     y = c->canon[(size_t)t * 3u + (e == 2u ? 0u : e + 1u)];
     if (which == PN_CN_HI) return x > y ? x : y;
@@ -87,29 +85,9 @@ static int pn_cn_starts(uint32_t *h, uint32_t n)
     return 1;
 }
 
-/* Stable sort of (*a)[0, n) by key word `which`, bytes least significant first, through
- * *b; the sorted items end in *a (the pointers swap). The key is read n times for the
- * histograms and n times per byte that moves anything. */
-static void pn_cn_radix(const pn_cn *c, uint32_t which, uint32_t **a, uint32_t **b, uint32_t n)
-{
-    uint32_t h[4][256], d, i;
-    pn_cn_hist_clear(h);
-    for (i = 0; i < n; i++) pn_cn_hist_add(h, pn_cn_key(c, which, (*a)[i]));
-    for (d = 0; d < 4u; d++) {
-        uint32_t shift = 8u * d, *t;
-        if (!pn_cn_starts(h[d], n)) continue;
-        for (i = 0; i < n; i++) {
-            uint32_t v = (*a)[i];
-            (*b)[h[d][(pn_cn_key(c, which, v) >> shift) & 255u]++] = v;
-        }
-        t = *a;
-        *a = *b;
-        *b = t;
-    }
-}
-
-/* The same with the keys at hand: (*ka)[i] is item (*a)[i]'s, and moves with it through
- * *kb (both pairs of pointers swap). */
+/* Stable sort of (*a)[0, n) by keys (*ka)[0, n) ((*ka)[i] is item (*a)[i]'s), bytes least
+ * significant first, keys and items through *kb and *b; the sorted ones end in *ka and *a
+ * (both pairs of pointers swap). */
 static void pn_cn_radix_kv(uint32_t **ka, uint32_t **kb, uint32_t **a, uint32_t **b, uint32_t n)
 {
     uint32_t h[4][256], d, i;
@@ -132,52 +110,59 @@ static void pn_cn_radix_kv(uint32_t **ka, uint32_t **kb, uint32_t **a, uint32_t 
     }
 }
 
-/* Whether corner x's position comes before corner y's: x, then y, then z, by their bits
- * (-0 as +0), the order of the weld's ties. */
-static int pn_cn_pos_less(const float *tris, uint32_t x, uint32_t y)
+/* The two orders sorted by comparison (pn_cn_sort): corners by position, x, then y, then z,
+ * by their bits (-0 as +0), the order of the weld's ties; half-edges of one lower vertex by
+ * (higher vertex, half-edge id), a total order. */
+#define PN_CN_BY_POS 0u
+#define PN_CN_BY_HI 1u
+
+static int pn_cn_less(const pn_cn *c, uint32_t order, uint32_t x, uint32_t y)
 {
-    const float *p = tris + (size_t)x * 3u, *q = tris + (size_t)y * 3u;
     uint32_t a;
+    if (order == PN_CN_BY_HI) {
+        uint32_t u = pn_cn_key(c, PN_CN_HI, x), v = pn_cn_key(c, PN_CN_HI, y);
+        return u != v ? u < v : x < y;
+    }
     for (a = 0; a < 3u; a++) {
-        uint32_t u = pn_cn_fbits(p[a]), v = pn_cn_fbits(q[a]);
+        uint32_t u = pn_cn_fbits(c->tris[(size_t)x * 3u + a]), v = pn_cn_fbits(c->tris[(size_t)y * 3u + a]);
         if (u != v) return u < v;
     }
     return 0;
 }
 
-/* Corner v sifted down the heap s[0, n) from place r (the larger child up while it
- * comes after v). */
-static void pn_cn_sift(const float *tris, uint32_t *s, uint32_t n, uint32_t r, uint32_t v)
+/* Item v sifted down the heap s[0, n) from place r (the larger child up while it comes
+ * after v). */
+static void pn_cn_sift(const pn_cn *c, uint32_t order, uint32_t *s, uint32_t n, uint32_t r, uint32_t v)
 {
     for (;;) {
         uint32_t ch = 2u * r + 1u;
         if (ch >= n) break;
-        if (ch + 1u < n && pn_cn_pos_less(tris, s[ch], s[ch + 1u])) ch++;
-        if (!pn_cn_pos_less(tris, v, s[ch])) break;
+        if (ch + 1u < n && pn_cn_less(c, order, s[ch], s[ch + 1u])) ch++;
+        if (!pn_cn_less(c, order, v, s[ch])) break;
         s[r] = s[ch];
         r = ch;
     }
     s[r] = v;
 }
 
-/* Corners s[0, n) sorted by position (pn_cn_pos_less; equal positions in any order):
- * insertion for a few, else heapsort (no recursion, n log n for any run). */
-static void pn_cn_sort_pos(const float *tris, uint32_t *s, uint32_t n)
+/* Items s[0, n) sorted by `order` (equal items in any order): insertion for a few, else
+ * heapsort (no recursion, n log n for any run). */
+static void pn_cn_sort(const pn_cn *c, uint32_t order, uint32_t *s, uint32_t n)
 {
     uint32_t i, m;
     if (n <= 16u) {
         for (i = 1u; i < n; i++) {
             uint32_t v = s[i], j = i;
-            for (; j > 0u && pn_cn_pos_less(tris, v, s[j - 1u]); j--) s[j] = s[j - 1u];
+            for (; j > 0u && pn_cn_less(c, order, v, s[j - 1u]); j--) s[j] = s[j - 1u];
             s[j] = v;
         }
         return;
     }
-    for (m = n; m-- > 0u;) pn_cn_sift(tris, s, n, m, s[m]); /* heapify */
-    for (m = n; m-- > 1u;) {                                 /* the largest to the end */
+    for (m = n; m-- > 0u;) pn_cn_sift(c, order, s, n, m, s[m]); /* heapify */
+    for (m = n; m-- > 1u;) {                                     /* the largest to the end */
         uint32_t v = s[m];
         s[m] = s[0];
-        pn_cn_sift(tris, s, m, 0u, v);
+        pn_cn_sift(c, order, s, m, 0u, v);
     }
 }
 
@@ -425,7 +410,6 @@ void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t 
     pn_cn c;
     c.tris = ctx->tris;
     c.canon = canon;
-    c.comp = tcomp;
 
     /* Weld: corners sorted by position, one id per distinct position, in the Morton order
      * of the positions in the scene's box (ties: by the position's bits), so that edges,
@@ -451,11 +435,11 @@ void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t 
         for (i = 0; i < n; i = j) {
             for (j = i + 1u; j < n && ka[j] == ka[i]; j++) {
             }
-            if (j - i > 1u) pn_cn_sort_pos(ctx->tris, a + i, j - i);
+            if (j - i > 1u) pn_cn_sort(&c, PN_CN_BY_POS, a + i, j - i);
             if (i > 0u) nv++;
             b[i] = nv;
             for (k = i + 1u; k < j; k++) {
-                if (pn_cn_pos_less(ctx->tris, a[k - 1u], a[k])) nv++;
+                if (pn_cn_less(&c, PN_CN_BY_POS, a[k - 1u], a[k])) nv++;
                 b[k] = nv;
             }
         }
@@ -486,12 +470,22 @@ void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t 
         if (pn_cn_key(&c, PN_CN_HI, i) == pn_cn_key(&c, PN_CN_LO, i)) continue;
         hedge[nh++] = i;
     }
-    a = hedge;
-    b = run;
-    pn_cn_radix(&c, PN_CN_HI, &a, &b, nh);
-    pn_cn_radix(&c, PN_CN_LO, &a, &b, nh);
-    pn_cn_radix(&c, PN_CN_OBJ, &a, &b, nh);
-    if (a != hedge) memcpy(hedge, a, (size_t)nh * sizeof(uint32_t));
+    /* By lower vertex, counted into run (nv + 1 <= 3 T + 1 words) and placed into parent
+     * (free now) in ascending half-edge order, which reads the corners in order; each
+     * vertex's half-edges then by (higher vertex, id) in place; then by object, placed back
+     * into hedge in that order (counted into run again). */
+    for (i = 0; i <= nv; i++) run[i] = 0u;
+    for (i = 0; i < nh; i++) run[pn_cn_key(&c, PN_CN_LO, hedge[i]) + 1u]++;
+    for (i = 1u; i <= nv; i++) run[i] += run[i - 1u];
+    for (i = 0; i < nh; i++) parent[run[pn_cn_key(&c, PN_CN_LO, hedge[i])]++] = hedge[i];
+    for (i = 0, r = 0; r < nv; r++) { /* run[r]: the end of vertex r's half-edges */
+        if (run[r] - i > 1u) pn_cn_sort(&c, PN_CN_BY_HI, parent + i, run[r] - i);
+        i = run[r];
+    }
+    for (i = 0; i <= ncomp; i++) run[i] = 0u;
+    for (i = 0; i < nh; i++) run[tcomp[parent[i] / 3u] + 1u]++;
+    for (i = 1u; i <= ncomp; i++) run[i] += run[i - 1u];
+    for (i = 0; i < nh; i++) hedge[run[tcomp[parent[i] / 3u]]++] = parent[i];
 
     /* Runs. */
     ctx->stats.wedges.open_edges = 0;

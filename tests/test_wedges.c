@@ -194,6 +194,24 @@ static void test_connect(void)
         /* 36 + 3 vertices; 30 + 30 + 25 + 3 edges, 20 + 3 of them open; 2 sheets */
         connect_case("grid in one Morton cell", gp, 103u, gt, 51u, 39u, 88u, 23u, 0u, 2u, 0u);
     }
+    /* A fan of 40 triangles (each with its own corners) round a hub at the scene box's least
+     * corner, so the hub has the least vertex id and is the lower vertex of all 80 spoke
+     * half-edges, given in a shuffled triangle order: the edges' sort of one vertex's
+     * half-edges by higher vertex (a heap beyond 16) alone pairs them into 41 spokes. */
+    {
+        static float fp[40 * 9];
+        static uint32_t ft[40 * 3];
+        for (i = 0; i < 40u; i++) {
+            uint32_t f = (17u * i) % 40u; /* the fan's triangle in slot i */
+            float a0 = 1.5707963f * (float)f / 40.0f, a1 = 1.5707963f * (float)(f + 1u) / 40.0f;
+            fp[9u * i] = fp[9u * i + 1u] = fp[9u * i + 2u] = 0.0f;
+            fp[9u * i + 3u] = cosf(a0), fp[9u * i + 4u] = 0.0f, fp[9u * i + 5u] = sinf(a0);
+            fp[9u * i + 6u] = cosf(a1), fp[9u * i + 7u] = 0.0f, fp[9u * i + 8u] = sinf(a1);
+            ft[3u * i] = 3u * i, ft[3u * i + 1u] = 3u * i + 1u, ft[3u * i + 2u] = 3u * i + 2u;
+        }
+        /* 42 vertices; 41 spokes and 40 rim edges, the 2 end spokes and the rim open */
+        connect_case("fan round the least vertex", fp, 120u, ft, 40u, 42u, 81u, 42u, 0u, 1u, 0u);
+    }
 }
 
 /* ---- 2 .. 6. Frames ------------------------------------------------------------------------ */

@@ -89,7 +89,7 @@ static void connect_case(const char *what, const float *pos, uint32_t nv, const 
     size_t need;
     void *mem;
     memset(&lim, 0, sizeof(lim));
-    lim.max_triangles = 64u;
+    lim.max_triangles = 4233u;
     lim.max_width = 16u;
     lim.max_height = 16u;
     lim.gears_pairs = 4096u;
@@ -168,31 +168,35 @@ static void test_connect(void)
         }
         connect_case("open tube", tp, 24u, tt, 24u, 24u, 48u, 24u, 0u, 1u, 0u);
     }
-    /* A grid of 5 x 5 quads, each with its own four corners (100 positions, 36 distinct),
-     * 1e-5 across beside a triangle 1e3 across: the weld's Morton cells are the scene box's
-     * 1024th, so all 100 corners share one code and the weld's sort of a run by position
-     * (a heap beyond 16 corners) alone tells the 36 vertices apart. */
-    {
-        static float gp[103 * 3];
-        static uint32_t gt[51 * 3];
-        uint32_t x, z, c;
-        for (z = 0; z < 5u; z++)
-            for (x = 0; x < 5u; x++) {
+    /* Grids of g x g quads, each quad with its own four corners (4 g^2 positions, (g + 1)^2
+     * distinct), 1e-5 across beside a triangle 1e3 across: the weld's Morton cells are the
+     * scene box's 1024th, so all the grid's corners share one code and the weld's sort of a
+     * run by position alone tells its vertices apart: 5 x 5 (100 corners) by a heap, 46 x 46
+     * (8,464) by radix. */
+    for (i = 5u; i <= 46u; i += 41u) {
+        static float gp[(8464 + 3) * 3];
+        static uint32_t gt[(4232 + 1) * 3];
+        uint32_t x, z, c, g = i, nq = i * i;
+        for (z = 0; z < g; z++)
+            for (x = 0; x < g; x++) {
                 static const uint32_t q[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-                uint32_t k = z * 5u + x;
+                uint32_t k = z * g + x;
                 for (c = 0; c < 4u; c++) {
                     gp[(4u * k + c) * 3u] = 1e-5f * (float)(x + q[c][0]);
-                    gp[(4u * k + c) * 3u + 1u] = 0.0f;
+                    /* y in one byte: an odd count of byte passes, so the radix sort ends
+                     * in its scratch */
+                    gp[(4u * k + c) * 3u + 1u] = 1.0f + (float)(z + q[c][1]) / 2097152.0f;
                     gp[(4u * k + c) * 3u + 2u] = 1e-5f * (float)(z + q[c][1]);
                 }
                 quad_tris(gt, k);
             }
-        gp[300] = 10.0f, gp[301] = 0.0f, gp[302] = 0.0f;
-        gp[303] = 1010.0f, gp[304] = 0.0f, gp[305] = 0.0f;
-        gp[306] = 10.0f, gp[307] = 0.0f, gp[308] = 1000.0f;
-        gt[150] = 100u, gt[151] = 101u, gt[152] = 102u;
-        /* 36 + 3 vertices; 30 + 30 + 25 + 3 edges, 20 + 3 of them open; 2 sheets */
-        connect_case("grid in one Morton cell", gp, 103u, gt, 51u, 39u, 88u, 23u, 0u, 2u, 0u);
+        gp[12u * nq] = 10.0f, gp[12u * nq + 1u] = 0.0f, gp[12u * nq + 2u] = 0.0f;
+        gp[12u * nq + 3u] = 1010.0f, gp[12u * nq + 4u] = 0.0f, gp[12u * nq + 5u] = 0.0f;
+        gp[12u * nq + 6u] = 10.0f, gp[12u * nq + 7u] = 0.0f, gp[12u * nq + 8u] = 1000.0f;
+        gt[6u * nq] = 4u * nq, gt[6u * nq + 1u] = 4u * nq + 1u, gt[6u * nq + 2u] = 4u * nq + 2u;
+        /* (g + 1)^2 + 3 vertices; 2 g (g + 1) + g^2 + 3 edges, 4 g + 3 of them open; 2 sheets */
+        connect_case(g == 5u ? "5 x 5 grid in one Morton cell" : "46 x 46 grid in one Morton cell", gp, 4u * nq + 3u, gt,
+                     2u * nq + 1u, (g + 1u) * (g + 1u) + 3u, 2u * g * (g + 1u) + nq + 3u, 4u * g + 3u, 0u, 2u, 0u);
     }
     /* A fan of 40 triangles (each with its own corners) round a hub at the scene box's least
      * corner, so the hub has the least vertex id and is the lower vertex of all 80 spoke

@@ -30,6 +30,7 @@
 typedef struct pn_cn {
     const float *tris;
     const uint32_t *canon; /* corner -> vertex id */
+    const uint32_t *comp;  /* triangle -> object */
 } pn_cn;
 
 static uint32_t pn_cn_fbits(float v)
@@ -39,14 +40,16 @@ static uint32_t pn_cn_fbits(float v)
     return b == 0x80000000u ? 0u : b;
 }
 
-/* Key word `which` of a half-edge: its higher or lower vertex. */
+/* Key word `which` of a half-edge: its higher vertex, lower vertex or object. */
 #define PN_CN_HI 0u
 #define PN_CN_LO 1u
+#define PN_CN_OBJ 2u
 static uint32_t pn_cn_key(const pn_cn *c, uint32_t which, uint32_t item)
 {
     uint32_t t, e, x, y;
     t = item / 3u;
     e = item % 3u;
+    if (which == PN_CN_OBJ) return c->comp[t];
     x = c->canon[(size_t)t * 3u + e];
     y = c->canon[(size_t)t * 3u + (e == 2u ? 0u : e + 1u)];
     if (which == PN_CN_HI) return x > y ? x : y;
@@ -108,6 +111,18 @@ static void pn_cn_radix_kv(uint32_t **ka, uint32_t **kb, uint32_t **a, uint32_t 
         *ka = *kb;
         *kb = t;
     }
+}
+
+/* Stable counting sort of half-edges in[0, n) into out by key word `which` (below
+ * `buckets`), counted in cnt (buckets + 1 words); after it cnt[k] is the end of key k's. */
+static void pn_cn_count_sort(const pn_cn *c, uint32_t which, const uint32_t *in, uint32_t *out, uint32_t n,
+                             uint32_t *cnt, uint32_t buckets)
+{
+    uint32_t i;
+    for (i = 0; i <= buckets; i++) cnt[i] = 0u;
+    for (i = 0; i < n; i++) cnt[pn_cn_key(c, which, in[i]) + 1u]++;
+    for (i = 1u; i <= buckets; i++) cnt[i] += cnt[i - 1u];
+    for (i = 0; i < n; i++) out[cnt[pn_cn_key(c, which, in[i])]++] = in[i];
 }
 
 /* The two orders sorted by comparison (pn_cn_sort): corners by position, x, then y, then z,
@@ -428,6 +443,7 @@ void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t 
     pn_cn c;
     c.tris = ctx->tris;
     c.canon = canon;
+    c.comp = tcomp;
 
     /* Weld: corners sorted by position, one id per distinct position, in the Morton order
      * of the positions in the scene's box (ties: by the position's bits), so that edges,
@@ -495,25 +511,20 @@ void pn_connect_build(pn_context *ctx, uint32_t *hedge, uint32_t *run, uint32_t 
      * (free now) in ascending half-edge order, which reads the corners in order; each
      * vertex's half-edges then by (higher vertex, id) in place; then by object, placed back
      * into hedge in that order (counted into run again). */
-    for (i = 0; i <= nv; i++) run[i] = 0u;
-    for (i = 0; i < nh; i++) run[pn_cn_key(&c, PN_CN_LO, hedge[i]) + 1u]++;
-    for (i = 1u; i <= nv; i++) run[i] += run[i - 1u];
-    for (i = 0; i < nh; i++) parent[run[pn_cn_key(&c, PN_CN_LO, hedge[i])]++] = hedge[i];
+    pn_cn_count_sort(&c, PN_CN_LO, hedge, parent, nh, run, nv);
     for (i = 0, r = 0; r < nv; r++) { /* run[r]: the end of vertex r's half-edges */
         if (run[r] - i > 1u) pn_cn_sort(&c, PN_CN_BY_HI, parent + i, run[r] - i);
         i = run[r];
     }
-    for (i = 0; i <= ncomp; i++) run[i] = 0u;
-    for (i = 0; i < nh; i++) run[tcomp[parent[i] / 3u] + 1u]++;
-    for (i = 1u; i <= ncomp; i++) run[i] += run[i - 1u];
-    for (i = 0; i < nh; i++) hedge[run[tcomp[parent[i] / 3u]]++] = parent[i];
+    pn_cn_count_sort(&c, PN_CN_OBJ, parent, hedge, nh, run, ncomp);
 
     /* Runs. */
     ctx->stats.wedges.open_edges = 0;
     ctx->stats.wedges.nonmanifold_edges = 0;
     i = 0;
     while (i < nh) {
-        uint32_t j = i + 1u, h = hedge[i], lo = pn_cn_key(&c, PN_CN_LO, h), hi = pn_cn_key(&c, PN_CN_HI, h), s = tcomp[h / 3u];
+        uint32_t j = i + 1u, h = hedge[i], s = tcomp[h / 3u];
+        uint32_t lo = pn_cn_key(&c, PN_CN_LO, h), hi = pn_cn_key(&c, PN_CN_HI, h);
         while (j < nh && pn_cn_key(&c, PN_CN_LO, hedge[j]) == lo && pn_cn_key(&c, PN_CN_HI, hedge[j]) == hi &&
                tcomp[hedge[j] / 3u] == s)
             j++;

@@ -176,6 +176,17 @@ static int pn_part_box(const float *p, const float *rlo, const float *rhi, float
     return 1;
 }
 
+/* Whether triangle p (9 floats) with box b may be split: only slivers, a box of surface
+ * area over four times the triangle's (twice its area is |cross|); a compact triangle's
+ * halves never shrink enough. Far from float's range only (mag: its largest coordinate
+ * magnitude; the split's margins must not overflow). */
+static int pn_tri_sliver(const float *p, const pn_box *b, float mag)
+{
+    pn_v3 A = pn_v3_make(p[0], p[1], p[2]), B = pn_v3_make(p[3], p[4], p[5]), C = pn_v3_make(p[6], p[7], p[8]);
+    pn_v3 n = pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
+    return mag < 1e18f && pn_box_area(b) > 4.0f * pn_ksqrt(pn_v3_dot(n, n));
+}
+
 /* Splits triangle t: the parts at most `cap` halvings deep. Counts, for every depth d up
  * to cap, the references a cap of d would give (into count[d], when count is not NULL;
  * count[d] for d above cap gets this cap's), and writes the references of this cap from refs[*r] on, those below index `room` only
@@ -198,14 +209,7 @@ static void pn_split_tri(const float *tris, uint32_t t, uint32_t cap, uint64_t *
         ext = pn_kmaxf(ext, st[0].b.hi[a] - st[0].b.lo[a]);
     }
     m = (mag + ext) * (1.0f / 65536.0f);
-    {
-        /* Only slivers: a box of surface area over four times the triangle's (twice its
-         * area is |cross|); a compact triangle's halves never shrink enough. Far from
-         * float's range only (the margins above must not overflow). */
-        pn_v3 A = pn_v3_make(p[0], p[1], p[2]), B = pn_v3_make(p[3], p[4], p[5]), C = pn_v3_make(p[6], p[7], p[8]);
-        pn_v3 n = pn_v3_cross(pn_v3_sub(B, A), pn_v3_sub(C, A));
-        if (!(mag < 1e18f) || !(pn_box_area(&st[0].b) > 4.0f * pn_ksqrt(pn_v3_dot(n, n)))) cap = 0;
-    }
+    if (cap > 0u && !pn_tri_sliver(p, &st[0].b, mag)) cap = 0;
     while (sp > 0u) {
         pn_box cur = st[--sp].b, L, R;
         uint32_t dep = st[sp].depth;
@@ -304,23 +308,122 @@ static int pn_bvh_splits(const pn_context *ctx)
 }
 
 /* The references of the scene into refs (the frame region): every triangle split as deep
- * as the reserve allows (the same cap for all: the deepest whose count fits). One pass
- * splits to the deepest cap still possible, counting every shallower cap's references and
- * writing while they fit; the cap drops as soon as its count, plus one reference for
- * every triangle still to come, passes the reserve (its final count would), so a scene
- * that wants far more than the reserve stops paying for deep splits early, and the cap is
- * the one a full count would choose. Only when it dropped, a second pass writes it. */
-static uint32_t pn_bvh_refs(pn_context *ctx, pn_bref *refs, uint32_t *tris_out)
+ * as the reserve allows (the same cap for all: the deepest whose count fits).
+ *
+ * First, in parallel (pn_run) over PN_BVH_REF_CHUNKS fixed ranges of triangles (they
+ * depend on the scene alone), the slivers (pn_tri_sliver) are marked in ix (free until
+ * the tree is built) and counted per range. When there are more of them than the
+ * reserve, their boxes are halved once, again in parallel, and a sliver whose box was not
+ * split unmarked: if cap 1 then passes the reserve (the dragon's slivers), or no box was
+ * split, every triangle is one reference, as when there is no sliver (most scenes); the
+ * ranges write them in parallel, each from where the ranges before it end (the per-range
+ * counts sit in the subtrees' work items, unused until the tree is built).
+ *
+ * Otherwise one pass in order splits to the deepest cap still possible, counting every
+ * shallower cap's references and writing while they fit; the cap drops as soon as its
+ * count, plus one reference for every triangle still to come, passes the reserve (its
+ * final count would), so a scene that wants far more than the reserve stops paying for
+ * deep splits early, and the cap is the one a full count would choose. Only when it
+ * dropped, a second pass writes it. Both take an unmarked triangle without its split
+ * test. The same references, in the same order, either way. */
+#define PN_BVH_REF_CHUNKS 32u
+typedef struct pn_bvh_refjob {
+    const pn_context *ctx;
+    pn_bref *refs;
+    uint32_t *sliver;     /* per triangle: 1 when its box may be split */
+    uint32_t (*count)[3]; /* per range: triangles, slivers (pass 0) or references at cap 1 (pass 1) */
+    uint32_t split, pass, most; /* split: splits allowed; pass 0: mark, 1: halve once, 2: write */
+} pn_bvh_refjob;
+
+/* Below this many triangles the ranges run on the calling thread (the same work: handing
+ * them out cost more than they take, 0.2 ms on a scene of 4 triangles). */
+#define PN_BVH_REF_PAR_MIN 4096u
+
+typedef char pn_bvh_refjob_bytes[PN_BVH_REF_CHUNKS * 12u <= PN_BVH_TASK_BYTES ? 1 : -1];
+
+static void pn_bvh_refs_fn(void *task, uint32_t begin, uint32_t end)
 {
-    uint64_t count[PN_BVH_SPLIT_DEPTH + 1u], most = pn_bvh_refs_max(&ctx->limits);
-    uint32_t t, r = 0, d, first_cap, cap, rest = ctx->tri_count - ctx->degenerate;
+    const pn_bvh_refjob *j = (const pn_bvh_refjob *)task;
+    const pn_context *ctx = j->ctx;
+    const float *tris = ctx->tris;
+    uint32_t k, t;
+    for (k = begin; k < end; k++) {
+        uint32_t t0 = (uint32_t)((uint64_t)ctx->tri_count * k / PN_BVH_REF_CHUNKS);
+        uint32_t t1 = (uint32_t)((uint64_t)ctx->tri_count * (k + 1u) / PN_BVH_REF_CHUNKS), r = 0, n = 0, m = 0;
+        if (j->pass == 2u) {
+            /* one reference a triangle, from the end of the ranges before this one */
+            for (t = 0; t < k; t++) r += j->count[t][0];
+            for (t = t0; t < t1; t++)
+                if (!(ctx->flags[t] & PN_TRI_DEGENERATE)) pn_split_tri(tris, t, 0u, NULL, j->refs, &r, j->most);
+            continue;
+        }
+        for (t = t0; t < t1; t++) {
+            if (ctx->flags[t] & PN_TRI_DEGENERATE) continue;
+            n++;
+            if (j->pass == 0u) {
+                pn_box b;
+                float mag = 0.0f;
+                int a;
+                pn_tri_box(tris + (size_t)t * 9u, &b);
+                for (a = 0; a < 3; a++) mag = pn_kmaxf(mag, pn_kmaxf(-b.lo[a], b.hi[a]));
+                j->sliver[t] = j->split && pn_tri_sliver(tris + (size_t)t * 9u, &b, mag);
+                m += j->sliver[t];
+            } else if (j->sliver[t]) {
+                uint64_t count[PN_BVH_SPLIT_DEPTH + 1u] = {0};
+                /* room 0: counted, nothing written; a split box: two references at cap 1 */
+                pn_split_tri(tris, t, 1u, count, j->refs, &r, 0u);
+                j->sliver[t] = count[1] > 1u;
+                m += (uint32_t)count[1] - 1u;
+            }
+        }
+        j->count[k][0] = n;
+        j->count[k][j->pass + 1u] = m;
+    }
+}
+
+static void pn_bvh_refs_run(pn_context *ctx, pn_bvh_refjob *j)
+{
+    if (ctx->tri_count < PN_BVH_REF_PAR_MIN)
+        pn_bvh_refs_fn(j, 0u, PN_BVH_REF_CHUNKS);
+    else
+        pn_run(ctx, PN_BVH_REF_CHUNKS, pn_bvh_refs_fn, j);
+}
+
+static uint32_t pn_bvh_refs(pn_context *ctx, pn_bref *refs, uint32_t *sliver, void *scratch, uint32_t *tris_out)
+{
+    uint64_t count[PN_BVH_SPLIT_DEPTH + 1u], most = pn_bvh_refs_max(&ctx->limits), n = 0, m = 0;
+    uint32_t t, r = 0, d, first_cap, cap, rest = ctx->tri_count - ctx->degenerate, k;
+    pn_bvh_refjob j;
     first_cap = cap = pn_bvh_splits(ctx) ? PN_BVH_SPLIT_DEPTH : 0u;
-    for (d = 0; d <= PN_BVH_SPLIT_DEPTH; d++) count[d] = 0;
     *tris_out = rest;
+    j.ctx = ctx;
+    j.refs = refs;
+    j.sliver = sliver;
+    j.count = (uint32_t(*)[3])scratch;
+    j.split = cap > 0u;
+    j.most = (uint32_t)most;
+    j.pass = 0;
+    pn_bvh_refs_run(ctx, &j);
+    for (k = 0; k < PN_BVH_REF_CHUNKS; k++) {
+        n += j.count[k][0];
+        m += j.count[k][1];
+    }
+    if (m > most - n) { /* more slivers than the reserve: does cap 1 fit? */
+        j.pass = 1;
+        pn_bvh_refs_run(ctx, &j);
+        for (m = 0, k = 0; k < PN_BVH_REF_CHUNKS; k++) m += j.count[k][2];
+        if (m > most - n) m = 0; /* cap 0 */
+    }
+    if (m == 0u) { /* one reference a triangle (max_triangles <= most) */
+        j.pass = 2;
+        pn_bvh_refs_run(ctx, &j);
+        return (uint32_t)n;
+    }
+    for (d = 0; d <= PN_BVH_SPLIT_DEPTH; d++) count[d] = 0;
     for (t = 0; t < ctx->tri_count; t++)
         if (!(ctx->flags[t] & PN_TRI_DEGENERATE)) {
             rest--;
-            pn_split_tri(ctx->tris, t, cap, count, refs, &r, (uint32_t)most);
+            pn_split_tri(ctx->tris, t, sliver[t] ? cap : 0u, count, refs, &r, (uint32_t)most);
             /* count[0] + rest = the non-degenerate triangles <= max_triangles <= most: the
              * loop ends at 0 at the latest */
             while (count[cap] + rest > most) cap--;
@@ -328,7 +431,8 @@ static uint32_t pn_bvh_refs(pn_context *ctx, pn_bref *refs, uint32_t *tris_out)
     if (cap == first_cap) return r; /* = count[cap] <= most, all written */
     r = 0;
     for (t = 0; t < ctx->tri_count; t++)
-        if (!(ctx->flags[t] & PN_TRI_DEGENERATE)) pn_split_tri(ctx->tris, t, cap, NULL, refs, &r, (uint32_t)most);
+        if (!(ctx->flags[t] & PN_TRI_DEGENERATE))
+            pn_split_tri(ctx->tris, t, sliver[t] ? cap : 0u, NULL, refs, &r, (uint32_t)most);
     return r;
 }
 
@@ -872,7 +976,7 @@ pn_status pn_bvh_build(pn_context *ctx)
     /* after the references and the bit per triangle (pn_bvh_scratch_bytes) */
     tasks = (pn_bvh_task *)(void *)((uint8_t *)(refs + refs_max) + ((size_t)ctx->limits.max_triangles / 32u + 1u) * 4u);
     nodes = (pn_bnode *)(void *)(ctx->frame + pn_bvh_nodes_at(&ctx->limits));
-    n = pn_bvh_refs(ctx, refs, &ctx->bvh_tris);
+    n = pn_bvh_refs(ctx, refs, ix, tasks, &ctx->bvh_tris);
     for (t = 0; t < n; t++) ix[t] = t;
     ctx->bvh_refs = n;
     nodes[0].first = 0;

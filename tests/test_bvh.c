@@ -25,7 +25,9 @@
  *                once, at most pn_bvh_wide_max nodes, a walk stack within PN_BVH_STACK,
  *                and a binary depth within PN_BVH_DEPTH_MAX; a chain of nested squares deep enough for the depth bound
  *                to act renders with every algorithm, the exact ones with the same bytes
- *   parallel     the same tree, byte for byte, under every schedule of the parallel-for */
+ *   parallel     the same tree, byte for byte, under every schedule of the parallel-for
+ *   short reserve  slivers whose first halving passes the reserve, and a scene without
+ *                slivers, give the tree of no splitting, byte for byte, in parallel too */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -526,6 +528,69 @@ static void test_frames_slivers(void)
     pn_test_scene_free(&th);
 }
 
+/* The tree of a scene of many slivers (more than its reserve) whose first halving already
+ * passes the reserve (the dragon's case: cap 0) is the tree without splitting, byte for
+ * byte, under every schedule of the parallel-for (the references written by ranges in
+ * parallel, src/pn_bvh_build.c pn_bvh_refs), and so is that of a scene without slivers
+ * under a reserve. The slivers' scene under the default reserve splits. */
+static void test_refs_short_reserve(void)
+{
+    static const pn_test_order orders[2] = {PN_TEST_ITEMS_SHUFFLED, PN_TEST_CHUNKS_UNEVEN};
+    pn_test_scene sp;
+    scene s;
+    uint32_t i, which, o;
+    const uint32_t n = 5000; /* above PN_BVH_REF_PAR_MIN: the ranges handed out */
+    REQUIRE(pn_test_scene_load(&sp, "spheres") == 0);
+    s.pos = (float *)malloc((size_t)n * 9u * sizeof(float));
+    s.idx = (uint32_t *)malloc((size_t)n * 3u * sizeof(uint32_t));
+    REQUIRE(s.pos && s.idx);
+    s.tris = s.verts = 0;
+    for (i = 0; i < n; i++) {
+        double c[3] = {rnd_in(-3, 3), rnd_in(0.8, 1.8), rnd_in(-3, 3)};
+        add_sliver(&s, c, rnd_in(0.5, 3), rnd_in(0.002, 0.02));
+    }
+    for (which = 0; which < 2u; which++) {
+        const float *pos = which ? sp.mesh.positions : s.pos;
+        const uint32_t *idx = which ? sp.mesh.indices : s.idx;
+        uint32_t verts = which ? sp.mesh.vertex_count : s.verts, tris = which ? sp.mesh.triangle_count : s.tris;
+        pn_test_host h0, h1;
+        pn_context *a = open_ctx(&h0, tris, tris), *b; /* no split reference */
+        if (!a) break;
+        REQUIRE(pn_scene_set(a, pos, verts, idx, tris) == PN_OK);
+        CHECK(a->bvh_refs == tris);
+        if (which == 0u) {
+            /* the default reserve splits most of these slivers */
+            b = open_ctx(&h1, tris, 0u);
+            REQUIRE(b);
+            CHECK(pn_scene_set(b, pos, verts, idx, tris) == PN_OK);
+            CHECK_MSG(b->bvh_refs > tris + tris / 2u, "%u references for %u slivers", b->bvh_refs, tris);
+            pn_test_close(&h1);
+        }
+        for (o = 0; o < 3u; o++) {
+            pn_test_schedule sc;
+            memset(&sc, 0, sizeof(sc));
+            /* slivers: a reserve of 1 (cap 1 would take about 5000); spheres: the default */
+            b = open_ctx(&h1, tris, which ? 0u : tris + 1u);
+            if (!b) break;
+            if (o < 2u) {
+                sc.order = orders[o];
+                pn_set_parallel_for(b, pn_test_parallel_for, &sc);
+            }
+            CHECK(pn_scene_set(b, pos, verts, idx, tris) == PN_OK);
+            CHECK_MSG(a->bvh_nodes == b->bvh_nodes && a->bvh_refs == b->bvh_refs && a->bvh_wide == b->bvh_wide &&
+                          memcmp(a->tri_index, b->tri_index, (size_t)a->bvh_refs * 4u) == 0 &&
+                          memcmp(a->raster_index, b->raster_index, (size_t)a->bvh_tris * 4u) == 0 &&
+                          memcmp(a->wnodes, b->wnodes, (size_t)a->bvh_wide * sizeof(pn_kbvh4)) == 0,
+                      "%s, schedule %u: another tree than without splitting (%u references)",
+                      which ? "spheres" : "slivers", o, b->bvh_refs);
+            pn_test_close(&h1);
+        }
+        pn_test_close(&h0);
+    }
+    free_scene(&s);
+    pn_test_scene_free(&sp);
+}
+
 /* A tree built to be deep (issue 50): 48 small squares at x = 4 * 0.5^i along a line toward
  * the light's axis, each a tenth of its distance across, over a floor, under square's light:
  * the binned SAH can only peel the farthest few off at each level (every other centroid
@@ -717,5 +782,6 @@ int main(void)
     RUN(test_deep_tree);
     RUN(test_limits);
     RUN(test_parallel_same_tree);
+    RUN(test_refs_short_reserve);
     return pn_test_summary();
 }

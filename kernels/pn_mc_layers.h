@@ -5,7 +5,8 @@
 
 /* ---- Layers ------------------------------------------------------------------------------ */
 
-/* Texel row y of level 0 of view v emptied: near +inf, far -inf. */
+/* Texel row y of level 0 of view v emptied: near +inf, far -inf, no entry (the third
+ * float counts the texel's entries while the layers are drawn: pn_mc_entry). */
 PN_KFN void pn_mc_clear_row(const pn_kview *v, uint32_t y, PN_GLOBAL float *nb)
 {
     uint32_t x;
@@ -13,6 +14,7 @@ PN_KFN void pn_mc_clear_row(const pn_kview *v, uint32_t y, PN_GLOBAL float *nb)
         PN_GLOBAL float *T = nb + ((size_t)y * v->width + x) * PN_NB_MM;
         T[0] = PN_KINF;
         T[1] = -PN_KINF;
+        T[2] = pn_kbitsf(0u);
     }
 }
 
@@ -20,6 +22,13 @@ PN_KFN void pn_mc_clear_row(const pn_kview *v, uint32_t y, PN_GLOBAL float *nb)
  * seen from the light's view: nA > 0, or nA < 0 for a solid wound inside out
  * (PN_TRI_INVERTED), as the solid wound outward would give. */
 PN_KFN int pn_mc_back(float nA, uint8_t flag) { return (flag & PN_TRI_INVERTED) ? nA < 0.0f : nA > 0.0f; }
+
+/* Whether a fragment enters a solid along its texel's ray from the light: a front face, or
+ * either face of a sheet (PN_TRI_SHEET: a solid of no thickness). A texel with two entries
+ * or more holds more than one solid interval along that ray (two leaves, two flights of
+ * stairs, the folds of a statue), which the layers' one interval [near, far] fills: the
+ * gap between them is taken as solid (pn_mc_band marks the texel stacked). */
+PN_KFN uint32_t pn_mc_entry(float nA, uint8_t flag) { return (flag & PN_TRI_SHEET) || !pn_mc_back(nA, flag); }
 
 /* The layers' rows pass for group g of the n triangles (pn_raster_rows_group): a
  * receiver-only triangle covers nothing; a small one puts its fragments into level 0 here,
@@ -54,6 +63,7 @@ PN_KFN void pn_mc_rows(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris
             T = (PN_GLOBAL int32_t *)(nb + ((size_t)y * v->width + x) * PN_NB_MM);
             pn_katomic_imin(T, (int32_t)pn_kfbits(z)); /* near: the layers hold z > 0 or +-inf */
             if (pn_mc_back(nA, flags[t0 + i])) pn_katomic_imax(T + 1, (int32_t)pn_kfbits(z)); /* far: back faces */
+            if (pn_mc_entry(nA, flags[t0 + i])) pn_katomic_add((PN_GLOBAL uint32_t *)(T + 2), 1u);
         }
     }
 }
@@ -61,8 +71,12 @@ PN_KFN void pn_mc_rows(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris
 /* Band `band` of PN_RASTER_BAND texel rows of level 0 (emptied, and holding the small
  * triangles' fragments, pn_mc_rows): every fragment of every other occluder (the band
  * walk's, pn_raster.h) in front of the light plane takes part in its texel's near, and a
- * back face's in its far; then far := max(far, near) where the texel is not empty, max
- * near := near, and the texel is stored as the N-buffer's (near negated). */
+ * back face's in its far, and an entry (pn_mc_entry) is counted; then far := max(far,
+ * near) where the texel is not empty, max near := near, or +inf where the texel is stacked
+ * (two entries or more, with two layers or three, unless PN_MC_F_NO_STACKED), and the
+ * texel is stored as the N-buffer's (near negated). A stacked texel's +inf keeps every
+ * region holding it from the umbra class (the test that the receiver lies behind every
+ * near texel), and marks a ray the layers block there (pn_mc_stacked_at). */
 PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris, PN_CONST uint8_t *flags,
                        PN_CONST uint32_t *rows, PN_CONST uint32_t *chunks, PN_CONST uint32_t *index, uint32_t tri_n,
                        uint32_t band, PN_GLOBAL float *nb)
@@ -87,14 +101,16 @@ PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris
                 T = nb + ((size_t)y * v->width + (uint32_t)xi) * PN_NB_MM;
                 T[0] = pn_kminf(T[0], z);
                 if (pn_mc_back(rt.nA, flags[t])) T[1] = pn_kmaxf(T[1], z); /* a back face */
+                if (pn_mc_entry(rt.nA, flags[t])) T[2] = pn_kbitsf(pn_kfbits(T[2]) + 1u);
             }
         }
     }
     for (y = y0; y <= y1; y++)
         for (x = 0; x < v->width; x++) {
             PN_GLOBAL float *T = nb + ((size_t)y * v->width + x) * PN_NB_MM;
+            uint32_t entries = pn_kfbits(T[2]);
             if (T[0] < PN_KINF) T[1] = pn_kmaxf(T[1], T[0]); /* far at least near */
-            T[2] = T[0];
+            T[2] = mc->layers >= 2u && !(mc->flags & PN_MC_F_NO_STACKED) && entries >= 2u ? PN_KINF : T[0];
             T[0] = -T[0]; /* stored as the N-buffer holds it (pn_nbuffer.h) */
         }
 }

@@ -16,6 +16,8 @@
 #define PN_MC_CLASS_PENUMBRA_OPEN 4u
 #define PN_MC_CLASS_PENUMBRA_SHUT 5u
 #define PN_MC_CLASS_GRAZING 6u /* resolved by the exact fallback: PN_MC_VIS_OUTSIDE */
+#define PN_MC_CLASS_STACKED 8u /* resolved by exact rays: PN_MC_VIS_STACKED (class 7 is the
+                                  capped searches' word) */
 
 /* Pixels of a row that the classification first tests as one run (pn_mc_run). */
 #define PN_MC_RUN 16u
@@ -47,6 +49,7 @@
                               * PN_MC_VIS_OUTSIDE for the exact fallback's pass; no field below
                               * is set */
 #define PN_MC_VIS_OUTSIDE (-1.0f) /* the visibility buffer's mark of such a pixel */
+#define PN_MC_VIS_STACKED (-2.0f) /* ...and of a pixel whose rays a stacked texel blocked */
 typedef struct pn_mc_px {
     pn_v3 nrm, O, E; /* unit normal, shadow-ray origin, O in the light frame */
     float ex, ey;    /* E's image, and */
@@ -208,6 +211,7 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
     float ze = E.z, bias = 0.0f, zlo = 0.0f, zhi = PN_KINF, q[PN_NB_MM] = {0.0f, 0.0f, 0.0f};
     uint32_t n = L->is_point ? 1u : mc->rays, i, j, k = 0u, open = 0u, ahead = 0u, h0[PN_MD5R_LANES], h1[PN_MD5R_LANES];
     int classify = !(mc->flags & PN_MC_F_NO_CLASSIFY);
+    m->stacked = 0u;
     *rays = 0u;
     *cls = PN_MC_CLASS_PENUMBRA;
     /* A surface whose winding turns it away from the light centre is umbra: the thesis'
@@ -306,6 +310,10 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
         }
         *rays += 1u;
         m->steps++;
+        if (blocked && !out && pn_mc_stacked_texel(pn_mc_texel(m, pn_mc_at(&r, tend), &out))) {
+            *cls = PN_MC_CLASS_STACKED;
+            return PN_MC_VIS_STACKED;
+        }
         *cls = blocked ? PN_MC_CLASS_PENUMBRA_SHUT : PN_MC_CLASS_PENUMBRA_OPEN;
         return blocked ? 0.0f : 1.0f;
     }
@@ -395,7 +403,10 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
                  * and by no search step. */
                 int st = pn_mc_state_at(m, pn_mc_at(&r, te[l]), eat[l], eout[l]);
                 m->steps++;
-                if (st == PN_MC_INSIDE) continue;
+                if (st == PN_MC_INSIDE) {
+                    if (pn_mc_stacked_texel(m->nb + eat[l])) m->stacked = 1u;
+                    continue;
+                }
             }
             if (classify && t0 < t1) {
                 /* The ray's own region (§3.7): nothing before its end, or shortened. */
@@ -417,6 +428,13 @@ PN_KFN float pn_mc_pixel(pn_mc_ctx *m, uint32_t x, uint32_t y, const pn_mc_px *p
             *rays += 1u;
             if (!(mc->search == PN_MC_S_LINEAR ? pn_mc_linear(m, &r, t0, t1) : pn_mc_hier(m, &r, t0, t1))) open++;
         }
+    }
+    /* A ray the layers blocked in a stacked texel: the gap between two solids along the
+     * light's ray may be where it passes. The pixel's rays are traced exactly instead
+     * (pn_mc_exact_rays, the fallback's pass). */
+    if (m->stacked) {
+        *cls = PN_MC_CLASS_STACKED;
+        return PN_MC_VIS_STACKED;
     }
     /* open: the samples in front of P's plane (ahead) that no layer blocked */
     *cls = open == ahead ? PN_MC_CLASS_PENUMBRA_OPEN : (open == 0u ? PN_MC_CLASS_PENUMBRA_SHUT : PN_MC_CLASS_PENUMBRA);

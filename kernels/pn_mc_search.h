@@ -21,6 +21,7 @@ typedef struct pn_mc_ctx {
     pn_v3 corner[4];       /* the light's corners c -+ U -+ V (bit 0: +U, bit 1: +V) */
     uint32_t steps;        /* search steps so far */
     uint32_t capped;       /* searches stopped at the cap */
+    uint32_t stacked;      /* the pixel's rays: one blocked in a stacked texel (pn_mc_stacked_texel) */
 } pn_mc_ctx;
 
 /* A ray in the light frame from (xs, ys, 0) to (xe, ye, ze). */
@@ -56,6 +57,7 @@ PN_KFN void pn_mc_ctx_init(pn_mc_ctx *m, const pn_kview *view, const pn_kview *l
     m->hb = hb;
     m->steps = 0u;
     m->capped = 0u;
+    m->stacked = 0u;
     for (k = 0; k < 4u; k++)
         m->corner[k] = pn_v3_add(pn_v3_make(L->c[0], L->c[1], L->c[2]),
                                  pn_v3_add(pn_v3_scale(pn_v3_make(L->U[0], L->U[1], L->U[2]), (k & 1u) ? 1.0f : -1.0f),
@@ -91,6 +93,19 @@ PN_KFN PN_CONST float *pn_mc_texel(const pn_mc_ctx *m, pn_v3 p, int *outside)
     float px, py;
     pn_mc_proj(m, p, &px, &py);
     return pn_mc_texel_img(m, px, py, outside);
+}
+
+/* Whether level-0 texel T is stacked: not empty, its max near +inf (pn_mc_band: two
+ * entries or more along its ray, so its one interval [near, far] may hold gaps between
+ * solids that the layers take as solid). */
+PN_KFN int pn_mc_stacked_texel(PN_CONST float *T) { return T[2] == PN_KINF && T[0] > -PN_KINF; }
+
+/* A ray blocked at light-frame point p: marks the pixel when p's texel is stacked. */
+PN_KFN void pn_mc_block_at(pn_mc_ctx *m, pn_v3 p)
+{
+    int out;
+    PN_CONST float *T = pn_mc_texel(m, p, &out);
+    if (!out && pn_mc_stacked_texel(T)) m->stacked = 1u;
 }
 
 /* Third layer (Algorithm 1): whether the light-frame point p, inside a texel's interval
@@ -180,7 +195,10 @@ PN_KFN int pn_mc_linear(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
         float t = den > 0.0f ? t0 + (t1 - t0) * (q * w0 / den) : t0 + (t1 - t0) * q;
         int s = pn_mc_state(m, pn_mc_at(r, t));
         m->steps++;
-        if (s == PN_MC_INSIDE) return 1;
+        if (s == PN_MC_INSIDE) {
+            pn_mc_block_at(m, pn_mc_at(r, t));
+            return 1;
+        }
         if (i > 0u && s != sp) {
             /* Refine the transition (in front <-> behind). */
             float ta = tp, tb = t;
@@ -188,13 +206,19 @@ PN_KFN int pn_mc_linear(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
                 float tm = 0.5f * (ta + tb);
                 int sm = pn_mc_state(m, pn_mc_at(r, tm));
                 m->steps++;
-                if (sm == PN_MC_INSIDE) return 1;
+                if (sm == PN_MC_INSIDE) {
+                    pn_mc_block_at(m, pn_mc_at(r, tm));
+                    return 1;
+                }
                 if (sm == sp)
                     ta = tm;
                 else
                     tb = tm;
             }
-            if (sp == PN_MC_FRONT && pn_mc_same_texel(m, pn_mc_at(r, ta), pn_mc_at(r, tb))) return 1;
+            if (sp == PN_MC_FRONT && pn_mc_same_texel(m, pn_mc_at(r, ta), pn_mc_at(r, tb))) {
+                pn_mc_block_at(m, pn_mc_at(r, ta));
+                return 1;
+            }
         }
         sp = s;
         tp = t;
@@ -301,6 +325,7 @@ PN_KFN int pn_mc_hier(pn_mc_ctx *m, const pn_mc_ray *r, float t0, float t1)
                         continue;
                     }
                 }
+                if (pn_mc_stacked_texel(m->nb + ((uint32_t)Y0 * mc->res + (uint32_t)X0) * PN_NB_MM)) m->stacked = 1u;
                 return 1;
             }
             /* No point of the ray before depth min near can be inside. */

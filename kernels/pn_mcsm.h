@@ -98,6 +98,7 @@
 #define PN_MC_S_HIER 2u
 #define PN_MC_F_NO_BIAS 1u
 #define PN_MC_F_NO_CLASSIFY 2u
+#define PN_MC_F_NO_STACKED 4u
 #define PN_MC_RAYS_MAX 8u
 #define PN_MC_BLUR_MAX 8u
 /* Bisection steps of the linear search's refinement (1/256 of a texel). */
@@ -157,7 +158,8 @@
 #define PN_MC_WORD_PENUMBRA_SHUT 4u /* ...whose every sample in front was blocked */
 #define PN_MC_WORD_GRAZING 5u        /* ...whose surface the light centre grazes: exact */
 #define PN_MC_WORD_CAPPED 6u
-#define PN_MC_WORDS 7u
+#define PN_MC_WORD_STACKED 7u        /* ...whose rays the layers blocked in a stacked texel: exact rays */
+#define PN_MC_WORDS 8u
 #define PN_MC_ROW_WORDS 16u
 
 /* The parts, in order (each uses those before it). */

@@ -89,25 +89,70 @@ PN_KFN void pn_e_mc_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
         if (n[k]) pn_katomic_add(words + k, n[k]);
 }
 
+/* A stacked pixel's visibility (PN_MC_VIS_STACKED: the layers blocked one of its rays in a
+ * texel holding more than one solid along the light's ray, pn_mc_band): each of its n x n
+ * jittered rays (pn_mc_sample, the pixel pass's samples; one to the centre for a point
+ * light) to the sample of the light's k x k grid nearest it, decided exactly: behind the
+ * surface's own plane (the horizon), or blocked by a triangle (the per-sample ray tracer's
+ * walk, pn_raytrace.h). The fraction open, as the rays' own answer is. Only the walk's lost
+ * stack entries are counted (none: the tree's depth is bounded). */
+PN_KFN float pn_mc_exact_rays(pn_v3 P, pn_v3 nrm, uint32_t own, uint32_t x, uint32_t y, PN_CONST float *tris,
+                              PN_CONST pn_kbvh4 *wnodes, PN_CONST uint32_t *tri_index, const pn_klight *L,
+                              const pn_kmc *mc, pn_shadow_counters *cnt)
+{
+    pn_shadow_counters cw = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
+    uint32_t n = L->is_point ? 1u : mc->rays, k = L->k, i, j, open = 0u;
+    pn_horizon H;
+    pn_ray_origin X;
+    pn_v3 O;
+    if (!pn_shadow_origin(P, nrm, L, &O)) return 0.0f;
+    pn_horizon_of(P, nrm, own, tris, L, &H);
+    pn_tri_block_origin(O, L, wnodes, &X);
+    pn_ray_chain(&X, wnodes);
+    for (j = 0; j < n; j++)
+        for (i = 0; i < n; i++) {
+            float a, b;
+            int32_t si, sj;
+            pn_ray R;
+            pn_ray_walk W;
+            pn_mc_sample(x, y, i, j, n, mc->seed, &a, &b);
+            si = pn_kfloor_clamp((a + 1.0f) * 0.5f * (float)k, 0, (int32_t)k - 1);
+            sj = pn_kfloor_clamp((b + 1.0f) * 0.5f * (float)k, 0, (int32_t)k - 1);
+            if (pn_horizon_at(&H, L, pn_sample_coord(si, k), pn_sample_coord(sj, k))) continue;
+            pn_ray_make(&X, L, si, sj, &R);
+            pn_ray_walk_begin(&W, &X, &R, wnodes);
+            open += pn_ray_walk_next(&W, &R, own, tris, wnodes, tri_index, L, &cw) == PN_RAY_NONE;
+        }
+    cnt->overflow += cw.overflow;
+    return (float)open / (float)(n * n);
+}
+
 /* Row y: each pixel the pixel pass marked PN_MC_VIS_OUTSIDE (its origin no window holds, so
  * the layers hold none of its occluders, or its surface the light centre grazes:
- * PN_MC_COS_MIN) takes the exact fallback, counted as exact; before the blur. A pass of its
- * own: within the pixel pass's frame the reference's stack went over the library's budget
- * (check_callgraph). */
+ * PN_MC_COS_MIN) takes the exact fallback, counted as exact, and each it marked
+ * PN_MC_VIS_STACKED its rays traced exactly (pn_mc_exact_rays); before the blur. A pass of
+ * its own: within the pixel pass's frame the reference's stack went over the library's
+ * budget (check_callgraph). */
 PN_KFN void pn_e_mc_outside(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t y)
 {
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
-    size_t pix = (size_t)y * K->view.width, end = pix + K->view.width;
+    size_t row = (size_t)y * K->view.width, pix = row, end = pix + K->view.width;
     pn_ksurf S = pn_surf_of(A, P, K);
     for (; pix < end; pix++) {
+        float v = PN_POOL(const float, vis)[pix];
+        uint32_t id = PN_POOL(const uint32_t, tri_id)[pix];
         pn_v3 Ps, ns;
-        if (!(PN_POOL(const float, vis)[pix] == PN_MC_VIS_OUTSIDE)) continue;
+        if (!(v == PN_MC_VIS_OUTSIDE) && !(v == PN_MC_VIS_STACKED)) continue;
         pn_surf_at(&S, pix, &Ps, &ns);
-        PN_POOL(float, vis)[pix] =
-            pn_reference_fallback(Ps, ns, PN_POOL(const uint32_t, tri_id)[pix], PN_POOL(const float, tris),
-                                  PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), &K->light, &c);
+        if (v == PN_MC_VIS_STACKED)
+            v = pn_mc_exact_rays(Ps, ns, id, (uint32_t)(pix - row), y, PN_POOL(const float, tris),
+                                 PN_POOL(const pn_kbvh4, wnodes), PN_POOL(const uint32_t, index), &K->light, &K->mc, &c);
+        else
+            v = pn_reference_fallback(Ps, ns, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
+                                      PN_POOL(const uint32_t, index), &K->light, &c);
+        PN_POOL(float, vis)[pix] = v;
     }
-    if (c.exact) pn_counters_add(&PN_POOL(pn_row_counters, counters)[y].c, &c);
+    if (c.exact || c.overflow) pn_counters_add(&PN_POOL(pn_row_counters, counters)[y].c, &c);
 }
 
 /* Row: the blur across (visibility into the other buffer), then down (back). Rows, not

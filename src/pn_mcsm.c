@@ -30,7 +30,7 @@ pn_status pn_mcsm_prepare(pn_frame_state *fs, const pn_frame_options *opt)
     if (opt->mcsm.map != 0u && (opt->mcsm.map < 8u || opt->mcsm.map > pn_mc_map_max(&ctx->limits)))
         return pn_fail(ctx, PN_E_INVALID_ARG, "mcsm.map = %u; it must be 0 or in 8 .. %u (pn_limits.mc_map_max)",
                        opt->mcsm.map, pn_mc_map_max(&ctx->limits));
-    if (opt->mcsm.flags & ~(PN_MC_NO_BIAS | PN_MC_NO_CLASSIFY))
+    if (opt->mcsm.flags & ~(PN_MC_NO_BIAS | PN_MC_NO_CLASSIFY | PN_MC_NO_STACKED))
         return pn_fail(ctx, PN_E_INVALID_ARG, "mcsm.flags = %u has unknown bits", opt->mcsm.flags);
     /* Defaults: the configuration docs/algorithms/mcsm.md recommends: three layers (two
      * for a point query, which has no eye), hierarchical search, 3 x 3 rays, blur radius
@@ -52,8 +52,9 @@ pn_status pn_mcsm_prepare(pn_frame_state *fs, const pn_frame_options *opt)
 /* The kernels' copies of the public constants (kernels/ does not include penumbra.h). */
 typedef char pn_mc_consts_agree[PN_MC_S_LINEAR == PN_MC_SEARCH_LINEAR && PN_MC_S_HIER == PN_MC_SEARCH_HIER &&
                                         PN_MC_F_NO_BIAS == PN_MC_NO_BIAS && PN_MC_F_NO_CLASSIFY == PN_MC_NO_CLASSIFY &&
+                                        PN_MC_F_NO_STACKED == PN_MC_NO_STACKED && PN_MC_CLASS_STACKED == PN_MC_WORD_STACKED + 1u &&
                                         PN_MC_RAYS_MAX == 8u && PN_MC_BLUR_MAX + 1u <= 12u &&
-                                        PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS && PN_MC_WORDS == 7u && PN_MC_CLASS_GRAZING == PN_MC_WORD_GRAZING + 1u &&
+                                        PN_LVIEW_BOX == PN_LVIEW_BOX_FLOATS && PN_MC_WORDS == 8u && PN_MC_CLASS_GRAZING == PN_MC_WORD_GRAZING + 1u &&
                                         PN_MC_ROW_WORDS == 16u /* 64 bytes a row (pn_mc_carve) */
                                         && PN_MCSM_MAP_MAX <= 2048u /* N-buffer offsets in 32 bits, 12 levels (pn_nb_mm_lay) */
                                     ? 1
@@ -223,6 +224,7 @@ pn_status pn_mcsm_frame(pn_frame_state *fs)
         ctx->stats.mcsm.rays += c->candidates;
         ctx->stats.mcsm.steps += c->nodes;
         ctx->stats.mcsm.grazing += wd[PN_MC_WORD_GRAZING];
+        ctx->stats.mcsm.stacked += wd[PN_MC_WORD_STACKED];
         ctx->stats.mcsm.outside += c->exact - wd[PN_MC_WORD_GRAZING]; /* the fallback's pass counts both */
     }
     return PN_OK;

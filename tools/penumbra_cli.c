@@ -44,7 +44,7 @@ static void usage(FILE *f)
             "                  [--occ-slices N] [--occ-map N] [--occ-filter nbuffer|sat|mipmap]\n"
             "                  [--occ-combine product|max|sum] [--occ-leak-fix] [--occ-paper-fade]\n"
             "                  [--mc-layers 1|2|3] [--mc-search linear|hier] [--mc-rays N] [--mc-blur N|off]\n"
-            "                  [--mc-map N] [--mc-no-bias] [--mc-no-classify] [--mc-seed N] [--mc-sparse-nbuffer]\n"
+            "                  [--mc-map N] [--mc-no-bias] [--mc-no-classify] [--mc-no-stacked] [--mc-seed N] [--mc-sparse-nbuffer]\n"
             "                  [--wg-mode blend|additive] [--wg-no-cull] [--wg-silhouettes N]\n"
             "                  --out image.png [--vis vis.pfm] [--ids ids.bin] [--stats stats.json]\n"
             "  penumbra bake [the scene, view, light and algorithm options of render]\n"
@@ -310,6 +310,7 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
     fprintf(f, "  \"mc_rays\": %llu,\n  \"mc_steps\": %llu,\n  \"mc_capped\": %u,\n  \"mc_outside\": %u,\n  \"mc_grazing\": %u,\n",
             (unsigned long long)st->mcsm.rays, (unsigned long long)st->mcsm.steps, st->mcsm.capped, st->mcsm.outside,
             st->mcsm.grazing);
+    fprintf(f, "  \"mc_stacked\": %u,\n", st->mcsm.stacked);
     fprintf(f, "  \"ms_mc_layers\": %.3f,\n  \"ms_mc_nbuffer\": %.3f,\n  \"ms_mc_rays\": %.3f,\n  \"ms_mc_blur\": %.3f,\n",
             (double)st->mcsm.ns_layers * 1e-6, (double)st->mcsm.ns_nbuffer * 1e-6, (double)st->mcsm.ns_rays * 1e-6,
             (double)st->mcsm.ns_blur * 1e-6);
@@ -494,6 +495,7 @@ static int cmd_render(int argc, char **argv, int bake)
         else if (strcmp(a, "--mc-sparse-nbuffer") == 0) lim_flags |= PN_LIMITS_SPARSE_NBUFFER;
         else if (strcmp(a, "--mc-no-bias") == 0) opt.mcsm.flags |= PN_MC_NO_BIAS;
         else if (strcmp(a, "--mc-no-classify") == 0) opt.mcsm.flags |= PN_MC_NO_CLASSIFY;
+        else if (strcmp(a, "--mc-no-stacked") == 0) opt.mcsm.flags |= PN_MC_NO_STACKED;
         else if (strcmp(a, "--mc-seed") == 0) { NEED_ARG; opt.mcsm.seed = (uint32_t)strtoul(v, NULL, 10); }
         else if (strcmp(a, "--wg-mode") == 0) {
             NEED_ARG;

@@ -470,7 +470,10 @@ typedef struct pn_mcsm_options { /* PN_ALGO_MCSM (0 everywhere is the recommende
                               smaller of 512 and the limit */
     uint32_t flags;        /* PN_MC_NO_BIAS: no adaptive bias (eq. 3.2); PN_MC_NO_CLASSIFY:
                               no penumbra classification, early-outs or ray shortening
-                              (every ray searched whole) */
+                              (every ray searched whole); PN_MC_NO_STACKED: a ray blocked
+                              in a texel holding two solids or more along the light's ray
+                              stays blocked (the layers' own answer; by default the
+                              pixel's rays are then traced exactly: pn_mcsm_stats.stacked) */
     uint32_t seed;         /* frame key of the sample hash (Appendix A's key) */
 } pn_mcsm_options;
 
@@ -548,6 +551,7 @@ typedef struct pn_gbuffer {
 #define PN_MC_BLUR_OFF 0xFFFFFFFFu
 #define PN_MC_NO_BIAS 0x1u
 #define PN_MC_NO_CLASSIFY 0x2u
+#define PN_MC_NO_STACKED 0x4u
 
 /* 512x512, k = 16, the reference (in a build without it, the first algorithm compiled in,
  * in pn_algo order), eps = 1e-4, albedo 0.8, ambient 0.1, dark blue background; every
@@ -677,6 +681,11 @@ typedef struct pn_mcsm_stats { /* Monte Carlo shadow maps, last frame */
                                     makes a cosine below 0.2 with the light centre (there no
                                     bias of eq. 3.2 covers a texel's depth range without
                                     leaking): the same exact fallback */
+    uint32_t stacked;            /* pixels whose rays the layers blocked in a texel holding
+                                    two solids or more along the light's ray (two leaves,
+                                    two flights of stairs: the layers' one interval fills
+                                    the gap between them, which depth layers cannot
+                                    represent): their rays traced exactly instead */
     /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: layers (window, rasterization),
      * N-buffer, rays (classification and search; the exact fallback's pass), blur */
     uint64_t ns_layers, ns_nbuffer, ns_rays, ns_blur;

@@ -296,8 +296,8 @@ accuracy compare_vis(const float *a, const float *ref, size_t n);
 void write_data(const bench_opts *o, const char *name, const char *scene, const char *text);
 int heat_png(const bench_opts *o, const scene_state *ss, const char *file, const float *d, const float *ref,
              uint32_t w, uint32_t h, double tol, const uint8_t pos[3], const uint8_t neg[3]);
-void error_heat(const bench_opts *o, report *r, int s, const scene_state *ss, const char *file, const float *vis,
-                const float *ref, uint32_t w, uint32_t h);
+void error_heat(const bench_opts *o, report *r, int s, const scene_state *ss, const char *file, const char *what,
+                const float *vis, const float *ref, uint32_t w, uint32_t h);
 /* The note of an error_heat section. */
 #define HEAT_NOTE                                                                                                      \
     "Per scene, the default's visibility minus the k = 32 reference: red where it is brighter (a shadow "             \

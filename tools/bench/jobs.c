@@ -390,9 +390,9 @@ int heat_png(const bench_opts *o, const scene_state *ss, const char *file, const
 
 /* A frame's signed error against the k = 32 reference as a heat map (heat_png: red brighter,
  * blue darker, any difference above 1/255), OUT/<file>_<scene>.png, and its line in section
- * s of the report. */
-void error_heat(const bench_opts *o, report *r, int s, const scene_state *ss, const char *file, const float *vis,
-                const float *ref, uint32_t w, uint32_t h)
+ * s of the report (what: whose frame, "the default"). */
+void error_heat(const bench_opts *o, report *r, int s, const scene_state *ss, const char *file, const char *what,
+                const float *vis, const float *ref, uint32_t w, uint32_t h)
 {
     static const uint8_t red[3] = {1, 0, 0}, blue[3] = {0, 0, 1};
     size_t n = (size_t)w * h, p;
@@ -402,8 +402,8 @@ void error_heat(const bench_opts *o, report *r, int s, const scene_state *ss, co
     if (!d) return;
     for (p = 0; p < n; p++) d[p] = vis[p] - ref[p];
     if (heat_png(o, ss, file, d, ref, w, h, 1.0 / 255.0, red, blue) == 0)
-        sec(r, s, "**%s**\n\n![%s: the default's error, red brighter, blue darker](%s_%s.png)\n\n", ss->s.name,
-            ss->s.name, file, ss->s.name);
+        sec(r, s, "**%s**, %s\n\n![%s: %s's error, red brighter, blue darker](%s_%s.png)\n\n", ss->s.name, what,
+            ss->s.name, what, file, ss->s.name);
     free(d);
 }
 

@@ -83,7 +83,7 @@ void occ_section(const bench_opts *o, report *r, scene_state *ss)
             (unsigned long long)j->st.occtex.texels_set, (unsigned long long)j->st.occtex.lookups);
     }
     /* Where the default errs: its error against the k = 32 reference as a heat map. */
-    if (jobs[0].ok) error_heat(o, r, SEC_OCC_MAPS, ss, "occ_heat", jobs[0].vis, ref, opt.width, opt.height);
+    if (jobs[0].ok) error_heat(o, r, SEC_OCC_MAPS, ss, "occ_heat", "the default", jobs[0].vis, ref, opt.width, opt.height);
     for (i = 0; i < OCC_CFGS; i++) job_free(&jobs[i]);
 
     /* The configurations at the main point's k against its reference: the chart's points. */

@@ -122,7 +122,7 @@ static void fuzz_frame_decode(const uint8_t *data, size_t size, fuzz_frame *f)
     f->opt.mcsm.search = 1u + ((grid - 1u) / 3u) % 2u;
     f->opt.mcsm.rays = 1u + ((grid - 1u) / 6u) % 8u;
     f->opt.mcsm.blur = (flags >> 7) ? PN_MC_BLUR_OFF : 1u + (grid - 1u) % 8u;
-    f->opt.mcsm.flags = ((grid - 1u) / 2u) % 4u;
+    f->opt.mcsm.flags = ((grid - 1u) / 2u) % 8u; /* PN_MC_NO_BIAS, _NO_CLASSIFY, _NO_STACKED */
     f->opt.mcsm.seed = grid;
     /* Penumbra wedges: both modes, with and without the culls (PN_WG_NO_CULL). */
     f->opt.wedges.mode = 1u + (grid & 1u);

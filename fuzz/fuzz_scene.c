@@ -390,7 +390,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     opt.mcsm.layers = h[11] % 5u;
     opt.mcsm.search = h[12] % 4u;
     opt.mcsm.rays = h[13] % 10u;
-    opt.mcsm.flags = h[14] & 7u;
+    opt.mcsm.flags = h[14] & 15u; /* bit 3 unknown */
     opt.mcsm.blur = (h[14] >> 3) == 31u ? PN_MC_BLUR_OFF : (uint32_t)(h[14] >> 3) % 11u;
     opt.mcsm.seed = h[15];
 #endif
@@ -511,7 +511,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 #endif
 #ifdef PN_BUILD_MCSM
     if (opt.algo == PN_ALGO_MCSM && (opt.mcsm.layers > 3u || opt.mcsm.search > 2u || opt.mcsm.rays > 8u ||
-                                     (opt.mcsm.blur > 8u && opt.mcsm.blur != PN_MC_BLUR_OFF) || (opt.mcsm.flags & 4u)))
+                                     (opt.mcsm.blur > 8u && opt.mcsm.blur != PN_MC_BLUR_OFF) || (opt.mcsm.flags & 8u)))
         must |= BIT(PN_E_INVALID_ARG);
 #endif
     must |= vec_causes(shade, 3u) & BIT(PN_E_NONFINITE);

@@ -584,7 +584,8 @@ static void test_options(void)
             o.mcsm.rays = rays[(i / 2) % 4];
             o.mcsm.blur = blurs[(i / 4) % 3];
             o.mcsm.map = maps[(i + i / 6) % 3];
-            o.mcsm.flags = (i % 5 == 2 ? PN_MC_NO_BIAS : 0u) | (i % 6 == 5 ? PN_MC_NO_CLASSIFY : 0u);
+            o.mcsm.flags = (i % 5 == 2 ? PN_MC_NO_BIAS : 0u) | (i % 6 == 5 ? PN_MC_NO_CLASSIFY : 0u) |
+                           (i % 4 == 1 ? PN_MC_NO_STACKED : 0u);
             o.mcsm.seed = (uint32_t)i * 2654435761u;
             snprintf(what, sizeof(what), "spheres mcsm layers %u search %u rays %u blur %u map %u flags %u%s%s",
                      o.mcsm.layers, o.mcsm.search, o.mcsm.rays, o.mcsm.blur, o.mcsm.map, o.mcsm.flags,

@@ -30,7 +30,8 @@
  *
  * N-buffer (§3.5; kernels/pn_nbuffer.h). Three channels per texel and level: min near,
  * max far, max near (stored with min near negated, so that every channel is a max:
- * pn_nb_mm_get); level 0 is the layers (max near = near).
+ * pn_nb_mm_get); level 0 is the layers (max near = near, or +inf for a stacked texel:
+ * pn_mc_band, pn_mc_stacked_texel; no region holding one is umbra).
  *
  * Rays (§3, §3.1). Ray i of pixel (x, y) goes from a point S of the light, jittered in cell
  * i of an n x n grid by the reduced 16-step MD5 of Appendix A (pn_md5r, seeded by the pixel

@@ -76,7 +76,7 @@ PN_KFN void pn_mc_rows(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris
  * (two entries or more, with two layers or three, unless PN_MC_F_NO_STACKED), and the
  * texel is stored as the N-buffer's (near negated). A stacked texel's +inf keeps every
  * region holding it from the umbra class (the test that the receiver lies behind every
- * near texel), and marks a ray the layers block there (pn_mc_stacked_at). */
+ * near texel), and marks a ray the layers block there (pn_mc_stacked_texel). */
 PN_KFN void pn_mc_band(const pn_kview *v, const pn_kmc *mc, PN_CONST float *tris, PN_CONST uint8_t *flags,
                        PN_CONST uint32_t *rows, PN_CONST uint32_t *chunks, PN_CONST uint32_t *index, uint32_t tri_n,
                        uint32_t band, PN_GLOBAL float *nb)

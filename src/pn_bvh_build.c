@@ -335,8 +335,8 @@ typedef struct pn_bvh_refjob {
     uint32_t split, pass, most; /* split: splits allowed; pass 0: mark, 1: halve once, 2: write */
 } pn_bvh_refjob;
 
-/* Below this many triangles the ranges run on the calling thread (the same work: handing
- * them out cost more than they take, 0.2 ms on a scene of 4 triangles). */
+/* Below this many triangles the pass in order alone (the ranges' extra pass and their
+ * hand-out cost more than they save: 0.2 ms on a scene of 4 triangles). */
 #define PN_BVH_REF_PAR_MIN 4096u
 
 typedef char pn_bvh_refjob_bytes[PN_BVH_REF_CHUNKS * 12u <= PN_BVH_TASK_BYTES ? 1 : -1];
@@ -381,18 +381,10 @@ static void pn_bvh_refs_fn(void *task, uint32_t begin, uint32_t end)
     }
 }
 
-static void pn_bvh_refs_run(pn_context *ctx, pn_bvh_refjob *j)
-{
-    if (ctx->tri_count < PN_BVH_REF_PAR_MIN)
-        pn_bvh_refs_fn(j, 0u, PN_BVH_REF_CHUNKS);
-    else
-        pn_run(ctx, PN_BVH_REF_CHUNKS, pn_bvh_refs_fn, j);
-}
-
 static uint32_t pn_bvh_refs(pn_context *ctx, pn_bref *refs, uint32_t *sliver, void *scratch, uint32_t *tris_out)
 {
     uint64_t count[PN_BVH_SPLIT_DEPTH + 1u], most = pn_bvh_refs_max(&ctx->limits), n = 0, m = 0;
-    uint32_t t, r = 0, d, first_cap, cap, rest = ctx->tri_count - ctx->degenerate, k;
+    uint32_t t, r = 0, d, first_cap, cap, rest = ctx->tri_count - ctx->degenerate, k, marked;
     pn_bvh_refjob j;
     first_cap = cap = pn_bvh_splits(ctx) ? PN_BVH_SPLIT_DEPTH : 0u;
     *tris_out = rest;
@@ -403,27 +395,32 @@ static uint32_t pn_bvh_refs(pn_context *ctx, pn_bref *refs, uint32_t *sliver, vo
     j.split = cap > 0u;
     j.most = (uint32_t)most;
     j.pass = 0;
-    pn_bvh_refs_run(ctx, &j);
-    for (k = 0; k < PN_BVH_REF_CHUNKS; k++) {
-        n += j.count[k][0];
-        m += j.count[k][1];
-    }
-    if (m > most - n) { /* more slivers than the reserve: does cap 1 fit? */
-        j.pass = 1;
-        pn_bvh_refs_run(ctx, &j);
-        for (m = 0, k = 0; k < PN_BVH_REF_CHUNKS; k++) m += j.count[k][2];
-        if (m > most - n) m = 0; /* cap 0 */
-    }
-    if (m == 0u) { /* one reference a triangle (max_triangles <= most) */
-        j.pass = 2;
-        pn_bvh_refs_run(ctx, &j);
-        return (uint32_t)n;
+    /* the ranges mark the slivers, and may write every reference; small scenes: the pass
+     * in order alone, every triangle's split tested */
+    marked = ctx->tri_count >= PN_BVH_REF_PAR_MIN;
+    if (marked) {
+        pn_run(ctx, PN_BVH_REF_CHUNKS, pn_bvh_refs_fn, &j);
+        for (k = 0; k < PN_BVH_REF_CHUNKS; k++) {
+            n += j.count[k][0];
+            m += j.count[k][1];
+        }
+        if (m > most - n) { /* more slivers than the reserve: does cap 1 fit? */
+            j.pass = 1;
+            pn_run(ctx, PN_BVH_REF_CHUNKS, pn_bvh_refs_fn, &j);
+            for (m = 0, k = 0; k < PN_BVH_REF_CHUNKS; k++) m += j.count[k][2];
+            if (m > most - n) m = 0; /* cap 0 */
+        }
+        if (m == 0u) { /* one reference a triangle (max_triangles <= most) */
+            j.pass = 2;
+            pn_run(ctx, PN_BVH_REF_CHUNKS, pn_bvh_refs_fn, &j);
+            return (uint32_t)n;
+        }
     }
     for (d = 0; d <= PN_BVH_SPLIT_DEPTH; d++) count[d] = 0;
     for (t = 0; t < ctx->tri_count; t++)
         if (!(ctx->flags[t] & PN_TRI_DEGENERATE)) {
             rest--;
-            pn_split_tri(ctx->tris, t, sliver[t] ? cap : 0u, count, refs, &r, (uint32_t)most);
+            pn_split_tri(ctx->tris, t, marked && !sliver[t] ? 0u : cap, count, refs, &r, (uint32_t)most);
             /* count[0] + rest = the non-degenerate triangles <= max_triangles <= most: the
              * loop ends at 0 at the latest */
             while (count[cap] + rest > most) cap--;
@@ -432,7 +429,7 @@ static uint32_t pn_bvh_refs(pn_context *ctx, pn_bref *refs, uint32_t *sliver, vo
     r = 0;
     for (t = 0; t < ctx->tri_count; t++)
         if (!(ctx->flags[t] & PN_TRI_DEGENERATE))
-            pn_split_tri(ctx->tris, t, sliver[t] ? cap : 0u, NULL, refs, &r, (uint32_t)most);
+            pn_split_tri(ctx->tris, t, marked && !sliver[t] ? 0u : cap, NULL, refs, &r, (uint32_t)most);
     return r;
 }
 

@@ -171,6 +171,7 @@ typedef struct pn_kwg {
                          |U|inf, |V|inf and the eye's |e|inf */
     uint32_t no_cull; /* 1 (PN_WG_NO_CULL): every silhouette in every tile of a band, no box
                          test passes and no tile clear (the same bytes) */
+    uint32_t full;    /* 1: some tiles' lists outgrew the pools, their boxes marked PN_WG_FULL */
 } pn_kwg;
 
 /* The G-buffer's triangle id of a pixel that sees no triangle. */

@@ -126,7 +126,8 @@ PN_KFN void pn_e_wg_runs(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpar
  * centre ray (none in a clear tile; the tiles' boxes are made only when there are
  * silhouettes) and its tile's wedges, blended object by object, times its horizon's
  * fraction; or, in its own object's self-shadow penumbra (PN_WG_EXACT), the reference's
- * visibility over at most PN_REF_FALLBACK_K^2 samples (pn_reference_fallback). */
+ * visibility over at most PN_REF_FALLBACK_K^2 samples (pn_reference_fallback); or, in a
+ * tile marked PN_WG_FULL, the reference's visibility at the frame's k. */
 PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kparams *K, uint32_t i)
 {
     pn_shadow_counters c = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
@@ -136,6 +137,7 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
     PN_CONST uint32_t *toff = PN_POOL(const uint32_t, wg_toff);
     pn_v3 pos, nrm, O;
     float v;
+    int full;
     if (tx < K->wg.bx0 || tx >= K->wg.bx1) return; /* another band's */
     id = PN_POOL(const uint32_t, tri_id)[pix];
     if (id == PN_NO_PIXEL_TRIANGLE) {
@@ -148,13 +150,14 @@ PN_KFN void pn_e_wg_pixel(PN_GLOBAL uint8_t *A, const pn_kpools *P, const pn_kpa
         return;
     }
     tile = (pix / W / PN_WG_TILE) * K->wg.tiles_x + tx;
-    v = pn_wg_pixel(O, id, &K->light, K->wg.mode, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
+    full = K->wg.full && PN_POOL(const float, wg_tbox)[(size_t)tile * PN_WG_BOX + PN_WG_CLEAR] == PN_WG_FULL;
+    v = full ? PN_WG_EXACT : pn_wg_pixel(O, id, &K->light, K->wg.mode, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
                     PN_POOL(const uint32_t, index), PN_POOL(const uint32_t, wg_tcomp), PN_POOL(const uint32_t, wg_tcast), PN_POOL(const pn_wsil, wg_sil),
                     K->wg.sils, PN_POOL(const float, wg_bbox), PN_POOL(const float, wg_sbox), PN_POOL(const uint32_t, wg_sorted), PN_POOL(const uint32_t, wg_pairs), toff[tile], toff[tile + 1u],
                     K->wg.sils > 0u && PN_POOL(const float, wg_tbox)[(size_t)tile * PN_WG_BOX + PN_WG_CLEAR] > 0.0f, &c);
     if (v == PN_WG_EXACT) {
-        v = pn_reference_fallback(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
-                                  PN_POOL(const uint32_t, index), &K->light, &c);
+        v = pn_reference_fallback_k(pos, nrm, id, PN_POOL(const float, tris), PN_POOL(const pn_kbvh4, wnodes),
+                                    PN_POOL(const uint32_t, index), &K->light, full ? K->light.k : PN_REF_FALLBACK_K, &c);
     } else if (v > 0.0f && !(PN_POOL(const uint32_t, wg_tcast)[id] & PN_WG_LIT_FRONT)) {
         uint32_t m[PN_MASK_WORDS_MAX];
         pn_horizon H;

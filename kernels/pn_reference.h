@@ -471,14 +471,23 @@ PN_KFN float pn_reference_pixel(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float
  * (0.0698 for 0.0697 on the Buddha, the most of them) for 0.47 G instructions more than
  * none there instead of 1.89 G (callgrind, 256 x 256). Counted in cnt->exact. */
 #define PN_REF_FALLBACK_K 4u
-PN_KFN float pn_reference_fallback(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris, PN_CONST pn_kbvh4 *wnodes,
-                                   PN_CONST uint32_t *tri_index, const pn_klight *L, pn_shadow_counters *cnt)
+/* The same over at most kmax^2 samples (the wedges' tiles whose lists outgrow their pools
+ * take the frame's k). */
+PN_KFN float pn_reference_fallback_k(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris, PN_CONST pn_kbvh4 *wnodes,
+                                     PN_CONST uint32_t *tri_index, const pn_klight *L, uint32_t kmax,
+                                     pn_shadow_counters *cnt)
 {
     pn_shadow_counters ce = {0u, 0u, 0u, 0u, 0u, 0u, 0u};
     pn_klight Lk = *L;
-    if (Lk.k > PN_REF_FALLBACK_K) Lk.k = PN_REF_FALLBACK_K;
+    if (Lk.k > kmax) Lk.k = kmax;
     cnt->exact++;
     return pn_reference_pixel(P, nrm, own, tris, wnodes, tri_index, &Lk, &ce);
+}
+
+PN_KFN float pn_reference_fallback(pn_v3 P, pn_v3 nrm, uint32_t own, PN_CONST float *tris, PN_CONST pn_kbvh4 *wnodes,
+                                   PN_CONST uint32_t *tri_index, const pn_klight *L, pn_shadow_counters *cnt)
+{
+    return pn_reference_fallback_k(P, nrm, own, tris, wnodes, tri_index, L, PN_REF_FALLBACK_K, cnt);
 }
 
 #endif

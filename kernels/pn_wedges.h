@@ -469,6 +469,18 @@ PN_KFN void pn_wg_block_box(PN_CONST pn_wsil *sil, uint32_t nsil, uint32_t k, ui
  * no centre ray; else 0. */
 #define PN_WG_BOX 7u
 #define PN_WG_CLEAR 6u
+/* PN_WG_CLEAR of a tile whose list holds more silhouettes or pairs than the frame's pools
+ * (src/pn_wedges.c): it lists nothing (its box is empty) and its pixels take the reference's
+ * visibility at the frame's k. */
+#define PN_WG_FULL (-1.0f)
+
+/* Marks tile box B PN_WG_FULL (the host, between the tile boxes and the binning). */
+PN_KFN void pn_wg_box_full(PN_GLOBAL float *B)
+{
+    B[0] = B[2] = B[4] = PN_KINF;
+    B[1] = B[3] = B[5] = -PN_KINF;
+    B[PN_WG_CLEAR] = PN_WG_FULL;
+}
 
 /* The cone of a tile's centre segments: with apex the light centre c (light coordinates
  * (u, v, h) = (0, 0, 0)), a segment from origin O to c is the points s O, s in [0, 1], along

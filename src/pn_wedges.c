@@ -194,6 +194,7 @@ static pn_status pn_wg_begin(pn_frame_state *fs, pn_wg_pools *s)
     ctx->stats.wedges.hard_blockers = 0;
     ctx->stats.wedges.hard_overflow = 0;
     ctx->stats.wedges.exact_pixels = 0;
+    ctx->stats.wedges.full_tiles = 0;
     ctx->stats.wedges.ns_silhouettes = 0;
     ctx->stats.wedges.ns_binning = 0;
     ctx->stats.wedges.ns_pixels = 0;
@@ -411,6 +412,7 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
     }
     K->wg.tiles_x = tw;
     K->wg.sils = 0u;
+    K->wg.full = 0u;
     K->wg.keep_cap = cap; /* the tile-list pool's words: the count's kept tiles */
     /* Every frame's: the pixel pass reads a pixel's triangle's PN_WG_LIT_FRONT, a point
      * light's and a scene without edges' too (they read the previous frame's words when
@@ -426,14 +428,18 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
         if (nsil > 0u && (st = pn_dev_run(fs, PN_K_WG_TILE_BOX, tiles)) != PN_OK) return st;
     }
     ctx->stats.wedges.ns_silhouettes = pn_dev_timestamp(fs) - t0;
-    /* Only a tile whose list is longer than a pool fails, and a band that failed after
-     * others were shaded would leave the previous frame's visibility half written. A list
-     * holds at most every silhouette, and a tile's pairs are its list; where the pools
-     * could be short of one (silhouettes in bands, or a pair pool smaller than the
-     * silhouette pool), every tile's list length is counted first (pn_wg_sil_tiles, into
-     * the tile offsets, free until the first band's sort) and the longest checked. */
+    /* A band needs its tiles' lists in the pools: a tile's silhouettes in the silhouette
+     * pool, its pairs (one a silhouette) in the pair pool. A list holds at most every
+     * silhouette; where the pools could be short of one (silhouettes in bands, or a pair
+     * pool smaller than the silhouette pool), every tile's list length is counted first
+     * (pn_wg_sil_tiles, into the tile offsets, free until the first band's sort). A tile
+     * whose list outgrows a pool (a view through a forest's crowns: hundreds of thousands
+     * of leaves' wedges over 16 x 16 pixels) is marked PN_WG_FULL: it lists nothing and its
+     * pixels take the reference at the frame's k (pn_stats.wedges.full_tiles), so no valid
+     * scene fails for the pools' sake and no tile's pixels pay for more wedges than they
+     * could use. */
     if (nsil > 0u && (nsil > scap || cap < scap)) {
-        uint32_t most = 0u, i;
+        uint32_t i, most = scap < cap ? scap : cap, full = 0u;
         K->wg.bx0 = 0u;
         K->wg.by0 = 0u;
         K->wg.bx1 = tw;
@@ -441,15 +447,15 @@ pn_status pn_wedges_frame(pn_frame_state *fs)
         if ((st = pn_dev_fill(fs, s.toff, tiles, 0u)) != PN_OK || (st = pn_dev_run(fs, PN_K_WG_TILE_COUNT, R)) != PN_OK ||
             (st = pn_dev_to_host(fs, s.toff, (size_t)tiles * sizeof(uint32_t))) != PN_OK)
             return st;
-        for (i = 0; i < tiles; i++) most = s.toff[i] > most ? s.toff[i] : most;
-        if (most > scap)
-            return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
-                           "wedges: one screen tile lists %u silhouettes; the silhouette pool holds %u "
-                           "(pn_limits.wg_silhouettes, PN_WEDGES_SIL_MAX)", most, scap);
-        if (most > cap)
-            return pn_fail(ctx, PN_E_POOL_EXHAUSTED,
-                           "wedges: one screen tile needs %u (tile, wedge) pairs; the pair pool holds %u "
-                           "(pn_limits.wg_pairs, PN_WEDGES_PAIRS)", most, cap);
+        for (i = 0; i < tiles; i++) full += s.toff[i] > most;
+        if (full > 0u) {
+            if ((st = pn_dev_to_host(fs, s.tbox, (size_t)tiles * PN_WG_BOX * sizeof(float))) != PN_OK) return st;
+            for (i = 0; i < tiles; i++)
+                if (s.toff[i] > most) pn_wg_box_full(s.tbox + (size_t)i * PN_WG_BOX);
+            if ((st = pn_dev_to_device(fs, s.tbox, (size_t)tiles * PN_WG_BOX * sizeof(float))) != PN_OK) return st;
+            K->wg.full = 1u;
+            ctx->stats.wedges.full_tiles = full;
+        }
     }
     if ((st = pn_wg_sil_bands(fs, &s, tiles, cap, scap, nsil)) != PN_OK) return st;
     if ((st = pn_dev_to_host(fs, fs->counters, (size_t)fs->height * sizeof(pn_row_counters))) != PN_OK) return st;

@@ -632,46 +632,60 @@ static int small_rig(pn_xrig *r, const pn_setup *s, uint32_t w, uint32_t h, uint
 }
 
 /* The wedges through bands of one pool (sil: 0 the pair pool, 1 the silhouette pool),
- * against the one-band frame `one` (pairs pairs), on both ports: a pool of a third of the
- * frame's pairs (half its silhouettes: bands of tile rows); then from the least pool (2
- * pairs, 64 silhouettes) up, each failure's count ("one screen tile needs N" pairs, "...
- * lists N" silhouettes) the next pool, until the fullest tile fits (rows cut into runs of
- * tiles: more bands than the five tile rows). */
+ * against the one-band frame `one` (pairs pairs), on both ports (cross: the same bytes): a
+ * pool of a third of the frame's pairs (half its silhouettes: bands of tile rows), the same
+ * bytes as one band; the least pool (2 pairs, 64 silhouettes), where tiles whose lists
+ * outgrow it are full (their pixels the reference's: test_wedges checks which); and, found
+ * by bisection, the least pool without a full tile (the fullest tile's list), the same bytes
+ * as one band in rows cut into runs of tiles (more bands than the five tile rows), and one
+ * less, a full tile. */
+static pn_status wedge_pool(const pn_setup *s, const pn_frame_options *o, uint32_t pool, int sil, pn_wedges_stats *ws,
+                            int *same, const float *one)
+{
+    pn_xrig small;
+    pn_status st;
+    char what[256];
+    if (small_rig(&small, s, 96, 72, 0u, sil ? 0u : pool, sil ? pool : 0u) != 0) return PN_E_INTERNAL;
+    snprintf(what, sizeof(what), "spheres wedges, %s pool %u", sil ? "silhouette" : "pair", pool);
+    st = cross(&small, &s->camera, &s->light, o, what);
+    CHECK_MSG(st == PN_OK, "%s: %s", what, pn_status_str(st));
+    *ws = small.b.st.wedges;
+    *same = memcmp(small.b.vis, one, 96u * 72u * sizeof(float)) == 0;
+    rig_close(&small);
+    return st;
+}
+
 static void wedge_pools(const pn_setup *s, const pn_frame_options *o, const float *one, uint64_t pairs, int sil)
 {
-    const char *say = sil ? "one screen tile lists " : "one screen tile needs ";
-    char what[256], fmt[64];
-    uint32_t pool = sil ? g_rig.a.st.wedges.silhouettes / 2u : (uint32_t)(pairs / 3u), tries;
-    snprintf(fmt, sizeof(fmt), "%s%%u", say);
-    for (tries = 0; tries < 64u; tries++) {
-        pn_xrig small;
-        pn_status st;
-        const char *m;
-        uint32_t bands;
-        if (small_rig(&small, s, 96, 72, 0u, sil ? 0u : pool, sil ? pool : 0u) != 0) break;
-        snprintf(what, sizeof(what), "spheres wedges, %s pool %u", sil ? "silhouette" : "pair", pool);
-        st = cross(&small, &s->camera, &s->light, o, what);
-        m = strstr(pn_last_error(small.h.ctx), say);
-        if (st == PN_E_POOL_EXHAUSTED && tries > 0u) {
-            uint32_t need = 0u;
-            CHECK_MSG(m && sscanf(m, fmt, &need) == 1 && need > pool, "%s: %s", what, pn_last_error(small.h.ctx));
-            rig_close(&small);
-            if (need <= pool) break;
-            pool = need;
-            continue;
-        }
-        CHECK_MSG(st == PN_OK, "%s: %s", what, pn_status_str(st));
-        if (st == PN_OK) {
-            bands = sil ? small.b.st.wedges.sil_bands : small.b.st.wedges.bands;
-            CHECK_MSG(bands >= (tries ? 6u : sil ? 2u : 3u) && small.b.st.wedges.pairs == pairs, "%s: %u bands", what,
-                      bands);
-            CHECK_MSG(memcmp(small.b.vis, one, 96u * 72u * sizeof(float)) == 0, "%s: differs from one band", what);
-            fprintf(stderr, "same: %s: %u bands\n", what, bands);
-        }
-        rig_close(&small);
-        if (tries > 0u) break;
-        pool = sil ? 64u : 2u;
+    uint32_t pool = sil ? g_rig.a.st.wedges.silhouettes / 2u : (uint32_t)(pairs / 3u), lo = sil ? 64u : 2u, hi;
+    pn_wedges_stats ws;
+    int same;
+    if (wedge_pool(s, o, pool, sil, &ws, &same, one) != PN_OK) return;
+    CHECK_MSG((sil ? ws.sil_bands : ws.bands) >= (sil ? 2u : 3u) && ws.pairs == pairs && ws.full_tiles == 0u && same,
+              "%s pool %u: %u bands, %u full tiles, %s", sil ? "silhouette" : "pair", pool, sil ? ws.sil_bands : ws.bands,
+              ws.full_tiles, same ? "the same bytes" : "other bytes");
+    if (wedge_pool(s, o, lo, sil, &ws, &same, one) != PN_OK) return;
+    fprintf(stderr, "%s pool %u: %u full tiles of %u, %u exact pixels\n", sil ? "silhouette" : "pair", lo, ws.full_tiles,
+            6u * 5u, ws.exact_pixels);
+    CHECK(ws.full_tiles > 0u && ws.exact_pixels > 0u && !same);
+    /* the least pool without a full tile lies in (lo, pool] */
+    hi = pool;
+    while (hi - lo > 1u) {
+        uint32_t mid = lo + (hi - lo) / 2u;
+        if (wedge_pool(s, o, mid, sil, &ws, &same, one) != PN_OK) return;
+        if (ws.full_tiles > 0u)
+            lo = mid;
+        else
+            hi = mid;
     }
+    if (wedge_pool(s, o, hi, sil, &ws, &same, one) != PN_OK) return;
+    fprintf(stderr, "the least %s pool without a full tile: %u, %u bands\n", sil ? "silhouette" : "pair", hi,
+            sil ? ws.sil_bands : ws.bands);
+    CHECK_MSG(ws.full_tiles == 0u && same && ws.pairs == pairs && (sil ? ws.sil_bands : ws.bands) >= 6u,
+              "%s pool %u: %u full tiles, %u bands", sil ? "silhouette" : "pair", hi, ws.full_tiles,
+              sil ? ws.sil_bands : ws.bands);
+    if (wedge_pool(s, o, hi - 1u, sil, &ws, &same, one) != PN_OK) return;
+    CHECK(ws.full_tiles > 0u);
 }
 
 /* The wedges through bands of their pair pool and of their silhouette pool (wedge_pools),

@@ -319,9 +319,10 @@ static int write_stats(const char *path, const pn_setup *s, const pn_frame_optio
     fprintf(f, "  \"wg_objects\": %u,\n  \"wg_closed_objects\": %u,\n  \"wg_inverted_objects\": %u,\n  \"wg_duplicates\": %u,\n  \"wg_silhouettes\": %u,\n  \"wg_pairs\": %llu,\n  \"wg_bands\": %u,\n  \"wg_sil_bands\": %u,\n",
             st->wedges.objects, st->wedges.closed_objects, st->wedges.inverted_objects, st->wedges.duplicates, st->wedges.silhouettes, (unsigned long long)st->wedges.pairs,
             st->wedges.bands, st->wedges.sil_bands);
-    fprintf(f, "  \"wg_evaluated\": %llu,\n  \"wg_touched\": %llu,\n  \"wg_hard_blockers\": %llu,\n  \"wg_hard_overflow\": %u,\n  \"wg_exact_pixels\": %u,\n",
+    fprintf(f, "  \"wg_evaluated\": %llu,\n  \"wg_touched\": %llu,\n  \"wg_hard_blockers\": %llu,\n  \"wg_hard_overflow\": %u,\n  \"wg_exact_pixels\": %u,\n  \"wg_full_tiles\": %u,\n",
             (unsigned long long)st->wedges.evaluated, (unsigned long long)st->wedges.touched,
-            (unsigned long long)st->wedges.hard_blockers, st->wedges.hard_overflow, st->wedges.exact_pixels);
+            (unsigned long long)st->wedges.hard_blockers, st->wedges.hard_overflow, st->wedges.exact_pixels,
+            st->wedges.full_tiles);
     fprintf(f, "  \"ms_wg_silhouettes\": %.3f,\n  \"ms_wg_binning\": %.3f,\n  \"ms_wg_pixels\": %.3f,\n",
             (double)st->wedges.ns_silhouettes * 1e-6, (double)st->wedges.ns_binning * 1e-6, (double)st->wedges.ns_pixels * 1e-6);
     fprintf(f, "  \"mean_visibility\": %.9g\n}\n", mean);

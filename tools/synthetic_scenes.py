@@ -3,7 +3,10 @@
 would be: a stairwell (a closed shaft of box walls, four flights of nine box steps, landings
 and railing posts, a 0.6 x 0.6 lamp 0.3 below the ceiling), an office (40 desks on thin legs,
 open chair shells, shelves, a lamp under the ceiling) and a forest (12 trees of 1,500 leaf
-quads each over a ground quad, a large light high to one side). Written as glTF 2.0 binaries
+quads each over a ground quad, a large light high to one side); with --foliage also a dense
+tree (60,000 leaf quads in a 4 m crown: 120k triangles) and a big forest (60 trees of 8,000
+leaf quads: 960k triangles, 34 MB), the scenes of docs/wedges-time.md ("Dense foliage").
+Written as glTF 2.0 binaries
 with a views.json beside them in the shared scenes' format, so that
 
     penumbra render DIR/stairwell.glb --views DIR/views.json --view stairwell --algo mcsm ...
@@ -11,7 +14,7 @@ with a views.json beside them in the shared scenes' format, so that
 renders them as docs/algorithms/mcsm.md ("Stacked solids: exact rays") measured them. Python 3
 standard library only; the same files on every run (a fixed seed).
 
-usage: tools/synthetic_scenes.py DIR
+usage: tools/synthetic_scenes.py DIR [--foliage]
 """
 import json
 import math
@@ -105,6 +108,15 @@ def stairwell():
     return objs
 
 
+def leaf(rng, cx, cy, cz, r, s):
+    """A leaf quad of size s at distance r (drawn first by the caller) from (cx, cy, cz)."""
+    a, b = rng.uniform(0, 6.283), rng.uniform(-1, 1)
+    c = (cx + r * math.cos(a) * math.sqrt(1 - b * b), cy + r * b, cz + r * math.sin(a) * math.sqrt(1 - b * b))
+    u = (s * rng.uniform(-1, 1), s * rng.uniform(-0.3, 0.3), s * rng.uniform(-1, 1))
+    v = (-u[2] * 0.5, s * 0.8, u[0] * 0.5)
+    return quad(c, u, v)
+
+
 def forest(rng):
     objs = [quad((0, 0, 0), (20, 0, 0), (0, 0, 20))]
     for _ in range(12):
@@ -112,15 +124,22 @@ def forest(rng):
         cz = rng.uniform(-15, 15)
         h = rng.uniform(4, 7)
         objs.append(box(cx - 0.2, 0, cz - 0.2, cx + 0.2, h, cz + 0.2))
-        leaves = []
-        for _ in range(1500):
-            r, a, b = rng.uniform(0, 2.5), rng.uniform(0, 6.283), rng.uniform(-1, 1)
-            c = (cx + r * math.cos(a) * math.sqrt(1 - b * b), h + 1.5 + r * b, cz + r * math.sin(a) * math.sqrt(1 - b * b))
-            s = 0.12
-            u = (s * rng.uniform(-1, 1), s * rng.uniform(-0.3, 0.3), s * rng.uniform(-1, 1))
-            v = (-u[2] * 0.5, s * 0.8, u[0] * 0.5)
-            leaves.append(quad(c, u, v))
-        objs.append(merge(leaves))
+        objs.append(merge([leaf(rng, cx, h + 1.5, cz, rng.uniform(0, 2.5), 0.12) for _ in range(1500)]))
+    return objs
+
+
+def densetree(rng):
+    objs = [quad((0, 0, 0), (12, 0, 0), (0, 0, 12)), box(-0.3, 0, -0.3, 0.3, 5, 0.3)]
+    objs.append(merge([leaf(rng, 0, 7, 0, 4 * rng.random() ** 0.5, 0.07) for _ in range(60000)]))
+    return objs
+
+
+def bigforest(rng):
+    objs = [quad((0, 0, 0), (40, 0, 0), (0, 0, 40))]
+    for _ in range(60):
+        cx, cz, h = rng.uniform(-35, 35), rng.uniform(-35, 35), rng.uniform(4, 8)
+        objs.append(box(cx - 0.25, 0, cz - 0.25, cx + 0.25, h, cz + 0.25))
+        objs.append(merge([leaf(rng, cx, h + 2, cz, rng.uniform(0, 3), 0.1) for _ in range(8000)]))
     return objs
 
 
@@ -149,11 +168,15 @@ VIEWS = {
                "light_center": [10, 2.9, 6], "light_u": [0.4, 0, 0], "light_v": [0, 0, 0.4], "ground": False},
     "forest": {"size": [512, 512], "eye": [26, 16, 26], "target": [0, 3, 0], "up": [0, 1, 0], "fov": 55,
                "light_center": [-25, 40, 20], "light_u": [2, 0, 2], "light_v": [-1.6, -1.9, 1.6], "ground": False},
+    "densetree": {"size": [256, 256], "eye": [14, 9, 14], "target": [0, 4, 0], "up": [0, 1, 0], "fov": 55,
+                  "light_center": [-10, 20, 6], "light_u": [1.5, 0, 1.5], "light_v": [-1.2, -1.4, 1.2], "ground": False},
+    "bigforest": {"size": [512, 512], "eye": [60, 35, 60], "target": [0, 3, 0], "up": [0, 1, 0], "fov": 55,
+                  "light_center": [-40, 60, 30], "light_u": [3, 0, 3], "light_v": [-2.4, -2.9, 2.4], "ground": False},
 }
 
 
 def main():
-    if len(sys.argv) != 2:
+    if len(sys.argv) not in (2, 3) or (len(sys.argv) == 3 and sys.argv[2] != '--foliage'):
         sys.exit(__doc__.strip().splitlines()[-1])
     out = sys.argv[1]
     os.makedirs(out, exist_ok=True)
@@ -161,9 +184,14 @@ def main():
     write_glb(os.path.join(out, 'stairwell.glb'), stairwell())
     write_glb(os.path.join(out, 'forest.glb'), forest(rng))
     write_glb(os.path.join(out, 'office.glb'), office())
+    names = ['stairwell', 'office', 'forest']
+    if len(sys.argv) == 3:
+        write_glb(os.path.join(out, 'densetree.glb'), densetree(random.Random(5)))
+        write_glb(os.path.join(out, 'bigforest.glb'), bigforest(random.Random(11)))
+        names += ['densetree', 'bigforest']
     with open(os.path.join(out, 'views.json'), 'w') as f:
-        json.dump(VIEWS, f, indent=2)
-    print('wrote stairwell.glb, office.glb, forest.glb and views.json to', out)
+        json.dump({n: VIEWS[n] for n in names}, f, indent=2)
+    print('wrote', ', '.join(n + '.glb' for n in names), 'and views.json to', out)
 
 
 if __name__ == '__main__':

@@ -133,9 +133,9 @@ typedef struct pn_limits {
                                 max_width x max_height with every silhouette slot
                                 (wg_silhouettes), at least 6 a slot,
                                 at most PN_WEDGES_PAIRS. A frame needing more is binned in
-                                bands of tiles (the same bytes); one tile needing more fails
-                                PN_E_POOL_EXHAUSTED with its count, before any pixel is
-                                written */
+                                bands of tiles (the same bytes); a 16x16 tile needing more
+                                is full: its pixels take the reference's visibility at the
+                                frame's k (pn_stats.wedges.full_tiles) */
     uint32_t bvh_refs;       /* BVH references (47 bytes of arena each, and 72 of the
                                 frame region while the tree is built); beyond one a
                                 triangle, split slivers (config.h PN_BVH_SPLIT_DEPTH; frames
@@ -153,10 +153,9 @@ typedef struct pn_limits {
                                 PN_WEDGES_SIL_MAX; 0: 3 a triangle, at most
                                 PN_WEDGES_SIL_MAX. A frame with more silhouettes makes them
                                 in bands of tiles, each band only those its tiles list
-                                (the same bytes); a tile listing more fails
-                                PN_E_POOL_EXHAUSTED with its count, before any pixel is
-                                written. Last, so that positional initializers of the
-                                fields above still hold */
+                                (the same bytes); a tile listing more is full, as above.
+                                Last, so that positional initializers of the fields above
+                                still hold */
 } pn_limits;
 
 /* pn_limits.flags. PN_LIMITS_NO_SURFACE: frames keep no per-pixel position and normal (24
@@ -722,7 +721,11 @@ typedef struct pn_wedges_stats { /* Penumbra wedges: the scene's connectivity (a
                                     a pixel keeps track of: resolved exactly, as below */
     uint32_t exact_pixels;       /* pixels in their own object's self-shadow penumbra or
                                     past that cap, resolved with the reference's exact
-                                    predicate */
+                                    predicate (over at most 4 x 4 samples), and the pixels
+                                    of full tiles (at the frame's k) */
+    uint32_t full_tiles;         /* 16 x 16 screen tiles whose wedges outgrew the silhouette
+                                    or pair pool (pn_limits.wg_silhouettes, wg_pairs):
+                                    their pixels took the reference's visibility */
     /* ...and its stages' share of pass_ns[PN_PASS_SHADOW]: silhouettes, binning, pixels */
     uint64_t ns_silhouettes, ns_binning, ns_pixels;
 } pn_wedges_stats;
